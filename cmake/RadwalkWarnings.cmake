@@ -1,0 +1,26 @@
+# radwalk_options: an INTERFACE target every radwalk target links, carrying warnings and sanitizers.
+add_library(radwalk_options INTERFACE)
+target_compile_options(radwalk_options INTERFACE -Wall -Wextra -Wpedantic)
+if(RADWALK_SANITIZE)
+  target_compile_options(radwalk_options INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+                                                   -fno-sanitize-recover=undefined)
+  target_link_options(radwalk_options INTERFACE -fsanitize=address,undefined)
+endif()
+
+# radwalk_add_layer(NAME SOURCES... DEPS ...): one static library per layer, src/ as include root.
+function(radwalk_add_layer name)
+  cmake_parse_arguments(L "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(radwalk_${name} STATIC ${L_SOURCES})
+  target_include_directories(radwalk_${name} PUBLIC ${PROJECT_SOURCE_DIR}/src)
+  target_link_libraries(radwalk_${name} PUBLIC radwalk_options ${L_DEPS})
+endfunction()
+
+# radwalk_add_test(NAME SOURCES... DEPS ...): one Catch2 executable, each TEST_CASE discovered as a CTest test.
+function(radwalk_add_test name)
+  cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${T_SOURCES})
+  target_link_libraries(${name} PRIVATE radwalk_options Catch2::Catch2WithMain ${T_DEPS})
+  target_compile_definitions(${name} PRIVATE RADWALK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+  catch_discover_tests(${name} TEST_SPEC "~[slow]" PROPERTIES TIMEOUT 600)
+  catch_discover_tests(${name} TEST_SPEC "[slow]" TEST_PREFIX "slow: " PROPERTIES TIMEOUT 3600 LABELS slow)
+endfunction()

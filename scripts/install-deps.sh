@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages radwalk needs, skipping apt entirely when all are present.
+set -euo pipefail
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev libembree-dev libopenmesh-dev libvtk9-dev catch2 libtbb-dev libcli11-dev
+  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libboost-dev python3-matplotlib
+)
+missing=()
+for p in "${packages[@]}"; do
+  status=$(dpkg-query -W -f='${db:Status-Status}' "$p" 2>/dev/null || true)
+  [ "$status" = "installed" ] || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "install-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

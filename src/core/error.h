@@ -1,0 +1,23 @@
+#pragma once
+// Errors radwalk reports to users. Every message is one line that names where the problem is.
+#include <stdexcept>
+#include <string>
+
+namespace radwalk {
+
+// Bad input (a file, a face, an option): the program prints what() and exits non-zero.
+class InputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// A numerical problem a solver detected and refuses to hide (divergence, singular system).
+class NumericalError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "FILE:LINE: face F: WHAT" with the parts that are known (line <= 0 or face < 0 are left out).
+std::string locate(const std::string& file, long line, long face, const std::string& what);
+
+}  // namespace radwalk

@@ -1,0 +1,28 @@
+#pragma once
+// A surface material as read from MTL (or PLY face colours).
+//
+// Units and meanings: Kd is the diffuse reflectance rho per channel, in [0, 1); Ke is the emitted radiance L_e
+// (W / (m^2 sr) in the mesh's length unit), so the emitted radiosity (exitance) of a Lambertian emitter is
+// E = pi * Ke. The radiosity solvers use only Kd and Ke; the other fields serve the path tracer's images.
+#include <string>
+
+#include "core/types.h"
+
+namespace radwalk {
+
+enum class BsdfKind { diffuse, mirror, dielectric, conductor, microfacet };
+
+struct Material {
+  std::string name;
+  Rgb Kd = Rgb::Zero();  // diffuse reflectance rho
+  Rgb Ke = Rgb::Zero();  // emitted radiance L_e
+  BsdfKind kind = BsdfKind::diffuse;
+  int illum = -1;        // MTL illumination model, -1 if absent
+  Rgb Ks = Rgb::Zero();  // specular colour (mirror tint, conductor F0 or tint)
+  double Ni = 1.5;       // index of refraction (dielectric)
+  double roughness = 0;  // GGX alpha, from Pr or derived from Ns
+  double metallic = 0;   // Pm
+  long line = 0;         // line in the MTL file where it is defined (0 if none)
+};
+
+}  // namespace radwalk

@@ -1,0 +1,76 @@
+#include "patch/patch_set.h"
+
+#include <algorithm>
+
+#include "core/sampling.h"
+
+namespace radwalk {
+
+double PatchSet::total_area() const {
+  double s = 0;
+  for (double a : area) s += a;
+  return s;
+}
+
+double PatchSet::scene_extent() const {
+  if (points.empty()) return 0;
+  Vec3 lo = points[0], hi = points[0];
+  for (const auto& p : points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return (hi - lo).maxCoeff();
+}
+
+void compute_patch_geometry(PatchSet& patches) {
+  const std::size_t n = patches.corners.size();
+  patches.centroid.resize(n);
+  patches.normal.resize(n);
+  patches.area.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& a = patches.corner(i, 0);
+    const Vec3& b = patches.corner(i, 1);
+    const Vec3& c = patches.corner(i, 2);
+    // Triangle fan (0,1,2), (0,2,3): area-weighted centroid and the vector area of the polygon.
+    Vec3 cross1 = (b - a).cross(c - a);
+    double a1 = 0.5 * cross1.norm();
+    Vec3 centroid = a1 * (a + b + c) / 3.0;
+    Vec3 vector_area = 0.5 * cross1;
+    double total = a1;
+    if (patches.is_quad(i)) {
+      const Vec3& d = patches.corner(i, 3);
+      Vec3 cross2 = (c - a).cross(d - a);
+      double a2 = 0.5 * cross2.norm();
+      centroid += a2 * (a + c + d) / 3.0;
+      vector_area += 0.5 * cross2;
+      total += a2;
+    }
+    patches.area[i] = total;
+    patches.centroid[i] = total > 0 ? Vec3(centroid / total) : a;
+    const double len = vector_area.norm();
+    patches.normal[i] = len > 0 ? Vec3(vector_area / len) : Vec3(0, 0, 1);
+  }
+}
+
+Vec3 sample_patch_point(const PatchSet& patches, std::size_t i, double u1, double u2) {
+  const Vec3& a = patches.corner(i, 0);
+  const Vec3& b = patches.corner(i, 1);
+  const Vec3& c = patches.corner(i, 2);
+  if (patches.is_quad(i)) {
+    const Vec3& d = patches.corner(i, 3);
+    const double a1 = (b - a).cross(c - a).norm();
+    const double a2 = (c - a).cross(d - a).norm();
+    const double p1 = a1 / (a1 + a2);
+    if (u1 < p1) {
+      u1 = std::min(u1 / p1, 0x1.fffffffffffffp-1);
+    } else {
+      u1 = std::min((u1 - p1) / (1.0 - p1), 0x1.fffffffffffffp-1);
+      const Eigen::Vector2d w = sample_uniform_triangle(u1, u2);
+      return w.x() * a + w.y() * c + (1.0 - w.x() - w.y()) * d;
+    }
+  }
+  const Eigen::Vector2d w = sample_uniform_triangle(u1, u2);
+  return w.x() * a + w.y() * b + (1.0 - w.x() - w.y()) * c;
+}
+
+}  // namespace radwalk
