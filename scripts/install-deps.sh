@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libembree-dev libopenmesh-dev libvtk9-dev catch2 libtbb-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libboost-dev python3-matplotlib
+  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libboost-dev libopenexr-dev python3-matplotlib
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,24 @@
+#pragma once
+// The discrete radiosity system, per channel c:  B_c = E_c + diag(rho_c) F B_c,
+// i.e. (I - H_c) B_c = E_c with H_c = diag(rho_c) F. F is N x N row-major (row i: where power leaving patch i
+// lands, rows sum to 1 in a closed scene, less in an open one); rho in [0, 1); E = emitted radiosity, W/m^2.
+#include <Eigen/Core>
+
+#include "core/types.h"
+#include "formfactor/sparse_f.h"
+#include "patch/patch_set.h"
+
+namespace radwalk {
+
+struct RadiosityProblem {
+  SparseF F;             // N x N form factors
+  PatchRgb rho;          // N x 3 reflectance
+  PatchRgb E;            // N x 3 emitted radiosity
+  Eigen::VectorXd area;  // N patch areas
+  std::size_t size() const { return static_cast<std::size_t>(area.size()); }
+};
+
+// Takes rho, E and area from the patches and F as given. Throws InputError if F is not N x N.
+RadiosityProblem make_problem(const PatchSet& patches, SparseF F);
+
+}  // namespace radwalk
