@@ -1,0 +1,34 @@
+#include "io/cell_field.h"
+
+namespace radwalk {
+
+std::vector<CellField> patch_fields(const PatchSet& patches) {
+  const std::size_t n = patches.size();
+  CellField patch{"patch", 1, {}}, face{"face", 1, {}}, area{"area", 1, {}};
+  CellField normal{"normal", 3, {}}, rho{"rho", 3, {}}, E{"E", 3, {}};
+  for (std::size_t i = 0; i < n; ++i) {
+    patch.values.push_back(static_cast<double>(i));
+    face.values.push_back(patches.face[i]);
+    area.values.push_back(patches.area[i]);
+    for (int c = 0; c < 3; ++c) {
+      normal.values.push_back(patches.normal[i][c]);
+      rho.values.push_back(patches.rho[i][c]);
+      E.values.push_back(patches.E[i][c]);
+    }
+  }
+  return {patch, face, area, normal, rho, E};
+}
+
+CellField scalar_field(const std::string& name, const std::vector<double>& values) {
+  return CellField{name, 1, values};
+}
+
+CellField rgb_field(const std::string& name, const PatchRgb& values) {
+  CellField f{name, 3, {}};
+  f.values.reserve(static_cast<std::size_t>(values.rows()) * 3);
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (int c = 0; c < 3; ++c) f.values.push_back(values(i, c));
+  return f;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,67 @@
+#include "io/csv_writer.h"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+#include "core/atomic_write.h"
+
+namespace radwalk {
+
+std::string csv_number(double v) {
+  if (!std::isfinite(v)) return "";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.12g", v);
+  return buf;
+}
+
+void write_csv_table(const std::string& path, const std::vector<std::string>& header,
+                     const std::vector<std::vector<std::string>>& rows) {
+  write_atomically(path, [&](std::ostream& out) {
+    for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
+    out << '\n';
+    for (const auto& row : rows) {
+      for (std::size_t k = 0; k < row.size(); ++k) out << (k ? "," : "") << row[k];
+      out << '\n';
+    }
+  });
+}
+
+void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra) {
+  static const char* kChannel[3] = {"_r", "_g", "_b"};
+  std::vector<std::string> header = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx", "ny",
+                                     "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b"};
+  for (const CellField& f : extra) {
+    if (f.components == 1) {
+      header.push_back(f.name);
+    } else {
+      for (int c = 0; c < f.components; ++c) {
+        std::string column = f.name;
+        if (f.components == 3) {
+          column += kChannel[c];
+        } else {
+          column += '_';
+          column += std::to_string(c);
+        }
+        header.push_back(column);
+      }
+    }
+  }
+  const std::size_t n = patches.size();
+  write_atomically(path, [&](std::ostream& out) {
+    for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
+    out << '\n';
+    for (std::size_t i = 0; i < n; ++i) {
+      out << i << ',' << patches.face[i] << ',' << csv_number(patches.area[i]);
+      for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.centroid[i][c]);
+      for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.normal[i][c]);
+      for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.rho[i][c]);
+      for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.E[i][c]);
+      for (const CellField& f : extra)
+        for (int c = 0; c < f.components; ++c) out << ',' << csv_number(f.values[i * f.components + c]);
+      out << '\n';
+    }
+  });
+}
+
+}  // namespace radwalk

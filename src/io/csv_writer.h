@@ -1,0 +1,22 @@
+#pragma once
+// Per-patch CSV: a header row, then one row per patch. Columns: patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,
+// rho_b,E_r,E_g,E_b, then each extra field (a 1-component field is one column NAME, a 3-component field is
+// NAME_r,NAME_g,NAME_b). Numbers are printed with 12 significant digits ("nan" never appears: non-finite values
+// are written as empty cells). Written atomically.
+#include <string>
+#include <vector>
+
+#include "io/cell_field.h"
+
+namespace radwalk {
+
+void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra);
+
+// Writes a generic table (header + rows of already formatted cells), atomically.
+void write_csv_table(const std::string& path, const std::vector<std::string>& header,
+                     const std::vector<std::vector<std::string>>& rows);
+
+// Formats a number for CSV: 12 significant digits, empty for NaN or infinity.
+std::string csv_number(double v);
+
+}  // namespace radwalk

@@ -1,0 +1,55 @@
+#include "io/obj_writer.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <ostream>
+
+#include "core/atomic_write.h"
+
+namespace radwalk {
+namespace {
+
+std::string num(double v) {
+  char buf[40];
+  std::snprintf(buf, sizeof buf, "%.17g", v);
+  return buf;
+}
+
+std::string rgb(const Rgb& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c[2]); }
+
+}  // namespace
+
+void write_obj(const std::string& path, const PatchSet& patches) {
+  const std::filesystem::path obj(path);
+  const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
+
+  write_atomically(mtl.string(), [&](std::ostream& out) {
+    out << "# radwalk patches of " << patches.source << "\n# Kd = diffuse reflectance, Ke = emitted radiance\n";
+    for (const Material& m : patches.materials) {
+      out << "\nnewmtl " << m.name << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
+      if (m.illum >= 0) out << "illum " << m.illum << "\n";
+      if (m.kind != BsdfKind::diffuse) {
+        out << "Ks " << rgb(m.Ks) << "\nNi " << num(m.Ni) << "\n";
+        if (m.roughness > 0) out << "Pr " << num(m.roughness) << "\n";
+        if (m.metallic > 0) out << "Pm " << num(m.metallic) << "\n";
+      }
+    }
+  });
+  write_atomically(path, [&](std::ostream& out) {
+    out << "# radwalk patches of " << patches.source << ": " << patches.size() << " patches\n";
+    out << "mtllib " << mtl.filename().string() << "\n";
+    for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
+    int current = -1;
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      if (patches.material[i] != current) {
+        current = patches.material[i];
+        out << "usemtl " << patches.materials[current].name << '\n';
+      }
+      out << 'f';
+      for (int k = 0; k < patches.corner_count(i); ++k) out << ' ' << patches.corners[i][k] + 1;
+      out << '\n';
+    }
+  });
+}
+
+}  // namespace radwalk

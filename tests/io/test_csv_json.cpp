@@ -1,0 +1,88 @@
+// CSV and JSON outputs parse back with the promised columns and values.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "io/csv_writer.h"
+#include "io/obj_writer.h"
+#include "io/run_summary.h"
+#include "patch/patch_builder.h"
+
+using namespace radwalk;
+
+static std::vector<std::vector<std::string>> read_csv(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::vector<std::string>> rows;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) cells.push_back(cell);
+    if (!line.empty() && line.back() == ',') cells.push_back("");
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST_CASE("patch CSV has the documented columns and values", "[io][csv]") {
+  PatchBuilder b;
+  const int m = b.add_material("m", Rgb(0.73, 0.5, 0.25), Rgb(0, 0, 1));
+  b.add_quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, m);
+  const PatchSet p = b.build();
+  PatchRgb B(1, 3);
+  B << 1, 2, std::numeric_limits<double>::quiet_NaN();
+  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test.csv").string();
+  write_patch_csv(path, p, {rgb_field("B", B), scalar_field("row_sum", {0.5})});
+  const auto rows = read_csv(path);
+  REQUIRE(rows.size() == 2);
+  const std::vector<std::string> expected = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx",  "ny",
+                                             "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b", "B_r",
+                                             "B_g",   "B_b",   "row_sum"};
+  CHECK(rows[0] == expected);
+  REQUIRE(rows[1].size() == expected.size());
+  CHECK(std::stod(rows[1][2]) == Approx(2.0));
+  CHECK(std::stod(rows[1][3]) == Approx(1.0));
+  CHECK(std::stod(rows[1][9]) == 0.73);
+  CHECK(std::stod(rows[1][14]) == Approx(kPi));
+  CHECK(rows[1][17].empty());  // NaN is written as an empty cell, never "nan"
+  CHECK(std::stod(rows[1][18]) == 0.5);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("run summary JSON parses and records timings, warnings and memory", "[io][json]") {
+  RunSummary s("solve", {"radwalk", "solve", "scene.obj"});
+  s.json()["patches"] = 42;
+  s.add_timing("load", 0.25);
+  s.add_warning("face 3: something");
+  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test.json").string();
+  s.write(path);
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  CHECK(j["command"] == "solve");
+  CHECK(j["patches"] == 42);
+  CHECK(j["timings_s"]["load"] == 0.25);
+  CHECK(j["warnings"][0] == "face 3: something");
+  CHECK(j["peak_memory_bytes"].get<long>() > 0);
+  CHECK(j["versions"]["embree"].get<std::string>().rfind("3.", 0) == 0);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("write_obj writes faces in patch order with an MTL beside it", "[io][obj]") {
+  PatchBuilder b;
+  const int m = b.add_material("wall", Rgb(0.73, 0.5, 0.25), Rgb(0, 0, 1));
+  b.add_quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, m);
+  b.add_triangle({0, 0, 1}, {1, 0, 1}, {0, 1, 1}, m);
+  const PatchSet p = b.build();
+  const auto dir = std::filesystem::temp_directory_path();
+  write_obj((dir / "radwalk_test_out.obj").string(), p);
+  std::ifstream obj(dir / "radwalk_test_out.obj"), mtl(dir / "radwalk_test_out.mtl");
+  std::stringstream so, sm;
+  so << obj.rdbuf();
+  sm << mtl.rdbuf();
+  CHECK(so.str().find("mtllib radwalk_test_out.mtl") != std::string::npos);
+  CHECK(so.str().find("f 1 2 3 4\nf 5 6 7\n") != std::string::npos);
+  CHECK(sm.str().find("newmtl wall\nKd 0.72999999999999998 0.5 0.25\nKe 0 0 1\n") != std::string::npos);
+}
