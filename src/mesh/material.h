@@ -23,6 +23,7 @@ struct Material {
   double roughness = 0;  // GGX alpha, from Pr or derived from Ns
   double metallic = 0;   // Pm
   long line = 0;         // line in the MTL file where it is defined (0 if none)
+  std::string file;      // MTL file where it is defined (empty if none)
 };
 
 }  // namespace radwalk

@@ -1,0 +1,85 @@
+#pragma once
+// Options of the radwalk commands, filled by the command-line parser (radwalk.cpp) and read by the commands.
+// Options shared by several commands are spelled the same everywhere (see add_*_options in radwalk.cpp).
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace radwalk::app {
+
+// Every command that reads a scene.
+struct SceneOptions {
+  std::string scene;       // OBJ (+MTL) or PLY
+  double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
+  int threads = 0;         // 0 = all cores
+  std::uint64_t seed = 1;
+  std::string vtp;         // -o FILE.vtp
+  std::string csv;         // --csv FILE
+  std::string json;        // --json FILE
+  std::vector<std::string> argv;  // the command line, for the JSON summary
+};
+
+// Commands that need form factors: estimate them, or read them from a Matrix Market file.
+struct FormFactorCliOptions {
+  long rays = 1000;            // rays per patch
+  double rays_per_area = 0;    // if > 0: rays = max(min_rays, rays_per_area * area)
+  long min_rays = 16;
+  std::string form_factors;    // --form-factors F.mtx: read instead of estimating
+  bool reciprocity = false;    // --reciprocity: average A_i F_ij and A_j F_ji
+};
+
+struct PatchCommand {
+  SceneOptions scene;
+  std::string output;  // .vtp or .obj
+};
+
+struct FormFactorsCommand {
+  SceneOptions scene;
+  FormFactorCliOptions ff;
+  std::string mtx;  // -o F.mtx
+  std::string diagnostics_vtp;  // --vtp
+};
+
+struct SolveCommand {
+  SceneOptions scene;
+  FormFactorCliOptions ff;
+  std::string solver = "auto";
+  double tol = 1e-8;
+  long max_iterations = 10000;
+  // random walks
+  std::string walk = "gather";
+  std::string estimator = "collision";
+  std::string kernel = "matrix";
+  long walks = 1000;
+  std::vector<int> patches;
+  std::string survival = "analog";
+  bool theory = false;
+};
+
+struct CompareCommand {
+  SceneOptions scene;
+  FormFactorCliOptions ff;
+  std::vector<std::string> estimators;
+  std::string kernel = "matrix";
+  long walks = 1000;
+  int runs = 5;
+};
+
+struct PathtraceCommand {
+  SceneOptions scene;
+  long spp = 64;
+  std::string integrator = "mis";
+  std::string image;
+  int width = 256, height = 256;
+  std::vector<double> camera;  // px py pz tx ty tz ux uy uz fov_deg (empty: the scene's default)
+  long light_particles = 0;
+};
+
+int run_check(const SceneOptions& options);
+int run_patch(const PatchCommand& command);
+int run_formfactors(const FormFactorsCommand& command);
+int run_solve(const SolveCommand& command);
+int run_compare(const CompareCommand& command);
+int run_pathtrace(const PathtraceCommand& command);
+
+}  // namespace radwalk::app

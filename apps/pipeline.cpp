@@ -1,0 +1,147 @@
+#include "apps/pipeline.h"
+
+#include <cstdio>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "core/parallel.h"
+#include "formfactor/form_factor_diagnostics.h"
+#include "formfactor/matrix_market.h"
+#include "formfactor/reciprocity.h"
+#include "io/csv_writer.h"
+#include "visibility/embree_visibility.h"
+#include "io/vtp_writer.h"
+#include "mesh/read_scene.h"
+#include "mesh/validate.h"
+#include "patch/patching.h"
+
+namespace radwalk::app {
+
+void warn(RunSummary& summary, const std::string& message) {
+  std::fprintf(stderr, "radwalk: warning: %s\n", message.c_str());
+  summary.add_warning(message);
+}
+
+void note(const std::string& message) { std::fprintf(stderr, "radwalk: %s\n", message.c_str()); }
+
+Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
+  if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
+  Timer timer;
+  Mesh mesh = read_scene(options.scene);
+  validate_mesh(mesh);
+  summary.add_timing("load", timer.seconds());
+  for (const std::string& w : mesh.warnings) warn(summary, w);
+  summary.json()["scene"] = options.scene;
+  summary.json()["faces"] = mesh.face_count();
+  summary.json()["materials"] = mesh.materials.size();
+  return mesh;
+}
+
+PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
+  const Mesh mesh = load_validated_mesh(options, summary);
+  Timer timer;
+  PatchSet patches = make_patches(mesh, options.max_edge);
+  summary.add_timing("patch", timer.seconds());
+  summary.json()["max_edge"] = options.max_edge;
+  summary.json()["patches"] = patches.size();
+  summary.json()["total_area"] = patches.total_area();
+  return patches;
+}
+
+FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
+                                const PatchSet& patches, RunSummary& summary) {
+  FormFactors ff;
+  Timer timer;
+  if (!options.form_factors.empty()) {
+    ff.F = read_matrix_market(options.form_factors, patches.size());
+    summary.add_timing("read form factors", timer.seconds());
+    summary.json()["form_factors_file"] = options.form_factors;
+  } else {
+    FormFactorOptions o;
+    o.rays_per_patch = options.rays;
+    o.rays_per_area = options.rays_per_area;
+    o.min_rays = options.min_rays;
+    o.seed = scene.seed;
+    ThreadLimit limit(scene.threads);
+    const EmbreeVisibility visibility(patches);
+    summary.add_timing("embree scene", timer.seconds());
+    timer.reset();
+    ff = estimate_form_factors(patches, visibility, o);
+    const double seconds = timer.seconds();
+    summary.add_timing("form factors", seconds);
+    double rays = 0, escaped = 0, back = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      rays += ff.rays[i];
+      escaped += ff.escaped[i];
+      back += ff.back_hits[i];
+    }
+    summary.json()["rays"] = rays;
+    summary.json()["rays_per_second"] = rays / std::max(seconds, 1e-9);
+    summary.json()["escaped_fraction"] = escaped / std::max(rays, 1.0);
+    summary.json()["back_hit_fraction"] = back / std::max(rays, 1.0);
+    note("form factors: " + std::to_string(static_cast<long>(rays)) + " rays in " + std::to_string(seconds) +
+         " s, " + std::to_string(ff.F.nonZeros()) + " non-zeros");
+    if (back > 0) {
+      std::size_t worst = 0;
+      for (std::size_t i = 0; i < patches.size(); ++i)
+        if (ff.back_hits[i] > ff.back_hits[worst]) worst = i;
+      warn(summary, std::to_string(static_cast<long>(back)) + " rays hit the back of a patch (a modelling error: "
+                    "a face oriented the wrong way, or a wall seen from behind); the most from patch " +
+                    std::to_string(worst) + " (input face " + std::to_string(patches.face[worst]) +
+                    "): see the back_hits field");
+    }
+  }
+  summary.json()["form_factor_nonzeros"] = ff.F.nonZeros();
+  if (options.reciprocity) {
+    const ReciprocityChange change = enforce_reciprocity(ff.F, patches.area);
+    summary.json()["reciprocity_max_relative_change"] = change.max_relative_change;
+    summary.json()["reciprocity_mean_relative_change"] = change.mean_relative_change;
+    summary.json()["reciprocity_rows_rescaled"] = change.rows_rescaled;
+    note("reciprocity enforced: entries changed by " + std::to_string(100 * change.mean_relative_change) +
+         " % on average, at most " + std::to_string(100 * change.max_relative_change) + " %; " +
+         std::to_string(change.rows_rescaled) + " rows rescaled to keep row sums <= 1");
+  }
+  return ff;
+}
+
+std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches) {
+  const FormFactorDiagnostics d = diagnose_form_factors(ff.F, patches.area, ff.rays, ff.back_hits);
+  std::vector<CellField> fields = {scalar_field("row_sum", d.row_sum),
+                                   scalar_field("reciprocity_error", d.reciprocity_error)};
+  if (!ff.rays.empty()) {
+    std::vector<double> rays(ff.rays.begin(), ff.rays.end()), escaped(ff.escaped.begin(), ff.escaped.end()),
+        back(ff.back_hits.begin(), ff.back_hits.end());
+    fields.push_back(scalar_field("rays", rays));
+    fields.push_back(scalar_field("escaped", escaped));
+    fields.push_back(scalar_field("back_hits", back));
+    fields.push_back(scalar_field("row_std_error", d.row_std_error));
+  }
+  return fields;
+}
+
+void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
+                   RunSummary& summary) {
+  Timer timer;
+  if (!options.vtp.empty()) {
+    write_vtp(options.vtp, patches, fields);
+    note("wrote " + options.vtp);
+  }
+  if (!options.csv.empty()) {
+    // patch_fields() are CSV's fixed leading columns; only the extra fields follow them.
+    std::vector<CellField> extra;
+    for (const CellField& f : fields)
+      if (f.name != "patch" && f.name != "face" && f.name != "area" && f.name != "normal" && f.name != "rho" &&
+          f.name != "E")
+        extra.push_back(f);
+    write_patch_csv(options.csv, patches, extra);
+    note("wrote " + options.csv);
+  }
+  summary.add_timing("write", timer.seconds());
+  if (!options.json.empty()) {
+    summary.write(options.json);
+    note("wrote " + options.json);
+  }
+}
+
+}  // namespace radwalk::app

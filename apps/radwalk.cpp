@@ -1,0 +1,190 @@
+// radwalk: command-line front end. Parses arguments (CLI11), runs one command, maps errors to exit codes:
+//   0 success, 1 a solver did not converge (its status says why), 2 bad input (file, option), 3 numerical
+//   failure detected (singular or divergent system), 4 internal error.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <thread>
+
+#include "apps/options.h"
+#include "core/error.h"
+#include "core/progress.h"
+
+using namespace radwalk;
+using namespace radwalk::app;
+
+namespace {
+
+void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
+  cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
+  if (patching)
+    cmd->add_option("--max-edge", o.max_edge,
+                    "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+  cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  cmd->add_option("--seed", o.seed, "Random seed; same seed, same output, whatever the thread count")
+      ->capture_default_str();
+  if (outputs) {
+    cmd->add_option("--csv", o.csv, "Write per-patch results as CSV");
+    cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)");
+  }
+}
+
+void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
+  auto* rays = cmd->add_option("--rays", o.rays, "Rays per patch for the form factors")
+                   ->check(CLI::PositiveNumber)
+                   ->capture_default_str();
+  auto* density = cmd->add_option("--rays-per-area", o.rays_per_area,
+                                  "Rays per unit area (at least --min-rays per patch) instead of --rays")
+                      ->check(CLI::PositiveNumber);
+  rays->excludes(density);
+  cmd->add_option("--min-rays", o.min_rays, "Minimum rays per patch with --rays-per-area")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  auto* file = cmd->add_option("--form-factors", o.form_factors,
+                               "Read F from a Matrix Market file (from 'radwalk formfactors') instead of tracing")
+                   ->check(CLI::ExistingFile);
+  file->excludes(rays)->excludes(density);
+  cmd->add_flag("--reciprocity", o.reciprocity,
+                "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "radwalk: solve the radiosity equation B = E + diag(rho) F B on a mesh and compare the solvers.\n"
+      "Scene units are the mesh's; Kd = reflectance rho, Ke = emitted radiance, E = pi * Ke (W/m^2).",
+      "radwalk"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("radwalk ") + RADWALK_VERSION);
+  bool quiet = false;
+  app.add_flag("-q,--quiet", quiet, "No progress output on stderr");
+  std::vector<std::string> args(argv, argv + argc);
+
+  SceneOptions check;
+  auto* check_cmd = app.add_subcommand("check", "Validate a scene and report what is wrong or was repaired");
+  add_scene_options(check_cmd, check, false, false);
+  check_cmd->add_option("--json", check.json, "Write the findings as JSON");
+
+  PatchCommand patch;
+  auto* patch_cmd = app.add_subcommand("patch", "Validate and split a scene into patches; write them");
+  add_scene_options(patch_cmd, patch.scene);
+  patch_cmd->add_option("-o,--output", patch.output, "Output: FILE.vtp (ParaView) or FILE.obj (+ .mtl)")
+      ->required();
+
+  FormFactorsCommand ff;
+  auto* ff_cmd = app.add_subcommand("formfactors", "Estimate form factors F by cosine-weighted ray shooting");
+  add_scene_options(ff_cmd, ff.scene);
+  add_form_factor_options(ff_cmd, ff.ff);
+  ff_cmd->add_option("-o,--output", ff.mtx, "Write F as Matrix Market (row i = patch i, 1-based)");
+  ff_cmd->add_option("--vtp", ff.diagnostics_vtp, "Write per-patch diagnostics as .vtp");
+
+  SolveCommand solve;
+  auto* solve_cmd = app.add_subcommand("solve", "Solve for the radiosity B of every patch");
+  add_scene_options(solve_cmd, solve.scene);
+  add_form_factor_options(solve_cmd, solve.ff);
+  solve_cmd->add_option("-o,--output", solve.scene.vtp, "Write the solution as .vtp (cell field B, point field B)");
+  solve_cmd
+      ->add_option("--solver", solve.solver,
+                   "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell, "
+                   "random-walk")
+      ->check(CLI::IsMember({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--tol", solve.tol, "Relative residual at which iterative solvers stop")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  solve_cmd->add_option("--max-iterations", solve.max_iterations, "Iteration budget of iterative solvers")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  solve_cmd->add_option("--walk", solve.walk, "Random walk direction: gather (adjoint) or shoot (forward)")
+      ->check(CLI::IsMember({"gather", "shoot"}))
+      ->capture_default_str();
+  solve_cmd
+      ->add_option("--estimator", solve.estimator,
+                   "Random-walk estimator: absorption, collision, expected-value (gather), survival (shoot)")
+      ->check(CLI::IsMember({"absorption", "collision", "expected-value", "survival"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--kernel", solve.kernel, "Transition kernel: matrix (stored F) or ray (Embree, no F)")
+      ->check(CLI::IsMember({"matrix", "ray"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--walks", solve.walks, "Walks per patch (gather) or particles in total (shoot)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  solve_cmd->add_option("--patches", solve.patches, "Gathering: estimate only these patches (0-based)");
+  solve_cmd->add_flag("--theory", solve.theory, "Also compute the exact per-walk variance (dense; small scenes)");
+
+  CompareCommand compare;
+  auto* compare_cmd =
+      app.add_subcommand("compare", "Run random-walk estimators repeatedly; compare their variance and cost");
+  add_scene_options(compare_cmd, compare.scene);
+  add_form_factor_options(compare_cmd, compare.ff);
+  compare_cmd->add_option("-o,--output", compare.scene.vtp, "Write per-patch variances as .vtp");
+  compare_cmd
+      ->add_option("--estimators", compare.estimators,
+                   "Comma-separated list from gather-absorption, gather-collision, gather-expected-value, "
+                   "shoot-collision, shoot-absorption, shoot-survival")
+      ->delimiter(',')
+      ->default_str("all six");
+  compare_cmd->add_option("--kernel", compare.kernel, "matrix or ray")
+      ->check(CLI::IsMember({"matrix", "ray"}))
+      ->capture_default_str();
+  compare_cmd->add_option("--walks", compare.walks, "Walks per patch (gather) / per patch of budget (shoot)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  compare_cmd->add_option("--runs", compare.runs, "Independent runs per estimator")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+
+  PathtraceCommand pt;
+  auto* pt_cmd = app.add_subcommand("pathtrace", "Continuous path tracer: patch averages and images");
+  add_scene_options(pt_cmd, pt.scene);
+  pt_cmd->add_option("-o,--output", pt.scene.vtp, "Write patch-average radiosity as .vtp");
+  pt_cmd->add_option("--spp", pt.spp, "Samples per patch (patch averages) or per pixel (images)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  pt_cmd->add_option("--integrator", pt.integrator, "implicit, nee, mis (power heuristic) or light (light tracing)")
+      ->check(CLI::IsMember({"implicit", "nee", "mis", "light"}))
+      ->capture_default_str();
+  pt_cmd->add_option("--image", pt.image, "Render an image: FILE.png (sRGB) or FILE.exr (linear)");
+  pt_cmd->add_option("--width", pt.width, "Image width in pixels")->check(CLI::PositiveNumber)->capture_default_str();
+  pt_cmd->add_option("--height", pt.height, "Image height in pixels")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  pt_cmd->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
+      ->expected(10);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+  Progress::set_enabled(!quiet);
+  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene}) o->argv = args;
+
+  try {
+    if (*check_cmd) return run_check(check);
+    if (*patch_cmd) return run_patch(patch);
+    if (*ff_cmd) return run_formfactors(ff);
+    if (*solve_cmd) return run_solve(solve);
+    if (*compare_cmd) return run_compare(compare);
+    if (*pt_cmd) return run_pathtrace(pt);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "radwalk: error: %s\n", e.what());
+    return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "radwalk: numerical error: %s\n", e.what());
+    return 3;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "radwalk: out of memory (try fewer patches: a larger --max-edge)\n");
+    return 4;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "radwalk: internal error: %s\n", e.what());
+    return 4;
+  }
+  return 0;
+}

@@ -1,0 +1,110 @@
+#include "mesh/mtl.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "mesh/text_scan.h"
+
+namespace radwalk {
+
+namespace {
+
+// "Kd r g b" or "Kd v": the colour after the keyword.
+Rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string& path, long line) {
+  const std::string key(tokens[0]);
+  if (tokens.size() >= 2 && (tokens[1] == "spectral" || tokens[1] == "xyz"))
+    throw InputError(locate(path, line, -1, key + " " + std::string(tokens[1]) + " is not supported: give r g b"));
+  if (tokens.size() != 2 && tokens.size() != 4)
+    throw InputError(locate(path, line, -1, key + " needs 1 or 3 numbers, found " +
+                                                std::to_string(tokens.size() - 1)));
+  Rgb c;
+  for (std::size_t k = 1; k < tokens.size(); ++k) {
+    const auto v = parse_double(tokens[k]);
+    if (!v) throw InputError(locate(path, line, -1, key + ": '" + std::string(tokens[k]) + "' is not a number"));
+    c[static_cast<int>(k - 1)] = *v;
+  }
+  if (tokens.size() == 2) c = Rgb::Constant(c[0]);
+  return c;
+}
+
+double parse_scalar(const std::vector<std::string_view>& tokens, const std::string& path, long line) {
+  const std::string key(tokens[0]);
+  if (tokens.size() != 2)
+    throw InputError(locate(path, line, -1, key + " needs 1 number, found " + std::to_string(tokens.size() - 1)));
+  const auto v = parse_double(tokens[1]);
+  if (!v) throw InputError(locate(path, line, -1, key + ": '" + std::string(tokens[1]) + "' is not a number"));
+  return *v;
+}
+
+}  // namespace
+
+std::vector<MtlEntry> scan_mtl(const std::string& path) {
+  const std::string text = read_text_file(path);
+  std::vector<MtlEntry> entries;
+  for_each_line(text, [&](long line, std::string_view content) {
+    const auto tokens = split_tokens(content);
+    if (tokens.empty()) return;
+    const std::string_view key = tokens[0];
+    if (key == "newmtl") {
+      if (tokens.size() < 2) throw InputError(locate(path, line, -1, "newmtl without a name"));
+      MtlEntry e;
+      // A name may contain spaces: everything after the keyword.
+      const std::size_t start = content.find(tokens[1]);
+      const std::size_t end = content.find('#');
+      std::string_view name = content.substr(start, end == std::string_view::npos ? end : end - start);
+      while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.remove_suffix(1);
+      e.name = std::string(name);
+      e.file = path;
+      e.line = line;
+      entries.push_back(std::move(e));
+      return;
+    }
+    const bool known = key == "Kd" || key == "Ke" || key == "Ks" || key == "illum" || key == "Ni" || key == "Ns" ||
+                       key == "Pr" || key == "Pm";
+    if (!known) return;
+    if (entries.empty())
+      throw InputError(locate(path, line, -1, std::string(key) + " before the first newmtl statement"));
+    MtlEntry& e = entries.back();
+    if (key == "Kd") e.Kd = parse_colour(tokens, path, line);
+    else if (key == "Ke") e.Ke = parse_colour(tokens, path, line);
+    else if (key == "Ks") e.Ks = parse_colour(tokens, path, line);
+    else if (key == "Ni") e.Ni = parse_scalar(tokens, path, line);
+    else if (key == "Ns") e.Ns = parse_scalar(tokens, path, line);
+    else if (key == "Pr") e.Pr = parse_scalar(tokens, path, line);
+    else if (key == "Pm") e.Pm = parse_scalar(tokens, path, line);
+    else {
+      const auto v = tokens.size() == 2 ? parse_long(tokens[1]) : std::nullopt;
+      if (!v || *v < 0 || *v > 10) throw InputError(locate(path, line, -1, "illum needs one integer in 0..10"));
+      e.illum = static_cast<int>(*v);
+    }
+  });
+  return entries;
+}
+
+Material material_from_mtl(const MtlEntry& e) {
+  Material m;
+  m.name = e.name;
+  m.file = e.file;
+  m.line = e.line;
+  if (e.Kd) m.Kd = *e.Kd;
+  if (e.Ke) m.Ke = *e.Ke;
+  if (e.Ks) m.Ks = *e.Ks;
+  if (e.Ni) m.Ni = *e.Ni;
+  m.illum = e.illum.value_or(-1);
+  m.metallic = e.Pm.value_or(0.0);
+  const double Pr = e.Pr.value_or(0.0);
+
+  // Kind: first matching rule of the table in mtl.h.
+  const int illum = m.illum;
+  if (illum == 4 || illum == 6 || illum == 7) m.kind = BsdfKind::dielectric;
+  else if (m.metallic > 0) m.kind = BsdfKind::conductor;
+  else if (illum == 3 || illum == 5) m.kind = Pr > 0 ? BsdfKind::microfacet : BsdfKind::mirror;
+  else m.kind = BsdfKind::diffuse;
+
+  // Roughness as GGX alpha.
+  if (e.Pr) m.roughness = Pr * Pr;
+  else if (m.kind == BsdfKind::conductor && e.Ns && *e.Ns >= 0) m.roughness = std::sqrt(2.0 / (*e.Ns + 2.0));
+  return m;
+}
+
+}  // namespace radwalk

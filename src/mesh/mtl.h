@@ -1,0 +1,41 @@
+#pragma once
+// MTL material libraries: the statements radwalk reads, and their mapping to a Material.
+//
+// Statements read (others are ignored): newmtl NAME; Kd, Ke, Ks as "r g b" or a single "v" (g = b = v);
+// illum N; Ni, Ns, Pr, Pm as one number. Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the
+// emitted radiosity is E = pi * Ke). Numbers are read exactly (correctly rounded, see text_scan.h).
+//
+// BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
+//   illum 4, 6 or 7 (refraction)              -> dielectric (Ni = index of refraction)
+//   Pm > 0                                    -> conductor  (Ks = F0 tint)
+//   illum 3 or 5 (ray-traced reflection)      -> microfacet if Pr > 0, else mirror (Ks = tint)
+//   anything else                             -> diffuse
+// Roughness (GGX alpha): Pr^2 when Pr is given (Pr is perceptual roughness); otherwise, for a conductor with Ns,
+// the Blinn-Phong equivalent sqrt(2 / (Ns + 2)) (Walter et al. 2007); otherwise 0.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "mesh/material.h"
+
+namespace radwalk {
+
+// One `newmtl` block as written in the file; every statement is optional.
+struct MtlEntry {
+  std::string name;
+  std::string file;  // the MTL file
+  long line = 0;     // line of the newmtl statement
+  std::optional<Rgb> Kd, Ke, Ks;
+  std::optional<int> illum;
+  std::optional<double> Ni, Ns, Pr, Pm;
+};
+
+// All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement radwalk
+// cannot read (a number that does not parse, a spectral or xyz colour, a statement before the first newmtl).
+std::vector<MtlEntry> scan_mtl(const std::string& path);
+
+// The Material for an entry, with the kind and roughness mapping above. Missing Kd and Ke stay zero.
+Material material_from_mtl(const MtlEntry& entry);
+
+}  // namespace radwalk

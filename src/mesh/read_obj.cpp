@@ -1,0 +1,226 @@
+#include "mesh/read_obj.h"
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include <tiny_obj_loader.h>
+
+#include "core/error.h"
+#include "mesh/mtl.h"
+#include "mesh/text_scan.h"
+
+namespace radwalk {
+
+namespace {
+
+struct ScannedFace {
+  long line = 0;
+  std::vector<std::int32_t> v;  // 0-based vertex indices (may be out of range; validate_mesh reports that)
+  int usemtl = -1;              // index into ObjScan::usemtl, -1 before any usemtl
+};
+
+struct NamedLine {
+  std::string name;
+  long line = 0;
+};
+
+struct ObjScan {
+  std::vector<Vec3> vertices;
+  std::vector<ScannedFace> faces;
+  std::vector<NamedLine> usemtl;
+  std::vector<NamedLine> mtllib;
+  long ignored_elements = 0;  // `l` and `p` statements
+  long first_ignored_line = 0;
+};
+
+// The line scan: lines, exact coordinates and strict checks (see read_obj.h).
+ObjScan scan_obj(const std::string& path, const std::string& text) {
+  ObjScan s;
+  for_each_line(text, [&](long line, std::string_view content) {
+    const auto tokens = split_tokens(content);
+    if (tokens.empty()) return;
+    const std::string_view key = tokens[0];
+    if (key == "v") {
+      const std::size_t n = tokens.size() - 1;
+      const std::string vertex = "vertex " + std::to_string(s.vertices.size() + 1);
+      if (n != 3 && n != 4 && n != 6 && n != 7)
+        throw InputError(locate(path, line, -1, vertex + " has " + std::to_string(n) +
+                                                    " numbers, expected x y z (truncated line?)"));
+      Vec3 p;
+      for (int k = 0; k < 3; ++k) {
+        const auto x = parse_double(tokens[k + 1]);
+        if (!x)
+          throw InputError(locate(path, line, -1, vertex + ": '" + std::string(tokens[k + 1]) + "' is not a number"));
+        if (!std::isfinite(*x))
+          throw InputError(locate(path, line, -1, vertex + " has a non-finite coordinate (" +
+                                                      std::string(tokens[k + 1]) + ")"));
+        p[k] = *x;
+      }
+      s.vertices.push_back(p);
+    } else if (key == "f") {
+      const long face = static_cast<long>(s.faces.size());
+      const std::size_t n = tokens.size() - 1;
+      if (n < 3)
+        throw InputError(locate(path, line, face, "has " + std::to_string(n) +
+                                                      " vertices, a face needs 3 or 4 (truncated line?)"));
+      if (n > 4)
+        throw InputError(locate(path, line, face, "has " + std::to_string(n) +
+                                                      " vertices; radwalk takes triangles and quads only "
+                                                      "(triangulate or split the polygon)"));
+      if (content.find('#') != std::string_view::npos)
+        throw InputError(locate(path, line, face, "a comment after a face statement is not supported (tinyobjloader "
+                                                  "rejects it); put the comment on its own line"));
+      ScannedFace f;
+      f.line = line;
+      f.usemtl = static_cast<int>(s.usemtl.size()) - 1;
+      for (std::size_t k = 1; k <= n; ++k) {
+        const std::string_view token = tokens[k];
+        const auto index = parse_long(token.substr(0, token.find('/')));
+        if (!index)
+          throw InputError(locate(path, line, face, "'" + std::string(token) + "' is not a vertex index"));
+        if (*index == 0) throw InputError(locate(path, line, face, "vertex index 0 is invalid (OBJ counts from 1)"));
+        const long resolved = *index > 0 ? *index - 1 : static_cast<long>(s.vertices.size()) + *index;
+        if (resolved < 0)
+          throw InputError(locate(path, line, face, "relative vertex index " + std::to_string(*index) +
+                                                        " points before the first vertex"));
+        if (resolved > std::numeric_limits<std::int32_t>::max())
+          throw InputError(locate(path, line, face, "vertex index " + std::to_string(*index) + " is too large"));
+        f.v.push_back(static_cast<std::int32_t>(resolved));
+      }
+      s.faces.push_back(std::move(f));
+    } else if (key == "usemtl") {
+      if (tokens.size() < 2) throw InputError(locate(path, line, -1, "usemtl without a material name"));
+      s.usemtl.push_back({std::string(tokens[1]), line});
+    } else if (key == "mtllib") {
+      if (tokens.size() < 2) throw InputError(locate(path, line, -1, "mtllib without a file name"));
+      for (std::size_t k = 1; k < tokens.size(); ++k) s.mtllib.push_back({std::string(tokens[k]), line});
+    } else if (key == "l" || key == "p") {
+      if (s.ignored_elements++ == 0) s.first_ignored_line = line;
+    }
+  });
+  return s;
+}
+
+// tinyobjloader's faces in file order (shapes in order, faces in order within a shape).
+struct TinyFace {
+  std::vector<int> v;
+  int material = -1;
+};
+
+std::vector<TinyFace> tiny_faces(const std::vector<tinyobj::shape_t>& shapes) {
+  std::vector<TinyFace> faces;
+  for (const auto& shape : shapes) {
+    std::size_t offset = 0;
+    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      TinyFace t;
+      const std::size_t n = shape.mesh.num_face_vertices[f];
+      for (std::size_t k = 0; k < n; ++k) t.v.push_back(shape.mesh.indices[offset + k].vertex_index);
+      offset += n;
+      t.material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
+      faces.push_back(std::move(t));
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+Mesh read_obj(const std::string& path) {
+  const std::string text = read_text_file(path);
+  const ObjScan scan = scan_obj(path, text);
+  const std::string dir = directory_of(path);
+
+  // Material libraries: every listed file must exist; each is read once, in statement order.
+  std::vector<MtlEntry> entries;
+  std::vector<std::string> libraries;
+  for (const auto& lib : scan.mtllib) {
+    const std::string file = dir + lib.name;
+    if (!std::ifstream(file))
+      throw InputError(locate(path, lib.line, -1, "material library '" + lib.name + "' not found (looked for " +
+                                                      file + ")"));
+    bool seen = false;
+    for (const auto& l : libraries) seen = seen || l == file;
+    if (seen) continue;
+    libraries.push_back(file);
+    auto more = scan_mtl(file);
+    entries.insert(entries.end(), more.begin(), more.end());
+  }
+
+  // Structure from tinyobjloader.
+  tinyobj::attrib_t attrib;
+  std::vector<tinyobj::shape_t> shapes;
+  std::vector<tinyobj::material_t> tiny_materials;
+  std::string warn, err;
+  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &tiny_materials, &warn, &err, path.c_str(),
+                                   dir.empty() ? "./" : dir.c_str(), /*triangulate=*/false);
+  if (!ok) throw InputError(locate(path, 0, -1, "tinyobjloader: " + err.substr(0, err.find('\n'))));
+
+  // Cross-check tinyobjloader against the scan, so that nothing is dropped or reordered silently.
+  const std::vector<TinyFace> tiny = tiny_faces(shapes);
+  auto disagree = [&](const std::string& what) {
+    return std::logic_error("read_obj: tinyobjloader and the line scan disagree: " + what + " in " + path);
+  };
+  if (attrib.vertices.size() != 3 * scan.vertices.size())
+    throw disagree("vertex count " + std::to_string(attrib.vertices.size() / 3) + " vs " +
+                   std::to_string(scan.vertices.size()));
+  if (tiny.size() != scan.faces.size())
+    throw disagree("face count " + std::to_string(tiny.size()) + " vs " + std::to_string(scan.faces.size()));
+  for (std::size_t f = 0; f < tiny.size(); ++f)
+    for (std::size_t k = 0; k < scan.faces[f].v.size(); ++k)
+      if (tiny[f].v.size() != scan.faces[f].v.size() || tiny[f].v[k] != scan.faces[f].v[k])
+        throw disagree("face " + std::to_string(f) + " (line " + std::to_string(scan.faces[f].line) + ")");
+  if (tiny_materials.size() != entries.size())
+    throw disagree("material count " + std::to_string(tiny_materials.size()) + " vs " +
+                   std::to_string(entries.size()));
+
+  Mesh mesh;
+  mesh.path = path;
+  mesh.vertices = scan.vertices;
+
+  // Materials: the first definition of a name wins (as in tinyobjloader); later ones are reported.
+  std::map<std::string, int> by_name;
+  for (const auto& e : entries) {
+    const int index = static_cast<int>(mesh.materials.size());
+    mesh.materials.push_back(material_from_mtl(e));
+    if (!by_name.emplace(e.name, index).second)
+      mesh.warnings.push_back(locate(e.file, e.line, -1, "material '" + e.name +
+                                                             "' is defined again; the first definition is used"));
+  }
+
+  // Faces, with their lines and materials.
+  const std::size_t n_faces = scan.faces.size();
+  if (n_faces > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw InputError(locate(path, 0, -1, "too many faces"));
+  mesh.faces.resize(n_faces);
+  mesh.face_material.resize(n_faces, -1);
+  mesh.face_line.resize(n_faces);
+  for (std::size_t f = 0; f < n_faces; ++f) {
+    const ScannedFace& sf = scan.faces[f];
+    std::array<std::int32_t, 4> corners{-1, -1, -1, -1};
+    for (std::size_t k = 0; k < sf.v.size(); ++k) corners[k] = sf.v[k];
+    mesh.faces[f] = corners;
+    mesh.face_line[f] = sf.line;
+    if (sf.usemtl < 0) continue;
+    const NamedLine& use = scan.usemtl[static_cast<std::size_t>(sf.usemtl)];
+    const auto it = by_name.find(use.name);
+    if (it == by_name.end()) {
+      std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
+      for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
+      throw InputError(locate(path, sf.line, static_cast<long>(f),
+                              "unknown material '" + use.name + "' (usemtl at line " + std::to_string(use.line) +
+                                  ": " + where + ")"));
+    }
+    mesh.face_material[f] = it->second;
+  }
+
+  if (scan.ignored_elements > 0)
+    mesh.warnings.push_back(locate(path, scan.first_ignored_line, -1,
+                                   std::to_string(scan.ignored_elements) +
+                                       " line/point elements (l, p) ignored: radiosity needs surfaces"));
+  return mesh;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,335 @@
+#include "mesh/validate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <sstream>
+
+#include "core/error.h"
+#include "mesh/edge_table.h"
+#include "mesh/face_geometry.h"
+
+namespace radwalk {
+
+namespace {
+
+std::string fmt(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+std::string fmt(const Rgb& c) {
+  std::ostringstream s;
+  s.precision(6);
+  s << '(' << c[0] << ", " << c[1] << ", " << c[2] << ')';
+  return s.str();
+}
+
+// "vertex 5" in the file's 1-based counting.
+std::string vertex_name(std::int32_t v) { return "vertex " + std::to_string(static_cast<long>(v) + 1); }
+
+std::string material_name(const Material& m) {
+  std::string s = "material '" + m.name + "'";
+  if (!m.file.empty()) {
+    s += " (";
+    s += m.file;
+    if (m.line > 0) s += ':' + std::to_string(m.line);
+    s += ')';
+  }
+  return s;
+}
+
+const char* kind_name(BsdfKind k) {
+  switch (k) {
+    case BsdfKind::diffuse: return "diffuse";
+    case BsdfKind::mirror: return "mirror";
+    case BsdfKind::dielectric: return "dielectric";
+    case BsdfKind::conductor: return "conductor";
+    case BsdfKind::microfacet: return "microfacet";
+  }
+  return "?";
+}
+
+// Warnings with a cap per kind; the kinds beyond the cap get one summary line at the end.
+class WarningLog {
+ public:
+  WarningLog(Mesh& mesh, int cap) : mesh_(mesh), cap_(cap) {}
+  void add(const std::string& kind, std::size_t face, const std::string& what) {
+    auto it = std::find_if(counts_.begin(), counts_.end(), [&](const auto& c) { return c.first == kind; });
+    if (it == counts_.end()) it = counts_.insert(counts_.end(), {kind, 0});
+    if (++it->second <= cap_) mesh_.warnings.push_back(locate(mesh_.path, line(face), static_cast<long>(face), what));
+  }
+  void add_global(const std::string& what) { mesh_.warnings.push_back(locate(mesh_.path, 0, -1, what)); }
+  void finish() {
+    for (const auto& [kind, n] : counts_)
+      if (n > cap_) add_global(std::to_string(n - cap_) + " more warnings: " + kind);
+  }
+  long line(std::size_t face) const { return face < mesh_.face_line.size() ? mesh_.face_line[face] : 0; }
+
+ private:
+  Mesh& mesh_;
+  int cap_;
+  std::vector<std::pair<std::string, int>> counts_;
+};
+
+[[noreturn]] void fail(const Mesh& mesh, std::size_t f, const std::string& what) {
+  const long line = f < mesh.face_line.size() ? mesh.face_line[f] : 0;
+  throw InputError(locate(mesh.path, line, static_cast<long>(f), what));
+}
+
+// Step: every face has 3 or 4 corners with indices in range, and finite coordinates.
+void check_indices_and_coordinates(const Mesh& mesh) {
+  const auto n_vertices = static_cast<std::int64_t>(mesh.vertices.size());
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto& c = mesh.faces[f];
+    if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[3] < -1) fail(mesh, f, "has fewer than 3 valid corners");
+    for (int k = 0; k < mesh.corner_count(f); ++k) {
+      const std::int32_t v = c[static_cast<std::size_t>(k)];
+      if (v >= n_vertices)
+        fail(mesh, f, "bad vertex index: " + vertex_name(v) + " (counting from 1) does not exist, the file has " +
+                          std::to_string(n_vertices) + " vertices");
+      if (!mesh.vertices[static_cast<std::size_t>(v)].allFinite())
+        fail(mesh, f, vertex_name(v) + " has a non-finite coordinate (NaN or inf)");
+    }
+  }
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    if (!mesh.vertices[v].allFinite())
+      throw InputError(locate(mesh.path, 0, -1, vertex_name(static_cast<std::int32_t>(v)) +
+                                                    " has a non-finite coordinate (NaN or inf)"));
+}
+
+// Step: repeated corners (same index, or bit-identical positions). A quad with one repeat at adjacent corners
+// becomes a triangle; anything else is refused.
+void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
+  const std::vector<std::int32_t> weld = weld_vertices(mesh);
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    auto& c = mesh.faces[f];
+    const int n = mesh.corner_count(f);
+    auto w = [&](int k) { return weld[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]; };
+    auto describe = [&](int i, int j) {
+      const std::int32_t a = c[static_cast<std::size_t>(i)], b = c[static_cast<std::size_t>(j)];
+      return a == b ? "repeats " + vertex_name(a) + " (corners " + std::to_string(i) + " and " + std::to_string(j) +
+                          ")"
+                    : "has corners " + std::to_string(i) + " and " + std::to_string(j) + " (" + vertex_name(a) +
+                          ", " + vertex_name(b) + ") at the same point";
+    };
+    int pairs = 0, pi = -1, pj = -1;
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if (w(i) == w(j)) {
+          ++pairs;
+          pi = i;
+          pj = j;
+        }
+    if (pairs == 0) continue;
+    if (n == 3) fail(mesh, f, "repeated vertex: triangle " + describe(pi, pj) + ", it has no area");
+    const bool adjacent = pj == pi + 1 || (pi == 0 && pj == 3);
+    if (pairs > 1 || !adjacent)
+      fail(mesh, f, "repeated vertex: quad " + describe(pi, pj) + (pairs > 1 ? " and more" : " across a diagonal") +
+                        ", it has no proper area");
+    // Drop the later corner of the adjacent pair; the other three keep their cyclic order.
+    const int drop = (pi == 0 && pj == 3) ? 3 : pj;
+    const std::string what = "repeated vertex: quad " + describe(pi, pj) + ", repaired to a triangle";
+    std::array<std::int32_t, 4> t{-1, -1, -1, -1};
+    for (int k = 0, m = 0; k < 4; ++k)
+      if (k != drop) t[static_cast<std::size_t>(m++)] = c[static_cast<std::size_t>(k)];
+    c = t;
+    log.add("repeated vertex repaired", f, what);
+  }
+}
+
+// Step: area, planarity and convexity, relative to the scene size.
+void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < mesh.corner_count(f); ++k) {
+      const Vec3& p = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  const double diagonal = (hi - lo).norm();
+  const double min_area = tol.degenerate_area * diagonal * diagonal;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const double area = face_area(mesh, f);
+    if (!(area > min_area))
+      fail(mesh, f, "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
+                        " x (scene diagonal " + fmt(diagonal) + ")^2");
+    if (!mesh.is_quad(f)) continue;
+    const double bend = quad_nonplanarity(mesh, f);
+    if (bend > tol.planar_error)
+      fail(mesh, f, "non-planar quad: a corner is " + fmt(100 * bend) + "% of the diagonal off its plane (limit " +
+                        fmt(100 * tol.planar_error) + "%); split it into two triangles");
+    if (bend > tol.planar_clean)
+      log.add("slightly non-planar quad", f,
+              "slightly non-planar quad: a corner is " + fmt(100 * bend) +
+                  "% of the diagonal off its plane; patches treat it as flat");
+    const double turn = quad_min_turn_sine(mesh, f);
+    if (turn < -tol.convex_sine)
+      fail(mesh, f, "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
+                        "), the quad is concave or self-intersecting; split it into two triangles");
+  }
+}
+
+// Step: materials exist and are physical; faces without one get the default.
+void check_materials(Mesh& mesh, WarningLog& log) {
+  int default_material = -1;
+  const auto n_materials = static_cast<std::int32_t>(mesh.materials.size());
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    std::int32_t& m = mesh.face_material[f];
+    if (m >= n_materials || m < -1)
+      fail(mesh, f, "material index " + std::to_string(m) + " out of range (" + std::to_string(n_materials) +
+                        " materials)");
+    if (m >= 0) continue;
+    if (default_material < 0) {
+      Material d;
+      d.name = "radwalk_default";
+      d.Kd = Rgb::Constant(0.5);
+      default_material = static_cast<int>(mesh.materials.size());
+      mesh.materials.push_back(d);
+    }
+    m = default_material;
+    log.add("face without material", f, "face without material: given 'radwalk_default' (rho 0.5, no emission)");
+  }
+
+  std::vector<long> first_face(mesh.materials.size(), -1);
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    long& first = first_face[static_cast<std::size_t>(mesh.face_material[f])];
+    if (first < 0) first = static_cast<long>(f);
+  }
+  for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
+    if (first_face[i] < 0) continue;
+    const auto f = static_cast<std::size_t>(first_face[i]);
+    const Material& m = mesh.materials[i];
+    if (!((m.Kd >= 0).all() && (m.Kd < 1).all()))
+      fail(mesh, f, "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +
+                        ", rho must be in [0, 1) for the radiosity equation to have a solution");
+    if (!m.Ke.allFinite() || (m.Ke < 0).any())
+      fail(mesh, f, "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
+                        ", emitted radiance must be finite and >= 0");
+    if (m.kind != BsdfKind::diffuse)
+      log.add("non-diffuse material", f,
+              material_name(m) + " is " + kind_name(m.kind) +
+                  ": the radiosity solvers treat it as diffuse with rho = Kd (only the path tracer uses its kind)");
+  }
+}
+
+// Step: duplicates, non-manifold edges and vertices, orientation of neighbours.
+void check_topology(const Mesh& mesh, WarningLog& log) {
+  const EdgeTable t = build_edge_table(mesh);
+  auto welded = [&](std::size_t f, int k) {
+    return t.weld[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
+  };
+  auto welded_name = [&](std::int32_t w) { return vertex_name(t.welded_source[static_cast<std::size_t>(w)]); };
+
+  // Duplicate faces: the same set of welded corners.
+  std::map<std::array<std::int32_t, 4>, std::size_t> seen;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    std::array<std::int32_t, 4> key{-1, -1, -1, -1};
+    const int n = mesh.corner_count(f);
+    for (int k = 0; k < n; ++k) key[static_cast<std::size_t>(k)] = welded(f, k);
+    std::sort(key.begin(), key.begin() + n);
+    const auto [it, added] = seen.emplace(key, f);
+    if (added) continue;
+    const std::size_t g = it->second;
+    const std::string other = "face " + std::to_string(g) + " (line " + std::to_string(log.line(g)) + ")";
+    if (face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0)
+      fail(mesh, f, "duplicate face: same corners as " + other + "; overlapping faces are refused");
+    fail(mesh, f, "duplicate face: same corners as " + other +
+                      " but facing the other way; back-to-back faces are refused (give the wall a thickness)");
+  }
+
+  // Edges: non-manifold (3+ uses) and inconsistent orientation (2 uses in the same direction).
+  for (std::size_t e = 0; e < t.edge_count(); ++e) {
+    const std::string edge = "edge " + welded_name(t.edges[e][0]) + " - " + welded_name(t.edges[e][1]);
+    const EdgeUse* u = t.uses_begin(e);
+    if (t.use_count(e) >= 3) {
+      std::string faces;
+      for (const EdgeUse* x = u; x != t.uses_end(e); ++x) faces += (x == u ? "" : ", ") + std::to_string(x->face);
+      log.add("non-manifold edge", static_cast<std::size_t>(u->face),
+              "non-manifold edge: " + edge + " is shared by " + std::to_string(t.use_count(e)) + " faces (" + faces +
+                  "); legal for radiosity, but check the model");
+    } else if (t.use_count(e) == 2 && u[0].forward == u[1].forward) {
+      const auto g = static_cast<std::size_t>(u[1].face);
+      log.add("flipped face", g,
+              "flipped face: face " + std::to_string(g) + " and face " + std::to_string(u[0].face) + " (line " +
+                  std::to_string(log.line(static_cast<std::size_t>(u[0].face))) + ") run their shared " + edge +
+                  " the same way, so their normals disagree; legal for radiosity, but check the model");
+    }
+  }
+
+  // Vertices: the faces around a vertex, joined across the edges at it, must form one fan.
+  const std::size_t n_welded = t.welded_source.size();
+  std::vector<std::int32_t> offset(n_welded + 1, 0);
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < mesh.corner_count(f); ++k) ++offset[static_cast<std::size_t>(welded(f, k)) + 1];
+  std::partial_sum(offset.begin(), offset.end(), offset.begin());
+  std::vector<std::pair<std::int32_t, std::int8_t>> around(static_cast<std::size_t>(offset.back()));
+  {
+    std::vector<std::int32_t> next(offset.begin(), offset.end() - 1);
+    for (std::size_t f = 0; f < mesh.face_count(); ++f)
+      for (int k = 0; k < mesh.corner_count(f); ++k)
+        around[static_cast<std::size_t>(next[static_cast<std::size_t>(welded(f, k))]++)] = {
+            static_cast<std::int32_t>(f), static_cast<std::int8_t>(k)};
+  }
+  std::vector<int> parent;
+  std::map<std::int32_t, int> local_of_edge;
+  for (std::size_t v = 0; v < n_welded; ++v) {
+    const int begin = offset[v], count = offset[v + 1] - offset[v];
+    if (count < 2) continue;
+    parent.resize(static_cast<std::size_t>(count));
+    std::iota(parent.begin(), parent.end(), 0);
+    auto root = [&](int i) {
+      while (parent[static_cast<std::size_t>(i)] != i) i = parent[static_cast<std::size_t>(i)] =
+          parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
+      return i;
+    };
+    local_of_edge.clear();
+    int fans = count;
+    for (int i = 0; i < count; ++i) {
+      const auto [f, k] = around[static_cast<std::size_t>(begin + i)];
+      const int n = mesh.corner_count(static_cast<std::size_t>(f));
+      for (const int side : {static_cast<int>(k), (k + n - 1) % n}) {
+        const std::int32_t e = t.face_edge[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+        const auto [it, added] = local_of_edge.emplace(e, i);
+        if (added) continue;
+        const int a = root(i), b = root(it->second);
+        if (a != b) {
+          parent[static_cast<std::size_t>(a)] = b;
+          --fans;
+        }
+      }
+    }
+    if (fans > 1)
+      log.add("non-manifold vertex", static_cast<std::size_t>(around[static_cast<std::size_t>(begin)].first),
+              "non-manifold vertex: " + welded_name(static_cast<std::int32_t>(v)) + " joins " + std::to_string(fans) +
+                  " fans of faces that touch only there; legal for radiosity, but check the model");
+  }
+}
+
+}  // namespace
+
+void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
+  if (mesh.faces.empty()) throw InputError(locate(mesh.path, 0, -1, "the scene has no faces"));
+  mesh.face_material.resize(mesh.face_count(), -1);
+  mesh.face_line.resize(mesh.face_count(), 0);
+  WarningLog log(mesh, tolerances.max_warnings_per_kind);
+
+  check_indices_and_coordinates(mesh);
+  repair_repeated_corners(mesh, log);
+  check_face_geometry(mesh, tolerances, log);
+  check_materials(mesh, log);
+  check_topology(mesh, log);
+
+  // Step: an emitter (form factors need none, but a radiosity solution would be zero).
+  bool emitter = false;
+  for (std::size_t f = 0; f < mesh.face_count() && !emitter; ++f)
+    emitter = (mesh.materials[static_cast<std::size_t>(mesh.face_material[f])].Ke > 0).any();
+  if (!emitter) log.add_global("no emitter: no face has Ke > 0 (fine for form factors; every radiosity would be 0)");
+  log.finish();
+}
+
+}  // namespace radwalk
