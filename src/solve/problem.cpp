@@ -1,5 +1,8 @@
 #include "solve/problem.h"
 
+#include <cmath>
+#include <string>
+
 #include "core/error.h"
 
 namespace radwalk {
@@ -20,6 +23,35 @@ RadiosityProblem make_problem(const PatchSet& patches, SparseF F) {
     p.area(i) = patches.area[i];
   }
   return p;
+}
+
+}  // namespace radwalk
+
+namespace radwalk {
+
+void check_problem(const RadiosityProblem& p) {
+  const Eigen::Index n = p.area.size();
+  const auto dims = [](Eigen::Index r, Eigen::Index c) { return std::to_string(r) + " x " + std::to_string(c); };
+  if (p.F.rows() != n || p.F.cols() != n)
+    throw InputError("form factors are " + dims(p.F.rows(), p.F.cols()) + " but there are " + std::to_string(n) +
+                     " patch areas");
+  if (p.rho.rows() != n) throw InputError("rho is " + dims(p.rho.rows(), 3) + ", expected " + dims(n, 3));
+  if (p.E.rows() != n) throw InputError("E is " + dims(p.E.rows(), 3) + ", expected " + dims(n, 3));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const std::string at = "patch " + std::to_string(i) + ": ";
+    if (!std::isfinite(p.area(i)) || !(p.area(i) > 0))
+      throw InputError(at + "area " + std::to_string(p.area(i)) + " must be finite and > 0");
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(p.rho(i, c)) || p.rho(i, c) < 0)
+        throw InputError(at + "reflectance rho = " + std::to_string(p.rho(i, c)) + " must be finite and >= 0");
+      if (!std::isfinite(p.E(i, c)) || p.E(i, c) < 0)
+        throw InputError(at + "emission E = " + std::to_string(p.E(i, c)) + " must be finite and >= 0");
+    }
+    for (SparseF::InnerIterator it(p.F, i); it; ++it)
+      if (!std::isfinite(it.value()) || it.value() < 0)
+        throw InputError(at + "form factor F(" + std::to_string(i) + ", " + std::to_string(it.col()) +
+                         ") = " + std::to_string(it.value()) + " must be finite and >= 0");
+  }
 }
 
 }  // namespace radwalk

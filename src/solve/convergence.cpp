@@ -1,0 +1,163 @@
+#include "solve/convergence.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "solve/residual.h"
+
+namespace radwalk {
+namespace {
+
+std::string fmt(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+double needed(double tol, double radius, double rate_factor) {
+  if (radius <= 0) return 1;
+  if (radius >= 1) return std::numeric_limits<double>::infinity();
+  return std::max(1.0, std::ceil(rate_factor * std::log(tol) / std::log(radius)));
+}
+
+}  // namespace
+
+StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& options, const std::string& method,
+                               double rate_factor, double shots_per_sweep) {
+  StabilityCheck check;
+  check.radius = spectral_radius_bound(p);
+  const double budget = double(options.max_iterations);
+  check.iterations_needed = shots_per_sweep * needed(options.tol, check.radius.bound, rate_factor);
+  if (check.iterations_needed <= budget) return check;
+
+  // The bound alone cannot clear it: estimate the radius and use its lower bound (the optimistic side).
+  check.radius = estimate_spectral_radius(p);
+  const SpectralRadius& r = check.radius;
+  const double radius = r.lower > 0 ? r.lower : r.estimate;
+  const std::string described = fmt(r.estimate) + " (bounds [" + fmt(r.lower) + ", " + fmt(r.upper) +
+                                "], channel " + std::to_string(r.channel) + ")";
+  if (r.lower >= 1 - kRadiusOneTolerance || r.estimate >= 1 - kRadiusOneTolerance) {
+    check.ok = false;
+    check.status = SolveStatus::diverged;
+    check.iterations_needed = std::numeric_limits<double>::infinity();
+    check.message = method + " cannot converge: the spectral radius of diag(rho) F is " + described +
+                    ", not below 1, so the series B = sum_k (diag(rho) F)^k E diverges and no finite non-negative"
+                    " radiosity exists (max rho = " + fmt(r.max_rho) + ", max row sum of F = " +
+                    fmt(r.max_row_sum) + ", at most 1 for valid form factors). Check the reflectances (each must"
+                    " be < 1 where the scene is closed) and the form factors (rows must sum to <= 1).";
+    return check;
+  }
+  check.iterations_needed = shots_per_sweep * needed(options.tol, radius, rate_factor);
+  if (check.iterations_needed > budget) {
+    check.ok = false;
+    check.status = SolveStatus::max_iterations;
+    check.message = method + " would not reach tol " + fmt(options.tol) + " within max-iterations " +
+                    std::to_string(options.max_iterations) + ": the spectral radius of diag(rho) F is " +
+                    described + ", so it needs about " + fmt(check.iterations_needed) +
+                    " iterations. Raise --max-iterations above that, use the direct solver, or loosen the tolerance.";
+  }
+  return check;
+}
+
+Progress judge_progress(const std::vector<double>& h, long entry_size, const SolveOptions& options,
+                        const std::string& method, std::string* why) {
+  const double last = h.back();
+  const long k = long(h.size()) - 1;
+  const long done = k * entry_size;
+  if (!std::isfinite(last)) {
+    *why = method + " diverged: the relative residual is not finite after " + std::to_string(done) +
+           " iterations. Use the direct solver and check reflectances and form factors.";
+    return Progress::diverged;
+  }
+  if (last <= options.tol) return Progress::converged;
+  const double least = *std::min_element(h.begin(), h.end());
+  if (last > kGrowthFactor * least) {
+    *why = method + " diverged: the relative residual grew from " + fmt(least) + " to " + fmt(last) + " in " +
+           std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1. Use the direct"
+           " solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
+    return Progress::diverged;
+  }
+  if (k >= 2 * kRateWindow) {
+    const double before = h[std::size_t(k - kRateWindow)];
+    const double rate = std::pow(last / before, 1.0 / kRateWindow);
+    if (rate > 1 && last > 10 * least) {
+      *why = method + " diverged: the relative residual grew by a factor " + fmt(rate) + " per " +
+             (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") + " to " + fmt(last) +
+             " after " + std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1."
+             " Use the direct solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
+      return Progress::diverged;
+    }
+    if (!(rate < 1)) {
+      *why = method + " stagnated: the relative residual stayed at " + fmt(last) + " over the last " +
+             std::to_string(kRateWindow * entry_size) + " iterations, above tol " + fmt(options.tol) +
+             ": either tol is below the rounding level of this problem (loosen it) or the spectral radius of the"
+             " iteration is about 1 (use the direct solver, check reflectances and form factors).";
+      return Progress::stagnated;
+    }
+    const double projected = double(done) + double(entry_size) * std::log(options.tol / last) / std::log(rate);
+    if (projected > double(options.max_iterations)) {
+      *why = method + " stopped early: at the observed rate " + fmt(rate) + " per " +
+             (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") +
+             " the relative residual " + fmt(last) + " would reach tol " + fmt(options.tol) + " after about " +
+             fmt(std::ceil(projected)) + " iterations, above max-iterations " +
+             std::to_string(options.max_iterations) +
+             ". Raise --max-iterations, use the direct solver, or loosen the tolerance.";
+      return Progress::too_slow;
+    }
+  }
+  return Progress::keep_going;
+}
+
+Progress refusal(const StabilityCheck& check) {
+  if (check.ok) return Progress::keep_going;
+  return check.status == SolveStatus::diverged ? Progress::diverged : Progress::too_slow;
+}
+
+void record_stability(const StabilityCheck& check, Solution& s) {
+  s.info["spectral_radius_bound"] = check.radius.bound;
+  s.info["spectral_radius_estimate"] = check.radius.estimate;
+  if (check.radius.products > 0) s.info["spectral_radius_lower"] = check.radius.lower;
+  if (std::isfinite(check.iterations_needed)) s.info["iterations_needed"] = check.iterations_needed;
+}
+
+}  // namespace radwalk
+
+namespace radwalk {
+
+void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B,
+                      Progress verdict, const std::string& why, long iterations, std::vector<double> history,
+                      const std::string& unit) {
+  std::string note;
+  if (!B.allFinite()) {
+    B = p.E;
+    note = " The iterate overflowed; B was reset to E, which is not a solution.";
+  }
+  s.B = std::move(B);
+  s.iterations = iterations;
+  s.residual = relative_residual(p, s.B);
+  if (options.record_history) {
+    history.push_back(s.residual);
+    s.residual_history = std::move(history);
+  }
+  const std::string summary = " after " + std::to_string(iterations) + " " + unit + ", relative residual " +
+                              fmt(s.residual) + " (tol " + fmt(options.tol) + ").";
+  if (s.residual <= options.tol) {
+    s.status = SolveStatus::converged;
+    s.message = s.method + " converged" + summary;
+  } else if (verdict == Progress::diverged) {
+    s.status = SolveStatus::diverged;
+    s.message = why + note;
+  } else {
+    s.status = SolveStatus::max_iterations;
+    s.message = (verdict == Progress::keep_going || verdict == Progress::converged
+                     ? s.method + " reached max-iterations " + std::to_string(options.max_iterations) + summary +
+                           " Raise --max-iterations or use the direct solver."
+                     : why + " Stopped" + summary) +
+                note;
+  }
+}
+
+}  // namespace radwalk

@@ -1,0 +1,16 @@
+#include "solve/solve_options.h"
+
+#include <cmath>
+
+#include "core/error.h"
+
+namespace radwalk {
+
+void check_options(const SolveOptions& options) {
+  if (!std::isfinite(options.tol) || !(options.tol > 0))
+    throw InputError("solver tolerance " + std::to_string(options.tol) + " must be finite and > 0");
+  if (options.max_iterations < 0)
+    throw InputError("max-iterations " + std::to_string(options.max_iterations) + " must be >= 0");
+}
+
+}  // namespace radwalk

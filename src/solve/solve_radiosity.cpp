@@ -1,0 +1,39 @@
+#include "solve/solve_radiosity.h"
+
+#include "core/error.h"
+
+namespace radwalk {
+
+// Measured with bench_solvers (synthetic F with 1000 rays per patch, tol 1e-10, 2 shared cores):
+//   N      dense LU          Gauss-Seidel
+//   1000   0.13 s   32 MB    0.010 s (22 sweeps)
+//   2000   0.90 s  124 MB    0.025 s
+//   4000   7.5 s   489 MB    0.18 s
+// The direct solve is exact, robust near radius 1 and gives the condition number; it stays under about a second
+// and 130 MB up to 2000 patches, and grows as N^3 in time and N^2 in memory beyond. Gauss-Seidel above.
+const long kAutoDirectMaxPatches = 2000;
+
+Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options) {
+  check_options(options);
+  const std::string& name = options.solver;
+  if (name == "direct") return solve_direct(p, options);
+  if (name == "jacobi") return solve_jacobi(p, options);
+  if (name == "gauss-seidel") return solve_gauss_seidel(p, options);
+  if (name == "southwell") return solve_southwell(p, options);
+  if (name != "auto")
+    throw InputError("unknown solver '" + name + "' (expected auto, direct, jacobi, gauss-seidel or southwell)");
+
+  const long n = long(p.size());
+  const bool direct = n <= kAutoDirectMaxPatches;
+  Solution s = direct ? solve_direct(p, options) : solve_gauss_seidel(p, options);
+  const std::string why = direct ? "auto chose direct: " + std::to_string(n) + " patches <= " +
+                                       std::to_string(kAutoDirectMaxPatches) + ", where the exact LU solve costs under about a second. "
+                                 : "auto chose gauss-seidel: " + std::to_string(n) + " patches > " +
+                                       std::to_string(kAutoDirectMaxPatches) +
+                                       ", where LU grows as N^3 in time and N^2 in memory. ";
+  s.message = why + s.message;
+  s.info["auto"] = 1;
+  return s;
+}
+
+}  // namespace radwalk
