@@ -44,7 +44,7 @@ struct SolveCommand {
   SceneOptions scene;
   FormFactorCliOptions ff;
   std::string solver = "auto";
-  double tol = 1e-8;
+  double tol = 1e-10;
   long max_iterations = 10000;
   // random walks
   std::string walk = "gather";

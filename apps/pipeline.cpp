@@ -23,7 +23,15 @@ void warn(RunSummary& summary, const std::string& message) {
   summary.add_warning(message);
 }
 
-void note(const std::string& message) { std::fprintf(stderr, "radwalk: %s\n", message.c_str()); }
+namespace {
+bool g_quiet = false;
+}
+
+void set_quiet(bool quiet) { g_quiet = quiet; }
+
+void note(const std::string& message) {
+  if (!g_quiet) std::fprintf(stderr, "radwalk: %s\n", message.c_str());
+}
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
@@ -83,13 +91,19 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     note("form factors: " + std::to_string(static_cast<long>(rays)) + " rays in " + std::to_string(seconds) +
          " s, " + std::to_string(ff.F.nonZeros()) + " non-zeros");
     if (back > 0) {
-      std::size_t worst = 0;
-      for (std::size_t i = 0; i < patches.size(); ++i)
+      std::size_t worst = 0, patches_hit = 0, enclosed = 0;
+      for (std::size_t i = 0; i < patches.size(); ++i) {
+        patches_hit += ff.back_hits[i] > 0;
+        enclosed += ff.back_hits[i] == ff.rays[i];
         if (ff.back_hits[i] > ff.back_hits[worst]) worst = i;
-      warn(summary, std::to_string(static_cast<long>(back)) + " rays hit the back of a patch (a modelling error: "
-                    "a face oriented the wrong way, or a wall seen from behind); the most from patch " +
-                    std::to_string(worst) + " (input face " + std::to_string(patches.face[worst]) +
-                    "): see the back_hits field");
+      }
+      summary.json()["patches_with_back_hits"] = patches_hit;
+      summary.json()["enclosed_patches"] = enclosed;
+      warn(summary, std::to_string(patches_hit) + " patches sent rays into the back of a patch (" +
+                        std::to_string(enclosed) + " of them entirely: they lie inside a closed object, e.g. " +
+                        "floor under a block, and receive no light); elsewhere back hits mean a face is " +
+                        "oriented the wrong way. Most from patch " + std::to_string(worst) + " (input face " +
+                        std::to_string(patches.face[worst]) + "); see the back_hits field");
     }
   }
   summary.json()["form_factor_nonzeros"] = ff.F.nonZeros();

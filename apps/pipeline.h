@@ -35,7 +35,8 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
 // Prints "radwalk: warning: ..." and records it in the summary.
 void warn(RunSummary& summary, const std::string& message);
 
-// Prints an informational line on stderr ("radwalk: ..."), unless --quiet.
+// Prints an informational line on stderr ("radwalk: ..."), unless set_quiet(true) (--quiet).
 void note(const std::string& message);
+void set_quiet(bool quiet);
 
 }  // namespace radwalk::app

@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "apps/options.h"
+#include "apps/pipeline.h"
 #include "core/error.h"
 #include "core/progress.h"
 
@@ -164,6 +165,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   Progress::set_enabled(!quiet);
+  set_quiet(quiet);
   for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene}) o->argv = args;
 
   try {

@@ -1,0 +1,178 @@
+// bench_walks: transitions per second of the random-walk kernels on the Cornell box, 1 thread and all threads.
+//
+// Scene: meshes/cornell_box.obj (load_scene + make_patches, max_edge chosen for about 300 patches), F from
+// estimate_form_factors with 20,000 rays per patch through EmbreeVisibility (so F has the density of a real run).
+//   matrix chain   raw kernel: one Markov chain per chunk, roulette + alias draw per step, restarted at a random
+//                  patch when it stops (the cost of a transition without any scoring);
+//   matrix walks   solve_random_walk gather-collision and shoot-collision (full estimator: streams, weights,
+//                  scores, moments); transitions/s = Solution::steps / seconds;
+//   ray walks      the same with the ray kernel (each transition traces one ray through EmbreeVisibility);
+//   raw Embree     EmbreeVisibility::intersect on pre-generated rays of the same kind (uniform patch point, cosine
+//                  direction, spawn_ray), tracing only, for comparison with the ray kernel.
+// Target: matrix kernel >= 20 M transitions/s per core. Each rate is given per wall-clock second and per CPU
+// second of the process (CLOCK_PROCESS_CPUTIME_ID), the per-core figure that stays meaningful on a shared machine.
+// Then the six estimators side by side on the same scene and F (compare_random_walks: R = 4 runs, 200 walks per
+// patch, matrix kernel, exact variances and the dense solve as reference).
+// Usage: bench_walks [--quick] [--scene PATH]
+#include <time.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "core/timer.h"
+#include "formfactor/form_factors.h"
+#include "mesh/read_scene.h"
+#include "patch/patching.h"
+#include "solve/problem.h"
+#include "visibility/embree_visibility.h"
+#include "visibility/ray_offset.h"
+#include "walk/matrix_kernel.h"
+#include "walk/random_walk_solver.h"
+#include "walk/walk_compare.h"
+
+using namespace radwalk;
+
+namespace {
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+PatchSet cornell(const std::string& path, std::size_t target) {
+  const Mesh mesh = load_scene(path);
+  PatchSet ps = make_patches(mesh, 0);
+  double h = std::sqrt(ps.total_area() / double(target));
+  for (int it = 0; it < 6; ++it) {
+    ps = make_patches(mesh, h);
+    const double ratio = double(ps.size()) / double(target);
+    if (std::abs(ratio - 1) < 0.15) break;
+    h *= std::sqrt(ratio);
+  }
+  return ps;
+}
+
+// Raw matrix-kernel chain: `steps` transitions in fixed chunks; returns transitions per second.
+double matrix_chain(const MatrixKernel& kernel, long steps) {
+  const std::size_t chunk = 1 << 20;
+  const auto n = static_cast<std::size_t>(steps);
+  std::vector<std::size_t> sink((n + chunk - 1) / chunk);
+  const Timer timer;
+  parallel_chunks(n, chunk, [&](std::size_t b, std::size_t e) {
+    Rng rng(7, b / chunk, 0);
+    WalkCounters counters;
+    std::size_t k = 0, visited = 0;
+    for (std::size_t s = b; s < e; ++s) {
+      PatchIndex j = rng.uniform() < kernel.survival(k) ? kernel.sample(k, rng, counters) : kEscaped;
+      if (j < 0) j = static_cast<PatchIndex>(rng.uniform_index(static_cast<std::uint32_t>(kernel.size())));
+      k = static_cast<std::size_t>(j);
+      visited += k;
+    }
+    sink[b / chunk] = visited;
+  });
+  const double t = timer.seconds();
+  std::size_t total = 0;
+  for (std::size_t v : sink) total += v;
+  if (total == 42) std::printf(" ");  // keep the loop alive
+  return double(steps) / t;
+}
+
+double walks_rate(const RadiosityProblem& problem, const PatchSet& patches, const Visibility& vis,
+                  const std::string& method, const std::string& kernel, long walks, long* steps_out = nullptr) {
+  WalkOptions o;
+  set_method(o, method);
+  o.kernel = kernel;
+  o.walks = walks;
+  const Solution s = solve_random_walk(problem, &patches, &vis, o);
+  if (steps_out) *steps_out = s.steps;
+  return double(s.steps) / s.seconds;
+}
+
+// Raw Embree: single-ray intersect through EmbreeVisibility on `count` pre-generated rays.
+double embree_rate(const PatchSet& patches, const EmbreeVisibility& vis, std::size_t count) {
+  const double eps = ray_epsilon(patches);
+  std::vector<Ray> rays(count);
+  Rng rng(99, 0, 0);
+  for (auto& ray : rays) {
+    const std::size_t k = rng.uniform_index(static_cast<std::uint32_t>(patches.size()));
+    const Vec3 x = sample_patch_point(patches, k, rng.uniform(), rng.uniform());
+    const Vec3 w = Frame(patches.normal[k]).to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+    ray = spawn_ray(patches, k, x, w, eps);
+  }
+  std::vector<int> hit(count);
+  const Timer timer;
+  parallel_for(count, [&](std::size_t r) { hit[r] = vis.intersect(rays[r]).patch; }, 4096);
+  return double(count) / timer.seconds();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  bool quick = false;
+  // Default scene next to this source file (bench/../meshes).
+  std::string scene = std::string(__FILE__);
+  scene = scene.substr(0, scene.find_last_of('/')) + "/../meshes/cornell_box.obj";
+  for (int a = 1; a < argc; ++a) {
+    if (!std::strcmp(argv[a], "--quick")) quick = true;
+    else if (!std::strcmp(argv[a], "--scene") && a + 1 < argc) scene = argv[++a];
+  }
+  const PatchSet patches = cornell(scene, 300);
+  const EmbreeVisibility vis(patches);
+  FormFactorOptions ffo;
+  ffo.rays_per_patch = quick ? 2000 : 20000;
+  const FormFactors ff = estimate_form_factors(patches, vis, ffo);
+  const RadiosityProblem problem = make_problem(patches, ff.F);
+  const MatrixKernel kernel(problem, survival_probabilities(problem.rho, "analog", 0));
+  std::printf("scene %s: %zu patches, F has %ld non-zeros (%.1f per row), alias tables %.2f MB\n", scene.c_str(),
+              patches.size(), long(ff.F.nonZeros()), double(ff.F.nonZeros()) / double(patches.size()),
+              double(kernel.rows().memory_bytes()) / 1e6);
+  const int all = active_threads();
+  const long chain_steps = quick ? 20'000'000 : 200'000'000;
+  const long matrix_walks = quick ? 2000 : 20000;        // per patch (gathering)
+  const long ray_walks = quick ? 100 : 1000;             // per patch (gathering)
+  const std::size_t embree_rays = quick ? 500'000 : 4'000'000;
+  std::printf("%-32s %24s %24s\n", "millions per second", "1 thread: wall / cpu", (std::to_string(all) + " threads: wall / cpu").c_str());
+  // f() returns its rate per wall second; the CPU rate rescales it by wall / cpu time of the call.
+  auto timed = [](auto&& f, double& wall_rate, double& cpu_rate) {
+    const Timer wall;
+    const double c0 = cpu_seconds();
+    wall_rate = f();
+    const double w = wall.seconds(), c = cpu_seconds() - c0;
+    cpu_rate = wall_rate * w / c;
+  };
+  auto row = [&](const char* name, auto&& f) {
+    double one_w, one_c, many_w, many_c;
+    {
+      ThreadLimit limit(1);
+      timed(f, one_w, one_c);
+    }
+    timed(f, many_w, many_c);
+    std::printf("%-32s %11.2f / %10.2f %11.2f / %10.2f\n", name, one_w / 1e6, one_c / 1e6, many_w / 1e6, many_c / 1e6);
+  };
+  row("matrix chain (raw kernel)", [&] { return matrix_chain(kernel, chain_steps); });
+  row("matrix gather-collision", [&] { return walks_rate(problem, patches, vis, "gather-collision", "matrix", matrix_walks); });
+  row("matrix gather-absorption", [&] { return walks_rate(problem, patches, vis, "gather-absorption", "matrix", matrix_walks); });
+  row("matrix shoot-collision", [&] {
+    return walks_rate(problem, patches, vis, "shoot-collision", "matrix", matrix_walks * long(patches.size()));
+  });
+  row("ray gather-collision", [&] { return walks_rate(problem, patches, vis, "gather-collision", "ray", ray_walks); });
+  row("ray shoot-collision", [&] {
+    return walks_rate(problem, patches, vis, "shoot-collision", "ray", ray_walks * long(patches.size()));
+  });
+  row("raw Embree rays (intersect1)", [&] { return embree_rate(patches, vis, embree_rays); });
+
+  CompareOptions co;
+  co.runs = 4;
+  co.walk.walks = quick ? 50 : 200;
+  const CompareResult cr = compare_random_walks(problem, &patches, &vis, co);
+  std::printf("\nestimators on the same budget (%d runs x %ld walks per patch; shooting: the same total)\n%s",
+              co.runs, co.walk.walks, format_compare_summary(cr.summary).c_str());
+  return 0;
+}

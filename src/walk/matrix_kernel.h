@@ -1,0 +1,51 @@
+#pragma once
+// MatrixKernel: the transition kernel over a stored sparse F (transition_kernel.h), one alias table per row.
+//
+// sample(k) draws column j of row k with probability F_kj / n_k or kEscaped with the row deficit
+// 1 - s_k / n_k, in O(1) (RowAliasTables). Every stop is a scored stop for gathering absorption:
+//   q_k = 1 - p_k s_k / n_k.
+// HE(k) is exact: (H E)_k = rho_k sum_j F_kj E_j, precomputed. Memory: 16 bytes per non-zero of F plus O(N).
+//
+// Direction: gathering walks sample rows of F. Shooting particles sample rows of the power transfer
+//   T = A^-1 F^T A,  T_kj = A_j F_jk / A_k,
+// because P = A.*B obeys P = A.*E + diag(rho) T^T P for the system B = E + diag(rho) F B with any F; T = F
+// exactly when F is reciprocal (A_i F_ij = A_j F_ji), and a stored F that is not (Monte Carlo form factors)
+// still gives shooting estimates unbiased for the same B the direct solver computes.
+#include "solve/problem.h"
+#include "walk/transition_kernel.h"
+
+namespace radwalk {
+
+enum class WalkDirection { gather, shoot };
+
+// T = A^-1 F^T A (see above). Throws InputError if an area is not positive.
+SparseF shooting_transfer(const RadiosityProblem& problem);
+
+class MatrixKernel {
+ public:
+  static constexpr bool kEscapeScores = true;
+  // p: survival probability per patch (survival_probabilities). Throws InputError on sizes that disagree.
+  MatrixKernel(const RadiosityProblem& problem, std::vector<double> p,
+               WalkDirection direction = WalkDirection::gather);
+
+  std::size_t size() const { return rows_.rows(); }
+  double survival(std::size_t k) const { return tables_.p[k]; }
+  double row_scale(std::size_t k) const { return tables_.n[k]; }
+  const WalkTables& tables() const { return tables_; }
+  const RowAliasTables& rows() const { return rows_; }
+
+  PatchIndex sample(std::size_t k, Rng& rng, WalkCounters& counters) const {
+    ++counters.steps;
+    const PatchIndex j = rows_.sample(k, rng.uniform());
+    if (j < 0) ++counters.escapes;
+    return j;
+  }
+  Rgb HE(std::size_t k, Rng& /*rng*/, WalkCounters& /*counters*/) const { return HE_[k]; }
+
+ private:
+  RowAliasTables rows_;
+  WalkTables tables_;
+  std::vector<Rgb> HE_;
+};
+
+}  // namespace radwalk

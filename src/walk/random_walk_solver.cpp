@@ -1,0 +1,275 @@
+#include "walk/random_walk_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/timer.h"
+#include "walk/matrix_kernel.h"
+#include "walk/ray_kernel.h"
+#include "walk/walk_moments.h"
+#include "walk/walk_variance.h"
+
+namespace radwalk {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+struct RunResult {
+  PatchRgb B, var, se;
+  WalkCounters counters;
+};
+
+// Walks [begin, end) from patch i, the estimator chosen once outside the loop.
+template <TransitionKernel K>
+Moments gather_chunk(GatherEstimator estimator, const K& kernel, std::size_t i, long begin, long end,
+                     std::uint64_t seed, WalkCounters& counters) {
+  auto loop = [&](auto&& walk) {
+    ShiftedSums sums;
+    for (long w = begin; w < end; ++w) {
+      Rng rng(seed, i, static_cast<std::uint64_t>(w));
+      sums.add(walk(kernel, i, rng, counters));
+    }
+    return sums.moments();
+  };
+  switch (estimator) {
+    case GatherEstimator::absorption: return loop(gather_absorption<K>);
+    case GatherEstimator::collision: return loop(gather_collision<K>);
+    case GatherEstimator::expected_value: return loop(gather_expected_value<K>);
+  }
+  return Moments();
+}
+
+// Gathering: every target patch gets `walks` walks, cut into fixed chunks whose Moments merge in chunk order.
+template <TransitionKernel K>
+RunResult run_gather(const K& kernel, GatherEstimator estimator, const std::vector<std::size_t>& targets,
+                     long walks, std::uint64_t seed) {
+  const std::size_t m = targets.size();
+  // Chunk layout depends only on (m, walks): about 512 chunks in all, at least 64 walks each.
+  const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
+  const long chunk = std::max<long>(64, (walks + per_patch_target - 1) / per_patch_target);
+  const auto chunks_per_patch = static_cast<std::size_t>((walks + chunk - 1) / chunk);
+  std::vector<Moments> parts(m * chunks_per_patch);
+  std::vector<WalkCounters> part_counters(parts.size());
+  parallel_for(
+      parts.size(),
+      [&](std::size_t c) {
+        const std::size_t i = targets[c / chunks_per_patch];
+        const long begin = static_cast<long>(c % chunks_per_patch) * chunk;
+        const long end = std::min(walks, begin + chunk);
+        WalkCounters counters;
+        const Moments mom = gather_chunk(estimator, kernel, i, begin, end, seed, counters);
+        parts[c] = mom;
+        part_counters[c] = counters;
+      },
+      1);
+  // Merge per patch in chunk order.
+  const auto N = static_cast<Eigen::Index>(kernel.size());
+  RunResult r;
+  r.B.setConstant(N, 3, kNaN);
+  r.var.setConstant(N, 3, kNaN);
+  r.se.setConstant(N, 3, kNaN);
+  for (std::size_t t = 0; t < m; ++t) {
+    Moments mom;
+    for (std::size_t c = 0; c < chunks_per_patch; ++c) {
+      mom.merge(parts[t * chunks_per_patch + c]);
+      r.counters += part_counters[t * chunks_per_patch + c];
+    }
+    const auto row = static_cast<Eigen::Index>(targets[t]);
+    r.B.row(row) = mom.mean.transpose();
+    r.var.row(row) = mom.variance().transpose();
+    r.se.row(row) = mom.standard_error().transpose();
+  }
+  return r;
+}
+
+// Per-chunk sums of the per-particle scores Y_j and Y_j^2 (radiosity units).
+struct ShootPart {
+  PatchRgb sum, sum2;
+  WalkCounters counters;
+};
+
+template <TransitionKernel K>
+ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const ShootSource& source,
+                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+  const auto N = static_cast<Eigen::Index>(kernel.size());
+  ShootPart part;
+  part.sum.setZero(N, 3);
+  part.sum2.setZero(N, 3);
+  // One particle's score per patch, gathered sparsely (touched patches) and flushed after the particle.
+  std::vector<Rgb> current(kernel.size(), Rgb::Zero());
+  std::vector<char> touched_flag(kernel.size(), 0);
+  std::vector<std::size_t> touched;
+  for (long w = begin; w < end; ++w) {
+    Rng rng(seed, kShootStream, static_cast<std::uint64_t>(w));
+    shoot_particle(estimator, kernel, source, rng, part.counters, [&](std::size_t j, const Rgb& power) {
+      if (!touched_flag[j]) {
+        touched_flag[j] = 1;
+        touched.push_back(j);
+      }
+      current[j] += power;
+    });
+    for (std::size_t j : touched) {
+      const auto row = static_cast<Eigen::Index>(j);
+      const Rgb Y = current[j] / area(row);
+      part.sum.row(row) += Y.transpose();
+      part.sum2.row(row) += (Y * Y).transpose();
+      current[j] = Rgb::Zero();
+      touched_flag[j] = 0;
+    }
+    touched.clear();
+  }
+  return part;
+}
+
+// Shooting: `particles` particles in fixed chunks; chunks run in waves and merge in chunk order.
+template <TransitionKernel K>
+RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityProblem& problem, long particles,
+                    std::uint64_t seed) {
+  const auto N = static_cast<Eigen::Index>(kernel.size());
+  const ShootSource source = make_shoot_source(problem.E, problem.area);
+  RunResult r;
+  PatchRgb sum = PatchRgb::Zero(N, 3), sum2 = PatchRgb::Zero(N, 3);
+  if (source.power > 0) {
+    const long chunk = std::max<long>(1024, (particles + 255) / 256);
+    const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
+    const std::size_t wave = 2 * static_cast<std::size_t>(std::max(1, active_threads()));
+    for (std::size_t first = 0; first < chunks; first += wave) {
+      const std::size_t count = std::min(wave, chunks - first);
+      std::vector<ShootPart> parts(count);
+      parallel_for(
+          count,
+          [&](std::size_t c) {
+            const long begin = static_cast<long>(first + c) * chunk;
+            parts[c] = run_shoot_chunk(kernel, estimator, source, problem.area, begin,
+                                       std::min(particles, begin + chunk), seed);
+          },
+          1);
+      for (const ShootPart& part : parts) {
+        sum += part.sum;
+        sum2 += part.sum2;
+        r.counters += part.counters;
+      }
+    }
+  }
+  // B = E + mean Y; per-particle variance from the power sums (clamped at 0 against rounding).
+  const double n = static_cast<double>(particles);
+  const PatchRgb mean = sum / n;
+  r.B = problem.E + mean;
+  r.var = ((sum2 - n * mean * mean) / (n - 1)).max(0.0);
+  r.se = (r.var / n).sqrt();
+  return r;
+}
+
+template <TransitionKernel K>
+RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options) {
+  if (options.walk == "gather") {
+    std::vector<std::size_t> targets;
+    if (options.patches.empty())
+      for (std::size_t i = 0; i < problem.size(); ++i) targets.push_back(i);
+    else
+      for (int i : options.patches) targets.push_back(static_cast<std::size_t>(i));
+    return run_gather(kernel, gather_estimator(options), targets, options.walks, options.seed);
+  }
+  return run_shoot(kernel, shoot_estimator(options), problem, options.walks, options.seed);
+}
+
+// p_k < 1 everywhere (walks end) and p_k > 0 wherever some rho_kc > 0 (no path is left out).
+void check_survival(const std::vector<double>& p, const PatchRgb& rho, const std::string& mode) {
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const auto r = static_cast<Eigen::Index>(k);
+    if (!(p[k] < 1))
+      throw InputError("random walk: survival probability p = " + std::to_string(p[k]) + " at patch " +
+                       std::to_string(k) + " (survival '" + mode + "') is not below 1: walks might never end");
+    if (!(p[k] > 0) && rho.row(r).maxCoeff() > 0)
+      throw InputError("random walk: survival probability 0 at patch " + std::to_string(k) +
+                       " whose reflectance is positive (survival '" + mode + "') would bias the estimate");
+  }
+}
+
+}  // namespace
+
+Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                           const WalkOptions& options) {
+  const std::size_t N = problem.size();
+  check_walk_options(options, N);
+  if (static_cast<std::size_t>(problem.rho.rows()) != N || static_cast<std::size_t>(problem.E.rows()) != N)
+    throw InputError("random walk: rho has " + std::to_string(problem.rho.rows()) + " rows and E " +
+                     std::to_string(problem.E.rows()) + " for " + std::to_string(N) + " patches");
+  const bool F_stored = problem.F.rows() == static_cast<Eigen::Index>(N) && problem.F.cols() == problem.F.rows();
+  if (options.kernel == "matrix" && !F_stored)
+    throw InputError("random walk: the matrix kernel needs the N x N form factors F (" + std::to_string(N) +
+                     " patches, F is " + std::to_string(problem.F.rows()) + " x " +
+                     std::to_string(problem.F.cols()) + ")");
+  if (options.kernel == "ray" && (!patches || !visibility))
+    throw InputError("random walk: the ray kernel needs the patches and a visibility structure");
+  if (options.kernel == "ray" && patches->size() != N)
+    throw InputError("random walk: the ray kernel got " + std::to_string(patches->size()) + " patches for a " +
+                     std::to_string(N) + "-patch problem");
+
+  std::vector<double> p = survival_probabilities(problem.rho, options.survival, options.survival_constant);
+  check_survival(p, problem.rho, options.survival);
+
+  Solution sol;
+  sol.method = method_name(options);
+  const Timer timer;
+  RunResult r;
+  if (options.kernel == "matrix") {
+    const MatrixKernel kernel(problem, std::move(p),
+                              options.walk == "gather" ? WalkDirection::gather : WalkDirection::shoot);
+    r = run(kernel, problem, options);
+  } else {
+    const RayKernel kernel(problem, *patches, *visibility, std::move(p));
+    r = run(kernel, problem, options);
+  }
+  sol.seconds = timer.seconds();
+  sol.B = std::move(r.B);
+  sol.var = std::move(r.var);
+  sol.B_se = std::move(r.se);
+  const long estimated = options.walk == "gather"
+                             ? static_cast<long>(options.patches.empty() ? N : options.patches.size())
+                             : 1;
+  sol.walks = options.walks * estimated;
+  sol.steps = r.counters.steps;
+  sol.info["escapes"] = static_cast<double>(r.counters.escapes);
+  sol.info["back_hits"] = static_cast<double>(r.counters.back_hits);
+  if (options.walk == "gather")
+    sol.info["walks_per_patch"] = static_cast<double>(options.walks);
+  else
+    sol.info["particles"] = static_cast<double>(options.walks);
+  double power = 0;
+  for (Eigen::Index i = 0; i < problem.area.size(); ++i) power += problem.area(i) * problem.E.row(i).sum();
+  sol.info["emitted_power"] = power;
+
+  // Finite-variance check, and the exact variance where asked for.
+  std::ostringstream msg;
+  msg << sol.method << " (" << options.kernel << " kernel, survival " << options.survival << "): "
+      << options.walks << (options.walk == "gather" ? " walks per patch" : " particles");
+  if (F_stored) {
+    const VarianceCheck check = check_finite_variance(problem, options);
+    sol.info["variance_radius"] = check.radius;
+    if (!check.finite())
+      msg << "; WARNING: spectral radius of K = H^2/P is " << check.radius
+          << " >= 1, so the per-walk variance is infinite and the error bars are meaningless"
+          << " (choose a survival probability closer to rho, e.g. --survival analog)";
+  } else {
+    sol.info["variance_radius"] = kNaN;
+  }
+  if (options.theory) {
+    if (options.kernel != "matrix")
+      msg << "; no exact variance for the ray kernel (its F is not stored)";
+    else if (N > kMaxTheoryPatches)
+      msg << "; exact variance skipped (" << N << " patches > " << kMaxTheoryPatches << ")";
+    else
+      sol.var_theory = theoretical_variance(problem, options, dense_radiosity(problem));
+  }
+  sol.message = msg.str();
+  sol.status = SolveStatus::converged;
+  return sol;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,33 @@
+#include "walk/shoot_estimators.h"
+
+#include <string>
+
+#include "core/error.h"
+
+namespace radwalk {
+
+ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area) {
+  if (E.rows() != area.size())
+    throw InputError("shooting: E has " + std::to_string(E.rows()) + " rows but there are " +
+                     std::to_string(area.size()) + " areas");
+  const auto N = static_cast<std::size_t>(area.size());
+  // Phi_i = A_i sum_c E_ic.
+  std::vector<double> Phi(N);
+  ShootSource s;
+  for (std::size_t i = 0; i < N; ++i) {
+    const auto r = static_cast<Eigen::Index>(i);
+    if (!(area(r) >= 0) || !(E.row(r).minCoeff() >= 0))
+      throw InputError("shooting: patch " + std::to_string(i) + " has a negative area or emission");
+    Phi[i] = area(r) * E.row(r).sum();
+    s.power += Phi[i];
+  }
+  s.W0.assign(N, Rgb::Zero());
+  if (!(s.power > 0)) return s;
+  s.birth = AliasTable(Phi);
+  // W0 = A_i E_i / pi_i = Phi E_i / sum_c E_ic.
+  for (std::size_t i = 0; i < N; ++i)
+    if (Phi[i] > 0) s.W0[i] = E.row(static_cast<Eigen::Index>(i)).transpose() * (s.power / E.row(static_cast<Eigen::Index>(i)).sum());
+  return s;
+}
+
+}  // namespace radwalk

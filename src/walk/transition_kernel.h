@@ -1,0 +1,82 @@
+#pragma once
+// The transition-kernel interface every random-walk estimator runs on, and the per-patch tables it carries.
+//
+// Per channel c the system is B_c = E_c + H_c B_c with H_c = diag(rho_c) F. A kernel is a Markov chain on
+// patches built from two pieces:
+//   - a survival probability p_k (Russian roulette, one scalar for all channels), and
+//   - a destination sampler: from patch k, patch j with probability F_kj / n_k, else a stop (kEscaped: the walk
+//     left an open scene; kBackHit: a ray hit the back of a patch). n_k >= 1 is the row scale (alias_table.h;
+//     1 for the ray kernel).
+// Gathering walks use P_kj = p_k F_kj / n_k (roulette at k, then move) and weight factor
+//   w_k = H_kj / P_kj = rho_k n_k / p_k   (per channel; = rho_k / p_k for the analog walk, 1 if p_k = rho_k),
+// shooting particles move first and roulette at the patch they reach (tables below).
+// A kernel K provides (all const, thread-safe, O(1) except the ray tracing):
+//   size(), survival(k) = p_k, row_scale(k) = n_k, tables() (WalkTables),
+//   static constexpr bool kEscapeScores: an escape is a scored stop for gathering absorption,
+//   sample(k, rng, counters)   -> PatchIndex: j >= 0 with probability F_kj / n_k, else kEscaped / kBackHit,
+//   HE(k, rng, counters)       -> Rgb: an unbiased estimate of (H E)_k = rho_k sum_j F_kj E_j.
+// The gathering absorption estimator scores at the "scored stops" of a kernel: the matrix kernel scores every
+// stop (roulette or escape, probability q_k = 1 - p_k s_k / n_k); the ray kernel, which does not know s_k, scores
+// only the roulette stop (probability a_k = 1 - p_k) and lets escapes score 0 (tables().absorb_score).
+#include <concepts>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/types.h"
+#include "walk/alias_table.h"
+
+namespace radwalk {
+
+// A uniform number in [0, 1) from one 32-bit draw, for Russian roulette (u < p_k): the survival probability is
+// then resolved to 2^-32, far below any Monte Carlo error, at half the cost of Rng::uniform().
+inline double roulette_uniform(Rng& rng) { return static_cast<double>(rng.next_u32()) * 0x1.0p-32; }
+
+// Tallies a walk or a particle keeps while it runs (summed per chunk, in chunk order).
+struct WalkCounters {
+  long steps = 0;      // destination samples (alias draws or traced rays, including next-event rays)
+  long escapes = 0;    // samples that left the scene
+  long back_hits = 0;  // rays that hit the back of a patch
+  WalkCounters& operator+=(const WalkCounters& o) {
+    steps += o.steps;
+    escapes += o.escapes;
+    back_hits += o.back_hits;
+    return *this;
+  }
+};
+
+// Per-patch factors the estimators read; all rows are Rgb (channels), indices are patches.
+struct WalkTables {
+  std::vector<Rgb> E;              // emitted radiosity E_k
+  std::vector<Rgb> rho;            // reflectance rho_k
+  std::vector<double> p;           // survival probability p_k
+  std::vector<double> n;           // row scale n_k
+  std::vector<double> scored_stop; // probability of a scored stop at k (q_k or a_k, see above)
+  std::vector<Rgb> gather_weight;  // rho_k n_k / p_k (0 where p_k = 0)
+  std::vector<Rgb> absorb_score;   // E_k / scored_stop_k (0 where E_k = 0)
+  std::vector<Rgb> rho_over_p;     // rho_k / p_k (0 where p_k = 0): shooting weight after surviving at k
+  std::vector<Rgb> rho_over_1mp;   // rho_k / (1 - p_k) (0 where p_k = 1): shooting absorption score factor
+};
+
+// Fills every table from rho, E, p, n and the scored-stop probabilities.
+WalkTables make_walk_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
+                            std::vector<double> scored_stop);
+
+// Survival probabilities p_k from a mode: "analog" (mean of rho_k over channels; rho_k for one channel),
+// "max" (max over channels), "constant" (the value `constant` everywhere). Throws InputError on an unknown mode or
+// a constant outside (0, 1].
+std::vector<double> survival_probabilities(const PatchRgb& rho, const std::string& mode, double constant);
+
+template <class K>
+concept TransitionKernel = requires(const K& kernel, std::size_t k, Rng& rng, WalkCounters& counters) {
+  { kernel.size() } -> std::convertible_to<std::size_t>;
+  { kernel.survival(k) } -> std::convertible_to<double>;
+  { kernel.row_scale(k) } -> std::convertible_to<double>;
+  { kernel.tables() } -> std::convertible_to<const WalkTables&>;
+  { kernel.sample(k, rng, counters) } -> std::convertible_to<PatchIndex>;
+  { kernel.HE(k, rng, counters) } -> std::convertible_to<Rgb>;
+  { K::kEscapeScores } -> std::convertible_to<bool>;
+};
+
+}  // namespace radwalk

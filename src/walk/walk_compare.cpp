@@ -1,0 +1,141 @@
+#include "walk/walk_compare.h"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
+#include "core/error.h"
+#include "walk/random_walk_solver.h"
+#include "walk/walk_variance.h"
+
+namespace radwalk {
+namespace {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+}
+
+CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
+                                   const Visibility* visibility, const CompareOptions& options,
+                                   const PatchRgb& B_reference) {
+  if (options.runs < 1) throw InputError("compare: runs = " + std::to_string(options.runs) + " (need >= 1)");
+  if (options.methods.empty()) throw InputError("compare: no methods given");
+  const std::size_t N = problem.size();
+  const auto n_rows = static_cast<Eigen::Index>(N);
+  // Reference solution.
+  PatchRgb B_ref = B_reference;
+  const bool dense_ok = N <= kMaxTheoryPatches && problem.F.rows() == n_rows;
+  if (B_ref.rows() == 0 && dense_ok) B_ref = dense_radiosity(problem);
+  if (B_ref.rows() != 0 && B_ref.rows() != n_rows)
+    throw InputError("compare: the reference has " + std::to_string(B_ref.rows()) + " rows for " +
+                     std::to_string(N) + " patches");
+  std::vector<int> targets = options.walk.patches;
+  if (targets.empty())
+    for (std::size_t i = 0; i < N; ++i) targets.push_back(static_cast<int>(i));
+
+  CompareResult result;
+  for (const std::string& method : options.methods) {
+    WalkOptions wo = options.walk;
+    set_method(wo, method);
+    check_walk_options(wo, N);
+    const bool gather = wo.walk == "gather";
+    if (!gather) wo.walks = options.walk.walks * static_cast<long>(targets.size());
+    // R runs: pooled estimates, variances and the run-to-run spread.
+    PatchRgb sum_B = PatchRgb::Zero(n_rows, 3), sum_B2 = PatchRgb::Zero(n_rows, 3);
+    PatchRgb sum_var = PatchRgb::Zero(n_rows, 3), sum_se = PatchRgb::Zero(n_rows, 3);
+    long steps = 0;
+    double seconds = 0;
+    for (int r = 0; r < options.runs; ++r) {
+      wo.seed = options.walk.seed + static_cast<std::uint64_t>(r);
+      const Solution s = solve_random_walk(problem, patches, visibility, wo);
+      sum_B += s.B;
+      sum_B2 += s.B * s.B;
+      sum_var += s.var;
+      sum_se += s.B_se;
+      steps += s.steps;
+      seconds += s.seconds;
+    }
+    const double R = options.runs;
+    PatchRgb var_theory;
+    if (options.theory && wo.kernel == "matrix" && dense_ok && B_ref.rows() == n_rows)
+      var_theory = theoretical_variance(problem, wo, B_ref);
+    // Rows and the summary.
+    CompareSummary sum;
+    sum.method = method;
+    sum.runs = options.runs;
+    sum.walks = wo.walks * options.runs * (gather ? static_cast<long>(targets.size()) : 1);
+    sum.steps = steps;
+    sum.seconds = seconds;
+    double z_abs = 0, ratio = 0, spread = 0, var_total = 0;
+    long n_z = 0, n_ratio = 0, n_spread = 0, n_rows_m = 0;
+    const long walks = wo.walks * options.runs;
+    for (int i : targets)
+      for (int c = 0; c < 3; ++c) {
+        CompareRow row;
+        row.patch = i;
+        row.method = method;
+        row.channel = c;
+        row.mean = sum_B(i, c) / R;
+        row.var = sum_var(i, c) / R;
+        row.var_theory = var_theory.rows() ? var_theory(i, c) : kNaN;
+        const double se = std::sqrt(row.var / static_cast<double>(walks));
+        // z of the pooled estimate; a zero-variance method is exact up to rounding (z = 0) or infinitely wrong.
+        row.z = kNaN;
+        if (B_ref.rows()) {
+          const double diff = row.mean - B_ref(i, c);
+          row.z = se > 0 ? diff / se
+                         : (std::abs(diff) <= 1e-12 * std::abs(B_ref(i, c)) ? 0.0
+                                                                            : std::numeric_limits<double>::infinity());
+        }
+        row.walks = walks;
+        row.steps = steps;
+        row.seconds = seconds;
+        row.efficiency = row.var > 0 ? static_cast<double>(walks) / (row.var * seconds)
+                                     : std::numeric_limits<double>::infinity();
+        result.rows.push_back(row);
+        // Summary tallies.
+        var_total += row.var;
+        ++n_rows_m;
+        if (std::isfinite(row.z)) {
+          z_abs += std::abs(row.z);
+          sum.max_abs_z = std::max(sum.max_abs_z, std::abs(row.z));
+          ++n_z;
+        }
+        if (std::isfinite(row.var_theory) && row.var_theory > 0) {
+          ratio += row.var / row.var_theory;
+          ++n_ratio;
+        }
+        if (options.runs >= 2 && sum_se(i, c) > 0) {
+          const double mean = sum_B(i, c) / R;
+          const double sd = std::sqrt(std::max(0.0, (sum_B2(i, c) - R * mean * mean) / (R - 1)));
+          spread += sd / (sum_se(i, c) / R);
+          ++n_spread;
+        }
+      }
+    sum.mean_abs_z = n_z ? z_abs / static_cast<double>(n_z) : kNaN;
+    if (!n_z) sum.max_abs_z = kNaN;
+    sum.var_ratio = n_ratio ? ratio / static_cast<double>(n_ratio) : kNaN;
+    sum.spread_ratio = n_spread ? spread / static_cast<double>(n_spread) : kNaN;
+    sum.mean_var = n_rows_m ? var_total / static_cast<double>(n_rows_m) : kNaN;
+    sum.efficiency = sum.mean_var > 0 ? static_cast<double>(walks) / (sum.mean_var * seconds)
+                                      : std::numeric_limits<double>::infinity();
+    result.summary.push_back(sum);
+  }
+  return result;
+}
+
+std::string format_compare_summary(const std::vector<CompareSummary>& summary) {
+  std::ostringstream out;
+  char line[320];
+  std::snprintf(line, sizeof line, "%-22s %5s %12s %13s %9s %9s %9s %9s %9s %12s %12s\n", "method", "runs", "walks",
+                "steps", "seconds", "mean|z|", "max|z|", "var/theo", "spread", "mean var", "efficiency");
+  out << line;
+  for (const CompareSummary& s : summary) {
+    std::snprintf(line, sizeof line, "%-22s %5d %12ld %13ld %9.3f %9.3f %9.3f %9.3f %9.3f %12.4g %12.4g\n",
+                  s.method.c_str(), s.runs, s.walks, s.steps, s.seconds, s.mean_abs_z, s.max_abs_z, s.var_ratio,
+                  s.spread_ratio, s.mean_var, s.efficiency);
+    out << line;
+  }
+  return out.str();
+}
+
+}  // namespace radwalk
