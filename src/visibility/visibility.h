@@ -1,6 +1,7 @@
 #pragma once
 // Visibility: "which patch does this ray hit first?" as an interface, so algorithms can run on Embree or on an
 // analytic stand-in in tests.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 
@@ -28,6 +29,15 @@ class Visibility {
   virtual Hit intersect(const Ray& ray) const = 0;
   // True when anything is hit within (0, tmax).
   virtual bool occluded(const Ray& ray) const = 0;
+
+  // Batches: hits[k] = intersect(rays[k]) and out[k] = occluded(rays[k]) for k < n. Implementations override
+  // these where packets or streams are faster (EmbreeVisibility); the results equal the single-ray calls.
+  virtual void intersect(const Ray* rays, Hit* hits, std::size_t n) const {
+    for (std::size_t k = 0; k < n; ++k) hits[k] = intersect(rays[k]);
+  }
+  virtual void occluded(const Ray* rays, bool* out, std::size_t n) const {
+    for (std::size_t k = 0; k < n; ++k) out[k] = occluded(rays[k]);
+  }
 };
 
 }  // namespace radwalk

@@ -1,0 +1,257 @@
+#include "formfactor/form_factors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+namespace {
+
+constexpr std::size_t kBlockRays = std::size_t(1) << 24;  // rays per assembly block (working buffer size)
+constexpr std::size_t kBatch = 64;                        // rays per Visibility::intersect batch
+constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+constexpr std::uint32_t kMaxStrataSide = 1024;  // at most 2^20 stratified rays per patch; the rest are uniform
+
+void check_options(const FormFactorOptions& o) {
+  const auto bad = [](const std::string& what) { return InputError(locate("form factor options", 0, -1, what)); };
+  if (o.rays_per_patch < 1 || o.rays_per_patch > long(std::numeric_limits<std::uint32_t>::max()))
+    throw bad("rays_per_patch must be in [1, 2^32-1], got " + std::to_string(o.rays_per_patch));
+  if (!std::isfinite(o.rays_per_area) || o.rays_per_area < 0)
+    throw bad("rays_per_area must be finite and >= 0, got " + std::to_string(o.rays_per_area));
+  if (o.min_rays < 1 || o.min_rays > long(std::numeric_limits<std::uint32_t>::max()))
+    throw bad("min_rays must be in [1, 2^32-1], got " + std::to_string(o.min_rays));
+}
+
+// Scratch space of one worker, reused across the rows of a chunk.
+struct RowScratch {
+  std::vector<Ray> rays = std::vector<Ray>(kBatch);
+  std::vector<Hit> hits = std::vector<Hit>(kBatch);
+  std::vector<std::int32_t> targets, sort_buffer;  // front-hit patch of every ray of the row
+  std::vector<std::uint32_t> permutation;         // origin stratum (row << 16 | column) per direction stratum
+};
+
+struct RowResult {
+  std::uint32_t nnz = 0, escaped = 0, back_hits = 0;
+};
+
+// sample_patch_point with the per-patch work (corners, triangle split of a quad) done once per row.
+struct PatchPointSampler {
+  Vec3 a, b, c, d;
+  double p1 = 1;  // probability of the first triangle (a, b, c); the second is (a, c, d)
+  PatchPointSampler(const PatchSet& ps, std::size_t i)
+      : a(ps.corner(i, 0)), b(ps.corner(i, 1)), c(ps.corner(i, 2)), d(ps.is_quad(i) ? ps.corner(i, 3) : c) {
+    if (ps.is_quad(i)) {
+      const double a1 = (b - a).cross(c - a).norm(), a2 = (c - a).cross(d - a).norm();
+      p1 = a1 / (a1 + a2);
+    }
+  }
+  Vec3 point(double u1, double u2) const {
+    const bool first = u1 < p1;
+    u1 = first ? u1 / p1 : (u1 - p1) / (1.0 - p1);
+    const double s = std::sqrt(std::min(u1, kBelowOne));
+    const double w0 = 1.0 - s, w1 = u2 * s;
+    return first ? Vec3(w0 * a + w1 * b + (1.0 - w0 - w1) * c) : Vec3(w0 * a + w1 * c + (1.0 - w0 - w1) * d);
+  }
+};
+
+// sample_cosine_hemisphere (Malley's method) with the angle in single precision: the ray is traced in single
+// precision anyway, and sincosf costs about half of sincos, which was the largest sampling cost.
+Vec3 cosine_direction(double u1, double u2) {
+  const double r = std::sqrt(u1);
+  const float phi = float(2.0 * kPi * u2);
+  const double c = std::cos(phi), s = std::sin(phi);
+  return {r * c, r * s, std::sqrt(std::max(0.0, 1.0 - u1))};
+}
+
+// Sorts values in [0, 2^(8 * passes)) by LSD radix sort on bytes (std::sort for short arrays).
+void sort_indices(std::vector<std::int32_t>& v, std::vector<std::int32_t>& tmp, int passes) {
+  if (v.size() < 64) {
+    std::sort(v.begin(), v.end());
+    return;
+  }
+  tmp.resize(v.size());
+  for (int p = 0; p < passes; ++p) {
+    std::uint32_t count[257] = {};
+    const int shift = 8 * p;
+    for (auto x : v) ++count[((std::uint32_t(x) >> shift) & 255u) + 1];
+    for (int k = 0; k < 256; ++k) count[k + 1] += count[k];
+    for (auto x : v) tmp[count[(std::uint32_t(x) >> shift) & 255u]++] = x;
+    v.swap(tmp);
+  }
+}
+
+// Traces the n rays of patch i and writes its sorted (j, count) runs to cols/counts (room for n entries).
+RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& opt, double eps,
+                    int sort_passes, std::size_t i, std::uint32_t n, RowScratch& s, std::int32_t* cols,
+                    std::uint32_t* counts) {
+  Rng rng(opt.seed, i);
+  // 32-bit uniforms in [0, 1): ample resolution for single-precision rays, half the cost of Rng::uniform.
+  const auto uniform = [&rng] { return rng.next_u32() * 0x1p-32; };
+  const Frame frame(ps.normal[i]);
+  const PatchPointSampler sampler(ps, i);
+  const PatchRayOffset offset = patch_ray_offset(ps, i, eps);
+  RowResult r;
+
+  // Step 1: strata. m^2 jittered strata per square (m <= kMaxStrataSide), origin strata paired with direction
+  // strata by a random permutation.
+  const std::uint32_t m =
+      opt.stratified ? std::min<std::uint32_t>(std::uint32_t(std::sqrt(double(n))), kMaxStrataSide) : 0;
+  const std::uint32_t strata = m * m;
+  const double inv_m = m ? 1.0 / m : 0.0;
+  s.permutation.resize(strata);
+  for (std::uint32_t row = 0, k = 0; row < m; ++row)
+    for (std::uint32_t col = 0; col < m; ++col) s.permutation[k++] = row << 16 | col;
+  for (std::uint32_t k = strata; k > 1; --k) std::swap(s.permutation[k - 1], s.permutation[rng.uniform_index(k)]);
+
+  // Step 2: rays in batches; first hits sorted into front hits, back hits and escapes.
+  s.targets.clear();
+  std::uint32_t dir_row = 0, dir_col = 0;  // direction stratum of the current ray
+  for (std::uint32_t base = 0; base < n; base += kBatch) {
+    const std::size_t b = std::min<std::size_t>(kBatch, n - base);
+    for (std::size_t k = 0; k < b; ++k) {
+      const std::uint32_t ray = base + std::uint32_t(k);
+      double u1 = uniform(), u2 = uniform(), u3 = uniform(), u4 = uniform();
+      if (ray < strata) {
+        const std::uint32_t o = s.permutation[ray];
+        u1 = std::min(((o >> 16) + u1) * inv_m, kBelowOne);
+        u2 = std::min(((o & 0xffffu) + u2) * inv_m, kBelowOne);
+        u3 = std::min((dir_row + u3) * inv_m, kBelowOne);
+        u4 = std::min((dir_col + u4) * inv_m, kBelowOne);
+        if (++dir_col == m) {
+          dir_col = 0;
+          ++dir_row;
+        }
+      }
+      const Vec3 w = frame.to_world(cosine_direction(u3, u4));
+      s.rays[k] = spawn_ray(offset, sampler.point(u1, u2), w);
+    }
+    vis.intersect(s.rays.data(), s.hits.data(), b);
+    for (std::size_t k = 0; k < b; ++k) {
+      const Hit& h = s.hits[k];
+      if (h.missed())
+        ++r.escaped;
+      else if (!h.front)
+        ++r.back_hits;
+      else
+        s.targets.push_back(h.patch);
+    }
+  }
+
+  // Step 3: run-length encode the sorted targets.
+  sort_indices(s.targets, s.sort_buffer, sort_passes);
+  for (std::size_t k = 0; k < s.targets.size();) {
+    std::size_t e = k + 1;
+    while (e < s.targets.size() && s.targets[e] == s.targets[k]) ++e;
+    cols[r.nnz] = s.targets[k];
+    counts[r.nnz] = std::uint32_t(e - k);
+    ++r.nnz;
+    k = e;
+  }
+  return r;
+}
+
+}  // namespace
+
+std::uint32_t ray_count(const FormFactorOptions& options, double area) {
+  check_options(options);
+  if (options.rays_per_area <= 0) return std::uint32_t(options.rays_per_patch);
+  const double n = std::max(double(options.min_rays), std::round(options.rays_per_area * area));
+  if (!(n <= double(std::numeric_limits<std::uint32_t>::max())))
+    throw InputError(locate("form factor options", 0, -1,
+                            "rays_per_area x area = " + std::to_string(n) + " rays exceeds 2^32-1 for one patch"));
+  return std::uint32_t(n);
+}
+
+FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& options) {
+  check_options(options);
+  const std::size_t N = ps.size();
+  if (N > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw InputError(locate(ps.source, 0, -1, "more than 2^31-1 patches"));
+  FormFactors out;
+  out.rays.resize(N);
+  out.escaped.resize(N);
+  out.back_hits.resize(N);
+  for (std::size_t i = 0; i < N; ++i) out.rays[i] = ray_count(options, ps.area[i]);
+  const double eps = ray_epsilon(ps);
+  int sort_passes = 0;
+  for (std::size_t v = N; v > 0; v >>= 8) ++sort_passes;
+
+  // Blocks of consecutive rows with at most kBlockRays rays (or one row): trace into a working buffer with room
+  // for n_i entries per row, then copy each row's runs into the block's compact arrays.
+  struct Block {
+    std::vector<std::int32_t> cols;
+    std::vector<float> values;
+  };
+  std::vector<Block> blocks;
+  std::vector<std::uint32_t> nnz(N);
+  std::vector<std::size_t> offset(N + 1);
+  std::vector<std::int32_t> buf_cols;
+  std::vector<std::uint32_t> buf_counts;
+  Progress progress("form factors", N);
+  for (std::size_t first = 0; first < N;) {
+    std::size_t last = first, total = 0;
+    while (last < N && (last == first || total + out.rays[last] <= kBlockRays)) {
+      offset[last] = total;
+      total += out.rays[last++];
+    }
+    buf_cols.resize(total);
+    buf_counts.resize(total);
+    parallel_chunks(last - first, 16, [&](std::size_t b, std::size_t e) {
+      RowScratch scratch;
+      for (std::size_t i = first + b; i < first + e; ++i) {
+        const RowResult r = trace_row(ps, vis, options, eps, sort_passes, i, out.rays[i], scratch, buf_cols.data() + offset[i],
+                                      buf_counts.data() + offset[i]);
+        nnz[i] = r.nnz;
+        out.escaped[i] = r.escaped;
+        out.back_hits[i] = r.back_hits;
+      }
+      progress.advance(e - b);
+    });
+    Block block;
+    std::size_t block_nnz = 0;
+    for (std::size_t i = first; i < last; ++i) block_nnz += nnz[i];
+    block.cols.resize(block_nnz);
+    block.values.resize(block_nnz);
+    for (std::size_t i = first, k = 0; i < last; ++i) {
+      const double inv_n = 1.0 / out.rays[i];
+      for (std::uint32_t q = 0; q < nnz[i]; ++q, ++k) {
+        block.cols[k] = buf_cols[offset[i] + q];
+        block.values[k] = float(buf_counts[offset[i] + q] * inv_n);
+      }
+    }
+    blocks.push_back(std::move(block));
+    first = last;
+  }
+  progress.finish();
+  buf_cols = {};
+  buf_counts = {};
+
+  // CSR: outer index by prefix sums of the row lengths, then the blocks in order (each freed once copied).
+  std::size_t total_nnz = 0;
+  for (auto c : nnz) total_nnz += c;
+  if (total_nnz > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw InputError(locate(ps.source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
+  out.F.resize(Eigen::Index(N), Eigen::Index(N));
+  out.F.resizeNonZeros(Eigen::Index(total_nnz));
+  std::int32_t* outer = out.F.outerIndexPtr();
+  outer[0] = 0;
+  for (std::size_t i = 0; i < N; ++i) outer[i + 1] = outer[i] + std::int32_t(nnz[i]);
+  std::size_t at = 0;
+  for (auto& block : blocks) {
+    std::copy(block.cols.begin(), block.cols.end(), out.F.innerIndexPtr() + at);
+    std::copy(block.values.begin(), block.values.end(), out.F.valuePtr() + at);
+    at += block.cols.size();
+    block = Block{};
+  }
+  return out;
+}
+
+}  // namespace radwalk

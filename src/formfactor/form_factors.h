@@ -1,0 +1,55 @@
+#pragma once
+// Form factors by cosine-weighted ray shooting (Monte Carlo, unbiased).
+//
+// For patch i with n_i rays:  F_ij = (rays from i whose first hit is the FRONT of patch j) / n_i,
+// an unbiased estimator of F_ij = (1/A_i) int_{A_i} int_{A_j} V cos(t_i) cos(t_j) / (pi r^2) dA_j dA_i, because a
+// ray with a uniform origin on A_i (pdf 1/A_i) and a cosine-weighted direction (pdf cos(t_i)/pi) reaches the
+// front of j with exactly that probability. Rays that leave the scene are counted in `escaped`, rays whose first
+// hit is the back of a patch in `back_hits`; neither enters F, so row sums are 1 - (escaped + back_hits)/n_i.
+//
+// Sampling (stratified, unbiased): with m = min(floor(sqrt(n_i)), 1024), the first m^2 rays take one jittered stratum each
+// of the direction square (u3, u4) (cosine warp of sample_cosine_hemisphere) and, through a random permutation,
+// one jittered stratum each of the origin square (u1, u2) (warp of sample_patch_point); the remaining
+// n_i - m^2 rays are uniform. Each of the m^2 strata of either square has probability 1/m^2 and gets exactly one
+// sample, so the mean over the rays is unbiased; its variance is at most the binomial variance
+// F_ij (1 - F_ij) / n_i up to the Latin-hypercube factor m^2/(m^2 - 1) (Owen 1997), so binomial standard errors
+// are (essentially) conservative. `stratified = false` draws all four numbers uniformly (pure binomial counts).
+//
+// Reproducible: patch i uses the stream Rng(seed, i) only, so F is bit-identical for any thread count.
+// Rays leave through spawn_ray (visibility/ray_offset.h). Parallel over patches (core/parallel.h); rows are
+// assembled into CSR without a global sort or lock: each row's hits are sorted into (j, count) runs in place,
+// then rows are copied at prefix-sum offsets. Memory: about 8 bytes per non-zero of F plus a working buffer of
+// at most 16 M rays (8 bytes per ray).
+#include <cstdint>
+#include <vector>
+
+#include "formfactor/sparse_f.h"
+#include "patch/patch_set.h"
+#include "visibility/visibility.h"
+
+namespace radwalk {
+
+struct FormFactorOptions {
+  long rays_per_patch = 1000;  // n_i when rays_per_area == 0
+  double rays_per_area = 0;    // D > 0: n_i = max(min_rays, round(D * A_i)) (D in rays per unit area)
+  long min_rays = 16;
+  std::uint64_t seed = 1;
+  bool stratified = true;
+};
+
+struct FormFactors {
+  SparseF F;                          // N x N, row i = where rays leaving i land (front faces only)
+  std::vector<std::uint32_t> rays;     // n_i
+  std::vector<std::uint32_t> escaped;  // rays from i that hit nothing
+  std::vector<std::uint32_t> back_hits;  // rays from i whose first hit was the back of a patch
+};
+
+// n_i for a patch of area `area` under `options` (checked: InputError for options out of range).
+std::uint32_t ray_count(const FormFactorOptions& options, double area);
+
+// Estimates F for all patches. InputError for bad options (rays_per_patch < 1, negative or non-finite
+// rays_per_area, min_rays < 1, more than 2^32 - 1 rays for a patch, more than 2^31 - 1 patches).
+FormFactors estimate_form_factors(const PatchSet& patches, const Visibility& visibility,
+                                  const FormFactorOptions& options = {});
+
+}  // namespace radwalk

@@ -1,0 +1,210 @@
+#include "formfactor/matrix_market.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <ostream>
+#include <stdexcept>
+#include <string_view>
+#include <vector>
+
+#include "core/atomic_write.h"
+#include "core/error.h"
+
+namespace radwalk {
+namespace {
+
+bool blank(std::string_view s) { return s.find_first_not_of(" \t\r") == std::string_view::npos; }
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  for (auto& c : out) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+void skip_space(const char*& p, const char* end) {
+  while (p < end && (*p == ' ' || *p == '\t' || *p == '\r')) ++p;
+}
+
+// Parses one number of type T, then whitespace; false when there is no number or it is followed by junk.
+template <class T>
+bool parse(const char*& p, const char* end, T& value) {
+  skip_space(p, end);
+  auto [next, ec] = std::from_chars(p, end, value);
+  if (ec != std::errc() || next == p) return false;
+  if (next < end && *next != ' ' && *next != '\t' && *next != '\r') return false;
+  p = next;
+  return true;
+}
+
+// Reads lines, counting them, skipping comments and blank lines after the header.
+class LineReader {
+ public:
+  explicit LineReader(const std::string& path) : path_(path), in_(path) {
+    if (!in_) throw InputError(locate(path, 0, -1, "cannot open Matrix Market file"));
+  }
+  bool next_raw(std::string& line) {
+    if (!std::getline(in_, line)) return false;
+    ++number_;
+    return true;
+  }
+  bool next_data(std::string& line) {
+    while (next_raw(line))
+      if (!line.empty() && line[0] != '%' && !blank(line)) return true;
+    return false;
+  }
+  long number() const { return number_; }
+  InputError error(const std::string& what) const { return InputError(locate(path_, number_, -1, what)); }
+
+ private:
+  std::string path_;
+  std::ifstream in_;
+  long number_ = 0;
+};
+
+// Line number of data entry k (0-based, in file order): a second pass, used only to report an error.
+long line_of_entry(const std::string& path, std::size_t k) {
+  LineReader r(path);
+  std::string line;
+  r.next_raw(line);  // header
+  r.next_data(line);  // size line
+  for (std::size_t e = 0; e <= k; ++e)
+    if (!r.next_data(line)) return 0;
+  return r.number();
+}
+
+}  // namespace
+
+void write_matrix_market(const std::string& path, const SparseF& F) {
+  write_atomically(path, [&](std::ostream& os) {
+    os << "%%MatrixMarket matrix coordinate real general\n"
+       << "% radwalk form factors: row i, column j (1-based) = F_ij, the fraction of the power leaving patch i\n"
+       << "% diffusely that arrives at the front of patch j\n"
+       << F.rows() << ' ' << F.cols() << ' ' << F.nonZeros() << '\n';
+    // One line per entry: "i j value" (the value in the shortest form that reads back to the same float).
+    char buf[96];
+    char* const end = buf + sizeof buf;
+    const auto field = [&](char* p, auto v, char sep) {
+      const auto r = std::to_chars(p, end - 1, v);
+      if (r.ec != std::errc()) throw std::runtime_error("write_matrix_market: number does not fit its buffer");
+      *r.ptr = sep;
+      return r.ptr + 1;
+    };
+    for (Eigen::Index i = 0; i < F.outerSize(); ++i)
+      for (SparseF::InnerIterator it(F, i); it; ++it) {
+        char* p = field(buf, i + 1, ' ');
+        p = field(p, it.index() + 1, ' ');
+        p = field(p, it.value(), '\n');
+        os.write(buf, p - buf);
+      }
+  });
+}
+
+SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
+  LineReader reader(path);
+  std::string line;
+
+  // Step 1: header "%%MatrixMarket matrix coordinate real general" (case-insensitive, any spacing).
+  if (!reader.next_raw(line)) throw reader.error("empty file, expected a %%MatrixMarket header");
+  {
+    std::vector<std::string> words;
+    std::size_t p = 0;
+    const std::string l = lower(line);
+    while ((p = l.find_first_not_of(" \t\r", p)) != std::string::npos) {
+      const std::size_t e = l.find_first_of(" \t\r", p);
+      words.push_back(l.substr(p, e - p));
+      p = e;
+    }
+    if (words.empty() || words[0] != "%%matrixmarket")
+      throw reader.error("not a Matrix Market file: the first line must start with %%MatrixMarket");
+    if (words.size() != 5 || words[1] != "matrix" || words[2] != "coordinate" || words[3] != "real" ||
+        words[4] != "general")
+      throw reader.error("unsupported Matrix Market type '" + line + "', need 'matrix coordinate real general'");
+  }
+
+  // Step 2: size line "rows cols entries", square and of the expected size.
+  if (!reader.next_data(line)) throw reader.error("missing size line 'rows columns entries'");
+  long long rows = 0, cols = 0, entries = 0;
+  {
+    const char *p = line.data(), *end = p + line.size();
+    if (!parse(p, end, rows) || !parse(p, end, cols) || !parse(p, end, entries) || (skip_space(p, end), p != end))
+      throw reader.error("malformed size line '" + line + "', expected 'rows columns entries'");
+  }
+  if (rows != cols)
+    throw reader.error("matrix is " + std::to_string(rows) + " x " + std::to_string(cols) + ", not square");
+  if (rows < 0 || std::size_t(rows) != expected_n)
+    throw reader.error("matrix is " + std::to_string(rows) + " x " + std::to_string(cols) + " but there are " +
+                       std::to_string(expected_n) + " patches");
+  if (rows > std::numeric_limits<std::int32_t>::max())
+    throw reader.error("matrix size " + std::to_string(rows) + " exceeds the 32-bit index range");
+  if (entries < 0 || entries > std::numeric_limits<std::int32_t>::max() || entries > rows * cols)
+    throw reader.error("entry count " + std::to_string(entries) + " out of range for a " + std::to_string(rows) +
+                       " x " + std::to_string(rows) + " matrix");
+
+  // Step 3: entries, checked one by one; sortedness tracked so a file in row-major order needs no sort.
+  const std::size_t nnz = std::size_t(entries);
+  std::vector<std::int32_t> row(nnz), col(nnz);
+  std::vector<float> value(nnz);
+  bool sorted = true;
+  for (std::size_t k = 0; k < nnz; ++k) {
+    if (!reader.next_data(line))
+      throw reader.error("file ends after " + std::to_string(k) + " of " + std::to_string(nnz) + " entries");
+    const char *p = line.data(), *end = p + line.size();
+    long long i = 0, j = 0;
+    float v = 0;
+    if (!parse(p, end, i) || !parse(p, end, j) || !parse(p, end, v) || (skip_space(p, end), p != end))
+      throw reader.error("malformed entry '" + line + "', expected 'row column value'");
+    if (i < 1 || i > rows || j < 1 || j > cols)
+      throw reader.error("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range 1.." +
+                         std::to_string(rows));
+    if (!std::isfinite(v) || v < 0.0f || v > 1.0f)
+      throw reader.error("value '" + line.substr(line.find_first_not_of(" \t")) + "' is not in [0, 1]");
+    row[k] = std::int32_t(i - 1);
+    col[k] = std::int32_t(j - 1);
+    value[k] = v;
+    if (k > 0 && sorted && (row[k] < row[k - 1] || (row[k] == row[k - 1] && col[k] <= col[k - 1]))) sorted = false;
+  }
+  if (reader.next_data(line)) throw reader.error("more entries than the " + std::to_string(nnz) + " declared");
+
+  // Step 4: order by (row, column) unless already so; refuse duplicates.
+  std::vector<std::size_t> order;
+  if (!sorted) {
+    order.resize(nnz);
+    std::iota(order.begin(), order.end(), std::size_t(0));
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+      return row[a] != row[b] ? row[a] < row[b] : col[a] < col[b];
+    });
+    for (std::size_t k = 1; k < nnz; ++k)
+      if (row[order[k]] == row[order[k - 1]] && col[order[k]] == col[order[k - 1]])
+        throw InputError(locate(path, line_of_entry(path, order[k]), -1,
+                                "duplicate entry (" + std::to_string(row[order[k]] + 1) + ", " +
+                                    std::to_string(col[order[k]] + 1) + ")"));
+  }
+  const auto at = [&](std::size_t k) { return sorted ? k : order[k]; };
+
+  // Step 5: CSR, then row sums.
+  SparseF F(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  F.resizeNonZeros(Eigen::Index(nnz));
+  std::int32_t* outer = F.outerIndexPtr();
+  std::fill(outer, outer + rows + 1, 0);
+  for (std::size_t k = 0; k < nnz; ++k) ++outer[row[k] + 1];
+  for (long long i = 0; i < rows; ++i) outer[i + 1] += outer[i];
+  for (std::size_t k = 0; k < nnz; ++k) {
+    F.innerIndexPtr()[k] = col[at(k)];
+    F.valuePtr()[k] = value[at(k)];
+  }
+  for (long long i = 0; i < rows; ++i) {
+    double sum = 0;
+    for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) sum += F.valuePtr()[k];
+    if (sum > kMaxRowSum)
+      throw InputError(locate(path, line_of_entry(path, at(std::size_t(outer[i]))), -1,
+                              "row " + std::to_string(i + 1) + " sums to " + std::to_string(sum) +
+                                  ", above 1 + 1e-6 (a form-factor row sums to at most 1)"));
+  }
+  return F;
+}
+
+}  // namespace radwalk

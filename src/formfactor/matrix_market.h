@@ -1,0 +1,30 @@
+#pragma once
+// Form-factor matrices as Matrix Market files ("coordinate real general", 1-based indices).
+//
+// Written: the header line, a comment naming radwalk and the convention (row i, column j: F_ij = fraction of the
+// power leaving patch i that arrives at the front of patch j), "N N nnz", then one "i j value" line per non-zero
+// in row-major order. Values are the shortest decimal that reads back to the same float (std::to_chars), so a
+// round trip is exact. The file is written atomically (core/atomic_write.h).
+//
+// Read: refuses with a one-line InputError "FILE:LINE: what" a missing or malformed header (anything other than
+// "matrix coordinate real general"), a malformed size or entry line, a non-square matrix or one whose size is not
+// the expected patch count, indices out of range, duplicate entries, values that are not finite or lie outside
+// [0, 1], too few or too many entries, and rows summing above 1 + 1e-6. The 1e-6 allows rounding only:
+// an estimated row sums to at most 1 exactly (counts / n_i), and storing entries as floats moves the sum by at
+// most 2^-24 relative (6e-8); a larger excess means the file is not a form-factor matrix (or was rescaled
+// wrongly). Comment lines (%) and blank lines after the header are skipped. Entries in any order are accepted.
+#include <cstddef>
+#include <string>
+
+#include "formfactor/sparse_f.h"
+
+namespace radwalk {
+
+// Largest row sum read_matrix_market accepts.
+inline constexpr double kMaxRowSum = 1.0 + 1e-6;
+
+void write_matrix_market(const std::string& path, const SparseF& F);
+
+SparseF read_matrix_market(const std::string& path, std::size_t expected_n);
+
+}  // namespace radwalk

@@ -1,0 +1,237 @@
+#include "visibility/embree_visibility.h"
+
+#include <embree3/rtcore.h>
+
+#include <cmath>
+#include <mutex>
+#include <stdexcept>
+
+#include "core/error.h"
+
+namespace radwalk {
+
+struct EmbreeVisibility::Device {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  std::mutex mutex;
+  std::string error;  // first error reported by the callback, empty when none
+
+  ~Device() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+  // Throws the first error the callback recorded (or rtcGetDeviceError's code) after `step`.
+  void check(const char* step) {
+    const RTCError code = rtcGetDeviceError(device);
+    std::lock_guard lock(mutex);
+    if (!error.empty() || code != RTC_ERROR_NONE)
+      throw std::runtime_error("embree: " + std::string(step) + ": " +
+                               (error.empty() ? "error code " + std::to_string(int(code)) : error));
+  }
+};
+
+namespace {
+
+void record_error(void* user, RTCError code, const char* message) {
+  auto* d = static_cast<EmbreeVisibility::Device*>(user);
+  std::lock_guard lock(d->mutex);
+  if (d->error.empty()) d->error = std::string(message ? message : "") + " (code " + std::to_string(int(code)) + ")";
+}
+
+float to_float_tmax(double tmax) {
+  return tmax >= double(std::numeric_limits<float>::max()) ? std::numeric_limits<float>::infinity() : float(tmax);
+}
+
+void validate(const PatchSet& patches) {
+  const std::size_t n = patches.size();
+  if (patches.corners.size() != n || patches.normal.size() != n)
+    throw InputError(locate(patches.source, 0, -1, "patch set arrays disagree in length (corners, normal, area)"));
+  for (std::size_t p = 0; p < patches.points.size(); ++p)
+    if (!patches.points[p].allFinite())
+      throw InputError(locate(patches.source, 0, -1, "point " + std::to_string(p) + " is not finite"));
+  for (std::size_t i = 0; i < n; ++i)
+    for (int k = 0; k < patches.corner_count(i); ++k) {
+      const auto c = patches.corners[i][k];
+      if (c < 0 || std::size_t(c) >= patches.points.size())
+        throw InputError(locate(patches.source, 0, long(patches.face.size() > i ? patches.face[i] : long(i)),
+                                "corner index " + std::to_string(c) + " out of range"));
+    }
+}
+
+}  // namespace
+
+EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions& options)
+    : device_(std::make_unique<Device>()) {
+  validate(patches);
+  // Step 1: device, with errors recorded by the callback and rethrown by check().
+  device_->device = rtcNewDevice(options.device_config.c_str());
+  if (!device_->device)
+    throw std::runtime_error("embree: rtcNewDevice(\"" + options.device_config + "\") failed with code " +
+                             std::to_string(int(rtcGetDeviceError(nullptr))));
+  rtcSetDeviceErrorFunction(device_->device, record_error, device_.get());
+
+  // Step 2: the scene.
+  device_->scene = rtcNewScene(device_->device);
+  rtcSetSceneFlags(device_->scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
+  device_->check("scene");
+
+  // Step 3: split patches into triangles and quads, remembering each primitive's patch.
+  const std::size_t n = patches.size();
+  normal_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    normal_[i] = patches.normal[i].cast<float>();
+    (patches.is_quad(i) ? quad_patch_ : triangle_patch_).push_back(PatchIndex(i));
+  }
+
+  // Step 4: one geometry per primitive kind, both over all points (float copies made by Embree buffers).
+  auto add_geometry = [&](RTCGeometryType type, const std::vector<PatchIndex>& prims) -> unsigned {
+    if (prims.empty()) return ~0u;
+    RTCGeometry geom = rtcNewGeometry(device_->device, type);
+    auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                          3 * sizeof(float), patches.points.size()));
+    device_->check("vertex buffer");
+    for (std::size_t p = 0; p < patches.points.size(); ++p)
+      for (int c = 0; c < 3; ++c) v[3 * p + c] = float(patches.points[p][c]);
+    const bool quad = type == RTC_GEOMETRY_TYPE_QUAD;
+    const int m = quad ? 4 : 3;
+    auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, quad ? RTC_FORMAT_UINT4 : RTC_FORMAT_UINT3, m * sizeof(unsigned),
+        prims.size()));
+    device_->check("index buffer");
+    for (std::size_t k = 0; k < prims.size(); ++k) {
+      const auto& c = patches.corners[prims[k]];
+      // Quads rotated by one corner: Embree splits (q0,q1,q3),(q2,q3,q1), i.e. along p0-p2 after rotation.
+      for (int r = 0; r < m; ++r) idx[m * k + r] = unsigned(quad ? c[(r + 1) % 4] : c[r]);
+    }
+    rtcCommitGeometry(geom);
+    const unsigned id = rtcAttachGeometry(device_->scene, geom);
+    rtcReleaseGeometry(geom);
+    device_->check("geometry");
+    return id;
+  };
+  triangle_geom_ = add_geometry(RTC_GEOMETRY_TYPE_TRIANGLE, triangle_patch_);
+  quad_geom_ = add_geometry(RTC_GEOMETRY_TYPE_QUAD, quad_patch_);
+
+  // Step 5: build the BVH.
+  rtcCommitScene(device_->scene);
+  device_->check("scene build");
+}
+
+EmbreeVisibility::~EmbreeVisibility() = default;
+
+Hit EmbreeVisibility::make_hit(unsigned geom_id, unsigned prim_id, float t, const float dir[3]) const {
+  Hit h;
+  if (geom_id == RTC_INVALID_GEOMETRY_ID) return h;
+  h.patch = geom_id == triangle_geom_ ? triangle_patch_[prim_id] : quad_patch_[prim_id];
+  h.t = t;
+  const Eigen::Vector3f& nrm = normal_[h.patch];
+  h.front = dir[0] * nrm.x() + dir[1] * nrm.y() + dir[2] * nrm.z() < 0.0f;
+  return h;
+}
+
+Hit EmbreeVisibility::intersect(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh;
+  rh.ray.org_x = float(ray.origin.x());
+  rh.ray.org_y = float(ray.origin.y());
+  rh.ray.org_z = float(ray.origin.z());
+  rh.ray.dir_x = float(ray.direction.x());
+  rh.ray.dir_y = float(ray.direction.y());
+  rh.ray.dir_z = float(ray.direction.z());
+  rh.ray.tnear = 0.0f;
+  rh.ray.tfar = to_float_tmax(ray.tmax);
+  rh.ray.time = 0.0f;
+  rh.ray.mask = ~0u;
+  rh.ray.id = 0;
+  rh.ray.flags = 0;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(device_->scene, &context, &rh);
+  const float dir[3] = {rh.ray.dir_x, rh.ray.dir_y, rh.ray.dir_z};
+  return make_hit(rh.hit.geomID, rh.hit.primID, rh.ray.tfar, dir);
+}
+
+bool EmbreeVisibility::occluded(const Ray& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r;
+  r.org_x = float(ray.origin.x());
+  r.org_y = float(ray.origin.y());
+  r.org_z = float(ray.origin.z());
+  r.dir_x = float(ray.direction.x());
+  r.dir_y = float(ray.direction.y());
+  r.dir_z = float(ray.direction.z());
+  r.tnear = 0.0f;
+  r.tfar = to_float_tmax(ray.tmax);
+  r.time = 0.0f;
+  r.mask = ~0u;
+  r.id = 0;
+  r.flags = 0;
+  rtcOccluded1(device_->scene, &context, &r);
+  return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
+}
+
+void EmbreeVisibility::intersect(const Ray* rays, Hit* hits, std::size_t n) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit16 rh;
+  int valid[16];
+  for (std::size_t base = 0; base < n; base += 16) {
+    const std::size_t m = std::min<std::size_t>(16, n - base);
+    // Pack up to 16 rays (structure of arrays); lanes past m are masked off.
+    for (std::size_t k = 0; k < 16; ++k) {
+      valid[k] = k < m ? -1 : 0;
+      const Ray& ray = rays[base + std::min(k, m - 1)];
+      rh.ray.org_x[k] = float(ray.origin.x());
+      rh.ray.org_y[k] = float(ray.origin.y());
+      rh.ray.org_z[k] = float(ray.origin.z());
+      rh.ray.dir_x[k] = float(ray.direction.x());
+      rh.ray.dir_y[k] = float(ray.direction.y());
+      rh.ray.dir_z[k] = float(ray.direction.z());
+      rh.ray.tnear[k] = 0.0f;
+      rh.ray.tfar[k] = to_float_tmax(ray.tmax);
+      rh.ray.time[k] = 0.0f;
+      rh.ray.mask[k] = ~0u;
+      rh.ray.id[k] = unsigned(k);
+      rh.ray.flags[k] = 0;
+      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect16(valid, device_->scene, &context, &rh);
+    for (std::size_t k = 0; k < m; ++k) {
+      const float dir[3] = {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]};
+      hits[base + k] = make_hit(rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], dir);
+    }
+  }
+}
+
+void EmbreeVisibility::occluded(const Ray* rays, bool* out, std::size_t n) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  constexpr std::size_t kStream = 256;
+  RTCRay stream[kStream];
+  for (std::size_t base = 0; base < n; base += kStream) {
+    const std::size_t m = std::min(kStream, n - base);
+    for (std::size_t k = 0; k < m; ++k) {
+      const Ray& ray = rays[base + k];
+      RTCRay& r = stream[k];
+      r.org_x = float(ray.origin.x());
+      r.org_y = float(ray.origin.y());
+      r.org_z = float(ray.origin.z());
+      r.dir_x = float(ray.direction.x());
+      r.dir_y = float(ray.direction.y());
+      r.dir_z = float(ray.direction.z());
+      r.tnear = 0.0f;
+      r.tfar = to_float_tmax(ray.tmax);
+      r.time = 0.0f;
+      r.mask = ~0u;
+      r.id = unsigned(k);
+      r.flags = 0;
+    }
+    rtcOccluded1M(device_->scene, &context, stream, unsigned(m), sizeof(RTCRay));
+    for (std::size_t k = 0; k < m; ++k) out[base + k] = stream[k].tfar < 0.0f;
+  }
+}
+
+}  // namespace radwalk

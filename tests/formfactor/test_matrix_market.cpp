@@ -1,0 +1,123 @@
+// Matrix Market: exact round trip of an estimated F, and each refusal with its file:line message.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+#include "formfactor/form_factors.h"
+#include "formfactor/matrix_market.h"
+#include "test_scenes.h"
+#include "visibility/embree_visibility.h"
+
+using namespace radwalk;
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("radwalk_mm_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return (dir / name).string();
+}
+
+std::string write_text(const std::string& name, const std::string& text) {
+  const std::string path = temp_path(name);
+  std::ofstream(path) << text;
+  return path;
+}
+
+// The InputError message from reading `text` as a 3-patch matrix ("" when it was accepted).
+std::string refusal(const std::string& text, std::size_t n = 3) {
+  const std::string path = write_text("bad.mtx", text);
+  try {
+    read_matrix_market(path, n);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const std::string kHeader = "%%MatrixMarket matrix coordinate real general\n";
+
+}  // namespace
+
+TEST_CASE("Matrix Market round trip is exact", "[formfactor]") {
+  const PatchSet ps = test::unit_cube_room(2, true);
+  const EmbreeVisibility vis(ps);
+  FormFactorOptions opt;
+  opt.rays_per_patch = 777;  // values like 13/777 need all float digits
+  const FormFactors ff = estimate_form_factors(ps, vis, opt);
+  const std::string path = temp_path("cube.mtx");
+  write_matrix_market(path, ff.F);
+  const SparseF back = read_matrix_market(path, ps.size());
+  REQUIRE(back.nonZeros() == ff.F.nonZeros());
+  const auto nnz = std::size_t(back.nonZeros());
+  CHECK(std::equal(back.valuePtr(), back.valuePtr() + nnz, ff.F.valuePtr()));
+  CHECK(std::equal(back.innerIndexPtr(), back.innerIndexPtr() + nnz, ff.F.innerIndexPtr()));
+  CHECK(std::equal(back.outerIndexPtr(), back.outerIndexPtr() + back.rows() + 1, ff.F.outerIndexPtr()));
+  std::ifstream in(path);
+  std::string header, comment;
+  std::getline(in, header);
+  std::getline(in, comment);
+  CHECK(header == "%%MatrixMarket matrix coordinate real general");
+  CHECK(comment.find("radwalk") != std::string::npos);
+  // The wrong patch count is refused.
+  CHECK_THROWS_AS(read_matrix_market(path, ps.size() + 1), InputError);
+}
+
+TEST_CASE("Matrix Market accepts comments, blank lines and any entry order", "[formfactor]") {
+  const std::string path = write_text("ok.mtx", kHeader + "% comment\n\n3 3 3\n3 1 0.25\n1 2 0.5\n% mid\n\n1 3 0.5\n");
+  const SparseF F = read_matrix_market(path, 3);
+  CHECK(F.coeff(0, 1) == 0.5f);
+  CHECK(F.coeff(0, 2) == 0.5f);
+  CHECK(F.coeff(2, 0) == 0.25f);
+  CHECK(F.nonZeros() == 3);
+  // A row sum of 1 + 5e-7 is rounding, accepted; empty matrices are fine.
+  CHECK(refusal(kHeader + "3 3 2\n1 2 0.5000005\n1 3 0.5\n").empty());
+  CHECK(refusal(kHeader + "3 3 0\n").empty());
+}
+
+TEST_CASE("Matrix Market refusals name the file and line", "[formfactor]") {
+  const std::string file = temp_path("bad.mtx");
+  struct Case {
+    const char* what;
+    std::string text;
+    int line;
+    const char* phrase;
+  };
+  const std::vector<Case> cases = {
+      {"empty file", "", 0, "empty"},
+      {"no header", "3 3 1\n1 2 0.5\n", 1, "first line"},
+      {"array format", "%%MatrixMarket matrix array real general\n3 3\n", 1, "unsupported"},
+      {"symmetric", "%%MatrixMarket matrix coordinate real symmetric\n3 3 0\n", 1, "unsupported"},
+      {"no size line", kHeader + "% only a comment\n", 2, "missing size"},
+      {"malformed size", kHeader + "3 3\n", 2, "size line"},
+      {"size with junk", kHeader + "3 3 1 x\n1 2 0.5\n", 2, "size line"},
+      {"non-square", kHeader + "3 4 0\n", 2, "not square"},
+      {"size mismatch", kHeader + "4 4 0\n", 2, "patches"},
+      {"malformed entry", kHeader + "3 3 1\n1 2\n", 3, "malformed entry"},
+      {"entry with junk", kHeader + "3 3 1\n1 2 0.5x\n", 3, "malformed entry"},
+      {"row zero", kHeader + "3 3 1\n0 2 0.5\n", 3, "out of range"},
+      {"column too large", kHeader + "3 3 1\n1 4 0.5\n", 3, "out of range"},
+      {"value above 1", kHeader + "3 3 1\n1 2 1.5\n", 3, "[0, 1]"},
+      {"negative value", kHeader + "3 3 1\n1 2 -0.1\n", 3, "[0, 1]"},
+      {"NaN", kHeader + "3 3 1\n1 2 nan\n", 3, "[0, 1]"},
+      {"infinity", kHeader + "3 3 1\n1 2 inf\n", 3, "[0, 1]"},
+      {"too few entries", kHeader + "3 3 2\n1 2 0.5\n", 3, "ends after 1 of 2"},
+      {"too many entries", kHeader + "3 3 1\n1 2 0.5\n2 1 0.5\n", 4, "more entries"},
+      {"duplicate (unsorted)", kHeader + "3 3 3\n2 1 0.5\n1 2 0.25\n2 1 0.25\n", 5, "duplicate"},
+      {"duplicate (sorted)", kHeader + "3 3 2\n1 2 0.25\n1 2 0.25\n", 4, "duplicate"},
+      {"row sum above 1", kHeader + "3 3 3\n1 2 0.6\n2 1 0.5\n1 3 0.6\n", 3, "sums to"},
+      {"entry count out of range", kHeader + "3 3 10\n", 2, "out of range"},
+  };
+  for (const auto& c : cases) {
+    const std::string msg = refusal(c.text);
+    const std::string where = c.line > 0 ? file + ":" + std::to_string(c.line) + ":" : file + ":";
+    INFO(c.what << ": message '" << msg << "', expected to start with '" << where << "' and mention '" << c.phrase
+                << "'");
+    CHECK(msg.rfind(where, 0) == 0);
+    CHECK(msg.find(c.phrase) != std::string::npos);
+    CHECK(msg.find('\n') == std::string::npos);
+  }
+  CHECK_THROWS_AS(read_matrix_market(temp_path("no_such_file.mtx"), 3), InputError);
+}
