@@ -1,0 +1,164 @@
+#include "pathtrace/integrator.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/sampling.h"
+#include "patch/patch_set.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+
+namespace {
+double power_heuristic(double pa, double pb) {
+  const double a2 = pa * pa, b2 = pb * pb;
+  return a2 + b2 > 0 ? a2 / (a2 + b2) : 0.0;
+}
+}  // namespace
+
+const char* to_string(IntegratorKind kind) {
+  switch (kind) {
+    case IntegratorKind::implicit:
+      return "implicit";
+    case IntegratorKind::nee:
+      return "nee";
+    case IntegratorKind::mis:
+      return "mis";
+  }
+  return "?";
+}
+
+IntegratorKind parse_integrator_kind(const std::string& name) {
+  if (name == "implicit") return IntegratorKind::implicit;
+  if (name == "nee") return IntegratorKind::nee;
+  if (name == "mis") return IntegratorKind::mis;
+  throw InputError("unknown path tracing integrator '" + name + "' (expected implicit, nee or mis)");
+}
+
+struct PathIntegrator::PathState {
+  Rgb beta = Rgb::Ones();  // throughput: product of f |cos| / pdf, divided by the survival probabilities
+  double pdf_prev = 0;     // solid-angle pdf of the last sampled direction
+  bool delta_prev = true;  // the last direction came from a delta lobe or the camera: always count emission
+  int depth = 0;           // scattering events so far
+};
+
+PathIntegrator::PathIntegrator(const PatchSet& patches, const Visibility& visibility,
+                               const IntegratorOptions& options)
+    : patches_(patches),
+      visibility_(visibility),
+      options_(options),
+      lights_(patches, options.light_selection),
+      eps_(ray_epsilon(patches)) {
+  if (options.rr_depth < 0) throw InputError("path tracer: rr_depth must be >= 0");
+  if (options.max_depth < 0) throw InputError("path tracer: max_depth must be >= 0 (0 = no cap)");
+  bsdfs_.reserve(patches.size());
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const std::int32_t m = patches.material.empty() ? -1 : patches.material[i];
+    bsdfs_.push_back(m >= 0 && static_cast<std::size_t>(m) < patches.materials.size()
+                         ? make_bsdf(patches.materials[m], patches.rho[i])
+                         : Bsdf(Lambertian(patches.rho[i])));
+  }
+}
+
+const Bsdf& PathIntegrator::bsdf(PatchIndex i) const { return bsdfs_[static_cast<std::size_t>(i)]; }
+
+bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n,
+                             const Vec3& wo_world, PathState& state, Rgb& L, Ray& next, Rng& rng,
+                             PathCounters& counters) const {
+  const Frame frame(n);
+  const Vec3 wo = frame.to_local(wo_world);
+  ++counters.vertices;
+
+  // Next-event estimation: one point on the emitters, a shadow ray, the area form weighted for MIS.
+  if (options_.kind != IntegratorKind::implicit && !bsdf.is_delta() && !lights_.empty()) {
+    const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
+    const LightSample ls = lights_.sample(us, u1, u2);
+    if (ls.patch != patch) {
+      const Vec3 d = ls.point - x;
+      const double dist2 = d.squaredNorm();
+      const double dist = std::sqrt(dist2);
+      const Vec3 wi_world = d / dist;
+      const double cos_y = -wi_world.dot(ls.normal);
+      if (cos_y > 0 && dist > 0) {
+        const Vec3 wi = frame.to_local(wi_world);
+        const Rgb f = bsdf.f(wo, wi);
+        if ((f > 0).any()) {
+          const Ray shadow = spawn_ray(patches_, static_cast<std::size_t>(patch), x, wi_world, eps_);
+          ++counters.rays;
+          if (visibility_.intersect(shadow).patch == ls.patch) {
+            const double p_light = ls.pdf_area * dist2 / cos_y;
+            const double w =
+                options_.kind == IntegratorKind::mis ? power_heuristic(p_light, bsdf.pdf(wo, wi)) : 1.0;
+            L += state.beta * f * (std::abs(wi.z()) * w / p_light) * ls.Le;
+          }
+        }
+      }
+    }
+  }
+
+  // BSDF sampling of the continuation direction.
+  const double u1 = rng.uniform(), u2 = rng.uniform(), uc = rng.uniform();
+  const auto s = bsdf.sample(wo, u1, u2, uc);
+  if (!s || !(s->weight > 0).any()) return false;
+  state.beta *= s->weight;
+  state.pdf_prev = s->pdf;
+  state.delta_prev = s->delta;
+  ++state.depth;
+
+  // Russian roulette with the weight correction.
+  if (state.depth >= options_.rr_depth) {
+    const double q = std::min(1.0, state.beta.maxCoeff());
+    if (!(rng.uniform() < q)) return false;
+    state.beta /= q;
+  }
+  next = spawn_ray(patches_, static_cast<std::size_t>(patch), x, frame.to_world(s->wi), eps_);
+  return true;
+}
+
+void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const {
+  for (;;) {
+    const Hit hit = visibility_.intersect(ray);
+    ++counters.rays;
+    if (hit.missed()) return;
+    const auto j = static_cast<std::size_t>(hit.patch);
+    const Vec3 x = ray.origin + hit.t * ray.direction;
+
+    // Emission from the front of an emitter, weighted against next-event estimation.
+    if (hit.front && (patches_.E[j] > 0).any()) {
+      const Rgb Le = patches_.E[j] * kInvPi;
+      if (options_.kind == IntegratorKind::implicit || state.delta_prev) {
+        L += state.beta * Le;
+      } else if (options_.kind == IntegratorKind::mis) {
+        const double cos_y = -ray.direction.dot(patches_.normal[j]);
+        const double p_light = lights_.pdf_area(hit.patch) * hit.t * hit.t / cos_y;
+        L += state.beta * power_heuristic(state.pdf_prev, p_light) * Le;
+      }
+    }
+    if (options_.max_depth > 0 && state.depth >= options_.max_depth) return;
+
+    // Scatter: the shading normal faces the arriving path on two-sided surfaces.
+    const Bsdf& bsdf = bsdfs_[j];
+    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-patches_.normal[j]) : patches_.normal[j];
+    if (!scatter(bsdf, hit.patch, x, n, -ray.direction, state, L, ray, rng, counters)) return;
+  }
+}
+
+Rgb PathIntegrator::radiance(const Ray& ray, Rng& rng, PathCounters& counters) const {
+  PathState state;
+  Rgb L = Rgb::Zero();
+  trace(ray, state, L, rng, counters);
+  return L;
+}
+
+Rgb PathIntegrator::irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const {
+  // A white Lambertian vertex at x facing the patch's front: reflected radiance = E_irr / pi.
+  static const Bsdf white(Lambertian(Rgb::Ones()));
+  const Vec3& n = patches_.normal[static_cast<std::size_t>(i)];
+  PathState state;
+  Rgb L = Rgb::Zero();
+  Ray ray;
+  if (scatter(white, i, x, n, n, state, L, ray, rng, counters)) trace(ray, state, L, rng, counters);
+  return kPi * L;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,86 @@
+#pragma once
+// PathIntegrator: unbiased estimates of radiance and irradiance on the original surfaces (the rendering
+// equation), with three estimators of the direct light.
+//
+//   L(x, wo) = Le(x, wo) + int_{H^2} f(x, wo, wi) L(y(x, wi), -wi) |cos(theta_i)| dwi,      Le = E / pi on the
+//   front side of an emitter (Lambertian), 0 elsewhere.                            Units: W / (m^2 sr).
+//
+// Integrators (IntegratorKind):
+//   implicit  BSDF sampling only; emission counted when a path hits an emitter's front (seed 003).
+//   nee       next-event estimation: at each non-delta vertex one emitter point y (light_sampler.h) and a shadow
+//             ray; the area form f Le G / pdf_area with G = cos(theta_x) cos(theta_y) / |x - y|^2. Emission hit
+//             by a BSDF-sampled direction is then counted only after a delta bounce (or by the camera ray).
+//   mis       both, weighted by the power heuristic w_a = p_a^2 / (p_light^2 + p_bsdf^2), densities in solid
+//             angle (seed 004). The default.
+// Russian roulette: after rr_depth bounces a path survives with probability q = min(1, max channel of the
+// throughput) and its throughput is divided by q, which keeps the estimate unbiased. There is no depth cap unless
+// max_depth > 0; a cap drops every path with more than max_depth scattering events (a bias, reported as such).
+//
+// Surfaces: every model but the dielectric reflects on both sides; emission is on the front side only.
+// Reproducibility: the estimate is a pure function of the Rng passed in.
+#include <string>
+#include <vector>
+
+#include "core/rng.h"
+#include "pathtrace/bsdf.h"
+#include "pathtrace/light_sampler.h"
+#include "visibility/visibility.h"
+
+namespace radwalk {
+
+struct PatchSet;
+
+enum class IntegratorKind { implicit, nee, mis };
+const char* to_string(IntegratorKind kind);
+// "implicit", "nee" or "mis"; throws InputError otherwise.
+IntegratorKind parse_integrator_kind(const std::string& name);
+
+struct IntegratorOptions {
+  IntegratorKind kind = IntegratorKind::mis;
+  LightSelection light_selection = LightSelection::power;
+  int rr_depth = 3;   // Russian roulette from this many scattering events on
+  int max_depth = 0;  // 0: unbounded (unbiased); > 0: at most this many scattering events (biased)
+};
+
+// Work done, for rays-per-second figures.
+struct PathCounters {
+  long rays = 0;      // intersect calls, shadow rays included
+  long vertices = 0;  // scattering events
+  void add(const PathCounters& o) {
+    rays += o.rays;
+    vertices += o.vertices;
+  }
+};
+
+class PathIntegrator {
+ public:
+  // Keeps references to patches and visibility (they must outlive it); builds one Bsdf per material.
+  PathIntegrator(const PatchSet& patches, const Visibility& visibility, const IntegratorOptions& options = {});
+
+  // Radiance arriving at ray.origin along -ray.direction: L(y, -d) for the first hit y (0 on a miss).
+  Rgb radiance(const Ray& ray, Rng& rng, PathCounters& counters) const;
+
+  // Irradiance on the front of patch i at its point x: E_irr(x) = int_{H^2(n_i)} L_in(x, w) cos(theta) dw
+  // (W/m^2). Estimated as pi times the radiance a white Lambertian at x would reflect, so one cosine-sampled
+  // direction scores pi L_in (implicit), and NEE/MIS add the direct part from light samples.
+  Rgb irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const;
+
+  const IntegratorOptions& options() const { return options_; }
+  const LightSampler& lights() const { return lights_; }
+  const Bsdf& bsdf(PatchIndex i) const;
+
+ private:
+  struct PathState;
+  bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world,
+               PathState& state, Rgb& L, Ray& next, Rng& rng, PathCounters& counters) const;
+  void trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const;
+
+  const PatchSet& patches_;
+  const Visibility& visibility_;
+  IntegratorOptions options_;
+  LightSampler lights_;
+  std::vector<Bsdf> bsdfs_;  // per patch (rho is per patch)
+  double eps_;               // ray origin offset (ray_offset.h)
+};
+
+}  // namespace radwalk

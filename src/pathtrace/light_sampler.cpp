@@ -1,0 +1,43 @@
+#include "pathtrace/light_sampler.h"
+
+#include "patch/patch_set.h"
+
+namespace radwalk {
+
+LightSampler::LightSampler(const PatchSet& patches, LightSelection selection)
+    : patches_(&patches), slot_(patches.size(), -1) {
+  std::vector<double> weights;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (!(patches.E[i] > 0).any() || !(patches.area[i] > 0)) continue;
+    slot_[i] = static_cast<int>(emitters_.size());
+    emitters_.push_back(static_cast<PatchIndex>(i));
+    power_ += patches.area[i] * patches.E[i];
+    weights.push_back(selection == LightSelection::power ? patches.area[i] * patches.E[i].mean()
+                                                         : patches.area[i]);
+  }
+  if (!emitters_.empty()) choice_ = DiscreteDistribution(weights);
+}
+
+LightSample LightSampler::sample(double u_select, double u1, double u2) const {
+  const std::size_t k = choice_.sample(u_select);
+  const PatchIndex j = emitters_[k];
+  LightSample s;
+  s.patch = j;
+  s.point = sample_patch_point(*patches_, static_cast<std::size_t>(j), u1, u2);
+  s.normal = patches_->normal[j];
+  s.Le = patches_->E[j] * kInvPi;
+  s.pdf_area = choice_.pmf(k) / patches_->area[j];
+  return s;
+}
+
+double LightSampler::pmf(PatchIndex i) const {
+  const int k = slot_[static_cast<std::size_t>(i)];
+  return k < 0 ? 0.0 : choice_.pmf(static_cast<std::size_t>(k));
+}
+
+double LightSampler::pdf_area(PatchIndex i) const {
+  const double p = pmf(i);
+  return p > 0 ? p / patches_->area[static_cast<std::size_t>(i)] : 0.0;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,33 @@
+#pragma once
+// Patch-average radiosity by path tracing: the continuous counterpart of the radiosity solvers' B.
+//
+//   B_i = E_i + rho_i * (1/A_i) int_{A_i} E_irr(x) dx,     E_irr(x) = int_{H^2(n_i)} L_in(x, w) cos(theta) dw,
+// in W/m^2 (radiosity; a Lambertian patch's outgoing radiance is B_i / pi). One sample of patch i takes x
+// uniform on the patch (pdf 1/A_i, sample_patch_point) and estimates E_irr(x) with PathIntegrator::irradiance
+// (a cosine-sampled direction scores pi L_in; NEE/MIS add light samples), so Y = E_i + rho_i E_irr_hat(x) has
+// mean B_i. The Solution gives B (mean of spp samples), var (per-sample variance, unbiased) and
+// B_se = sqrt(var / spp) per patch and channel.
+//
+// Random streams: sample s of patch i uses Rng(seed, i, s); the result is bit-identical for any thread count.
+// rho_i is the patch's Kd whatever its material: on non-diffuse scenes (is_diffuse_scene false) the paths still
+// follow the materials, but B has its radiosity meaning only on diffuse patches.
+#include <cstdint>
+
+#include "pathtrace/integrator.h"
+#include "solve/solution.h"
+
+namespace radwalk {
+
+struct PatchAverageOptions {
+  long spp = 256;             // samples per patch
+  std::uint64_t seed = 1;
+  IntegratorOptions integrator;
+  bool progress = true;       // core/progress.h (only drawn when stderr is a terminal)
+};
+
+// Solution::method = "pathtrace-<integrator>", walks = samples, steps = scattering events,
+// info: "rays", "spp", "rays_per_second", "rr_depth", "max_depth". Throws InputError when spp < 2.
+Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visibility,
+                                 const PatchAverageOptions& options);
+
+}  // namespace radwalk

@@ -1,0 +1,60 @@
+#include "pathtrace/render.h"
+
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "core/timer.h"
+
+namespace radwalk {
+
+RenderResult render_image(const PatchSet& patches, const Visibility& visibility, const Camera& camera,
+                          const RenderOptions& options) {
+  if (options.spp < 2) throw InputError("render: spp must be >= 2 (got " + std::to_string(options.spp) + ")");
+  const Timer timer;
+  const PinholeCamera pinhole(camera, options.width, options.height);
+  const PathIntegrator integrator(patches, visibility, options.integrator);
+  RenderResult result;
+  result.mean = RgbImage(options.width, options.height);
+  result.se = RgbImage(options.width, options.height);
+  result.spp = options.spp;
+
+  // One work item per image row; per-row counters are summed in row order.
+  std::vector<PathCounters> row_counters(static_cast<std::size_t>(options.height));
+  std::optional<Progress> progress;
+  if (options.progress) progress.emplace("rendering", static_cast<std::size_t>(options.height));
+  const double m = static_cast<double>(options.spp);
+  parallel_for(
+      static_cast<std::size_t>(options.height),
+      [&](std::size_t row) {
+        const int py = static_cast<int>(row);
+        PathCounters& counters = row_counters[row];
+        for (int px = 0; px < options.width; ++px) {
+          const auto pixel = static_cast<std::uint64_t>(py) * options.width + px;
+          Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+          for (long s = 0; s < options.spp; ++s) {
+            Rng rng(options.seed, pixel, static_cast<std::uint64_t>(s));
+            const double u = rng.uniform(), v = rng.uniform();
+            const Rgb L = integrator.radiance(pinhole.generate_ray(px + u, py + v), rng, counters);
+            sum += L;
+            sum2 += L * L;
+          }
+          const Rgb mean = sum / m;
+          result.mean.at(px, py) = mean;
+          result.se.at(px, py) = (((sum2 - m * mean * mean) / (m - 1.0)).max(0.0) / m).sqrt();
+        }
+        if (progress) progress->advance(1);
+      },
+      1);
+  if (progress) progress->finish();
+  for (const auto& c : row_counters) {
+    result.rays += c.rays;
+    result.vertices += c.vertices;
+  }
+  result.seconds = timer.seconds();
+  return result;
+}
+
+}  // namespace radwalk
