@@ -1,18 +1,21 @@
 // bench_solvers: solve time and peak memory of each deterministic solver against patch count.
 //
-//   bench_solvers [--sizes 1000,10000,100000] [--rays 1000] [--solvers direct-dense,direct-sparse,jacobi,
-//                 gauss-seidel,southwell] [--tol 1e-10] [--max-direct 5000] [--max-shots-per-patch 100]
+//   bench_solvers [--scene meshes/cornell_box.obj] [--max-edges 50,14,5] [--rays 1000]
+//                 [--synthetic 1000,10000,100000] [--solvers direct-dense,direct-sparse,jacobi,gauss-seidel,
+//                 southwell] [--tol 1e-10] [--max-direct 5000] [--max-shots-per-patch 100]
 //
-// F is SYNTHETIC (solve/synthetic_problem.h: Monte Carlo-like rows, `rays` rays per patch, ~10 % escaping,
-// Cornell-box materials), not the Cornell box with estimated form factors: the form-factor layer did not build
-// when this was written, so no form-factor time is printed. Each solve runs in a forked child, so its peak memory
-// is measured alone: "extra MB" = peak resident size of the child minus its size at the fork (the problem itself,
-// inherited, is the "F MB" column). Direct solvers are skipped above --max-direct patches (dense: N^2 doubles;
-// sparse LU of a matrix with ~rays non-zeros per row fills in almost completely).
+// By default the scene (the Cornell box) is patched at each --max-edges value (50, 14, 5 mm give about 1e3, 1e4,
+// 1e5 patches) and F is estimated with `rays` rays per patch (Embree, all threads); the form-factor time is
+// printed beside the solve times. --synthetic N,... uses solve/synthetic_problem.h instead (Monte Carlo-like rows,
+// ~10 % escaping, Cornell-box materials). Each solve runs in a forked child, so its peak memory is measured alone:
+// "extra MB" = peak resident size of the child minus its size at the fork (the problem itself, inherited, is the
+// "F MB" column). Direct solvers are skipped above --max-direct patches (dense: N^2 doubles; sparse LU of a
+// matrix with ~rays non-zeros per row fills in almost completely).
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -22,6 +25,10 @@
 #include <vector>
 
 #include "core/timer.h"
+#include "formfactor/form_factors.h"
+#include "mesh/read_scene.h"
+#include "patch/patching.h"
+#include "visibility/embree_visibility.h"
 #include "solve/solve_radiosity.h"
 #include "solve/synthetic_problem.h"
 
@@ -92,17 +99,40 @@ bool run_isolated(const std::string& solver, const RadiosityProblem& p, const So
   return got == ssize_t(sizeof row) && WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
+// The problem of one size: the scene patched at max_edge with estimated F, or a synthetic one of n patches.
+RadiosityProblem make_bench_problem(const std::string& scene, const std::string& size, bool synthetic, int rays,
+                                    double& ff_seconds) {
+  ff_seconds = 0;
+  if (synthetic) return make_synthetic_problem(std::atol(size.c_str()), rays, 1);
+  const PatchSet patches = make_patches(load_scene(scene), std::atof(size.c_str()));
+  const EmbreeVisibility visibility(patches);
+  FormFactorOptions o;
+  o.rays_per_patch = rays;
+  Timer t;
+  FormFactors ff = estimate_form_factors(patches, visibility, o);
+  ff_seconds = t.seconds();
+  return make_problem(patches, std::move(ff.F));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<std::string> sizes = {"1000", "10000", "100000"};
+  std::string scene = "meshes/cornell_box.obj";
+  std::vector<std::string> sizes = {"50", "14", "5"};
+  bool synthetic = false;
   std::vector<std::string> solvers = {"direct-dense", "direct-sparse", "jacobi", "gauss-seidel", "southwell"};
   int rays = 1000;
   long max_direct = 5000, shots_per_patch = 100;
   SolveOptions options;
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string key = argv[a], value = argv[a + 1];
-    if (key == "--sizes") sizes = split(value);
+    if (key == "--max-edges") {
+      sizes = split(value);
+      synthetic = false;
+    } else if (key == "--synthetic") {
+      sizes = split(value);
+      synthetic = true;
+    } else if (key == "--scene") scene = value;
     else if (key == "--solvers") solvers = split(value);
     else if (key == "--rays") rays = std::atoi(value.c_str());
     else if (key == "--tol") options.tol = std::atof(value.c_str());
@@ -113,17 +143,22 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  std::printf("# synthetic F (%d rays per patch), tol %g, %s\n", rays, options.tol,
-              "times are the solve alone; extra MB = peak RSS of the solve's child process above the problem");
+  std::printf("# %s F (%d rays per patch), tol %g, %s\n", synthetic ? "synthetic" : scene.c_str(), rays,
+              options.tol, "times are the solve alone; extra MB = peak RSS of the solve's child process above F");
   std::printf("%8s %10s %7s %-14s %10s %9s %10s %-15s %10s %9s\n", "N", "nnz(F)", "F MB", "solver", "seconds",
               "iters", "residual", "status", "kappa_inf", "extra MB");
   for (const auto& size : sizes) {
-    const long n = std::atol(size.c_str());
+    double ff_seconds = 0;
     Timer t;
-    const RadiosityProblem p = make_synthetic_problem(n, rays, 1);
+    const RadiosityProblem p = make_bench_problem(scene, size, synthetic, rays, ff_seconds);
+    const long n = static_cast<long>(p.size());
     const double build = t.seconds();
     const double f_mb = double(p.F.nonZeros()) * 8.0 / (1 << 20);
-    std::fprintf(stderr, "N = %ld: synthetic F built in %.2f s\n", n, build);
+    if (synthetic)
+      std::printf("# N = %ld: synthetic F built in %.2f s\n", n, build);
+    else
+      std::printf("# N = %ld (max edge %s): load + patch + F in %.2f s, of which form factors %.2f s (%.2f Mrays/s)\n",
+                  n, size.c_str(), build, ff_seconds, double(n) * rays / std::max(ff_seconds, 1e-9) / 1e6);
     for (const auto& solver : solvers) {
       if (solver.rfind("direct", 0) == 0 && n > max_direct) {
         std::printf("%8ld %10ld %7.1f %-14s %10s (skipped: N > --max-direct %ld)\n", n, long(p.F.nonZeros()), f_mb,
