@@ -30,6 +30,7 @@ WalkOptions walk_options(const SolveCommand& c) {
   w.seed = c.scene.seed;
   w.patches = c.patches;
   w.survival = c.survival;
+  w.survival_constant = c.survival_constant;
   w.theory = c.theory;
   return w;
 }

@@ -53,6 +53,7 @@ struct SolveCommand {
   long walks = 1000;
   std::vector<int> patches;
   std::string survival = "analog";
+  double survival_constant = 0.5;
   bool theory = false;
 };
 

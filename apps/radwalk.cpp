@@ -96,7 +96,9 @@ int main(int argc, char** argv) {
                    "random-walk")
       ->check(CLI::IsMember({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
       ->capture_default_str();
-  solve_cmd->add_option("--tol", solve.tol, "Relative residual at which iterative solvers stop")
+  solve_cmd
+      ->add_option("--tol", solve.tol,
+                   "Iterative solvers stop when max over channels of |E - (I - diag(rho) F) B|_inf / |E|_inf <= tol")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   solve_cmd->add_option("--max-iterations", solve.max_iterations, "Iteration budget of iterative solvers")
@@ -117,6 +119,15 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   solve_cmd->add_option("--patches", solve.patches, "Gathering: estimate only these patches (0-based)");
+  solve_cmd
+      ->add_option("--survival", solve.survival,
+                   "Random-walk survival probability p_k: analog (mean rho_k over channels), max (max rho_k), "
+                   "constant (--survival-constant)")
+      ->check(CLI::IsMember({"analog", "max", "constant"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--survival-constant", solve.survival_constant, "p for --survival constant, in (0, 1)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.theory, "Also compute the exact per-walk variance (dense; small scenes)");
 
   CompareCommand compare;
