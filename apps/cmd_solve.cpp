@@ -63,7 +63,9 @@ int run_solve(const SolveCommand& command) {
       SolveOptions o;
       o.solver = command.solver;
       o.tol = command.tol;
-      o.max_iterations = command.max_iterations;
+      o.max_iterations = command.max_iterations > 0 ? command.max_iterations
+                         : command.solver == "southwell"  ? 1000 * static_cast<long>(patches.size())
+                                                          : 10000;
       solution = solve_radiosity(problem, o);
     }
   }

@@ -45,7 +45,7 @@ struct SolveCommand {
   FormFactorCliOptions ff;
   std::string solver = "auto";
   double tol = 1e-10;
-  long max_iterations = 10000;
+  long max_iterations = 0;  // 0: 10000 sweeps, or 1000 x N shots for southwell
   // random walks
   std::string walk = "gather";
   std::string estimator = "collision";

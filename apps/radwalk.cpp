@@ -17,7 +17,10 @@ using namespace radwalk::app;
 
 namespace {
 
+bool g_quiet = false;
+
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
+  cmd->add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
@@ -63,8 +66,7 @@ int main(int argc, char** argv) {
       "radwalk"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("radwalk ") + RADWALK_VERSION);
-  bool quiet = false;
-  app.add_flag("-q,--quiet", quiet, "No progress output on stderr");
+  app.add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
   std::vector<std::string> args(argv, argv + argc);
 
   SceneOptions check;
@@ -101,9 +103,11 @@ int main(int argc, char** argv) {
                    "Iterative solvers stop when max over channels of |E - (I - diag(rho) F) B|_inf / |E|_inf <= tol")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  solve_cmd->add_option("--max-iterations", solve.max_iterations, "Iteration budget of iterative solvers")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  solve_cmd
+      ->add_option("--max-iterations", solve.max_iterations,
+                   "Iteration budget: sweeps for jacobi and gauss-seidel (default 10000), shots for southwell "
+                   "(default 1000 x the patch count)")
+      ->check(CLI::PositiveNumber);
   solve_cmd->add_option("--walk", solve.walk, "Random walk direction: gather (adjoint) or shoot (forward)")
       ->check(CLI::IsMember({"gather", "shoot"}))
       ->capture_default_str();
@@ -175,8 +179,8 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  Progress::set_enabled(!quiet);
-  set_quiet(quiet);
+  Progress::set_enabled(!g_quiet);
+  set_quiet(g_quiet);
   for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene}) o->argv = args;
 
   try {

@@ -1,0 +1,209 @@
+#!/usr/bin/python3
+"""Estimator variance: empirical against theoretical per-walk variance, and efficiency ratios, per regime.
+
+Runs `radwalk compare` (all six estimators, matrix kernel, same traced F for the estimators and the exact
+variance) on scenes chosen to show each regime:
+  furnace          meshes/furnace.obj (closed, E and rho = 0.5 everywhere): gathering absorption has zero
+                   variance; collision per-walk variance E^2 rho / (1 - rho)^2; expected value = rho^2 x collision
+  black_emitter    scenes/cube_black_emitter.obj (emitter rho = 0): gathering absorption = collision, patch by patch
+  parallel         meshes/parallel_squares.obj (open, emitter rho = 0): the same, in an open scene
+  bright_emitters  scenes/cube_bright_emitters.obj (two adjacent emitters with rho = 0.9 see each other):
+                   absorption pays for the emitters' reflection, collision wins
+  cornell          meshes/cornell_box.obj --max-edge 200 (109 patches; small light)
+Writes OUT/<scene>.csv, OUT/<scene>.vtp (ParaView: per-patch var and var_theory per estimator), OUT/ratios.csv,
+OUT/checks.csv and OUT/variance_scatter.png, OUT/efficiency_ratios.png."""
+
+import math
+import os
+
+import numpy as np
+
+import rwexp
+from rwexp import plt
+
+METHODS = ["gather-absorption", "gather-collision", "gather-expected-value", "shoot-collision",
+           "shoot-absorption", "shoot-survival"]
+# (label, first, second): ratio = first / second
+PAIRS = [("collision / absorption (gather)", "gather-collision", "gather-absorption"),
+         ("expected value / collision (gather)", "gather-expected-value", "gather-collision"),
+         ("shooting / gathering (collision)", "shoot-collision", "gather-collision"),
+         ("shooting / gathering (absorption)", "shoot-absorption", "gather-absorption"),
+         ("survival / collision (shoot)", "shoot-survival", "shoot-collision")]
+
+
+def scenes(scale):
+    m, s = rwexp.MESHES, rwexp.SCENES
+    return [
+        ("furnace", os.path.join(m, "furnace.obj"), ["--max-edge", 0.5], 20000),
+        ("black_emitter", os.path.join(s, "cube_black_emitter.obj"), ["--max-edge", 0.5], 20000),
+        ("parallel", os.path.join(m, "parallel_squares.obj"), ["--max-edge", 0.5], 20000),
+        ("bright_emitters", os.path.join(s, "cube_bright_emitters.obj"), ["--max-edge", 0.5], 20000),
+        ("cornell", os.path.join(m, "cornell_box.obj"), ["--max-edge", 200 if scale < 4 else 100], 8000),
+    ]
+
+
+def main():
+    p = rwexp.parser("estimator_variance", __doc__.splitlines()[0])
+    p.add_argument("--runs", type=int, default=5, help="independent runs per estimator")
+    p.add_argument("--rays", type=int, default=10000, help="rays per patch of the traced F")
+    p.add_argument("--scale", type=int, default=1, help="multiplies the walks (and refines the Cornell box at >= 4)")
+    a = p.parse_args()
+    rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
+    data = {}
+    for name, path, extra, walks in scenes(a.scale):
+        walks *= a.scale
+        csvp = rw.path(f"{name}.csv")
+        r = rw.run(["compare", path] + extra + ["--rays", a.rays, "--walks", walks, "--runs", a.runs,
+                                                 "--seed", a.seed, "--kernel", "matrix", "--csv", csvp,
+                                                 "-o", rw.path(f"{name}.vtp")], rw.path(f"{name}.json"))
+        rows = rwexp.read_csv(csvp)
+        data[name] = (rows, r["json"], walks)
+        print(f"{name}: {r['json']['patches']} patches, {walks} walks/patch x {a.runs} runs, "
+              f"{r['json']['timings_s']['walks']:.2f} s of walks")
+
+    ratio_rows, check_rows = [], []
+    for name, (rows, js, walks) in data.items():
+        by = {m: [r for r in rows if r["estimator"] == m] for m in METHODS}
+        for label, first, second in PAIRS:
+            A, B = by[first], by[second]
+            # Pooled-estimate variance var / walks, averaged over the (patch, channel) rows; efficiency ratio =
+            # inverse variance ratio x inverse seconds ratio. Theory: the exact variances with the same seconds.
+            def mean_pooled(rows, key):  # a variance below 1e-12 B^2 is rounding: 0
+                return float(np.mean([0.0 if r[key] <= 1e-12 * r["mean"] ** 2 else r[key] / r["walks"]
+                                      for r in rows]))
+
+            def ratio(x, y):
+                return x / y if y > 0 else (math.inf if x > 0 else math.nan)
+
+            v_emp = ratio(mean_pooled(A, "var"), mean_pooled(B, "var"))
+            v_th = ratio(mean_pooled(A, "var_theory"), mean_pooled(B, "var_theory"))
+            cost = B[0]["seconds"] / A[0]["seconds"]
+            e_emp = 1 / v_emp * cost if v_emp > 0 else math.inf
+            e_th = 1 / v_th * cost if v_th > 0 else math.inf
+            ratio_rows.append(dict(scene=name, ratio=label, variance_ratio=v_emp, variance_ratio_theory=v_th,
+                                   efficiency_ratio=e_emp, efficiency_ratio_theory=e_th,
+                                   seconds_first=A[0]["seconds"], seconds_second=B[0]["seconds"],
+                                   steps_first=A[0]["steps"], steps_second=B[0]["steps"]))
+        checks(name, by, js, check_rows)
+
+    fields = ["scene", "ratio", "variance_ratio", "variance_ratio_theory", "efficiency_ratio",
+              "efficiency_ratio_theory", "seconds_first", "seconds_second", "steps_first", "steps_second"]
+    rwexp.write_csv(rw.path("ratios.csv"), ratio_rows, fields)
+    print(rwexp.table(ratio_rows, fields[:6], "\nvariance_ratio: mean over (patch, channel) of the pooled-estimate "
+                      "variance var/walks, first / second; efficiency_ratio: efficiency first / second;\n"
+                      "*_theory: the same with the exact variances (and the measured seconds)"))
+    cf = ["scene", "claim", "predicted", "measured", "note"]
+    rwexp.write_csv(rw.path("checks.csv"), check_rows, cf)
+    print(rwexp.table(check_rows, cf[:4], "\nregime checks"))
+    plot_scatter(data, rw)
+    plot_ratios(ratio_rows, rw)
+
+
+def checks(name, by, js, out):
+    ga, gc, ge = by["gather-absorption"], by["gather-collision"], by["gather-expected-value"]
+    if name == "furnace":
+        E, rho = math.pi, 0.5
+        out.append(dict(scene=name, claim="gather-absorption per-walk variance (max over patches)", predicted=0.0,
+                        measured=max(r["var"] for r in ga), note="rows of a traced F sum to 1 in a closed scene"))
+        out.append(dict(scene=name, claim="gather-collision per-walk variance E^2 rho/(1-rho)^2 (mean)",
+                        predicted=E * E * rho / (1 - rho) ** 2, measured=float(np.mean([r["var"] for r in gc])),
+                        note=f"spread over patches {np.std([r['var'] for r in gc]):.3g}"))
+        out.append(dict(scene=name, claim="expected value / collision per-walk variance = rho^2",
+                        predicted=rho ** 2, measured=float(np.mean([e["var"] for e in ge]) /
+                                                           np.mean([c["var"] for c in gc])), note=""))
+    if name in ("black_emitter", "parallel"):
+        rel = [abs(x["var"] - y["var"]) / y["var"] for x, y in zip(ga, gc) if y["var"] > 0]
+        same = all(x["var"] == y["var"] for x, y in zip(ga, gc))
+        out.append(dict(scene=name, claim="gather-absorption var = gather-collision var (max relative difference)",
+                        predicted=0.0, measured=max(rel),
+                        note="bit-identical per patch" if same else "same streams, different scores"))
+        rel_t = [abs(x["var_theory"] - y["var_theory"]) / y["var_theory"] for x, y in zip(ga, gc)
+                 if y["var_theory"] > 0]
+        out.append(dict(scene=name, claim="theory: absorption var = collision var (max relative difference)",
+                        predicted=0.0, measured=max(rel_t), note=""))
+    if name == "bright_emitters":
+        ra = float(np.mean([x["var"] for x in ga]) / np.mean([y["var"] for y in gc]))
+        rt = float(np.mean([x["var_theory"] for x in ga]) / np.mean([y["var_theory"] for y in gc]))
+        out.append(dict(scene=name, claim="absorption / collision mean per-walk variance", predicted=rt,
+                        measured=ra, note="predicted = ratio of the exact variances"))
+    # Every scene: the measured per-walk variance against the exact one, and the z statistics.
+    for m in METHODS:
+        rows = [r for r in by[m] if r["var_theory"] > 1e-12 * max(r["mean"] ** 2, 1e-300)]
+        if rows:
+            out.append(dict(scene=name, claim=f"{m}: mean var / var_theory", predicted=1.0,
+                            measured=float(np.mean([r["var"] / r["var_theory"] for r in rows])),
+                            note=f"mean |z| {np.mean([abs(r['z']) for r in by[m]]):.2f} (unbiased: 0.80)"))
+
+
+def plot_scatter(data, rw):
+    names = list(data)
+    fig, axes = plt.subplots(2, 3, figsize=(15, 9.5))
+    colors = dict(zip(METHODS, ["tab:blue", "tab:orange", "tab:green", "tab:red", "tab:purple", "tab:pink"]))
+    markers = dict(zip(METHODS, ["o", "s", "D", "^", "v", "P"]))
+    notes = []
+    for ax, name in zip(axes.flat, names):
+        rows, js, walks = data[name]
+        lo, hi = math.inf, 0
+        zero = []
+        for m in METHODS:
+            pts = [(r["var_theory"], r["var"]) for r in rows if r["estimator"] == m]
+            pos = [(t, e) for t, e in pts if t > 0 and e > 0]
+            if len(pos) < len(pts):
+                zt = [(t, e) for t, e in pts if not (t > 0 and e > 0)]
+                both = sum(1 for t, e in zt if t <= 0 and e <= 0)
+                note = f"{m}: {len(zt)}/{len(pts)}"
+                note += " exactly 0 in both" if both == len(zt) else (
+                    f" (theory <= {max(t for t, e in zt):.2g}, measured <= {max(e for t, e in zt):.2g})")
+                zero.append(note)
+            if not pos:
+                continue
+            t, e = zip(*pos)
+            lo, hi = min(lo, *t, *e), max(hi, *t, *e)
+            ax.scatter(t, e, s=14, color=colors[m], marker=markers[m], alpha=0.6, label=m)
+        ax.plot([lo / 2, hi * 2], [lo / 2, hi * 2], "k-", lw=0.8, label="identity")
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("theoretical per-walk variance ((W/m$^2$)$^2$)")
+        ax.set_ylabel("empirical per-walk variance ((W/m$^2$)$^2$)")
+        ax.set_title(f"{name}: {js['patches']} patches, {walks} walks/patch x runs", fontsize=10)
+        ax.grid(True, which="both", alpha=0.3)
+        if zero:
+            notes.append(f"{name}:\n  " + "\n  ".join(zero))
+    axes.flat[0].legend(fontsize=8, loc="lower right")
+    for ax in list(axes.flat)[len(names):]:
+        ax.axis("off")
+    axes.flat[-1].text(0.0, 1.0, "Rows (patch, channel) not drawn on log axes\n(a zero variance):\n\n" +
+                       "\n".join(notes), transform=axes.flat[-1].transAxes, fontsize=8, va="top", family="monospace")
+    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel")
+    rwexp.save(fig, rw.path("variance_scatter.png"))
+
+
+def plot_ratios(ratio_rows, rw):
+    scenes_ = list(dict.fromkeys(r["scene"] for r in ratio_rows))
+    labels = [p[0] for p in PAIRS]
+    fig, ax = plt.subplots(figsize=(13, 6))
+    width = 0.8 / len(scenes_)
+    cmap = plt.get_cmap("tab10")
+    for k, s in enumerate(scenes_):
+        rows = [r for r in ratio_rows if r["scene"] == s]
+        x = np.arange(len(labels)) + (k - (len(scenes_) - 1) / 2) * width
+        emp = [r["efficiency_ratio"] for r in rows]
+        th = [r["efficiency_ratio_theory"] for r in rows]
+        ax.bar(x, [min(max(v, 1e-6), 1e12) if not math.isnan(v) else 1e-6 for v in emp], width, color=cmap(k), label=s,
+               alpha=0.8)
+        ax.scatter(x, [min(max(v, 1e-6), 1e12) for v in th], color="k", marker="_", s=120, zorder=3,
+                   label="theory (exact variance, measured seconds)" if k == 0 else None)
+    ax.axhline(1, color="k", lw=0.8)
+    ax.set_yscale("log")
+    ax.set_xticks(np.arange(len(labels)))
+    ax.set_xticklabels(labels, fontsize=9)
+    ax.set_ylabel("efficiency ratio first / second (1)\n(> 1: first method wins)")
+    ax.set_title("Efficiency ratios: efficiency = 1 / (mean pooled-estimate variance x seconds)\n"
+                 "(bars clipped to [1e-6, 1e12] where a method has zero variance)", fontsize=10)
+    ax.legend(fontsize=8, ncol=2)
+    ax.grid(True, axis="y", which="both", alpha=0.3)
+    rwexp.save(fig, rw.path("efficiency_ratios.png"))
+
+
+if __name__ == "__main__":
+    main()
