@@ -10,8 +10,17 @@
 //   collision      X = sum_{m=0..tau} W_m E_{k_m}: E[X_i] = E_i + sum_j P_ij w_i E[X_j].   (Wasow)
 //   expected value X = E_i + sum_{m=0..tau} W_m (H E)_{k_m}: scores at each state the expectation of the next
 //                  step's emission (next-event estimation); with Y = X - E, E[Y_i] = (HE)_i + sum_j H_ij E[Y_j],
-//                  so E[Y] = (I - H)^-1 H E = B - E.
-// Each returns the walk's score per channel and adds its steps to `counters`.
+//                  so E[Y] = (I - H)^-1 H E = B - E. (H E)_k is kernel.HE(k, j), with j one extra destination
+//                  sample drawn before the roulette where the kernel samples it (kHESampled).
+//
+// Each estimator is a small state machine (the walk of walk_lockstep.h), so that one code serves a walk run on
+// its own (gather_walk) and walks advanced in lockstep, many destination samples per kernel call:
+//   constructed from (kernel, i, rng): runs up to its first destination request or its end;
+//   done()        true once the walk has stopped; score() is then X;
+//   from(), rng() while not done: the patch whose destination sample it waits for, and its stream;
+//   advance(j)    consumes that sample and runs up to the next request or the end.
+// A walk draws from its own stream only, in the same order however it is driven: per state the roulette, then
+// the destination sample (expected value with kHESampled: HE sample, roulette, destination sample).
 #include "core/rng.h"
 #include "walk/transition_kernel.h"
 
@@ -20,59 +29,148 @@ namespace radwalk {
 enum class GatherEstimator { absorption, collision, expected_value };
 
 template <TransitionKernel K>
-Rgb gather_absorption(const K& kernel, std::size_t i, Rng& rng, WalkCounters& counters) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = i;
-  Rgb W = Rgb::Ones();
-  for (;;) {
-    // Roulette stop: scored.
-    if (roulette_uniform(rng) >= t.p[k]) return W * t.absorb_score[k];
-    const PatchIndex j = kernel.sample(k, rng, counters);
+class GatherAbsorption {
+ public:
+  GatherAbsorption() = default;
+  GatherAbsorption(const K& kernel, std::size_t i, const Rng& rng) : t_(&kernel.tables()), k_(i), rng_(rng) {
+    roulette();
+  }
+  bool done() const { return done_; }
+  const Rgb& score() const { return X_; }
+  std::size_t from() const { return k_; }
+  Rng& rng() { return rng_; }
+
+  void advance(PatchIndex j) {
     // Escape: scored where the kernel counts it as a scored stop (matrix kernel), else 0.
-    if (j < 0) return K::kEscapeScores ? Rgb(W * t.absorb_score[k]) : Rgb::Zero();
-    W *= t.gather_weight[k];
-    k = static_cast<std::size_t>(j);
+    if (j < 0) {
+      if constexpr (K::kEscapeScores) X_ = W_ * t_->absorb_score[k_];
+      done_ = true;
+      return;
+    }
+    W_ *= t_->gather_weight[k_];
+    k_ = static_cast<std::size_t>(j);
+    roulette();
   }
-}
+
+ private:
+  // Roulette stop at k: scored.
+  void roulette() {
+    if (roulette_uniform(rng_) >= t_->p[k_]) {
+      X_ = W_ * t_->absorb_score[k_];
+      done_ = true;
+    }
+  }
+  const WalkTables* t_ = nullptr;
+  std::size_t k_ = 0;
+  Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
+  Rng rng_{0, 0};
+  bool done_ = false;
+};
 
 template <TransitionKernel K>
-Rgb gather_collision(const K& kernel, std::size_t i, Rng& rng, WalkCounters& counters) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = i;
-  Rgb W = Rgb::Ones(), X = Rgb::Zero();
-  for (;;) {
-    // Score every state visited, then roulette and move.
-    X += W * t.E[k];
-    if (roulette_uniform(rng) >= t.p[k]) return X;
-    const PatchIndex j = kernel.sample(k, rng, counters);
-    if (j < 0) return X;
-    W *= t.gather_weight[k];
-    k = static_cast<std::size_t>(j);
+class GatherCollision {
+ public:
+  GatherCollision() = default;
+  GatherCollision(const K& kernel, std::size_t i, const Rng& rng) : t_(&kernel.tables()), k_(i), rng_(rng) {
+    visit();
   }
-}
+  bool done() const { return done_; }
+  const Rgb& score() const { return X_; }
+  std::size_t from() const { return k_; }
+  Rng& rng() { return rng_; }
+
+  void advance(PatchIndex j) {
+    if (j < 0) {
+      done_ = true;
+      return;
+    }
+    W_ *= t_->gather_weight[k_];
+    k_ = static_cast<std::size_t>(j);
+    visit();
+  }
+
+ private:
+  // Score the state visited, then roulette.
+  void visit() {
+    X_ += W_ * t_->E[k_];
+    if (roulette_uniform(rng_) >= t_->p[k_]) done_ = true;
+  }
+  const WalkTables* t_ = nullptr;
+  std::size_t k_ = 0;
+  Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
+  Rng rng_{0, 0};
+  bool done_ = false;
+};
 
 template <TransitionKernel K>
-Rgb gather_expected_value(const K& kernel, std::size_t i, Rng& rng, WalkCounters& counters) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = i;
-  Rgb W = Rgb::Ones(), X = t.E[i];
-  for (;;) {
-    // Expected emission of the next step from k, then roulette and move.
-    X += W * kernel.HE(k, rng, counters);
-    if (roulette_uniform(rng) >= t.p[k]) return X;
-    const PatchIndex j = kernel.sample(k, rng, counters);
-    if (j < 0) return X;
-    W *= t.gather_weight[k];
-    k = static_cast<std::size_t>(j);
+class GatherExpectedValue {
+ public:
+  GatherExpectedValue() = default;
+  GatherExpectedValue(const K& kernel, std::size_t i, const Rng& rng)
+      : kernel_(&kernel), k_(i), X_(kernel.tables().E[i]), rng_(rng) {
+    visit();
   }
+  bool done() const { return done_; }
+  const Rgb& score() const { return X_; }
+  std::size_t from() const { return k_; }
+  Rng& rng() { return rng_; }
+
+  void advance(PatchIndex j) {
+    if (awaiting_HE_) {
+      awaiting_HE_ = false;
+      X_ += W_ * kernel_->HE(k_, j);
+      roulette();
+      return;
+    }
+    if (j < 0) {
+      done_ = true;
+      return;
+    }
+    W_ *= kernel_->tables().gather_weight[k_];
+    k_ = static_cast<std::size_t>(j);
+    visit();
+  }
+
+ private:
+  // Expected emission of the next step from k (first a sample request where the kernel samples it), then
+  // roulette.
+  void visit() {
+    if constexpr (K::kHESampled) {
+      awaiting_HE_ = true;
+    } else {
+      X_ += W_ * kernel_->HE(k_, kNoSample);
+      roulette();
+    }
+  }
+  void roulette() {
+    if (roulette_uniform(rng_) >= kernel_->tables().p[k_]) done_ = true;
+  }
+  const K* kernel_ = nullptr;
+  std::size_t k_ = 0;
+  Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
+  Rng rng_{0, 0};
+  bool awaiting_HE_ = false;
+  bool done_ = false;
+};
+
+// Runs one walk to its end, one destination sample at a time.
+template <TransitionKernel K, class Walk>
+void run_walk(const K& kernel, Walk& walk, WalkCounters& counters) {
+  while (!walk.done()) walk.advance(kernel.sample(walk.from(), walk.rng(), counters));
 }
 
+// The score of one walk from patch i with stream rng (left advanced past the walk).
 template <TransitionKernel K>
 Rgb gather_walk(GatherEstimator estimator, const K& kernel, std::size_t i, Rng& rng, WalkCounters& counters) {
+  auto run = [&](auto walk) {
+    run_walk(kernel, walk, counters);
+    rng = walk.rng();
+    return Rgb(walk.score());
+  };
   switch (estimator) {
-    case GatherEstimator::absorption: return gather_absorption(kernel, i, rng, counters);
-    case GatherEstimator::collision: return gather_collision(kernel, i, rng, counters);
-    case GatherEstimator::expected_value: return gather_expected_value(kernel, i, rng, counters);
+    case GatherEstimator::absorption: return run(GatherAbsorption<K>(kernel, i, rng));
+    case GatherEstimator::collision: return run(GatherCollision<K>(kernel, i, rng));
+    case GatherEstimator::expected_value: return run(GatherExpectedValue<K>(kernel, i, rng));
   }
   return Rgb::Zero();
 }

@@ -4,7 +4,8 @@
 // sample(k) draws column j of row k with probability F_kj / n_k or kEscaped with the row deficit
 // 1 - s_k / n_k, in O(1) (RowAliasTables). Every stop is a scored stop for gathering absorption:
 //   q_k = 1 - p_k s_k / n_k.
-// HE(k) is exact: (H E)_k = rho_k sum_j F_kj E_j, precomputed. Memory: 16 bytes per non-zero of F plus O(N).
+// HE(k, .) is exact: (H E)_k = rho_k sum_j F_kj E_j, precomputed (no sample drawn). Memory: 16 bytes per non-zero
+// of F plus O(N). Walks run one at a time (kLanes = 1): an alias draw gains nothing from batching.
 //
 // Direction: gathering walks sample rows of F. Shooting particles sample rows of the power transfer
 //   T = A^-1 F^T A,  T_kj = A_j F_jk / A_k,
@@ -24,6 +25,8 @@ SparseF shooting_transfer(const RadiosityProblem& problem);
 class MatrixKernel {
  public:
   static constexpr bool kEscapeScores = true;
+  static constexpr bool kHESampled = false;
+  static constexpr std::size_t kLanes = 1;
   // p: survival probability per patch (survival_probabilities). Throws InputError on sizes that disagree.
   MatrixKernel(const RadiosityProblem& problem, std::vector<double> p,
                WalkDirection direction = WalkDirection::gather);
@@ -40,7 +43,10 @@ class MatrixKernel {
     if (j < 0) ++counters.escapes;
     return j;
   }
-  Rgb HE(std::size_t k, Rng& /*rng*/, WalkCounters& /*counters*/) const { return HE_[k]; }
+  void sample(std::span<const SampleRequest> requests, std::span<PatchIndex> out, WalkCounters& counters) const {
+    for (std::size_t r = 0; r < requests.size(); ++r) out[r] = sample(requests[r].k, *requests[r].rng, counters);
+  }
+  Rgb HE(std::size_t k, PatchIndex /*j*/) const { return HE_[k]; }
 
  private:
   RowAliasTables rows_;

@@ -11,6 +11,7 @@
 #include "core/timer.h"
 #include "walk/matrix_kernel.h"
 #include "walk/ray_kernel.h"
+#include "walk/walk_lockstep.h"
 #include "walk/walk_moments.h"
 #include "walk/walk_variance.h"
 
@@ -24,22 +25,35 @@ struct RunResult {
   WalkCounters counters;
 };
 
-// Walks [begin, end) from patch i, the estimator chosen once outside the loop.
+// Walks [begin, end) from patch i, K::kLanes of them in lockstep (walk_lockstep.h); the moments add the scores
+// in walk order (with one lane, as the walks finish), so they do not depend on the lane count.
+template <class Walk, TransitionKernel K>
+Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::uint64_t seed,
+                     WalkCounters& counters) {
+  const auto count = static_cast<std::size_t>(end - begin);
+  auto make = [&](std::size_t w) { return Walk(kernel, i, Rng(seed, i, static_cast<std::uint64_t>(begin) + w)); };
+  auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
+  ShiftedSums sums;
+  if constexpr (K::kLanes == 1) {
+    run_singly(kernel, count, make, step, [&](std::size_t, const Walk& walk) { sums.add(walk.score()); }, counters);
+  } else {
+    std::vector<Rgb> X(count, Rgb::Zero());
+    run_lockstep(kernel, count, K::kLanes, make, step, [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); },
+                 counters);
+    for (const Rgb& x : X) sums.add(x);
+  }
+  return sums.moments();
+}
+
+// The estimator chosen once outside the loop.
 template <TransitionKernel K>
 Moments gather_chunk(GatherEstimator estimator, const K& kernel, std::size_t i, long begin, long end,
                      std::uint64_t seed, WalkCounters& counters) {
-  auto loop = [&](auto&& walk) {
-    ShiftedSums sums;
-    for (long w = begin; w < end; ++w) {
-      Rng rng(seed, i, static_cast<std::uint64_t>(w));
-      sums.add(walk(kernel, i, rng, counters));
-    }
-    return sums.moments();
-  };
   switch (estimator) {
-    case GatherEstimator::absorption: return loop(gather_absorption<K>);
-    case GatherEstimator::collision: return loop(gather_collision<K>);
-    case GatherEstimator::expected_value: return loop(gather_expected_value<K>);
+    case GatherEstimator::absorption: return gather_walks<GatherAbsorption<K>>(kernel, i, begin, end, seed, counters);
+    case GatherEstimator::collision: return gather_walks<GatherCollision<K>>(kernel, i, begin, end, seed, counters);
+    case GatherEstimator::expected_value:
+      return gather_walks<GatherExpectedValue<K>>(kernel, i, begin, end, seed, counters);
   }
   return Moments();
 }
@@ -93,26 +107,45 @@ struct ShootPart {
   WalkCounters counters;
 };
 
-template <TransitionKernel K>
-ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const ShootSource& source,
-                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+// The scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting sort).
+template <class Score>
+std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count) {
+  std::vector<std::size_t> first(count + 1, 0);
+  for (const Score& s : scores) ++first[s.particle + 1];
+  for (std::size_t w = 0; w < count; ++w) first[w + 1] += first[w];
+  std::vector<Score> sorted(scores.size());
+  for (const Score& s : scores) sorted[first[s.particle]++] = s;
+  return sorted;
+}
+
+// Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
+// patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
+// order) and then summed the same way, so the sums do not depend on the lane count.
+template <class Particle, TransitionKernel K>
+ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eigen::VectorXd& area, long begin,
+                          long end, std::uint64_t seed) {
   const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
   part.sum.setZero(N, 3);
   part.sum2.setZero(N, 3);
-  // One particle's score per patch, gathered sparsely (touched patches) and flushed after the particle.
+  struct Score {
+    std::uint32_t particle, j;  // particle - begin, patch
+    Rgb power;
+  };
+  const auto count = static_cast<std::size_t>(end - begin);
+  // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the sums
+  // by flush once the particle is done.
   std::vector<Rgb> current(kernel.size(), Rgb::Zero());
   std::vector<char> touched_flag(kernel.size(), 0);
   std::vector<std::size_t> touched;
-  for (long w = begin; w < end; ++w) {
-    Rng rng(seed, kShootStream, static_cast<std::uint64_t>(w));
-    shoot_particle(estimator, kernel, source, rng, part.counters, [&](std::size_t j, const Rgb& power) {
-      if (!touched_flag[j]) {
-        touched_flag[j] = 1;
-        touched.push_back(j);
-      }
-      current[j] += power;
-    });
+  auto accumulate = [&](std::size_t j, const Rgb& power) {
+    if (!touched_flag[j]) {
+      touched_flag[j] = 1;
+      touched.push_back(j);
+    }
+    current[j] += power;
+  };
+  auto flush = [&] {
     for (std::size_t j : touched) {
       const auto row = static_cast<Eigen::Index>(j);
       const Rgb Y = current[j] / area(row);
@@ -122,8 +155,45 @@ ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const Shoot
       touched_flag[j] = 0;
     }
     touched.clear();
+  };
+  auto make = [&](std::size_t w) {
+    return Particle(kernel, source, Rng(seed, kShootStream, static_cast<std::uint64_t>(begin) + w));
+  };
+  if constexpr (K::kLanes == 1) {
+    // One lane: particles run to the end in order, each flushed at once.
+    run_singly(
+        kernel, count, make, [&](Particle& particle, std::size_t, PatchIndex j) { particle.advance(j, accumulate); },
+        [&](std::size_t, const Particle&) { flush(); }, part.counters);
+  } else {
+    // Lanes: scores recorded with their particle, then taken particle by particle in order.
+    std::vector<Score> scores;
+    scores.reserve(4 * count);
+    run_lockstep(
+        kernel, count, K::kLanes, make,
+        [&](Particle& particle, std::size_t w, PatchIndex j) {
+          particle.advance(j, [&](std::size_t jj, const Rgb& power) {
+            scores.push_back({static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(jj), power});
+          });
+        },
+        [](std::size_t, const Particle&) {}, part.counters);
+    scores = sort_by_particle(std::move(scores), count);
+    for (std::size_t s = 0; s < scores.size(); flush())
+      for (const std::uint32_t w = scores[s].particle; s < scores.size() && scores[s].particle == w; ++s)
+        accumulate(scores[s].j, scores[s].power);
   }
   return part;
+}
+
+template <TransitionKernel K>
+ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const ShootSource& source,
+                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+  switch (estimator) {
+    case ShootEstimator::collision: return shoot_particles<ShootCollision<K>>(kernel, source, area, begin, end, seed);
+    case ShootEstimator::absorption:
+      return shoot_particles<ShootAbsorption<K>>(kernel, source, area, begin, end, seed);
+    case ShootEstimator::survival: return shoot_particles<ShootSurvival<K>>(kernel, source, area, begin, end, seed);
+  }
+  return ShootPart();
 }
 
 // Shooting: `particles` particles in fixed chunks; chunks run in waves and merge in chunk order.

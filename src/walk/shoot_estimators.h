@@ -36,65 +36,113 @@ struct ShootSource {
 // Throws InputError if sizes disagree or an E or an area is negative.
 ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area);
 
-template <TransitionKernel K, class Score>
-void shoot_collision(const K& kernel, const ShootSource& source, Rng& rng, WalkCounters& counters, Score&& score) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = source.birth.sample(rng.uniform());
-  Rgb W = source.W0[k];
-  for (;;) {
-    const PatchIndex j = kernel.sample(k, rng, counters);
-    if (j < 0) return;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = W * t.n[k];
-    score(jj, Rgb(W_in * t.rho[jj]));
-    if (roulette_uniform(rng) >= t.p[jj]) return;
-    W = W_in * t.rho_over_p[jj];
-    k = jj;
+// The three estimators as state machines (the walk concept of walk_lockstep.h, as in gather_estimators.h):
+//   constructed from (kernel, source, rng): born (one uniform from the stream), waiting for its first move;
+//   done(), from(), rng() as for gathering walks;
+//   advance(j, score) consumes the destination sample j of from(), calls score(j, power) for a score at j, and
+//   runs up to the next request (after the roulette at j) or the end.
+// A particle draws from its own stream only: birth, then per step the destination sample and the roulette.
+template <TransitionKernel K>
+class ShootParticle {
+ public:
+  ShootParticle() = default;
+  ShootParticle(const K& kernel, const ShootSource& source, const Rng& rng) : t_(&kernel.tables()), rng_(rng) {
+    k_ = source.birth.sample(rng_.uniform());
+    W_ = source.W0[k_];
   }
-}
+  bool done() const { return done_; }
+  std::size_t from() const { return k_; }
+  Rng& rng() { return rng_; }
 
-template <TransitionKernel K, class Score>
-void shoot_absorption(const K& kernel, const ShootSource& source, Rng& rng, WalkCounters& counters, Score&& score) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = source.birth.sample(rng.uniform());
-  Rgb W = source.W0[k];
-  for (;;) {
-    const PatchIndex j = kernel.sample(k, rng, counters);
-    if (j < 0) return;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = W * t.n[k];
-    if (roulette_uniform(rng) >= t.p[jj]) {
-      score(jj, Rgb(W_in * t.rho_over_1mp[jj]));
+ protected:
+  const WalkTables* t_ = nullptr;
+  std::size_t k_ = 0;
+  Rgb W_ = Rgb::Zero();
+  Rng rng_{0, 0};
+  bool done_ = false;
+};
+
+template <TransitionKernel K>
+class ShootCollision : public ShootParticle<K> {
+ public:
+  using ShootParticle<K>::ShootParticle;
+  template <class Score>
+  void advance(PatchIndex j, Score&& score) {
+    if (j < 0) {
+      this->done_ = true;
       return;
     }
-    W = W_in * t.rho_over_p[jj];
-    k = jj;
-  }
-}
-
-template <TransitionKernel K, class Score>
-void shoot_survival(const K& kernel, const ShootSource& source, Rng& rng, WalkCounters& counters, Score&& score) {
-  const WalkTables& t = kernel.tables();
-  std::size_t k = source.birth.sample(rng.uniform());
-  Rgb W = source.W0[k];
-  for (;;) {
-    const PatchIndex j = kernel.sample(k, rng, counters);
-    if (j < 0) return;
+    const WalkTables& t = *this->t_;
     const auto jj = static_cast<std::size_t>(j);
-    if (roulette_uniform(rng) >= t.p[jj]) return;
-    W = W * t.n[k] * t.rho_over_p[jj];
-    score(jj, W);
-    k = jj;
+    const Rgb W_in = this->W_ * t.n[this->k_];
+    score(jj, Rgb(W_in * t.rho[jj]));
+    if (roulette_uniform(this->rng_) >= t.p[jj]) {
+      this->done_ = true;
+      return;
+    }
+    this->W_ = W_in * t.rho_over_p[jj];
+    this->k_ = jj;
   }
-}
+};
 
+template <TransitionKernel K>
+class ShootAbsorption : public ShootParticle<K> {
+ public:
+  using ShootParticle<K>::ShootParticle;
+  template <class Score>
+  void advance(PatchIndex j, Score&& score) {
+    if (j < 0) {
+      this->done_ = true;
+      return;
+    }
+    const WalkTables& t = *this->t_;
+    const auto jj = static_cast<std::size_t>(j);
+    const Rgb W_in = this->W_ * t.n[this->k_];
+    if (roulette_uniform(this->rng_) >= t.p[jj]) {
+      score(jj, Rgb(W_in * t.rho_over_1mp[jj]));
+      this->done_ = true;
+      return;
+    }
+    this->W_ = W_in * t.rho_over_p[jj];
+    this->k_ = jj;
+  }
+};
+
+template <TransitionKernel K>
+class ShootSurvival : public ShootParticle<K> {
+ public:
+  using ShootParticle<K>::ShootParticle;
+  template <class Score>
+  void advance(PatchIndex j, Score&& score) {
+    if (j < 0) {
+      this->done_ = true;
+      return;
+    }
+    const WalkTables& t = *this->t_;
+    const auto jj = static_cast<std::size_t>(j);
+    if (roulette_uniform(this->rng_) >= t.p[jj]) {
+      this->done_ = true;
+      return;
+    }
+    this->W_ = this->W_ * t.n[this->k_] * t.rho_over_p[jj];
+    score(jj, this->W_);
+    this->k_ = jj;
+  }
+};
+
+// Runs one particle with stream rng (left advanced past the particle) to its end, one destination sample at a
+// time.
 template <TransitionKernel K, class Score>
 void shoot_particle(ShootEstimator estimator, const K& kernel, const ShootSource& source, Rng& rng,
                     WalkCounters& counters, Score&& score) {
+  auto run = [&](auto particle) {
+    while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
+    rng = particle.rng();
+  };
   switch (estimator) {
-    case ShootEstimator::collision: return shoot_collision(kernel, source, rng, counters, score);
-    case ShootEstimator::absorption: return shoot_absorption(kernel, source, rng, counters, score);
-    case ShootEstimator::survival: return shoot_survival(kernel, source, rng, counters, score);
+    case ShootEstimator::collision: return run(ShootCollision<K>(kernel, source, rng));
+    case ShootEstimator::absorption: return run(ShootAbsorption<K>(kernel, source, rng));
+    case ShootEstimator::survival: return run(ShootSurvival<K>(kernel, source, rng));
   }
 }
 

@@ -13,13 +13,22 @@
 // A kernel K provides (all const, thread-safe, O(1) except the ray tracing):
 //   size(), survival(k) = p_k, row_scale(k) = n_k, tables() (WalkTables),
 //   static constexpr bool kEscapeScores: an escape is a scored stop for gathering absorption,
+//   static constexpr bool kHESampled: (H E)_k is estimated from one extra destination sample j of k (see HE),
+//   static constexpr std::size_t kLanes (1..kMaxLanes): how many walks the drivers advance in lockstep
+//     (walk_lockstep.h), i.e. the batch size the kernel prefers,
 //   sample(k, rng, counters)   -> PatchIndex: j >= 0 with probability F_kj / n_k, else kEscaped / kBackHit,
-//   HE(k, rng, counters)       -> Rgb: an unbiased estimate of (H E)_k = rho_k sum_j F_kj E_j.
+//   sample(requests, out, counters): out[r] = sample(requests[r].k, *requests[r].rng, counters) for every r, as
+//     one batch (the ray kernel traces them as packets). Each request draws only from its own stream, exactly as
+//     the single call does, so a walk's outcome does not depend on the other walks of its batch,
+//   HE(k, j)                   -> Rgb: with kHESampled, rho_k E_j (0 for a stop j < 0) for a destination sample
+//     j of k, whose expectation is (H E)_k; without, (H E)_k = rho_k sum_j F_kj E_j exactly (j is ignored: no
+//     sample is drawn, the estimators pass kNoSample).
 // The gathering absorption estimator scores at the "scored stops" of a kernel: the matrix kernel scores every
 // stop (roulette or escape, probability q_k = 1 - p_k s_k / n_k); the ray kernel, which does not know s_k, scores
 // only the roulette stop (probability a_k = 1 - p_k) and lets escapes score 0 (tables().absorb_score).
 #include <concepts>
 #include <cstddef>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -68,15 +77,31 @@ WalkTables make_walk_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<
 // a constant outside (0, 1].
 std::vector<double> survival_probabilities(const PatchRgb& rho, const std::string& mode, double constant);
 
+// One destination-sample request of a batch: a sample from patch k, drawn from the walk's own stream.
+struct SampleRequest {
+  std::size_t k = 0;
+  Rng* rng = nullptr;
+};
+
+// HE(k, j)'s j for a kernel without kHESampled: no destination sample was drawn.
+inline constexpr PatchIndex kNoSample = -3;
+
+// The largest batch a lockstep driver hands a kernel at once (one Embree packet of 16 rays).
+inline constexpr std::size_t kMaxLanes = 16;
+
 template <class K>
-concept TransitionKernel = requires(const K& kernel, std::size_t k, Rng& rng, WalkCounters& counters) {
+concept TransitionKernel = requires(const K& kernel, std::size_t k, PatchIndex j, Rng& rng, WalkCounters& counters,
+                                    std::span<const SampleRequest> requests, std::span<PatchIndex> out) {
   { kernel.size() } -> std::convertible_to<std::size_t>;
   { kernel.survival(k) } -> std::convertible_to<double>;
   { kernel.row_scale(k) } -> std::convertible_to<double>;
   { kernel.tables() } -> std::convertible_to<const WalkTables&>;
   { kernel.sample(k, rng, counters) } -> std::convertible_to<PatchIndex>;
-  { kernel.HE(k, rng, counters) } -> std::convertible_to<Rgb>;
+  kernel.sample(requests, out, counters);
+  { kernel.HE(k, j) } -> std::convertible_to<Rgb>;
   { K::kEscapeScores } -> std::convertible_to<bool>;
+  { K::kHESampled } -> std::convertible_to<bool>;
+  { K::kLanes } -> std::convertible_to<std::size_t>;
 };
 
 }  // namespace radwalk

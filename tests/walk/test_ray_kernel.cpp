@@ -2,11 +2,22 @@
 // known: every method's estimate passes a z-test against the dense solve with the analytic F (family-wise
 // alpha = 1e-3, Sidak over scenes x methods x patches x channels); the form-factor error of the analytic F stored
 // in float (1e-8) is far below the Monte Carlo error. Closed cube and an open cube (one face missing: escapes).
+// Walks advanced in lockstep batches (walk_lockstep.h) score bit-identically to walks run one at a time, for both
+// kernels and both visibilities; unit_circle (the ray kernel's cos/sin) is checked against std::cos/std::sin.
 #include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
 
 #include "core/stats.h"
 #include "visibility/brute_force_visibility.h"
+#include "visibility/embree_visibility.h"
+#include "walk/gather_estimators.h"
+#include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
+#include "walk/ray_kernel.h"
+#include "walk/shoot_estimators.h"
+#include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
 #include "walk_test_checks.h"
 #include "walk_test_scenes.h"
@@ -58,4 +69,108 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
   const Solution s = solve_random_walk(p, &patches, &visibility, o);
   CHECK(s.info.at("back_hits") > 0);
   CHECK(s.info.at("escapes") == 0);
+}
+
+namespace {
+
+// Per-walk gathering scores of patch i, walks 0..walks-1 from the streams Rng(seed, i, w): one at a time
+// (gather_walk) or `lanes` at a time in lockstep (run_lockstep, as the solver runs them).
+template <class K>
+std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, std::size_t i, std::size_t walks,
+                                        std::uint64_t seed, std::size_t lanes, WalkCounters& counters) {
+  std::vector<Rgb> X(walks, Rgb::Constant(-1.0));
+  auto run = [&](auto make) {
+    using Walk = decltype(make(std::size_t{0}));
+    run_lockstep(
+        kernel, walks, lanes, make, [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },
+        [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
+  };
+  switch (est) {
+    case GatherEstimator::absorption:
+      run([&](std::size_t w) { return GatherAbsorption<K>(kernel, i, Rng(seed, i, w)); });
+      break;
+    case GatherEstimator::collision:
+      run([&](std::size_t w) { return GatherCollision<K>(kernel, i, Rng(seed, i, w)); });
+      break;
+    case GatherEstimator::expected_value:
+      run([&](std::size_t w) { return GatherExpectedValue<K>(kernel, i, Rng(seed, i, w)); });
+      break;
+  }
+  return X;
+}
+
+// Every walk and particle scores exactly the same driven alone or in lockstep batches of 16.
+template <class K>
+void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, const std::string& name) {
+  const std::uint64_t seed = 11;
+  const std::size_t walks = 300;  // not a multiple of 16: partial batches
+  for (GatherEstimator est :
+       {GatherEstimator::absorption, GatherEstimator::collision, GatherEstimator::expected_value})
+    for (std::size_t i = 0; i < kernel.size(); ++i) {
+      WalkCounters batched_counters, single_counters;
+      const std::vector<Rgb> batched =
+          lockstep_gather_scores(est, kernel, i, walks, seed, kMaxLanes, batched_counters);
+      const std::vector<Rgb> single = lockstep_gather_scores(est, kernel, i, walks, seed, 1, single_counters);
+      int mismatches = 0;
+      for (std::size_t w = 0; w < walks; ++w) {
+        Rng rng(seed, i, w);
+        WalkCounters counters;
+        const Rgb alone = gather_walk(est, kernel, i, rng, counters);
+        mismatches += !(alone == batched[w]).all() || !(alone == single[w]).all();
+      }
+      INFO(name << ", gathering estimator " << int(est) << ", patch " << i);
+      CHECK(mismatches == 0);
+      CHECK(batched_counters.steps == single_counters.steps);
+      CHECK(batched_counters.escapes == single_counters.escapes);
+    }
+  // Shooting: each particle's list of (patch, power) scores.
+  const ShootSource source = make_shoot_source(p.E, p.area);
+  using Scores = std::vector<std::pair<std::size_t, Rgb>>;
+  auto particle_scores = [&](std::size_t lanes) {
+    std::vector<Scores> scores(walks);
+    WalkCounters counters;
+    run_lockstep(
+        kernel, walks, lanes,
+        [&](std::size_t w) { return ShootCollision<K>(kernel, source, Rng(seed, kShootStream, w)); },
+        [&](ShootCollision<K>& particle, std::size_t w, PatchIndex j) {
+          particle.advance(j, [&](std::size_t jj, const Rgb& power) { scores[w].push_back({jj, power}); });
+        },
+        [](std::size_t, const ShootCollision<K>&) {}, counters);
+    return scores;
+  };
+  const std::vector<Scores> batched = particle_scores(kMaxLanes), single = particle_scores(1);
+  int mismatches = 0;
+  for (std::size_t w = 0; w < walks; ++w) {
+    mismatches += batched[w].size() != single[w].size();
+    for (std::size_t s = 0; s < std::min(batched[w].size(), single[w].size()); ++s)
+      mismatches += batched[w][s].first != single[w][s].first || !(batched[w][s].second == single[w][s].second).all();
+  }
+  INFO(name << ", shoot-collision");
+  CHECK(mismatches == 0);
+}
+
+}  // namespace
+
+TEST_CASE("walks in lockstep batches score exactly as walks run one at a time", "[walk][ray][lockstep]") {
+  const std::vector<int> open = {0, 1, 2, 3, 4};  // escapes too
+  const RadiosityProblem p = test::mixed_cube(open);
+  const PatchSet patches = test::cube_patches(p, open);
+  const std::vector<double> survival = survival_probabilities(p.rho, "analog", 0);
+  const BruteForceVisibility brute(patches);
+  check_lockstep_matches_single(RayKernel(p, patches, brute, survival), p, "ray kernel, brute-force visibility");
+  // Embree traces a batch as one packet of 16 and a lone ray as a packet of one.
+  const EmbreeVisibility embree(patches);
+  check_lockstep_matches_single(RayKernel(p, patches, embree, survival), p, "ray kernel, Embree");
+  check_lockstep_matches_single(MatrixKernel(p, survival), p, "matrix kernel");
+}
+
+TEST_CASE("unit_circle is within 1e-11 of (cos, sin) of 2 pi u", "[walk][ray]") {
+  double worst = 0;
+  for (int k = 0; k <= 100000; ++k) {
+    const double u = std::min(k / 100000.0, 0x1.fffffffffffffp-1);
+    const Eigen::Vector2d c = unit_circle(u);
+    worst = std::max({worst, std::abs(c.x() - std::cos(2 * kPi * u)), std::abs(c.y() - std::sin(2 * kPi * u))});
+  }
+  INFO("largest error " << worst);
+  CHECK(worst < 1e-11);
 }

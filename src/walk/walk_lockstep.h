@@ -1,0 +1,86 @@
+#pragma once
+// run_lockstep: walks advanced in lockstep, so that a kernel receives its destination samples in batches (the ray
+// kernel traces each batch as one Embree packet of up to 16 rays).
+//
+// A walk (gather_estimators.h, shoot_estimators.h) is a state machine: done(); while not done, from() (the patch
+// whose destination sample it waits for) and rng() (its own stream); step(walk, w, j) hands walk w the sample j.
+// run_lockstep runs walks w = 0 .. count-1: make(w) returns walk w started (up to its first request or its end),
+// finish(w, walk) receives it once done. Up to `lanes` walks (1..kMaxLanes) are in flight; each round asks
+// kernel.sample for one destination of every walk in flight, steps them, and refills the lanes of finished walks
+// with the next ones in order of w. Walks finish in any order, but every walk draws only from its own stream, in
+// its own order, so each walk's outcome is the same for any `lanes` and any batch (up to a visibility whose answer
+// for one ray depends on the other rays of its packet: Embree's does not, except perhaps for ties at equal t).
+// lanes = 1 drives each walk alone through the single-sample kernel.sample(k, rng, counters).
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <span>
+#include <type_traits>
+
+#include "walk/transition_kernel.h"
+
+namespace radwalk {
+
+// The walks one at a time (run_lockstep with lanes = 1; a function of its own, small enough for the compiler to
+// inline the kernel and the walk into it).
+template <TransitionKernel K, class Make, class Step, class Finish>
+void run_singly(const K& kernel, std::size_t count, Make&& make, Step&& step, Finish&& finish,
+                WalkCounters& counters) {
+  for (std::size_t w = 0; w < count; ++w) {
+    auto walk = make(w);
+    while (!walk.done()) step(walk, w, kernel.sample(walk.from(), walk.rng(), counters));
+    finish(w, walk);
+  }
+}
+
+template <TransitionKernel K, class Make, class Step, class Finish>
+void run_lockstep(const K& kernel, std::size_t count, std::size_t lanes, Make&& make, Step&& step, Finish&& finish,
+                  WalkCounters& counters) {
+  using Walk = std::invoke_result_t<Make&, std::size_t>;
+  lanes = std::clamp<std::size_t>(lanes, 1, kMaxLanes);
+  if (lanes == 1) return run_singly(kernel, count, make, step, finish, counters);
+  std::array<Walk, kMaxLanes> walk;
+  std::array<std::size_t, kMaxLanes> index{};  // the walk number in each lane
+  std::size_t next = 0, active = 0;
+  // Starts walks in order in `lane` until one is still running (true) or none is left (false).
+  auto fill = [&](std::size_t lane) {
+    while (next < count) {
+      index[lane] = next;
+      walk[lane] = make(next++);
+      if (!walk[lane].done()) return true;
+      finish(index[lane], walk[lane]);
+    }
+    return false;
+  };
+  while (active < lanes && fill(active)) ++active;
+  std::array<SampleRequest, kMaxLanes> request;
+  std::array<PatchIndex, kMaxLanes> destination{};
+  while (active > 0) {
+    // One batch: a destination for every walk in flight.
+    for (std::size_t r = 0; r < active; ++r) request[r] = {walk[r].from(), &walk[r].rng()};
+    kernel.sample(std::span<const SampleRequest>(request.data(), active),
+                  std::span<PatchIndex>(destination.data(), active), counters);
+    // Step each. A finished walk's lane takes the next walk or, when none is left, the last lane's walk (not yet
+    // stepped this round, so this lane is stepped again).
+    for (std::size_t r = 0; r < active;) {
+      step(walk[r], index[r], destination[r]);
+      if (!walk[r].done()) {
+        ++r;
+        continue;
+      }
+      finish(index[r], walk[r]);
+      if (fill(r)) {
+        ++r;
+        continue;
+      }
+      --active;
+      if (r < active) {
+        walk[r] = walk[active];
+        index[r] = index[active];
+        destination[r] = destination[active];
+      }
+    }
+  }
+}
+
+}  // namespace radwalk
