@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "solve/spectral_radius.h"
 #include "walk/matrix_kernel.h"
 #include "walk/ray_kernel.h"
 #include "walk/walk_lockstep.h"
@@ -286,6 +287,25 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
 
   Solution sol;
   sol.method = method_name(options);
+
+  // The walks estimate the Neumann series sum_m H^m E; with F stored, refuse a system for which it diverges
+  // (spectral radius of some diag(rho_c) F >= 1: rho = 1 in a closed scene, rows of F above 1). The walks would
+  // end (p_k < 1) but their weights grow without bound: no finite B exists to estimate.
+  if (F_stored) {
+    const SpectralRadius radius = estimate_spectral_radius(problem);
+    sol.info["spectral_radius"] = radius.estimate;
+    if (radius.lower >= 1.0 - 1e-6 || radius.estimate >= 1.0 - 1e-6) {
+      std::ostringstream why;
+      why << sol.method << " refused: the spectral radius of diag(rho) F is " << radius.estimate
+          << " (channel " << radius.channel << ", max rho " << radius.max_rho << ", max row sum of F "
+          << radius.max_row_sum << ") >= 1, so B = E + diag(rho) F B has no finite solution for the walks to "
+             "estimate; check that reflectances are below 1 and that rows of F sum to at most 1";
+      sol.status = SolveStatus::diverged;
+      sol.message = why.str();
+      return sol;
+    }
+  }
+
   const Timer timer;
   RunResult r;
   if (options.kernel == "matrix") {

@@ -47,9 +47,11 @@ TEST_CASE("rho = 1 in a closed scene: every walk method is refused, a walk would
   }
 }
 
-TEST_CASE("rho = 1 in one channel only: walks end, the divergent channel is reported", "[failure][walk]") {
-  // Red reflects everything in a closed box: no finite red radiosity. Analog survival (mean rho = 2/3) ends every
-  // walk, so nothing is refused as input, but K_red = (1 / p) F has radius 1.5: infinite variance, said so.
+TEST_CASE("rho = 1 in one channel only: every solver, walks included, refuses and names the channel",
+          "[failure][walk]") {
+  // Red reflects everything in a closed box: no finite red radiosity. Analog survival (mean rho = 2/3) would end
+  // every walk, but the red weights grow without bound: the walks refuse the system (status diverged) before
+  // walking, naming the channel, as the deterministic solvers do.
   const RadiosityProblem p = box(Rgb(1.0, 0.5, 0.5));
   const Solution direct = run("direct", p);
   INFO(direct.message);
@@ -67,15 +69,16 @@ TEST_CASE("rho = 1 in one channel only: walks end, the divergent channel is repo
     o.walks = 50;
     const Solution s = solve_random_walk(p, nullptr, nullptr, o);
     INFO(method << ": " << s.message);
-    CHECK(s.info.at("variance_radius") == Approx(1.5).epsilon(1e-4));
-    CHECK_THAT(s.message, Contains("variance is infinite"));
+    CHECK(s.status == SolveStatus::diverged);
+    CHECK(s.B.size() == 0);  // no estimate is returned for a system with no solution
+    CHECK_THAT(s.message, Contains("channel 0"));
+    CHECK_THAT(s.message, Contains("no finite solution"));
   }
 }
 
-TEST_CASE("form-factor rows above 1: the walks report an infinite variance", "[failure][walk]") {
+TEST_CASE("form-factor rows above 1: the walks refuse a system with no solution", "[failure][walk]") {
   // Rows scaled to 1.25 with rho 0.9: radius(diag(rho) F) = 1.125 (no solution; the deterministic solvers'
-  // refusals are in test_stability.cpp). Walks on the matrix kernel renormalise each row (n_k = 1.25), so they
-  // end, but K = (rho^2 n / p) F has radius 0.9 * 1.25 * 1.25 = 1.41.
+  // refusals are in test_stability.cpp). The walks refuse it too, naming the row sum.
   const RadiosityProblem p = box(Rgb::Constant(0.9), {0, 1, 2, 3, 4, 5}, 1.25);
   for (const auto& method : walk_methods()) {
     WalkOptions o;
@@ -83,8 +86,9 @@ TEST_CASE("form-factor rows above 1: the walks report an infinite variance", "[f
     o.walks = 50;
     const Solution s = solve_random_walk(p, nullptr, nullptr, o);
     INFO(method << ": " << s.message);
-    CHECK(s.info.at("variance_radius") == Approx(0.9 * 1.25 * 1.25).epsilon(1e-4));
-    CHECK_THAT(s.message, Contains("variance is infinite"));
+    CHECK(s.status == SolveStatus::diverged);
+    CHECK(s.info.at("spectral_radius") == Approx(0.9 * 1.25).epsilon(1e-4));
+    CHECK_THAT(s.message, Contains("max row sum of F 1.25"));
   }
   // Rows above 1 with a radius below 1 (rho 0.5: 0.625) have a finite, non-physical solution the walks estimate
   // with finite variance: nothing in the library flags it (the CLI refuses such a Matrix Market file on reading).
