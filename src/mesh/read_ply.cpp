@@ -59,16 +59,14 @@ PlyHeader scan_ply_header(const std::string& path) {
   throw InputError(locate(path, 0, -1, "PLY header has no end_header (truncated file?)"));
 }
 
-// Redirects OpenMesh's error stream into a string for the lifetime of the object.
+// Captures OpenMesh's error stream while alive. OpenMesh's mostream::disconnect() forgets, without deleting, the
+// target that connect() allocated, so connecting and disconnecting per read would leak; instead omerr() is
+// redirected once, for the life of the process, into one stream that each capture empties first.
 class OmerrCapture {
  public:
-  OmerrCapture() {
-    ::omerr().disconnect(std::cerr);
-    ::omerr().connect(captured_);
-  }
-  ~OmerrCapture() {
-    ::omerr().disconnect(captured_);
-    ::omerr().connect(std::cerr);
+  OmerrCapture() : captured_(stream()) {
+    captured_.str("");
+    captured_.clear();
   }
   OmerrCapture(const OmerrCapture&) = delete;
   OmerrCapture& operator=(const OmerrCapture&) = delete;
@@ -81,7 +79,18 @@ class OmerrCapture {
   }
 
  private:
-  std::ostringstream captured_;
+  static std::ostringstream& stream() {
+    // Never deleted: omerr() may still write to it while static objects are destroyed at exit.
+    static std::ostringstream* const captured = [] {
+      auto* s = new std::ostringstream;
+      ::omerr().disconnect(std::cerr);
+      ::omerr().connect(*s);
+      return s;
+    }();
+    return *captured;
+  }
+
+  std::ostringstream& captured_;
 };
 
 }  // namespace
