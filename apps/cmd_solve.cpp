@@ -1,10 +1,16 @@
 // radwalk solve SCENE [--solver ...] [-o B.vtp] [--csv] [--json]: radiosity of every patch.
+#include <algorithm>
 #include <cstdio>
+
+#include <optional>
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/progressive_series.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "formfactor/reciprocity.h"
+#include "solve/adaptive_refinement.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
@@ -35,18 +41,120 @@ WalkOptions walk_options(const SolveCommand& c) {
   return w;
 }
 
+SolveOptions solve_options(const SolveCommand& c, std::size_t patches) {
+  SolveOptions o;
+  o.solver = c.solver;
+  o.tol = c.tol;
+  o.max_iterations = c.max_iterations > 0 ? c.max_iterations
+                     : c.solver == "southwell"  ? 1000 * static_cast<long>(patches)
+                                                : 10000;
+  return o;
+}
+
+// One-line refusals of option combinations that cannot work.
+void check_combinations(const SolveCommand& c) {
+  if (c.refine > 0) {
+    if (c.solver == "random-walk")
+      throw InputError("--refine needs a deterministic solver (auto, direct, jacobi, gauss-seidel, southwell)");
+    if (!c.ff.form_factors.empty())
+      throw InputError("--refine estimates form factors for every refined mesh; it cannot use --form-factors");
+    if (!c.progressive.empty()) throw InputError("--refine and --progressive cannot be combined");
+  }
+  if (!c.progressive.empty() && c.solver != "jacobi" && c.solver != "gauss-seidel" && c.solver != "southwell")
+    throw InputError("--progressive needs --solver jacobi, gauss-seidel or southwell (got " + c.solver + ")");
+}
+
+// Adaptive patching (solve_adaptive): each step on stderr and in the JSON summary under "refine".
+RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, RunSummary& summary) {
+  RefineOptions r;
+  r.tol = command.refine;
+  r.max_steps = command.refine_steps;
+  r.max_patches = static_cast<std::size_t>(command.max_patches);
+  r.noise_z = command.refine_noise;
+  r.floor_fraction = command.refine_floor;
+  // The first step goes through the shared stage (its notes and warnings, e.g. back hits, are the scene's); the
+  // later ones estimate quietly, with the same options.
+  int calls = 0;
+  const FormFactorStage stage = [&](const PatchSet& p) {
+    if (calls++ == 0) return obtain_form_factors(command.scene, command.ff, p, summary);
+    FormFactorOptions o;
+    o.rays_per_patch = command.ff.rays;
+    o.rays_per_area = command.ff.rays_per_area;
+    o.min_rays = command.ff.min_rays;
+    o.seed = command.scene.seed;
+    const EmbreeVisibility visibility(p);
+    FormFactors ff = estimate_form_factors(p, visibility, o);
+    if (command.ff.reciprocity) enforce_reciprocity(ff.F, p.area);
+    return ff;
+  };
+  const auto report = [](const RefineStep& s) {
+    note("refine step " + std::to_string(s.step) + ": " + std::to_string(s.patches) + " patches, form factors " +
+         std::to_string(s.form_factor_seconds) + " s, " + s.method + " " + std::to_string(s.solve_seconds) +
+         " s, largest jump " + std::to_string(s.max_jump) + ", " + std::to_string(s.marked) + " marked, " +
+         std::to_string(s.split) + " split");
+  };
+  const std::size_t initial = patches.size();
+  RefinedSolution result =
+      solve_adaptive(std::move(patches), stage, solve_options(command, command.max_patches), r, report);
+
+  auto& j = summary.json()["refine"];
+  j["tol"] = r.tol;
+  j["max_steps"] = r.max_steps;
+  j["max_patches"] = r.max_patches;
+  j["floor_fraction"] = r.floor_fraction;
+  j["noise_z"] = r.noise_z;
+  j["criterion"] = "max over coplanar edge neighbours and channels of |H_i - H_j| / max(H_i, H_j, floor), "
+                   "H = (B - E) / rho of the visible part; differences within noise_z form-factor standard errors ignored";
+  j["initial_patches"] = initial;
+  j["stop_reason"] = result.stop_reason;
+  double ff_seconds = 0, solve_seconds = 0, refine_seconds = 0;
+  for (const RefineStep& s : result.steps) {
+    j["steps"].push_back({{"step", s.step},
+                          {"patches", s.patches},
+                          {"marked", s.marked},
+                          {"split", s.split},
+                          {"max_jump", s.max_jump},
+                          {"method", s.method},
+                          {"iterations", s.iterations},
+                          {"form_factor_seconds", s.form_factor_seconds},
+                          {"solve_seconds", s.solve_seconds},
+                          {"refine_seconds", s.refine_seconds},
+                          {"seconds", s.seconds}});
+    ff_seconds += s.form_factor_seconds;
+    solve_seconds += s.solve_seconds;
+    refine_seconds += s.refine_seconds;
+  }
+  summary.add_timing("form factors", ff_seconds);
+  summary.add_timing("refine", refine_seconds);
+  result.solution.seconds = solve_seconds;  // timed as "solve": all the steps' solves
+  summary.json()["patches"] = result.patches.size();
+  summary.json()["form_factor_nonzeros"] = result.form_factors.F.nonZeros();
+  note("refinement stopped (" + result.stop_reason + ") after " + std::to_string(result.steps.size()) +
+       " solves: " + std::to_string(initial) + " -> " + std::to_string(result.patches.size()) + " patches");
+  return result;
+}
+
 }  // namespace
 
 int run_solve(const SolveCommand& command) {
   RunSummary summary("solve", command.scene.argv);
-  const PatchSet patches = load_patches(command.scene, summary);
+  check_combinations(command);
+  PatchSet patches = load_patches(command.scene, summary);
   warn_non_diffuse(patches, summary);
   ThreadLimit limit(command.scene.threads);
 
   const bool ray_walk = command.solver == "random-walk" && command.kernel == "ray";
   std::vector<CellField> fields = patch_fields(patches);
   Solution solution;
-  if (ray_walk) {
+  if (command.refine > 0) {
+    RefinedSolution refined = run_refinement(command, std::move(patches), summary);
+    patches = std::move(refined.patches);
+    fields = patch_fields(patches);
+    const auto diagnostics = form_factor_fields(refined.form_factors, patches);
+    fields.insert(fields.end(), diagnostics.begin(), diagnostics.end());
+    fields.push_back(scalar_field("jump", refined.jump));
+    solution = std::move(refined.solution);
+  } else if (ray_walk) {
     // The ray kernel traces every step: no form factors are stored (memory O(N)).
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
@@ -60,13 +168,20 @@ int run_solve(const SolveCommand& command) {
     if (command.solver == "random-walk") {
       solution = solve_random_walk(problem, &patches, nullptr, walk_options(command));
     } else {
-      SolveOptions o;
-      o.solver = command.solver;
-      o.tol = command.tol;
-      o.max_iterations = command.max_iterations > 0 ? command.max_iterations
-                         : command.solver == "southwell"  ? 1000 * static_cast<long>(patches.size())
-                                                          : 10000;
+      SolveOptions o = solve_options(command, patches.size());
+      std::optional<ProgressiveSeries> series;
+      if (!command.progressive.empty()) {
+        series.emplace(command.progressive, patches);
+        o.on_iterate = [&](long iteration, const PatchRgb& B) { series->add(iteration, B); };
+        // Southwell: a frame every tenth of a sweep's worth of shots (the series thins itself to 200 steps).
+        o.iterate_every = std::max(1L, static_cast<long>(patches.size()) / 10);
+      }
       solution = solve_radiosity(problem, o);
+      if (series) {
+        const std::size_t steps = series->finish();
+        summary.json()["progressive"] = {{"pvd", series->pvd_path()}, {"steps", steps}, {"stride", series->stride()}};
+        note("wrote " + series->pvd_path() + " (" + std::to_string(steps) + " steps)");
+      }
     }
   }
   summary.add_timing("solve", solution.seconds);

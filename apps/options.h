@@ -55,6 +55,14 @@ struct SolveCommand {
   std::string survival = "analog";
   double survival_constant = 0.5;
   bool theory = false;
+  // adaptive patching (solve_adaptive): --refine TOL > 0 turns it on
+  double refine = 0;
+  int refine_steps = 4;
+  long max_patches = 20000;
+  double refine_floor = 1;  // floor of the relative difference, as a fraction of the mean irradiance
+  double refine_noise = 0;  // differences within this many form-factor standard errors do not split (0: off)
+  // --progressive DIR: ParaView series of the iterates (iterative solvers)
+  std::string progressive;
 };
 
 struct CompareCommand {

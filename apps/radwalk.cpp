@@ -133,6 +133,30 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.theory, "Also compute the exact per-walk variance (dense; small scenes)");
+  solve_cmd
+      ->add_option("--refine", solve.refine,
+                   "Adaptive patching: solve, split every patch whose irradiance (B - E) / rho differs from a "
+                   "coplanar edge neighbour's by more than TOL (relative), re-solve, repeat")
+      ->check(CLI::PositiveNumber);
+  solve_cmd->add_option("--refine-steps", solve.refine_steps, "Adaptive patching: at most K refinement steps")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  solve_cmd->add_option("--max-patches", solve.max_patches, "Adaptive patching: never split beyond M patches")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  solve_cmd
+      ->add_option("--refine-floor", solve.refine_floor,
+                   "Adaptive patching: differences are relative to max(H_i, H_j, F x the mean irradiance)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  solve_cmd
+      ->add_option("--refine-noise", solve.refine_noise,
+                   "Adaptive patching: ignore differences within Z form-factor standard errors (0: off)")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  solve_cmd->add_option("--progressive", solve.progressive,
+                        "Write the iterates as DIR/step_NNNN.vtp and DIR/solve.pvd (time = iteration; at most 200 "
+                        "steps) for ParaView; jacobi, gauss-seidel or southwell");
 
   CompareCommand compare;
   auto* compare_cmd =

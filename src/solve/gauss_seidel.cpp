@@ -65,6 +65,7 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
     }
     ++sweeps;
     history.push_back(finite ? r : std::numeric_limits<double>::infinity());
+    if (options.on_iterate) options.on_iterate(sweeps, B);
     verdict = judge_progress(history, 1, options, s.method, &why);
     if (verdict == Progress::converged) {
       if (relative_residual(p, B) <= options.tol) break;

@@ -64,6 +64,7 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
     std::swap(B, next);
     ++sweeps;
     history.push_back(r);
+    if (options.on_iterate) options.on_iterate(sweeps, B);
     verdict = judge_progress(history, 1, options, s.method, &why);
     if (verdict == Progress::converged) {
       if (relative_residual(p, B) <= options.tol) break;

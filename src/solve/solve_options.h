@@ -1,6 +1,9 @@
 #pragma once
 // Options shared by the deterministic solvers and the dispatcher solve_radiosity().
+#include <functional>
 #include <string>
+
+#include "core/types.h"
 
 namespace radwalk {
 
@@ -9,9 +12,15 @@ struct SolveOptions {
   double tol = 1e-10;           // stop when max_c ||E_c - (I - H_c) B_c||_inf / ||E_c||_inf <= tol (> 0)
   long max_iterations = 10000;  // sweeps (Jacobi, Gauss-Seidel) or shots (Southwell), >= 0
   bool record_history = true;   // fill Solution.residual_history (one entry per sweep, or per N shots)
+  // Progress of the iterative solvers (empty: never called, no cost). Jacobi and Gauss-Seidel call it after every
+  // sweep k = 1, 2, ... with the iterate B^k; Southwell after every `iterate_every` shots (0: every N shots) with
+  // the shot count, and once more after the last shot if that was not a multiple. The last call's B equals the
+  // returned Solution::B. Not called by the direct solver or when the stability check refuses to iterate.
+  std::function<void(long iteration, const PatchRgb& B)> on_iterate;
+  long iterate_every = 0;       // Southwell: shots between on_iterate calls (0: N), >= 0
 };
 
-// Throws InputError unless tol > 0 (finite) and max_iterations >= 0.
+// Throws InputError unless tol > 0 (finite) and max_iterations >= 0 (Southwell also refuses iterate_every < 0).
 void check_options(const SolveOptions& options);
 
 }  // namespace radwalk

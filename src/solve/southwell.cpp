@@ -73,6 +73,8 @@ Rgb ambient_level(const RadiosityProblem& p, const PatchRgb& B) {
 Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options) {
   check_problem(p);
   check_options(options);
+  if (options.iterate_every < 0)
+    throw InputError("southwell: iterate_every " + std::to_string(options.iterate_every) + " must be >= 0");
   Timer timer;
   Solution s;
   s.method = "southwell";
@@ -105,6 +107,8 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
   };
   for (Eigen::Index j = 0; j < n; ++j) refresh(j);
 
+  const long every = options.iterate_every > 0 ? options.iterate_every : long(n);
+  long reported = 0;  // shot count of the last on_iterate call
   std::vector<double> history{relative()};
   std::string why;
   Progress verdict = Progress::keep_going;
@@ -128,6 +132,10 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
       }
       refresh(i);
       ++shots;
+      if (options.on_iterate && shots % every == 0) {
+        options.on_iterate(shots, B);
+        reported = shots;
+      }
       if (shots % n == 0) {
         history.push_back(relative());
         verdict = judge_progress(history, long(n), options, s.method, &why);
@@ -145,6 +153,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
     }
   }
   history.push_back(relative());
+  if (options.on_iterate && shots > reported) options.on_iterate(shots, B);
   finish_iterative(s, p, options, std::move(B), verdict, why, shots, std::move(history), "shots");
   if (s.B.allFinite()) {
     try {

@@ -1,0 +1,154 @@
+// End-to-end: radwalk solve --refine (adaptive patching) and --progressive (ParaView series of the iterates).
+#include <sys/wait.h>
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <string>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Run {
+  int exit_code;
+  std::string out;  // stdout and stderr, merged
+};
+
+Run run(const std::string& args) {
+  const std::string cmd = std::string(RADWALK_BINARY) + " --quiet " + args + " 2>&1";
+  Run r{-1, {}};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+std::string source(const std::string& rel) { return std::string(RADWALK_SOURCE_DIR) + "/" + rel; }
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / "radwalk_cli_refine_test" / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+nlohmann::json read_json(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// The files a .pvd lists, relative to its folder.
+std::vector<std::pair<double, std::string>> pvd_steps(const fs::path& pvd) {
+  std::ifstream in(pvd);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::regex entry("timestep=\"([^\"]+)\" part=\"0\" file=\"([^\"]+)\"");
+  std::vector<std::pair<double, std::string>> steps;
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), entry); it != std::sregex_iterator(); ++it)
+    steps.emplace_back(std::stod((*it)[1].str()), (*it)[2].str());
+  return steps;
+}
+
+}  // namespace
+
+TEST_CASE("radwalk solve --refine: fewer patches than the uniform mesh of the same smallest patches", "[cli]") {
+  const fs::path dir = scratch("refine");
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --refine 0.2 --refine-steps 3 --rays 20000 " +
+                    "--json " + (dir / "s.json").string() + " --csv " + (dir / "s.csv").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto j = read_json(dir / "s.json");
+  const auto& refine = j["refine"];
+  REQUIRE(refine["steps"].size() == 4);  // 3 refinement steps: 4 solves
+  CHECK(refine["stop_reason"] == "steps");
+  CHECK(refine["initial_patches"] == 37);
+  std::size_t patches = 37;
+  for (std::size_t k = 0; k < refine["steps"].size(); ++k) {
+    const auto& s = refine["steps"][k];
+    CHECK(s["patches"] == patches);
+    patches += 3 * s["split"].get<std::size_t>();
+    if (k + 1 < refine["steps"].size()) CHECK(s["split"] == s["marked"]);
+  }
+  CHECK(refine["steps"][3]["split"] == 0);
+  const std::size_t final_patches = j["patches"];
+  CHECK(final_patches == refine["steps"][3]["patches"]);
+  // Splitting every patch 3 times gives 37 x 4^3 patches with the same smallest patches as the refined mesh.
+  CHECK(final_patches * 10 < 37 * 64 * 6);  // at most 60 % of them
+  // Rows in the CSV = the final patches.
+  std::ifstream csv(dir / "s.csv");
+  std::string line;
+  std::size_t rows = 0;
+  std::getline(csv, line);
+  CHECK(line.find("jump") != std::string::npos);
+  while (std::getline(csv, line)) ++rows;
+  CHECK(rows == final_patches);
+}
+
+TEST_CASE("radwalk solve --refine: --max-patches caps the patch count", "[cli]") {
+  const fs::path dir = scratch("refine_cap");
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --refine 0.01 --max-patches 200 --rays 2000 " +
+                    "--json " + (dir / "s.json").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto j = read_json(dir / "s.json");
+  CHECK(j["patches"].get<std::size_t>() <= 200);
+  CHECK(j["refine"]["stop_reason"] == "max-patches");
+}
+
+TEST_CASE("radwalk solve --refine and --progressive: impossible combinations are one-line errors", "[cli]") {
+  const std::string cube = source("meshes/cube.obj");
+  for (const std::string args : {" --refine 0.1 --solver random-walk", " --refine 0 ", " --progressive d --solver direct",
+                                 " --refine 0.1 --progressive d --solver jacobi"}) {
+    const Run r = run("solve " + cube + args);
+    INFO(args << ": " << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') <= 2);
+  }
+}
+
+TEST_CASE("radwalk solve --progressive writes a .pvd whose step files exist", "[cli]") {
+  for (const std::string solver : {"jacobi", "gauss-seidel", "southwell"}) {
+    const fs::path dir = scratch("progressive_" + solver);
+    const Run r = run("solve " + source("meshes/cornell_box.obj") + " --max-edge 100 --rays 500 --solver " + solver +
+                      " --progressive " + (dir / "series").string() + " --json " + (dir / "s.json").string());
+    INFO(solver << ": " << r.out);
+    REQUIRE(r.exit_code == 0);
+    const auto steps = pvd_steps(dir / "series" / "solve.pvd");
+    const auto j = read_json(dir / "s.json");
+    REQUIRE(!steps.empty());
+    CHECK(steps.size() <= 200);
+    CHECK(j["progressive"]["steps"] == steps.size());
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+      CHECK(fs::exists(dir / "series" / steps[k].second));
+      if (k > 0) CHECK(steps[k].first > steps[k - 1].first);
+    }
+    // The last step is the returned iterate.
+    CHECK(steps.back().first == j["solution"]["iterations"].get<double>());
+    if (solver != "southwell") CHECK(steps.size() == j["solution"]["iterations"].get<std::size_t>());
+  }
+}
+
+TEST_CASE("radwalk solve --progressive thins a long run to at most 200 steps, keeping the last", "[cli]") {
+  // Furnace, 24 patches: Southwell reports every 2 shots and needs a few hundred shots, so the series thins.
+  const fs::path dir = scratch("progressive_thin");
+  const Run r = run("solve " + source("meshes/furnace.obj") + " --max-edge 0.5 --rays 200 --solver southwell " +
+                    "--progressive " + (dir / "series").string() + " --json " + (dir / "s.json").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto j = read_json(dir / "s.json");
+  const auto steps = pvd_steps(dir / "series" / "solve.pvd");
+  REQUIRE(j["solution"]["iterations"].get<long>() / 2 > 200);  // more reports than files
+  CHECK(j["progressive"]["stride"].get<long>() > 1);
+  CHECK(steps.size() <= 200);
+  CHECK(steps.back().first == j["solution"]["iterations"].get<double>());
+  std::size_t files = 0;
+  for (const auto& entry : fs::directory_iterator(dir / "series")) files += entry.path().extension() == ".vtp";
+  CHECK(files == steps.size());  // thinned steps were deleted
+}
