@@ -1,7 +1,4 @@
 // End-to-end: the radwalk program on bundled scenes and on every malformed input in tests/data.
-#include <sys/wait.h>
-
-#include <array>
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -11,28 +8,11 @@
 #include <vector>
 #include <string>
 
+#include "radwalk_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Run {
-  int exit_code;
-  std::string out;  // stdout and stderr, merged
-};
-
-Run run(const std::string& args) {
-  const std::string cmd = std::string(RADWALK_BINARY) + " --quiet " + args + " 2>&1";
-  Run r{-1, {}};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string source(const std::string& rel) { return std::string(RADWALK_SOURCE_DIR) + "/" + rel; }
 
 fs::path scratch() {
   const fs::path dir = fs::temp_directory_path() / "radwalk_cli_test";

@@ -1,7 +1,4 @@
 // End-to-end: radwalk solve --refine (adaptive patching) and --progressive (ParaView series of the iterates).
-#include <sys/wait.h>
-
-#include <array>
 #include <catch2/catch.hpp>
 #include <cstdio>
 #include <filesystem>
@@ -10,28 +7,11 @@
 #include <regex>
 #include <string>
 
+#include "radwalk_runner.h"
+
 namespace fs = std::filesystem;
 
 namespace {
-
-struct Run {
-  int exit_code;
-  std::string out;  // stdout and stderr, merged
-};
-
-Run run(const std::string& args) {
-  const std::string cmd = std::string(RADWALK_BINARY) + " --quiet " + args + " 2>&1";
-  Run r{-1, {}};
-  FILE* pipe = popen(cmd.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::array<char, 4096> buf{};
-  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
-  const int status = pclose(pipe);
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
-}
-
-std::string source(const std::string& rel) { return std::string(RADWALK_SOURCE_DIR) + "/" + rel; }
 
 fs::path scratch(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / "radwalk_cli_refine_test" / name;

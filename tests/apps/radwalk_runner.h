@@ -1,0 +1,29 @@
+#pragma once
+// Runs the radwalk program for end-to-end tests: run("solve scene.obj ...") returns its exit code and its merged
+// stdout + stderr. RADWALK_BINARY and RADWALK_SOURCE_DIR are compile definitions of the test targets.
+#include <sys/wait.h>
+
+#include <array>
+#include <catch2/catch.hpp>
+#include <cstdio>
+#include <string>
+
+struct Run {
+  int exit_code;
+  std::string out;  // stdout and stderr, merged
+};
+
+inline Run run(const std::string& args) {
+  const std::string cmd = std::string(RADWALK_BINARY) + " --quiet " + args + " 2>&1";
+  Run r{-1, {}};
+  FILE* pipe = popen(cmd.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// Path of a file in the source tree, e.g. source("meshes/cube.obj").
+inline std::string source(const std::string& rel) { return std::string(RADWALK_SOURCE_DIR) + "/" + rel; }
