@@ -20,14 +20,12 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
 class Rng {
  public:
   // The stream identified by (seed, a, b). Different triples give statistically independent streams.
-  Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0) {
-    const std::uint64_t h = mix64(mix64(mix64(seed) ^ a) ^ (b * 0xd1b54a32d192ed03ULL));
-    inc_ = (mix64(h ^ 0xa0761d6478bd642fULL) << 1u) | 1u;
-    state_ = 0;
-    next_u32();
-    state_ += h;
-    next_u32();
-  }
+  Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0) : Rng(FromFamily{}, family_hash(seed, a), b) {}
+
+  // The hash of (seed, a) that every stream (seed, a, b) starts from (see RngFamily).
+  static constexpr std::uint64_t family_hash(std::uint64_t seed, std::uint64_t a) { return mix64(mix64(seed) ^ a); }
+  // The stream (seed, a, b) from family_hash(seed, a): equal to Rng(seed, a, b).
+  static Rng from_family(std::uint64_t family, std::uint64_t b) { return Rng(FromFamily{}, family, b); }
 
   // Uniform 32-bit integer.
   std::uint32_t next_u32() {
@@ -60,8 +58,29 @@ class Rng {
   }
 
  private:
+  struct FromFamily {};
+  Rng(FromFamily, std::uint64_t family, std::uint64_t b) {
+    const std::uint64_t h = mix64(family ^ (b * 0xd1b54a32d192ed03ULL));
+    inc_ = (mix64(h ^ 0xa0761d6478bd642fULL) << 1u) | 1u;
+    state_ = 0;
+    next_u32();
+    state_ += h;
+    next_u32();
+  }
+
   std::uint64_t state_ = 0;
   std::uint64_t inc_ = 1;
+};
+
+// The streams (seed, a, b) for one (seed, a) and many b, e.g. all walks started from one patch: the hash of
+// (seed, a) is computed once. RngFamily(seed, a).stream(b) is the same stream as Rng(seed, a, b).
+class RngFamily {
+ public:
+  RngFamily(std::uint64_t seed, std::uint64_t a) : family_(Rng::family_hash(seed, a)) {}
+  Rng stream(std::uint64_t b) const { return Rng::from_family(family_, b); }
+
+ private:
+  std::uint64_t family_;
 };
 
 }  // namespace radwalk

@@ -32,7 +32,8 @@ template <class Walk, TransitionKernel K>
 Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::uint64_t seed,
                      WalkCounters& counters) {
   const auto count = static_cast<std::size_t>(end - begin);
-  auto make = [&](std::size_t w) { return Walk(kernel, i, Rng(seed, i, static_cast<std::uint64_t>(begin) + w)); };
+  const RngFamily streams(seed, i);  // walk w from patch i: Rng(seed, i, w)
+  auto make = [&](std::size_t w) { return Walk(kernel, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
   ShiftedSums sums;
   if constexpr (K::kLanes == 1) {
@@ -157,8 +158,9 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
     }
     touched.clear();
   };
+  const RngFamily particles(seed, kShootStream);  // particle w: Rng(seed, kShootStream, w)
   auto make = [&](std::size_t w) {
-    return Particle(kernel, source, Rng(seed, kShootStream, static_cast<std::uint64_t>(begin) + w));
+    return Particle(kernel, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.

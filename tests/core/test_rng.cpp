@@ -47,3 +47,11 @@ TEST_CASE("a biased generator fails the same chi-square test", "[rng][statistica
   for (int k = 0; k < n; ++k) obs[static_cast<int>(std::pow(rng.uniform(), 1.05) * bins)] += 1;
   CHECK(chi_square_gof_p_value(obs, exp) < 1e-4);
 }
+
+TEST_CASE("RngFamily(seed, a).stream(b) is the stream Rng(seed, a, b)", "[rng]") {
+  const RngFamily family(42, 7);
+  for (std::uint64_t b : {0ull, 1ull, 2ull, 1000000ull, ~0ull}) {
+    Rng x = family.stream(b), y(42, 7, b);
+    for (int k = 0; k < 20; ++k) REQUIRE(x.next_u32() == y.next_u32());
+  }
+}
