@@ -130,6 +130,20 @@ def main():
                     solve("B", f"{walk}-{est}", "ray", w, "walks/patch", [
                         "--solver", "random-walk", "--walk", walk, "--estimator", est, "--kernel", "ray",
                         "--walks", n], 0.0, f"B_{walk}_{est}_r{w}")
+        # The continuous path tracer's patch averages (MIS, no F): its error against the discrete reference also
+        # holds the discretisation error (about 1e-3 at these patch sizes, see discretisation_error.py).
+        for w in walk_budgets:
+            csvp, jsp = rw.path(f"{tag}_B_pt_{w}.csv"), rw.path(f"{tag}_B_pt_{w}.json")
+            js = rw.run(["pathtrace"] + common + ["--spp", w, "--csv", csvp], jsp)["json"]
+            t = js["timings_s"]["patch averages"]
+            B = rwexp.read_B(csvp)
+            os.remove(csvp)
+            os.remove(jsp)
+            rows.append(dict(max_edge=me, patches=N, panel="B", method="pathtrace-mis", kernel="continuous",
+                             budget=w, budget_unit="samples/patch", ff_seconds=0.0, solve_seconds=t,
+                             total_seconds=t, error=rwexp.rms_relative_error(B, B_ref),
+                             status=js["solution"]["status"], iterations=0, steps=0,
+                             note="continuous solution: error includes the discretisation error"))
         os.remove(rw.path(f"{tag}_reference_s{a.seed + 1}.csv"))  # keep one reference (csv, vtp, F_ref)
         os.remove(rw.path(f"{tag}_Fref_s{a.seed + 1}.mtx"))
 
@@ -147,6 +161,7 @@ STYLE = {
     "gather-absorption": ("tab:blue", "o"), "gather-collision": ("tab:orange", "o"),
     "gather-expected-value": ("tab:green", "o"),
     "shoot-collision": ("tab:red", "^"), "shoot-absorption": ("tab:purple", "^"), "shoot-survival": ("tab:pink", "^"),
+    "pathtrace-mis": ("tab:cyan", "X"),
 }
 
 
@@ -172,7 +187,7 @@ def plot(rows, levels, rw):
                 e = [max(r["error"], FLOOR) for r in pts]
                 color, marker = STYLE[method]
                 ray = kernel == "ray"
-                label = method + (" (ray kernel, no F)" if ray else "")
+                label = method + (" (ray kernel, no F)" if ray else " (continuous, no F)" if kernel == "continuous" else "")
                 if method == "direct" and panel == "A":
                     label = "direct (= reference: error < 1e-9, drawn at 1e-9)"
                 (h,) = ax.plot(t, e, "--" if ray else "-", color=color, marker=marker, label=label, ms=6,
