@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Adaptive patching against uniform patching on the Cornell box: error against patch count.
+"""Adaptive patching against uniform patching (default scene: the Cornell box): error against patch count.
 
 Meshes compared (same form-factor budget, --rays rays per patch, direct or Gauss-Seidel solve):
   uniform   radwalk solve --max-edge L            for each L in --max-edges (0 = the 37 input faces)
@@ -101,7 +101,7 @@ def main():
     a = p.parse_args()
     out_csv = os.path.join(a.out, "adaptive_patching.csv")
     if a.plot_only:
-        plot(rwexp.read_csv(out_csv), a.out)
+        plot(rwexp.read_csv(out_csv), a.out, a.scene)
         return
     rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
     rays = str(int(a.rays * a.scale))
@@ -148,10 +148,10 @@ def main():
     rwexp.write_csv(out_csv, results, fields)
     print(f"wrote {out_csv}")
     print(rwexp.table(results, fields, "relative L2 error of B against the path-traced fine grid"))
-    plot(results, a.out)
+    plot(results, a.out, a.scene)
 
 
-def plot(results, out):
+def plot(results, out, scene):
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
     for kind, style, label, key in (("uniform", "o-", "uniform --max-edge L (mm)", "L"),
                                     ("adaptive", "s-", "adaptive --refine TOL", "TOL")):
@@ -168,7 +168,7 @@ def plot(results, out):
     ax.set_yscale("log")
     ax.set_xlabel("patches (final mesh)")
     ax.set_ylabel("relative L2 error of B (against path-traced fine grid)")
-    ax.set_title("Cornell box: adaptive against uniform patching")
+    ax.set_title(f"{os.path.basename(scene)}: adaptive against uniform patching")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     rwexp.save(fig, os.path.join(out, "adaptive_patching.png"))
