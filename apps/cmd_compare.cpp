@@ -57,8 +57,7 @@ int run_compare(const CompareCommand& command) {
   }
 
   // VTK: per method, fields mean_<m>, var_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference.
-  std::vector<CellField> fields = patch_fields(patches);
-  fields.push_back(rgb_field("B_reference", reference.B));
+  std::vector<CellField> fields = {rgb_field("B_reference", reference.B)};
   const auto n = static_cast<Eigen::Index>(patches.size());
   std::map<std::string, std::array<PatchRgb, 4>> per_method;
   for (const CompareRow& r : result.rows) {

@@ -19,9 +19,7 @@ int run_formfactors(const FormFactorsCommand& command) {
     summary.add_timing("write matrix", timer.seconds());
     note("wrote " + command.mtx);
   }
-  auto fields = patch_fields(patches);
-  const auto diagnostics = form_factor_fields(ff, patches);
-  fields.insert(fields.end(), diagnostics.begin(), diagnostics.end());
+  const std::vector<CellField> diagnostics = form_factor_fields(ff, patches);
 
   // Summary on stdout: closure and reciprocity over all patches.
   const auto& row_sum = diagnostics[0].values;
@@ -36,7 +34,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   summary.json()["row_sum_max"] = max_row;
   SceneOptions outputs = command.scene;
   outputs.vtp = command.diagnostics_vtp;
-  write_outputs(outputs, patches, fields, summary);
+  write_outputs(outputs, patches, diagnostics, summary);
   return 0;
 }
 

@@ -28,7 +28,7 @@ int run_patch(const PatchCommand& command) {
     summary.add_timing("write obj", timer.seconds());
     note("wrote " + command.output);
   }
-  write_outputs(outputs, patches, patch_fields(patches), summary);
+  write_outputs(outputs, patches, {}, summary);
   return 0;
 }
 

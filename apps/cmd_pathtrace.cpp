@@ -128,9 +128,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     j["message"] = s.message;
     j["seconds"] = s.seconds;
     for (const auto& [key, value] : s.info) j["info"][key] = value;
-    std::vector<CellField> fields = patch_fields(patches);
-    fields.push_back(rgb_field("B", s.B));
-    fields.push_back(rgb_field("B_se", s.B_se));
+    std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(rgb_field("var", s.var));
     write_outputs(command.scene, patches, fields, summary);
   } else if (!command.scene.json.empty()) {

@@ -144,14 +144,12 @@ int run_solve(const SolveCommand& command) {
   ThreadLimit limit(command.scene.threads);
 
   const bool ray_walk = command.solver == "random-walk" && command.kernel == "ray";
-  std::vector<CellField> fields = patch_fields(patches);
+  std::vector<CellField> fields;
   Solution solution;
   if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
-    fields = patch_fields(patches);
-    const auto diagnostics = form_factor_fields(refined.form_factors, patches);
-    fields.insert(fields.end(), diagnostics.begin(), diagnostics.end());
+    fields = form_factor_fields(refined.form_factors, patches);
     fields.push_back(scalar_field("jump", refined.jump));
     solution = std::move(refined.solution);
   } else if (ray_walk) {

@@ -138,17 +138,13 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
                    RunSummary& summary) {
   Timer timer;
   if (!options.vtp.empty()) {
-    write_vtp(options.vtp, patches, fields);
+    std::vector<CellField> all = patch_fields(patches);
+    all.insert(all.end(), fields.begin(), fields.end());
+    write_vtp(options.vtp, patches, all);
     note("wrote " + options.vtp);
   }
   if (!options.csv.empty()) {
-    // patch_fields() are CSV's fixed leading columns; only the extra fields follow them.
-    std::vector<CellField> extra;
-    for (const CellField& f : fields)
-      if (f.name != "patch" && f.name != "face" && f.name != "area" && f.name != "normal" && f.name != "rho" &&
-          f.name != "E")
-        extra.push_back(f);
-    write_patch_csv(options.csv, patches, extra);
+    write_patch_csv(options.csv, patches, fields);
     note("wrote " + options.csv);
   }
   summary.add_timing("write", timer.seconds());

@@ -28,7 +28,9 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
 // row_std_error (the counts only when F was estimated here).
 std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches);
 
-// Writes -o FILE.vtp, --csv and --json where asked, timing the stage "write".
+// Writes -o FILE.vtp, --csv and --json where asked, timing the stage "write". `fields` are the command's own
+// per-patch results; both files also carry the patch description (patch_fields: patch, face, area, normal, rho,
+// E), which the CSV writes as its fixed leading columns.
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary);
 

@@ -22,7 +22,7 @@ std::string step_name(std::size_t k) {
 }  // namespace
 
 ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches, std::size_t max_files)
-    : dir_(std::move(dir)), patches_(patches), max_files_(std::max<std::size_t>(max_files, 2)) {
+    : dir_(std::move(dir)), patches_(patches), patch_fields_(patch_fields(patches)), max_files_(std::max<std::size_t>(max_files, 2)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
@@ -33,7 +33,7 @@ ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches, s
 }
 
 void ProgressiveSeries::write(long iteration, const PatchRgb& B) {
-  std::vector<CellField> fields = patch_fields(patches_);
+  std::vector<CellField> fields = patch_fields_;
   fields.push_back(rgb_field("B", B));
   const std::string file = (fs::path(dir_) / ("iterate_" + std::to_string(iteration) + ".vtp")).string();
   write_vtp(file, patches_, fields);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "io/cell_field.h"
 #include "patch/patch_set.h"
 
 namespace radwalk::app {
@@ -33,6 +34,7 @@ class ProgressiveSeries {
 
   std::string dir_, pvd_;
   const PatchSet& patches_;
+  std::vector<CellField> patch_fields_;  // patch_fields(patches_), the same in every step
   std::size_t max_files_;
   long calls_ = 0, stride_ = 1;
   std::vector<std::pair<long, std::string>> kept_;  // (iteration, file)
