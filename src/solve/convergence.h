@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "solve/problem.h"
+#include "solve/residual.h"
 #include "solve/solution.h"
 #include "solve/solve_options.h"
 #include "solve/spectral_radius.h"
@@ -59,5 +60,30 @@ void record_stability(const StabilityCheck& check, Solution& s);
 void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B,
                       Progress verdict, const std::string& why, long iterations, std::vector<double> history,
                       const std::string& unit);
+
+// The sweep loop of Jacobi and Gauss-Seidel, from the iterate B: each call sweep(B) updates B in place by one
+// sweep and returns the relative residual of the iterate it started from (max_ic |r_ic| / scale_c; not finite
+// when the iteration broke down). After each sweep: on_iterate, then judge_progress on the history; a converged
+// verdict is confirmed on the new iterate (the residual was the previous one's). Ends with finish_iterative.
+template <class Sweep>
+void run_sweeps(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B, Sweep&& sweep) {
+  std::vector<double> history;
+  std::string why;
+  Progress verdict = Progress::keep_going;
+  long sweeps = 0;
+  while (sweeps < options.max_iterations) {
+    history.push_back(sweep(B));
+    ++sweeps;
+    if (options.on_iterate) options.on_iterate(sweeps, B);
+    verdict = judge_progress(history, 1, options, s.method, &why);
+    if (verdict == Progress::converged) {
+      if (relative_residual(p, B) <= options.tol) break;
+      verdict = Progress::keep_going;  // rounding: r(B^k) met tol but B^{k+1} did not yet
+    } else if (verdict != Progress::keep_going) {
+      break;
+    }
+  }
+  finish_iterative(s, p, options, std::move(B), verdict, why, sweeps, std::move(history), "sweeps");
+}
 
 }  // namespace radwalk

@@ -30,11 +30,7 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
     return s;
   }
 
-  std::vector<double> history;
-  std::string why;
-  Progress verdict = Progress::keep_going;
-  long sweeps = 0;
-  while (sweeps < options.max_iterations) {
+  run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {
     // One sweep in patch order; r accumulates max_i |r_ic(B^k)| / scale_c.
     double r = 0;
     bool finite = true;
@@ -63,18 +59,8 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
         r = std::max(r, ri);
       }
     }
-    ++sweeps;
-    history.push_back(finite ? r : std::numeric_limits<double>::infinity());
-    if (options.on_iterate) options.on_iterate(sweeps, B);
-    verdict = judge_progress(history, 1, options, s.method, &why);
-    if (verdict == Progress::converged) {
-      if (relative_residual(p, B) <= options.tol) break;
-      verdict = Progress::keep_going;  // rounding: r(B^k) met tol but B^{k+1} did not yet
-    } else if (verdict != Progress::keep_going) {
-      break;
-    }
-  }
-  finish_iterative(s, p, options, std::move(B), verdict, why, sweeps, std::move(history), "sweeps");
+    return finite ? r : std::numeric_limits<double>::infinity();
+  });
   s.seconds = timer.seconds();
   return s;
 }

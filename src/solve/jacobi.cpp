@@ -30,11 +30,7 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
     return s;
   }
 
-  std::vector<double> history;
-  std::string why;
-  Progress verdict = Progress::keep_going;
-  long sweeps = 0;
-  while (sweeps < options.max_iterations) {
+  run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {
     // One sweep; the largest |r_ic| / scale_c of B^k comes out of it.
     const double r = deterministic_reduce(
         n, 256, 0.0,
@@ -62,18 +58,8 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
         },
         [](double a, double b) { return std::isnan(a) || std::isnan(b) ? a + b : std::max(a, b); });
     std::swap(B, next);
-    ++sweeps;
-    history.push_back(r);
-    if (options.on_iterate) options.on_iterate(sweeps, B);
-    verdict = judge_progress(history, 1, options, s.method, &why);
-    if (verdict == Progress::converged) {
-      if (relative_residual(p, B) <= options.tol) break;
-      verdict = Progress::keep_going;  // rounding: r(B^k) met tol but B^{k+1} did not yet
-    } else if (verdict != Progress::keep_going) {
-      break;
-    }
-  }
-  finish_iterative(s, p, options, std::move(B), verdict, why, sweeps, std::move(history), "sweeps");
+    return r;
+  });
   s.seconds = timer.seconds();
   return s;
 }
