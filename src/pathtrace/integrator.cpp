@@ -1,11 +1,12 @@
 #include "pathtrace/integrator.h"
 
 #include <cmath>
+#include <utility>
 
 #include "core/error.h"
 #include "core/sampling.h"
 #include "patch/patch_set.h"
-#include "visibility/ray_offset.h"
+#include "pathtrace/facet_geometry.h"
 
 namespace radwalk {
 
@@ -44,11 +45,21 @@ struct PathIntegrator::PathState {
 
 PathIntegrator::PathIntegrator(const PatchSet& patches, const Visibility& visibility,
                                const IntegratorOptions& options)
+    : PathIntegrator(patches, std::make_unique<FacetGeometry>(patches), nullptr, visibility, options) {}
+
+PathIntegrator::PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry,
+                               const Visibility& visibility, const IntegratorOptions& options)
+    : PathIntegrator(patches, nullptr, &geometry, visibility, options) {}
+
+PathIntegrator::PathIntegrator(const PatchSet& patches, std::unique_ptr<const SurfaceGeometry> owned,
+                               const SurfaceGeometry* given, const Visibility& visibility,
+                               const IntegratorOptions& options)
     : patches_(patches),
+      owned_geometry_(std::move(owned)),
+      geometry_(given ? given : owned_geometry_.get()),
       visibility_(visibility),
       options_(options),
-      lights_(patches, options.light_selection),
-      eps_(ray_epsilon(patches)) {
+      lights_(patches, *geometry_, options.light_selection) {
   if (options.rr_depth < 0) throw InputError("path tracer: rr_depth must be >= 0");
   if (options.max_depth < 0) throw InputError("path tracer: max_depth must be >= 0 (0 = no cap)");
   bsdfs_.reserve(patches.size());
@@ -73,7 +84,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   if (options_.kind != IntegratorKind::implicit && !bsdf.is_delta() && !lights_.empty()) {
     const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const LightSample ls = lights_.sample(us, u1, u2);
-    if (ls.patch != patch) {
+    if (ls.patch != patch || geometry_->sees_itself(patch)) {
       const Vec3 d = ls.point - x;
       const double dist2 = d.squaredNorm();
       const double dist = std::sqrt(dist2);
@@ -83,7 +94,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
         const Vec3 wi = frame.to_local(wi_world);
         const Rgb f = bsdf.f(wo, wi);
         if ((f > 0).any()) {
-          const Ray shadow = spawn_ray(patches_, static_cast<std::size_t>(patch), x, wi_world, eps_);
+          const Ray shadow = geometry_->spawn_ray(patch, x, wi_world);
           ++counters.rays;
           if (visibility_.intersect(shadow).patch == ls.patch) {
             const double p_light = ls.pdf_area * dist2 / cos_y;
@@ -111,7 +122,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
     if (!(rng.uniform() < q)) return false;
     state.beta /= q;
   }
-  next = spawn_ray(patches_, static_cast<std::size_t>(patch), x, frame.to_world(s->wi), eps_);
+  next = geometry_->spawn_ray(patch, x, frame.to_world(s->wi));
   return true;
 }
 
@@ -122,6 +133,7 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
     if (hit.missed()) return;
     const auto j = static_cast<std::size_t>(hit.patch);
     const Vec3 x = ray.origin + hit.t * ray.direction;
+    const Vec3 n_front = geometry_->normal(hit.patch, x);
 
     // Emission from the front of an emitter, weighted against next-event estimation.
     if (hit.front && (patches_.E[j] > 0).any()) {
@@ -129,7 +141,7 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
       if (options_.kind == IntegratorKind::implicit || state.delta_prev) {
         L += state.beta * Le;
       } else if (options_.kind == IntegratorKind::mis) {
-        const double cos_y = -ray.direction.dot(patches_.normal[j]);
+        const double cos_y = -ray.direction.dot(n_front);
         const double p_light = lights_.pdf_area(hit.patch) * hit.t * hit.t / cos_y;
         L += state.beta * power_heuristic(state.pdf_prev, p_light) * Le;
       }
@@ -138,7 +150,7 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
 
     // Scatter: the shading normal faces the arriving path on two-sided surfaces.
     const Bsdf& bsdf = bsdfs_[j];
-    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-patches_.normal[j]) : patches_.normal[j];
+    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-n_front) : n_front;
     if (!scatter(bsdf, hit.patch, x, n, -ray.direction, state, L, ray, rng, counters)) return;
   }
 }
@@ -153,7 +165,7 @@ Rgb PathIntegrator::radiance(const Ray& ray, Rng& rng, PathCounters& counters) c
 Rgb PathIntegrator::irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const {
   // A white Lambertian vertex at x facing the patch's front: reflected radiance = E_irr / pi.
   static const Bsdf white(Lambertian(Rgb::Ones()));
-  const Vec3& n = patches_.normal[static_cast<std::size_t>(i)];
+  const Vec3 n = geometry_->normal(i, x);
   PathState state;
   Rgb L = Rgb::Zero();
   Ray ray;

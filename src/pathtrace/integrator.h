@@ -16,14 +16,18 @@
 // throughput) and its throughput is divided by q, which keeps the estimate unbiased. There is no depth cap unless
 // max_depth > 0; a cap drops every path with more than max_depth scattering events (a bias, reported as such).
 //
-// Surfaces: every model but the dielectric reflects on both sides; emission is on the front side only.
+// Surfaces: every model but the dielectric reflects on both sides; emission is on the front side only. Normals,
+// points on patches and ray origins come from a SurfaceGeometry: the planar facets of the PatchSet by default
+// (FacetGeometry), or exact curved surfaces given by the caller.
 // Reproducibility: the estimate is a pure function of the Rng passed in.
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "core/rng.h"
 #include "pathtrace/bsdf.h"
 #include "pathtrace/light_sampler.h"
+#include "pathtrace/surface_geometry.h"
 #include "visibility/visibility.h"
 
 namespace radwalk {
@@ -54,33 +58,41 @@ struct PathCounters {
 
 class PathIntegrator {
  public:
-  // Keeps references to patches and visibility (they must outlive it); builds one Bsdf per material.
+  // Keeps references to patches and visibility (they must outlive it); builds one Bsdf per patch. The surfaces
+  // are the patches' planar facets.
   PathIntegrator(const PatchSet& patches, const Visibility& visibility, const IntegratorOptions& options = {});
+  // The same on the surfaces `geometry` describes (kept by reference; visibility must trace the same surfaces).
+  PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry, const Visibility& visibility,
+                 const IntegratorOptions& options = {});
 
   // Radiance arriving at ray.origin along -ray.direction: L(y, -d) for the first hit y (0 on a miss).
   Rgb radiance(const Ray& ray, Rng& rng, PathCounters& counters) const;
 
-  // Irradiance on the front of patch i at its point x: E_irr(x) = int_{H^2(n_i)} L_in(x, w) cos(theta) dw
+  // Irradiance on the front of patch i at its point x: E_irr(x) = int_{H^2(n_i(x))} L_in(x, w) cos(theta) dw
   // (W/m^2). Estimated as pi times the radiance a white Lambertian at x would reflect, so one cosine-sampled
   // direction scores pi L_in (implicit), and NEE/MIS add the direct part from light samples.
   Rgb irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const;
 
   const IntegratorOptions& options() const { return options_; }
   const LightSampler& lights() const { return lights_; }
+  const SurfaceGeometry& geometry() const { return *geometry_; }
   const Bsdf& bsdf(PatchIndex i) const;
 
  private:
   struct PathState;
+  PathIntegrator(const PatchSet& patches, std::unique_ptr<const SurfaceGeometry> owned,
+                 const SurfaceGeometry* given, const Visibility& visibility, const IntegratorOptions& options);
   bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world,
                PathState& state, Rgb& L, Ray& next, Rng& rng, PathCounters& counters) const;
   void trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const;
 
   const PatchSet& patches_;
+  std::unique_ptr<const SurfaceGeometry> owned_geometry_;  // the facets, when no geometry was given
+  const SurfaceGeometry* geometry_;
   const Visibility& visibility_;
   IntegratorOptions options_;
   LightSampler lights_;
   std::vector<Bsdf> bsdfs_;  // per patch (rho is per patch)
-  double eps_;               // ray origin offset (ray_offset.h)
 };
 
 }  // namespace radwalk

@@ -1,11 +1,12 @@
 #include "pathtrace/light_sampler.h"
 
 #include "patch/patch_set.h"
+#include "pathtrace/surface_geometry.h"
 
 namespace radwalk {
 
-LightSampler::LightSampler(const PatchSet& patches, LightSelection selection)
-    : patches_(&patches), slot_(patches.size(), -1) {
+LightSampler::LightSampler(const PatchSet& patches, const SurfaceGeometry& geometry, LightSelection selection)
+    : patches_(&patches), geometry_(&geometry), slot_(patches.size(), -1) {
   std::vector<double> weights;
   for (std::size_t i = 0; i < patches.size(); ++i) {
     if (!(patches.E[i] > 0).any() || !(patches.area[i] > 0)) continue;
@@ -23,8 +24,8 @@ LightSample LightSampler::sample(double u_select, double u1, double u2) const {
   const PatchIndex j = emitters_[k];
   LightSample s;
   s.patch = j;
-  s.point = sample_patch_point(*patches_, static_cast<std::size_t>(j), u1, u2);
-  s.normal = patches_->normal[j];
+  s.point = geometry_->sample_point(j, u1, u2);
+  s.normal = geometry_->normal(j, s.point);
   s.Le = patches_->E[j] * kInvPi;
   s.pdf_area = choice_.pmf(k) / patches_->area[j];
   return s;

@@ -12,7 +12,7 @@
 #include "core/sampling.h"
 #include "core/timer.h"
 #include "patch/patch_set.h"
-#include "visibility/ray_offset.h"
+#include "pathtrace/facet_geometry.h"
 
 namespace radwalk {
 
@@ -38,9 +38,9 @@ struct Tally {
 // carries there and frame the shading frame facing wo (the direction back along the path).
 template <class Visitor>
 void trace_particle(const PatchSet& patches, const Visibility& visibility, const PathIntegrator& integrator,
-                    const LightTraceOptions& options, double eps, Rng& rng, Visitor& visit,
-                    PathCounters& counters) {
+                    const LightTraceOptions& options, Rng& rng, Visitor& visit, PathCounters& counters) {
   const LightSampler& lights = integrator.lights();
+  const SurfaceGeometry& geometry = integrator.geometry();
   // Emission: emitter by power, uniform point, cosine direction about the front normal.
   const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
   const LightSample ls = lights.sample(us, u1, u2);
@@ -48,7 +48,7 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
   visit.emitted(ls, w0);
   const double v1 = rng.uniform(), v2 = rng.uniform();
   Vec3 dir = Frame(ls.normal).to_world(sample_cosine_hemisphere(v1, v2));
-  Ray ray = spawn_ray(patches, static_cast<std::size_t>(ls.patch), ls.point, dir, eps);
+  Ray ray = geometry.spawn_ray(ls.patch, ls.point, dir);
   Rgb beta = Rgb::Ones();  // w = w0 * beta
   int depth = 0;           // bounces so far; the arrival at depth d is the (d+1)-th reflection
   for (;;) {
@@ -56,10 +56,10 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
     ++counters.rays;
     if (hit.missed()) return;
     if (options.max_depth > 0 && depth >= options.max_depth) return;
-    const auto i = static_cast<std::size_t>(hit.patch);
     const Vec3 x = ray.origin + hit.t * ray.direction;
     const Bsdf& bsdf = integrator.bsdf(hit.patch);
-    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-patches.normal[i]) : patches.normal[i];
+    const Vec3 n_front = geometry.normal(hit.patch, x);
+    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-n_front) : n_front;
     const Frame frame(n);
     const Vec3 wo = frame.to_local(-ray.direction);
     visit.arrived(hit, x, bsdf, frame, wo, Rgb(w0 * beta));
@@ -77,7 +77,7 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
       beta /= q;
     }
     dir = frame.to_world(bs->wi);
-    ray = spawn_ray(patches, i, x, dir, eps);
+    ray = geometry.spawn_ray(hit.patch, x, dir);
   }
 }
 
@@ -107,16 +107,15 @@ struct PatchTally {
 // Camera splat: each vertex connected to the pinhole, I_pixel += w f |cos_y| cos_c W / d^2 (emission point:
 // w0 Le/E = w0 / pi in place of w f).
 struct CameraSplat {
-  const PatchSet& patches;
+  const SurfaceGeometry& geometry;
   const Visibility& visibility;
   const PinholeCamera& camera;
-  double eps;
   Scores& scores;
   PathCounters& counters;
   void connect(PatchIndex patch, const Vec3& x, const Vec3& wc, double d, const Rgb& value) {
     const auto film = camera.project(x);
     if (!film) return;
-    Ray shadow = spawn_ray(patches, static_cast<std::size_t>(patch), x, wc, eps);
+    Ray shadow = geometry.spawn_ray(patch, x, wc);
     shadow.tmax = d;
     ++counters.rays;
     if (visibility.occluded(shadow)) return;
@@ -195,20 +194,25 @@ std::pair<Rgb, Rgb> mean_var(const Tally& t, std::size_t i, double m) {
 
 Solution light_trace_patches(const PatchSet& patches, const Visibility& visibility,
                              const LightTraceOptions& options) {
+  return light_trace_patches(patches, FacetGeometry(patches), visibility, options);
+}
+
+Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geometry, const Visibility& visibility,
+                             const LightTraceOptions& options) {
   if (options.particles < 2)
     throw InputError("light tracer: particles must be >= 2 (got " + std::to_string(options.particles) + ")");
   const Timer timer;
   IntegratorOptions io;
   io.kind = IntegratorKind::implicit;
-  const PathIntegrator integrator(patches, visibility, io);  // BSDFs and the power-proportional light choice
-  const double eps = ray_epsilon(patches);
+  // BSDFs, geometry and the power-proportional light choice.
+  const PathIntegrator integrator(patches, geometry, visibility, io);
   const std::size_t n = patches.size();
 
   Tally total(n);
   if (!integrator.lights().empty())
     run_particles(n, options, kBatch, "light tracing", total, [&](Rng& rng, Scores& scores, PathCounters& c) {
       PatchTally visit{patches, scores};
-      trace_particle(patches, visibility, integrator, options, eps, rng, visit, c);
+      trace_particle(patches, visibility, integrator, options, rng, visit, c);
     });
 
   // Mean and unbiased per-particle variance of each patch's score.
@@ -251,14 +255,13 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   IntegratorOptions io;
   io.kind = IntegratorKind::implicit;
   const PathIntegrator integrator(patches, visibility, io);
-  const double eps = ray_epsilon(patches);
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   Tally total(pixels);
   if (!integrator.lights().empty())
     run_particles(pixels, options, kImageBatch, "light tracing image", total,
                   [&](Rng& rng, Scores& scores, PathCounters& c) {
-                    CameraSplat visit{patches, visibility, pinhole, eps, scores, c};
-                    trace_particle(patches, visibility, integrator, options, eps, rng, visit, c);
+                    CameraSplat visit{integrator.geometry(), visibility, pinhole, scores, c};
+                    trace_particle(patches, visibility, integrator, options, rng, visit, c);
                   });
   RenderResult result;
   result.mean = RgbImage(width, height);

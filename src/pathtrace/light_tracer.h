@@ -40,6 +40,9 @@ struct LightTraceOptions {
 // A scene without emitters gives B = E = 0 with zero error. Throws InputError when particles < 2.
 Solution light_trace_patches(const PatchSet& patches, const Visibility& visibility,
                              const LightTraceOptions& options);
+// The same on the surfaces `geometry` describes (visibility must trace the same surfaces).
+Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geometry, const Visibility& visibility,
+                             const LightTraceOptions& options);
 
 RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibility, const Camera& camera,
                                int width, int height, const LightTraceOptions& options);

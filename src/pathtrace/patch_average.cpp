@@ -10,6 +10,7 @@
 #include "core/progress.h"
 #include "core/timer.h"
 #include "patch/patch_set.h"
+#include "pathtrace/facet_geometry.h"
 
 namespace radwalk {
 
@@ -26,9 +27,14 @@ struct Partial {
 
 Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visibility,
                                  const PatchAverageOptions& options) {
+  return estimate_patch_averages(patches, FacetGeometry(patches), visibility, options);
+}
+
+Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry& geometry,
+                                 const Visibility& visibility, const PatchAverageOptions& options) {
   if (options.spp < 2) throw InputError("path tracer: spp must be >= 2 (got " + std::to_string(options.spp) + ")");
   const Timer timer;
-  const PathIntegrator integrator(patches, visibility, options.integrator);
+  const PathIntegrator integrator(patches, geometry, visibility, options.integrator);
   const std::size_t n = patches.size();
   const auto blocks = static_cast<std::size_t>((options.spp + kBlock - 1) / kBlock);
   std::vector<Partial> parts(n * blocks);
@@ -46,8 +52,9 @@ Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visi
         for (long s = s0; s < s1; ++s) {
           Rng rng(options.seed, i, static_cast<std::uint64_t>(s));
           const double u1 = rng.uniform(), u2 = rng.uniform();
-          const Vec3 x = sample_patch_point(patches, i, u1, u2);
-          const Rgb y = patches.rho[i] * integrator.irradiance(static_cast<PatchIndex>(i), x, rng, p.counters);
+          const auto patch = static_cast<PatchIndex>(i);
+          const Vec3 x = geometry.sample_point(patch, u1, u2);
+          const Rgb y = patches.rho[i] * integrator.irradiance(patch, x, rng, p.counters);
           p.sum += y;
           p.sum2 += y * y;
         }

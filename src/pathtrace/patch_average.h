@@ -3,7 +3,7 @@
 //
 //   B_i = E_i + rho_i * (1/A_i) int_{A_i} E_irr(x) dx,     E_irr(x) = int_{H^2(n_i)} L_in(x, w) cos(theta) dw,
 // in W/m^2 (radiosity; a Lambertian patch's outgoing radiance is B_i / pi). One sample of patch i takes x
-// uniform on the patch (pdf 1/A_i, sample_patch_point) and estimates E_irr(x) with PathIntegrator::irradiance
+// uniform on the patch (pdf 1/A_i, SurfaceGeometry::sample_point) and estimates E_irr(x) with PathIntegrator::irradiance
 // (a cosine-sampled direction scores pi L_in; NEE/MIS add light samples), so Y = E_i + rho_i E_irr_hat(x) has
 // mean B_i. The Solution gives B (mean of spp samples), var (per-sample variance, unbiased) and
 // B_se = sqrt(var / spp) per patch and channel.
@@ -29,5 +29,8 @@ struct PatchAverageOptions {
 // info: "rays", "spp", "rays_per_second", "rr_depth", "max_depth". Throws InputError when spp < 2.
 Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visibility,
                                  const PatchAverageOptions& options);
+// The same on the surfaces `geometry` describes (visibility must trace the same surfaces).
+Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry& geometry,
+                                 const Visibility& visibility, const PatchAverageOptions& options);
 
 }  // namespace radwalk

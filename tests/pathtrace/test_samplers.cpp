@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "patch/patch_builder.h"
 #include "pathtrace/discrete_distribution.h"
+#include "pathtrace/facet_geometry.h"
 #include "pathtrace/light_sampler.h"
 #include "stat_helpers.h"
 
@@ -52,7 +53,8 @@ TEST_CASE("light sampler: emitters chosen by power or area, points on the chosen
   b.add_triangle(Vec3(0, 0, 2), Vec3(0, 1, 2), Vec3(1, 0, 2), dim);               // area 0.5, mean E = 0.2 pi
   const PatchSet p = b.build();
 
-  const LightSampler by_power(p, LightSelection::power), by_area(p, LightSelection::area);
+  const FacetGeometry facets(p);
+  const LightSampler by_power(p, facets, LightSelection::power), by_area(p, facets, LightSelection::area);
   REQUIRE(by_power.emitters().size() == 2);
   const double pw1 = 4 * 2.0, pw2 = 0.5 * 0.2;
   CHECK(by_power.pmf(0) == 0);

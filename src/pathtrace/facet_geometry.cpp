@@ -1,0 +1,20 @@
+#include "pathtrace/facet_geometry.h"
+
+#include "patch/patch_set.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+
+FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches), eps_(ray_epsilon(patches)) {}
+
+Vec3 FacetGeometry::normal(PatchIndex i, const Vec3&) const { return patches_.normal[static_cast<std::size_t>(i)]; }
+
+Vec3 FacetGeometry::sample_point(PatchIndex i, double u1, double u2) const {
+  return sample_patch_point(patches_, static_cast<std::size_t>(i), u1, u2);
+}
+
+Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {
+  return radwalk::spawn_ray(patches_, static_cast<std::size_t>(i), x, d, eps_);
+}
+
+}  // namespace radwalk

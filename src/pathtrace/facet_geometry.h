@@ -1,0 +1,27 @@
+#pragma once
+// FacetGeometry: the patches of a PatchSet as the planar triangles and quads they are (SurfaceGeometry).
+//   normal(i, x)          = PatchSet::normal[i], constant over the patch;
+//   sample_point(i, u)    = sample_patch_point (pdf 1 / A_i);
+//   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon;
+//   sees_itself(i)        = false (a plane does not see itself).
+// Keeps a reference to the patches (they must outlive it).
+#include "pathtrace/surface_geometry.h"
+
+namespace radwalk {
+
+struct PatchSet;
+
+class FacetGeometry final : public SurfaceGeometry {
+ public:
+  explicit FacetGeometry(const PatchSet& patches);
+  Vec3 normal(PatchIndex i, const Vec3& x) const override;
+  Vec3 sample_point(PatchIndex i, double u1, double u2) const override;
+  Ray spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const override;
+  bool sees_itself(PatchIndex) const override { return false; }
+
+ private:
+  const PatchSet& patches_;
+  double eps_;  // ray_epsilon(patches)
+};
+
+}  // namespace radwalk
