@@ -7,11 +7,14 @@
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 #include <tbb/partitioner.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <memory>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace radwalk {
@@ -64,6 +67,28 @@ T deterministic_reduce(std::size_t n, std::size_t chunk, T identity, Map&& map, 
   T acc = identity;
   for (auto& p : parts) acc = combine(std::move(acc), p);
   return acc;
+}
+
+// Deterministic reduction in bounded memory: part = map(c) for the chunks c = 0 .. chunks-1 in parallel, each
+// handed to combine(part) in chunk order, with at most `in_flight` parts alive at once (for parts too large
+// to keep one per chunk). A TBB pipeline (serial input, parallel map, serial in-order combine): a thread that
+// finishes a chunk takes the next one while earlier chunks still run, so no thread waits at a barrier for the
+// slowest chunk of a group.
+template <class Map, class Combine>
+void ordered_reduce(std::size_t chunks, std::size_t in_flight, Map&& map, Combine&& combine) {
+  using Part = std::invoke_result_t<Map&, std::size_t>;
+  std::size_t next = 0;
+  tbb::parallel_pipeline(std::max<std::size_t>(in_flight, 1),
+                         tbb::make_filter<void, std::size_t>(tbb::filter_mode::serial_in_order,
+                                                             [&](tbb::flow_control& control) -> std::size_t {
+                                                               if (next < chunks) return next++;
+                                                               control.stop();
+                                                               return chunks;
+                                                             }) &
+                             tbb::make_filter<std::size_t, Part>(tbb::filter_mode::parallel,
+                                                                 [&](std::size_t c) { return map(c); }) &
+                             tbb::make_filter<Part, void>(tbb::filter_mode::serial_in_order,
+                                                          [&](Part part) { combine(std::move(part)); }));
 }
 
 }  // namespace radwalk

@@ -1,11 +1,14 @@
 #include "pathtrace/facet_geometry.h"
 
 #include "patch/patch_set.h"
-#include "visibility/ray_offset.h"
 
 namespace radwalk {
 
-FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches), eps_(ray_epsilon(patches)) {}
+FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches) {
+  const double eps = ray_epsilon(patches);
+  offsets_.reserve(patches.size());
+  for (std::size_t i = 0; i < patches.size(); ++i) offsets_.push_back(patch_ray_offset(patches, i, eps));
+}
 
 Vec3 FacetGeometry::normal(PatchIndex i, const Vec3&) const { return patches_.normal[static_cast<std::size_t>(i)]; }
 
@@ -14,7 +17,7 @@ Vec3 FacetGeometry::sample_point(PatchIndex i, double u1, double u2) const {
 }
 
 Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {
-  return radwalk::spawn_ray(patches_, static_cast<std::size_t>(i), x, d, eps_);
+  return radwalk::spawn_ray(offsets_[static_cast<std::size_t>(i)], x, d);
 }
 
 }  // namespace radwalk

@@ -2,14 +2,16 @@
 // FacetGeometry: the patches of a PatchSet as the planar triangles and quads they are (SurfaceGeometry).
 //   normal(i, x)          = PatchSet::normal[i], constant over the patch;
 //   sample_point(i, u)    = sample_patch_point (pdf 1 / A_i);
-//   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon;
+//   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon (the
+//                           per-patch part precomputed: 56 bytes per patch);
 //   sees_itself(i)        = false (a plane does not see itself).
 // Keeps a reference to the patches (they must outlive it).
+#include <vector>
+
 #include "pathtrace/surface_geometry.h"
+#include "visibility/ray_offset.h"
 
 namespace radwalk {
-
-struct PatchSet;
 
 class FacetGeometry final : public SurfaceGeometry {
  public:
@@ -21,7 +23,7 @@ class FacetGeometry final : public SurfaceGeometry {
 
  private:
   const PatchSet& patches_;
-  double eps_;  // ray_epsilon(patches)
+  std::vector<PatchRayOffset> offsets_;  // patch_ray_offset of every patch, with eps = ray_epsilon(patches)
 };
 
 }  // namespace radwalk

@@ -2,11 +2,14 @@
 
 #include <embree3/rtcore.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <mutex>
 #include <stdexcept>
 
 #include "core/error.h"
+#include "visibility/ray_packet.h"
 
 namespace radwalk {
 
@@ -38,8 +41,29 @@ void record_error(void* user, RTCError code, const char* message) {
   if (d->error.empty()) d->error = std::string(message ? message : "") + " (code " + std::to_string(int(code)) + ")";
 }
 
-float to_float_tmax(double tmax) {
-  return tmax >= double(std::numeric_limits<float>::max()) ? std::numeric_limits<float>::infinity() : float(tmax);
+// The Embree ray of `ray` (single precision, tnear 0), with id `id`.
+RTCRay rtc_ray(const Ray& ray, unsigned id) {
+  RTCRay r;
+  r.org_x = float(ray.origin.x());
+  r.org_y = float(ray.origin.y());
+  r.org_z = float(ray.origin.z());
+  r.dir_x = float(ray.direction.x());
+  r.dir_y = float(ray.direction.y());
+  r.dir_z = float(ray.direction.z());
+  r.tnear = 0.0f;
+  r.tfar = to_float_tmax(ray.tmax);
+  r.time = 0.0f;
+  r.mask = ~0u;
+  r.id = id;
+  r.flags = 0;
+  return r;
+}
+
+// Lanes [0, m) of `src` into `dst`, and lane 0 again into the lanes [m, 16) that are masked off, so that
+// Embree never reads an uninitialised value (0 < m <= 16). All 16 are copied first: one fixed-size copy.
+void copy_lanes(float* dst, const float* src, std::size_t m) {
+  std::memcpy(dst, src, 16 * sizeof(float));
+  std::fill(dst + m, dst + 16, src[0]);
 }
 
 void validate(const PatchSet& patches) {
@@ -133,18 +157,7 @@ Hit EmbreeVisibility::intersect(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit rh;
-  rh.ray.org_x = float(ray.origin.x());
-  rh.ray.org_y = float(ray.origin.y());
-  rh.ray.org_z = float(ray.origin.z());
-  rh.ray.dir_x = float(ray.direction.x());
-  rh.ray.dir_y = float(ray.direction.y());
-  rh.ray.dir_z = float(ray.direction.z());
-  rh.ray.tnear = 0.0f;
-  rh.ray.tfar = to_float_tmax(ray.tmax);
-  rh.ray.time = 0.0f;
-  rh.ray.mask = ~0u;
-  rh.ray.id = 0;
-  rh.ray.flags = 0;
+  rh.ray = rtc_ray(ray, 0);
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(device_->scene, &context, &rh);
@@ -155,54 +168,48 @@ Hit EmbreeVisibility::intersect(const Ray& ray) const {
 bool EmbreeVisibility::occluded(const Ray& ray) const {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay r;
-  r.org_x = float(ray.origin.x());
-  r.org_y = float(ray.origin.y());
-  r.org_z = float(ray.origin.z());
-  r.dir_x = float(ray.direction.x());
-  r.dir_y = float(ray.direction.y());
-  r.dir_z = float(ray.direction.z());
-  r.tnear = 0.0f;
-  r.tfar = to_float_tmax(ray.tmax);
-  r.time = 0.0f;
-  r.mask = ~0u;
-  r.id = 0;
-  r.flags = 0;
+  RTCRay r = rtc_ray(ray, 0);
   rtcOccluded1(device_->scene, &context, &r);
   return r.tfar < 0.0f;  // Embree sets tfar = -inf on a hit
 }
 
-void EmbreeVisibility::intersect(const Ray* rays, Hit* hits, std::size_t n) const {
+void EmbreeVisibility::intersect(const RayPacket& rays, Hit* hits) const {
+  const std::size_t m = std::min(rays.count, kPacketSize);
+  if (m == 0) return;
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit16 rh;
-  int valid[16];
-  for (std::size_t base = 0; base < n; base += 16) {
-    const std::size_t m = std::min<std::size_t>(16, n - base);
-    // Pack up to 16 rays (structure of arrays); lanes past m are masked off.
-    for (std::size_t k = 0; k < 16; ++k) {
-      valid[k] = k < m ? -1 : 0;
-      const Ray& ray = rays[base + std::min(k, m - 1)];
-      rh.ray.org_x[k] = float(ray.origin.x());
-      rh.ray.org_y[k] = float(ray.origin.y());
-      rh.ray.org_z[k] = float(ray.origin.z());
-      rh.ray.dir_x[k] = float(ray.direction.x());
-      rh.ray.dir_y[k] = float(ray.direction.y());
-      rh.ray.dir_z[k] = float(ray.direction.z());
-      rh.ray.tnear[k] = 0.0f;
-      rh.ray.tfar[k] = to_float_tmax(ray.tmax);
-      rh.ray.time[k] = 0.0f;
-      rh.ray.mask[k] = ~0u;
-      rh.ray.id[k] = unsigned(k);
-      rh.ray.flags[k] = 0;
-      rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-    }
-    rtcIntersect16(valid, device_->scene, &context, &rh);
-    for (std::size_t k = 0; k < m; ++k) {
-      const float dir[3] = {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]};
-      hits[base + k] = make_hit(rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], dir);
-    }
+  alignas(64) int valid[16];
+  copy_lanes(rh.ray.org_x, rays.org_x, m);
+  copy_lanes(rh.ray.org_y, rays.org_y, m);
+  copy_lanes(rh.ray.org_z, rays.org_z, m);
+  copy_lanes(rh.ray.dir_x, rays.dir_x, m);
+  copy_lanes(rh.ray.dir_y, rays.dir_y, m);
+  copy_lanes(rh.ray.dir_z, rays.dir_z, m);
+  copy_lanes(rh.ray.tfar, rays.tmax, m);
+  for (std::size_t k = 0; k < 16; ++k) {
+    valid[k] = k < m ? -1 : 0;
+    rh.ray.tnear[k] = 0.0f;
+    rh.ray.time[k] = 0.0f;
+    rh.ray.mask[k] = ~0u;
+    rh.ray.id[k] = unsigned(k);
+    rh.ray.flags[k] = 0;
+    rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+  }
+  rtcIntersect16(valid, device_->scene, &context, &rh);
+  for (std::size_t k = 0; k < m; ++k) {
+    const float dir[3] = {rh.ray.dir_x[k], rh.ray.dir_y[k], rh.ray.dir_z[k]};
+    hits[k] = make_hit(rh.hit.geomID[k], rh.hit.primID[k], rh.ray.tfar[k], dir);
+  }
+}
+
+void EmbreeVisibility::intersect(const Ray* rays, Hit* hits, std::size_t n) const {
+  RayPacket packet;
+  for (std::size_t base = 0; base < n; base += kPacketSize) {
+    packet.count = std::min(kPacketSize, n - base);
+    for (std::size_t k = 0; k < packet.count; ++k) packet.set(k, rays[base + k]);
+    intersect(packet, hits + base);
   }
 }
 
@@ -213,22 +220,7 @@ void EmbreeVisibility::occluded(const Ray* rays, bool* out, std::size_t n) const
   RTCRay stream[kStream];
   for (std::size_t base = 0; base < n; base += kStream) {
     const std::size_t m = std::min(kStream, n - base);
-    for (std::size_t k = 0; k < m; ++k) {
-      const Ray& ray = rays[base + k];
-      RTCRay& r = stream[k];
-      r.org_x = float(ray.origin.x());
-      r.org_y = float(ray.origin.y());
-      r.org_z = float(ray.origin.z());
-      r.dir_x = float(ray.direction.x());
-      r.dir_y = float(ray.direction.y());
-      r.dir_z = float(ray.direction.z());
-      r.tnear = 0.0f;
-      r.tfar = to_float_tmax(ray.tmax);
-      r.time = 0.0f;
-      r.mask = ~0u;
-      r.id = unsigned(k);
-      r.flags = 0;
-    }
+    for (std::size_t k = 0; k < m; ++k) stream[k] = rtc_ray(rays[base + k], unsigned(k));
     rtcOccluded1M(device_->scene, &context, stream, unsigned(m), sizeof(RTCRay));
     for (std::size_t k = 0; k < m; ++k) out[base + k] = stream[k].tfar < 0.0f;
   }

@@ -41,9 +41,11 @@ class EmbreeVisibility final : public Visibility {
   Hit intersect(const Ray& ray) const override;
   bool occluded(const Ray& ray) const override;
   // Batches: packets of 16 (rtcIntersect16) for intersect, streams (rtcOccluded1M) for occluded: both measured
-  // faster than single rays on incoherent rays (bench/bench_formfactors.cpp).
+  // faster than single rays on incoherent rays (bench/bench_formfactors.cpp). A Ray batch is rounded to
+  // RayPackets of 16 and traced as such; a RayPacket goes to rtcIntersect16 as it is.
   void intersect(const Ray* rays, Hit* hits, std::size_t n) const override;
   void occluded(const Ray* rays, bool* out, std::size_t n) const override;
+  void intersect(const RayPacket& rays, Hit* hits) const override;
 
   std::size_t patch_count() const { return normal_.size(); }
 

@@ -22,6 +22,8 @@ struct Hit {
   bool missed() const { return patch < 0; }
 };
 
+struct RayPacket;  // ray_packet.h
+
 class Visibility {
  public:
   virtual ~Visibility() = default;
@@ -38,6 +40,8 @@ class Visibility {
   virtual void occluded(const Ray* rays, bool* out, std::size_t n) const {
     for (std::size_t k = 0; k < n; ++k) out[k] = occluded(rays[k]);
   }
+  // A packet in single precision: hits[k] = intersect(rays.ray(k)) for k < rays.count (ray_packet.h).
+  virtual void intersect(const RayPacket& rays, Hit* hits) const;
 };
 
 }  // namespace radwalk

@@ -199,7 +199,7 @@ ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const Shoot
   return ShootPart();
 }
 
-// Shooting: `particles` particles in fixed chunks; chunks run in waves and merge in chunk order.
+// Shooting: `particles` particles in fixed chunks, run in parallel, merged in chunk order (ordered_reduce).
 template <TransitionKernel K>
 RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityProblem& problem, long particles,
                     std::uint64_t seed) {
@@ -210,24 +210,19 @@ RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityPr
   if (source.power > 0) {
     const long chunk = std::max<long>(1024, (particles + 255) / 256);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
-    const std::size_t wave = 2 * static_cast<std::size_t>(std::max(1, active_threads()));
-    for (std::size_t first = 0; first < chunks; first += wave) {
-      const std::size_t count = std::min(wave, chunks - first);
-      std::vector<ShootPart> parts(count);
-      parallel_for(
-          count,
-          [&](std::size_t c) {
-            const long begin = static_cast<long>(first + c) * chunk;
-            parts[c] = run_shoot_chunk(kernel, estimator, source, problem.area, begin,
-                                       std::min(particles, begin + chunk), seed);
-          },
-          1);
-      for (const ShootPart& part : parts) {
-        sum += part.sum;
-        sum2 += part.sum2;
-        r.counters += part.counters;
-      }
-    }
+    // At most two chunks' sums per thread in memory (each is N x 3 twice).
+    ordered_reduce(
+        chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
+        [&](std::size_t c) {
+          const long begin = static_cast<long>(c) * chunk;
+          const long end = std::min(particles, begin + chunk);
+          return run_shoot_chunk(kernel, estimator, source, problem.area, begin, end, seed);
+        },
+        [&](const ShootPart& part) {
+          sum += part.sum;
+          sum2 += part.sum2;
+          r.counters += part.counters;
+        });
   }
   // B = E + mean Y; per-particle variance from the power sums (clamped at 0 against rounding).
   const double n = static_cast<double>(particles);

@@ -2,11 +2,30 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/error.h"
+#include "core/sampling.h"
+#include "visibility/ray_offset.h"
 
 namespace radwalk {
+namespace {
+
+// A uniform number in [0, 1) on the grid 2^-24 from one 32-bit draw: exact in single precision.
+float uniform_float(Rng& rng) {
+  return static_cast<float>(rng.next_u32() >> 8) * 0x1.0p-24f;
+}
+
+// sqrt lane by lane, correctly rounded (Eigen's Array::sqrt is an rsqrt approximation under EIGEN_FAST_MATH,
+// whose last bits depend on the CPU); vectorised (sqrtps) thanks to -fno-math-errno (CMakeLists.txt).
+LaneFloats lane_sqrt(const LaneFloats& x) {
+  LaneFloats r;
+  for (Eigen::Index l = 0; l < x.size(); ++l) r[l] = std::sqrt(x[l]);
+  return r;
+}
+
+}  // namespace
 
 RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, const Visibility& visibility,
                      std::vector<double> p)
@@ -17,24 +36,33 @@ RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, c
     throw InputError("ray kernel: " + std::to_string(N) + " patches but rho has " +
                      std::to_string(problem.rho.rows()) + " rows, E " + std::to_string(problem.E.rows()) +
                      ", p " + std::to_string(p.size()) + ": sizes must agree");
-  // Per-patch sampling records (the quad split as in sample_patch_point).
+  // Per-patch sampling records, in double and then rounded: the quad split as in sample_patch_point, the
+  // corner and edges shrunk about the centroid by (1 - pull) and lifted by eps n as spawn_ray moves a point.
   const double eps = ray_epsilon(patches);
   samplers_.resize(N);
   for (std::size_t k = 0; k < N; ++k) {
     PatchSampler& s = samplers_[k];
-    s.a = patches.corner(k, 0);
-    s.e1 = patches.corner(k, 1) - s.a;
-    s.e2 = patches.corner(k, 2) - s.a;
-    s.e3 = s.e2;
+    const PatchRayOffset offset = patch_ray_offset(patches, k, eps);
+    const double shrink = 1.0 - offset.pull;
+    const Vec3& a = patches.corner(k, 0);
+    const Vec3 e1 = patches.corner(k, 1) - a, e2 = patches.corner(k, 2) - a;
+    const Vec3 e3 = patches.is_quad(k) ? Vec3(patches.corner(k, 3) - a) : e2;
+    s.corner = (shrink * a + offset.pull * offset.centroid + offset.normal_eps).cast<float>();
+    s.edge[0] = (shrink * e1).cast<float>();
+    s.edge[1] = (shrink * e2).cast<float>();
+    s.edge[2] = (shrink * e3).cast<float>();
     if (patches.is_quad(k)) {
-      s.e3 = patches.corner(k, 3) - s.a;
-      const double a1 = s.e1.cross(s.e2).norm(), a2 = s.e2.cross(s.e3).norm();
-      s.split = a1 / (a1 + a2);
-      s.inv_split = 1.0 / s.split;
-      s.inv_rest = s.split < 1 ? 1.0 / (1.0 - s.split) : 0.0;
+      const double a1 = e1.cross(e2).norm(), a2 = e2.cross(e3).norm(), split = a1 / (a1 + a2);
+      s.lower[1] = static_cast<float>(split);
+      s.inv_width[0] = static_cast<float>(1.0 / split);
+      s.inv_width[1] = split < 1 ? static_cast<float>(1.0 / (1.0 - split)) : 0.0f;
     }
-    s.frame = Frame(patches.normal[k]);
-    s.offset = patch_ray_offset(patches, k, eps);
+    const Frame frame(patches.normal[k]);
+    s.tangent[0] = frame.t.cast<float>();
+    s.tangent[1] = frame.b.cast<float>();
+    s.tangent[2] = -s.tangent[0];
+    s.tangent[3] = -s.tangent[1];
+    s.normal = frame.n.cast<float>();
   }
   // Scored stops are the roulette stops: a_k = 1 - p_k.
   std::vector<double> n(N, 1.0), a(N);
@@ -42,48 +70,63 @@ RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, c
   tables_ = make_walk_tables(problem.rho, problem.E, std::move(p), std::move(n), std::move(a));
 }
 
-Ray RayKernel::ray(std::size_t k, double u1, double u2, double u3, const Eigen::Vector2d& phi) const {
-  const PatchSampler& s = samplers_[k];
-  // Uniform point: pick the triangle, rescale u1 to [0, 1), square-root warp.
-  const bool first = u1 < s.split;
-  u1 = std::min(first ? u1 * s.inv_split : (u1 - s.split) * s.inv_rest, 0x1.fffffffffffffp-1);
-  const Vec3& eb = first ? s.e1 : s.e2;
-  const Vec3& ec = first ? s.e2 : s.e3;
-  const Vec3 x = s.a + std::sqrt(u1) * (u2 * eb + (1.0 - u2) * ec);
-  // Cosine-weighted direction about the normal (sample_cosine_hemisphere), and the offset origin.
-  const double r = std::sqrt(u3);
-  const Vec3 w = s.frame.to_world(Vec3(r * phi.x(), r * phi.y(), std::sqrt(1.0 - u3)));
-  return spawn_ray(s.offset, x, w);
+void RayKernel::make_rays(const SampleRequest* requests, std::size_t count, RayPacket& rays) const {
+  constexpr float kBelowOne = 0x1.fffffep-1f;
+  // Step 1, per ray: the four uniforms, the triangle t of the point and u1 rescaled to [0, 1) within it (no
+  // branch: t is 0 or 1 at random for a quad). Lanes past `count` keep u = 0 (computed, never traced).
+  LaneFloats u1 = LaneFloats::Zero(), u2 = LaneFloats::Zero(), u3 = LaneFloats::Zero(),
+             u4 = LaneFloats::Zero();
+  int triangle[kPacketSize];
+  for (std::size_t l = 0; l < count; ++l) {
+    Rng& rng = *requests[l].rng;
+    const PatchSampler& p = samplers_[requests[l].k];
+    const float u = uniform_float(rng);
+    const int t = static_cast<int>(u >= p.lower[1]);
+    triangle[l] = t;
+    u1[l] = std::min((u - p.lower[t]) * p.inv_width[t], kBelowOne);
+    u2[l] = uniform_float(rng);
+    u3[l] = uniform_float(rng);
+    u4[l] = uniform_float(rng);
+  }
+  // Step 2, all lanes at once: the weights of the edges, s u2 and s (1 - u2), and the direction in the frame
+  // turned by q quarter turns, (r cos theta, r sin theta, z).
+  const LaneFloats s = lane_sqrt(u1), wb = s * u2, wc = s - wb;
+  const LaneFloats r = lane_sqrt(u3), z = lane_sqrt(1.0f - u3);
+  const QuarterTurns phi = unit_circle(u4);
+  const LaneFloats wx = r * phi.cos_theta, wy = r * phi.sin_theta;
+  // Step 3, per ray: into the patch's geometry.
+  rays.count = count;
+  for (std::size_t l = 0; l < count; ++l) {
+    const PatchSampler& p = samplers_[requests[l].k];
+    const int t = triangle[l], q = phi.q[l] & 3;
+    const Eigen::Vector3f o = p.corner + wb[l] * p.edge[t] + wc[l] * p.edge[t + 1];
+    const Eigen::Vector3f w = wx[l] * p.tangent[q] + wy[l] * p.tangent[(q + 1) & 3] + z[l] * p.normal;
+    rays.org_x[l] = o.x();
+    rays.org_y[l] = o.y();
+    rays.org_z[l] = o.z();
+    rays.dir_x[l] = w.x();
+    rays.dir_y[l] = w.y();
+    rays.dir_z[l] = w.z();
+    rays.tmax[l] = std::numeric_limits<float>::infinity();
+  }
 }
 
 Ray RayKernel::sample_ray(std::size_t k, Rng& rng) const {
-  // Four uniforms from one 32-bit draw each (the same as roulette_uniform).
-  const double u1 = roulette_uniform(rng), u2 = roulette_uniform(rng), u3 = roulette_uniform(rng);
-  return ray(k, u1, u2, u3, unit_circle(roulette_uniform(rng)));
+  const SampleRequest request{k, &rng};
+  RayPacket rays;
+  make_rays(&request, 1, rays);
+  return rays.ray(0);
 }
 
 void RayKernel::sample(std::span<const SampleRequest> requests, std::span<PatchIndex> out,
                        WalkCounters& counters) const {
-  Ray rays[kMaxLanes];
-  Hit hits[kMaxLanes];
-  double u1[kMaxLanes], u2[kMaxLanes], u3[kMaxLanes], u4[kMaxLanes];
-  Eigen::Vector2d phi[kMaxLanes];
-  for (std::size_t base = 0; base < requests.size(); base += kMaxLanes) {
-    const std::size_t m = std::min(kMaxLanes, requests.size() - base);
-    const SampleRequest* request = requests.data() + base;
-    // The rays as sample_ray makes them, in phases over the lanes (the uniforms, then cos and sin, then the
-    // geometry), so that the lanes' independent dependency chains overlap.
-    for (std::size_t r = 0; r < m; ++r) {
-      Rng& rng = *request[r].rng;
-      u1[r] = roulette_uniform(rng);
-      u2[r] = roulette_uniform(rng);
-      u3[r] = roulette_uniform(rng);
-      u4[r] = roulette_uniform(rng);
-    }
-    for (std::size_t r = 0; r < m; ++r) phi[r] = unit_circle(u4[r]);
-    for (std::size_t r = 0; r < m; ++r) rays[r] = ray(request[r].k, u1[r], u2[r], u3[r], phi[r]);
+  RayPacket rays;
+  Hit hits[kPacketSize];
+  for (std::size_t base = 0; base < requests.size(); base += kPacketSize) {
+    const std::size_t m = std::min(kPacketSize, requests.size() - base);
+    make_rays(requests.data() + base, m, rays);
     // First patch along each ray: front hit = move, anything else ends the walk.
-    visibility_.intersect(rays, hits, m);
+    visibility_.intersect(rays, hits);
     for (std::size_t r = 0; r < m; ++r) {
       PatchIndex j = hits[r].patch;
       if (hits[r].missed()) {

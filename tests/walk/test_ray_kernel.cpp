@@ -3,15 +3,21 @@
 // alpha = 1e-3, Sidak over scenes x methods x patches x channels); the form-factor error of the analytic F stored
 // in float (1e-8) is far below the Monte Carlo error. Closed cube and an open cube (one face missing: escapes).
 // Walks advanced in lockstep batches (walk_lockstep.h) score bit-identically to walks run one at a time, for both
-// kernels and both visibilities; unit_circle (the ray kernel's cos/sin) is checked against std::cos/std::sin.
+// kernels and both visibilities. The ray kernel's single-precision rays match spawn_ray's in double for the
+// same uniforms, and unit_circle (its cos/sin) is checked against std::cos/std::sin.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cfloat>
 #include <cmath>
+#include <utility>
 
+#include "core/sampling.h"
 #include "core/stats.h"
+#include "patch/patch_builder.h"
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
+#include "visibility/ray_offset.h"
 #include "walk/gather_estimators.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
@@ -164,13 +170,60 @@ TEST_CASE("walks in lockstep batches score exactly as walks run one at a time", 
   check_lockstep_matches_single(MatrixKernel(p, survival), p, "matrix kernel");
 }
 
-TEST_CASE("unit_circle is within 1e-11 of (cos, sin) of 2 pi u", "[walk][ray]") {
+TEST_CASE("the ray kernel's rays are spawn_ray's for the same uniforms, to single precision", "[walk][ray]") {
+  // A tilted planar quad and a triangle about 2000 away from the origin (extent about 1), where the float
+  // rounding of the origin is largest against the offset eps = 8 FLT_EPSILON max|coordinate| (ray_offset.h).
+  // Reference: sample_patch_point, sample_cosine_hemisphere and spawn_ray in double from the same four draws.
+  // The origin's float error is a few roundings at the size of the coordinates (ray_kernel.h): at most
+  // 2 FLT_EPSILON max|x|.
+  PatchBuilder b;
+  const int white = b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  const Vec3 o(1000, -2000, 500);
+  // A planar convex quad in z = 0.1 x + 0.05 y (relative to o).
+  b.add_quad(o, o + Vec3(1, 0, 0.1), o + Vec3(1.2, 1, 0.17), o + Vec3(0, 0.8, 0.04), white);
+  b.add_triangle(o + Vec3(0, 0, 1), o + Vec3(1, 0, 1.5), o + Vec3(0, 1, 1.2), white);
+  const PatchSet patches = b.build();
+  const BruteForceVisibility visibility(patches);
+  const RayKernel kernel(make_problem(patches, SparseF(2, 2)), patches, visibility, {0.5, 0.5});
+  const double eps = ray_epsilon(patches);
+  double scale = 0;  // max |coordinate|
+  for (const Vec3& p : patches.points) scale = std::max(scale, p.cwiseAbs().maxCoeff());
+  double origin_error = 0, direction_error = 0, lowest = INFINITY;
+  for (std::size_t k = 0; k < patches.size(); ++k)
+    for (std::uint64_t n = 0; n < 20000; ++n) {
+      Rng rng(5, k, n), copy = rng;
+      const Ray ray = kernel.sample_ray(k, rng);
+      auto u = [&] { return static_cast<double>(copy.next_u32() >> 8) * 0x1.0p-24; };
+      const double u1 = u(), u2 = u(), u3 = u(), u4 = u();
+      const Vec3 x = sample_patch_point(patches, k, u1, u2);
+      const Vec3 w = Frame(patches.normal[k]).to_world(sample_cosine_hemisphere(u3, u4));
+      const Ray ref = spawn_ray(patches, k, x, w, eps);
+      origin_error = std::max(origin_error, (ray.origin - ref.origin).cwiseAbs().maxCoeff());
+      direction_error = std::max(direction_error, (ray.direction - ref.direction).cwiseAbs().maxCoeff());
+      lowest = std::min(lowest, (ray.origin - x).dot(patches.normal[k]));  // height above the patch plane
+    }
+  INFO("eps " << eps << ", origin error " << origin_error << ", direction error " << direction_error
+              << ", lowest origin above its plane " << lowest);
+  CHECK(origin_error <= 2 * FLT_EPSILON * scale);
+  CHECK(direction_error < 0x1.0p-20);  // a few float roundings of terms of size 1
+  CHECK(lowest > 0.5 * eps);           // eps above the plane, less the origin error (at most eps / 4)
+}
+
+TEST_CASE("unit_circle turned by its quarter turns is within 2.5e-7 of (cos, sin) of 2 pi u", "[walk][ray]") {
+  // Single precision: the bound is 4 float ulps of 1 (2^-22), over the grid of u the kernel draws from.
   double worst = 0;
-  for (int k = 0; k <= 100000; ++k) {
-    const double u = std::min(k / 100000.0, 0x1.fffffffffffffp-1);
-    const Eigen::Vector2d c = unit_circle(u);
-    worst = std::max({worst, std::abs(c.x() - std::cos(2 * kPi * u)), std::abs(c.y() - std::sin(2 * kPi * u))});
+  for (int k = 0; k <= 100000; k += int(kPacketSize)) {
+    LaneFloats u;
+    for (std::size_t l = 0; l < kPacketSize; ++l)
+      u[l] = std::min(float(k + int(l)) / 100000.0f, 0x1.fffffep-1f);
+    const QuarterTurns phi = unit_circle(u);
+    for (std::size_t l = 0; l < kPacketSize; ++l) {
+      double c = phi.cos_theta[l], s = phi.sin_theta[l];
+      for (int q = 0; q < phi.q[l]; ++q) c = -std::exchange(s, c);  // (c, s) -> (-s, c)
+      const double angle = 2 * kPi * double(u[l]);
+      worst = std::max({worst, std::abs(c - std::cos(angle)), std::abs(s - std::sin(angle))});
+    }
   }
   INFO("largest error " << worst);
-  CHECK(worst < 1e-11);
+  CHECK(worst < 0x1.0p-22);
 }
