@@ -1,6 +1,6 @@
 // bench_formfactors: form-factor throughput against raw Embree on the Cornell box, and peak memory.
 //
-// For the Cornell box (meshes/cornell_box.obj, load_scene + make_patches with max_edge chosen for about 1,000,
+// For the Cornell box (meshes/cornell_box.obj patched by bench_scene.h to about 1,000,
 // 10,000 and 100,000 patches), with 1 thread and all threads:
 //   raw Embree   incoherent rays (random patch, uniform point, cosine direction, spawn_ray offset) traced with
 //                rtcIntersect1 and rtcIntersect16 on an Embree scene built here with the same flags as
@@ -19,38 +19,22 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <string>
 #include <vector>
 
+#include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/timer.h"
 #include "formfactor/form_factors.h"
-#include "mesh/read_scene.h"
-#include "patch/patching.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_offset.h"
 
 using namespace radwalk;
 
 namespace {
-
-// The Cornell box patched to about `target` patches: max_edge from the area, corrected twice by the count.
-PatchSet cornell(const std::string& path, std::size_t target) {
-  const Mesh mesh = load_scene(path);
-  PatchSet ps = make_patches(mesh, 0);
-  double h = std::sqrt(ps.total_area() / double(target));
-  for (int it = 0; it < 4; ++it) {
-    ps = make_patches(mesh, h);
-    const double ratio = double(ps.size()) / double(target);
-    if (std::abs(ratio - 1) < 0.1) break;
-    h *= std::sqrt(ratio);
-  }
-  return ps;
-}
 
 // An Embree scene with the same content and flags as EmbreeVisibility, for timing raw rtcIntersect calls.
 struct RawEmbree {
@@ -179,7 +163,7 @@ FormFactorRun run_in_child(const std::string& scene, std::size_t target, long ra
 int main(int argc, char** argv) {
   bool quick = false;
   long rays = 1000;
-  std::string scene = (std::filesystem::path(__FILE__).parent_path().parent_path() / "meshes/cornell_box.obj").string();
+  std::string scene = bench::default_scene();
   long child_target = -1;
   for (int a = 1; a < argc; ++a) {
     const std::string arg = argv[a];
@@ -196,7 +180,7 @@ int main(int argc, char** argv) {
   }
   Progress::set_enabled(false);
   if (child_target > 0) {
-    const FormFactorRun r = run_form_factors(cornell(scene, std::size_t(child_target)), rays);
+    const FormFactorRun r = run_form_factors(bench::patched_to(scene, std::size_t(child_target), 0.1), rays);
     std::printf("%.6f %.6f %.3f %.0f\n", r.mrays_per_s, r.seconds, r.peak_mb, r.nnz);
     return 0;
   }
@@ -209,7 +193,7 @@ int main(int argc, char** argv) {
   std::printf("%8s %7s | %9s %9s %9s | %9s %6s | %8s %9s\n", "patches", "threads", "rtc1", "rtc16", "raw best",
               "ff", "ratio", "nnz/row", "peak MB");
   for (std::size_t t = 0; t < targets.size(); ++t) {
-    const PatchSet ps = cornell(scene, targets[t]);
+    const PatchSet ps = bench::patched_to(scene, targets[t], 0.1);
     const std::size_t total = ps.size() * std::size_t(rays);
     const RawEmbree raw(ps);
     const std::vector<RTCRay> buffer = make_rays(ps, std::min<std::size_t>(total, std::size_t(1) << 21));

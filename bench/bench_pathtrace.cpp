@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "mesh/read_scene.h"
@@ -30,7 +31,7 @@ using namespace radwalk;
 
 int main(int argc, char** argv) {
   long spp = 16;
-  std::string scene = (std::filesystem::path(__FILE__).parent_path().parent_path() / "meshes/cornell_box.obj").string();
+  std::string scene = bench::default_scene();
   std::string out;
   long ref_spp = 65536;
   for (int k = 1; k < argc; ++k) {

@@ -1,6 +1,6 @@
 // bench_walks: transitions per second of the random-walk kernels on the Cornell box, 1 thread and all threads.
 //
-// Scene: meshes/cornell_box.obj (load_scene + make_patches, max_edge chosen for about 300 patches), F from
+// Scene: meshes/cornell_box.obj patched to about 300 patches (bench_scene.h), F from
 // estimate_form_factors with 20,000 rays per patch through EmbreeVisibility (so F has the density of a real run).
 //   matrix chain   raw kernel: one Markov chain per chunk, roulette + alias draw per step, restarted at a random
 //                  patch when it stops (the cost of a transition without any scoring);
@@ -29,13 +29,12 @@
 #include <string>
 #include <vector>
 
+#include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/timer.h"
 #include "formfactor/form_factors.h"
-#include "mesh/read_scene.h"
-#include "patch/patching.h"
 #include "solve/problem.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_offset.h"
@@ -67,19 +66,6 @@ Rate measure(F&& f) {
   const double count = f();
   const double w = wall.seconds(), c = cpu_seconds() - c0;
   return {count / w, count / c};
-}
-
-PatchSet cornell(const std::string& path, std::size_t target) {
-  const Mesh mesh = load_scene(path);
-  PatchSet ps = make_patches(mesh, 0);
-  double h = std::sqrt(ps.total_area() / double(target));
-  for (int it = 0; it < 6; ++it) {
-    ps = make_patches(mesh, h);
-    const double ratio = double(ps.size()) / double(target);
-    if (std::abs(ratio - 1) < 0.15) break;
-    h *= std::sqrt(ratio);
-  }
-  return ps;
 }
 
 // Raw matrix-kernel chain: `steps` transitions in fixed chunks; returns transitions per second.
@@ -163,16 +149,14 @@ Rate embree_rate(const PatchSet& patches, const EmbreeVisibility& vis, std::size
 int main(int argc, char** argv) {
   bool quick = false, ray_only = false;
   int repeat = 3;
-  // Default scene next to this source file (bench/../meshes).
-  std::string scene = std::string(__FILE__);
-  scene = scene.substr(0, scene.find_last_of('/')) + "/../meshes/cornell_box.obj";
+  std::string scene = bench::default_scene();
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--quick")) quick = true;
     else if (!std::strcmp(argv[a], "--ray-only")) ray_only = true;
     else if (!std::strcmp(argv[a], "--scene") && a + 1 < argc) scene = argv[++a];
     else if (!std::strcmp(argv[a], "--repeat") && a + 1 < argc) repeat = std::max(1, std::atoi(argv[++a]));
   }
-  const PatchSet patches = cornell(scene, 300);
+  const PatchSet patches = bench::patched_to(scene, 300, 0.15);
   const EmbreeVisibility vis(patches);
   FormFactorOptions ffo;
   ffo.rays_per_patch = quick || ray_only ? 2000 : 20000;  // the ray rows do not use F

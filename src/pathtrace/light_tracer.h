@@ -24,7 +24,7 @@
 #include "pathtrace/camera.h"
 #include "pathtrace/integrator.h"
 #include "pathtrace/render.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 
 namespace radwalk {
 

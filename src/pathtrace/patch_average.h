@@ -14,7 +14,7 @@
 #include <cstdint>
 
 #include "pathtrace/integrator.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 
 namespace radwalk {
 

@@ -22,7 +22,7 @@
 #include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
 #include "patch/refine_criterion.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 
 namespace radwalk {

@@ -18,7 +18,7 @@
 
 #include "solve/problem.h"
 #include "solve/residual.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 #include "solve/spectral_radius.h"
 

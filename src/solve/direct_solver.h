@@ -16,7 +16,7 @@
 #include <memory>
 
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 
 namespace radwalk {

@@ -9,7 +9,7 @@
 // For H >= 0 with radius(H) < 1 it converges at least as fast as Jacobi (Stein-Rosenberg); checked before
 // iterating and watched while iterating (convergence.h). Sequential. iterations = sweeps.
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 
 namespace radwalk {

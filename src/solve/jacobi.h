@@ -7,7 +7,7 @@
 // Converges iff the spectral radius of D^{-1}(H - diag H) is < 1 (implied by radius(H) < 1, H >= 0); checked
 // before iterating and watched while iterating (convergence.h). iterations = sweeps.
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 
 namespace radwalk {

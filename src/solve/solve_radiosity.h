@@ -10,7 +10,7 @@
 #include "solve/gauss_seidel.h"
 #include "solve/jacobi.h"
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 #include "solve/southwell.h"
 

@@ -11,7 +11,7 @@
 // is recomputed exactly from B at the end.
 // Converges for H >= 0 with radius(H) < 1; checked before shooting and watched while shooting (convergence.h).
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "solve/solve_options.h"
 
 namespace radwalk {

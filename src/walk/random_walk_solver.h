@@ -15,7 +15,7 @@
 // Threads: whatever TBB allows (core/parallel.h ThreadLimit); the output does not depend on it.
 #include "patch/patch_set.h"
 #include "solve/problem.h"
-#include "solve/solution.h"
+#include "core/solution.h"
 #include "visibility/visibility.h"
 #include "walk/walk_options.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "solve/solution.h"
+#include "core/solution.h"
 
 namespace radwalk::test {
 

@@ -1,5 +1,6 @@
 #pragma once
-// What every solver returns: radiosity per patch and channel, how it was obtained, and how good it is.
+// What every solver returns (deterministic, random walk, path tracer): radiosity per patch and channel, how it
+// was obtained, and how good it is.
 #include <limits>
 #include <map>
 #include <string>

@@ -1,4 +1,4 @@
-#include "solve/solution.h"
+#include "core/solution.h"
 
 namespace radwalk {
 
