@@ -1,12 +1,10 @@
 #include "pathtrace/integrator.h"
 
 #include <cmath>
-#include <utility>
 
 #include "core/error.h"
 #include "core/sampling.h"
 #include "patch/patch_set.h"
-#include "pathtrace/facet_geometry.h"
 
 namespace radwalk {
 
@@ -43,23 +41,13 @@ struct PathIntegrator::PathState {
   int depth = 0;           // scattering events so far
 };
 
-PathIntegrator::PathIntegrator(const PatchSet& patches, const Visibility& visibility,
-                               const IntegratorOptions& options)
-    : PathIntegrator(patches, std::make_unique<FacetGeometry>(patches), nullptr, visibility, options) {}
-
 PathIntegrator::PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry,
                                const Visibility& visibility, const IntegratorOptions& options)
-    : PathIntegrator(patches, nullptr, &geometry, visibility, options) {}
-
-PathIntegrator::PathIntegrator(const PatchSet& patches, std::unique_ptr<const SurfaceGeometry> owned,
-                               const SurfaceGeometry* given, const Visibility& visibility,
-                               const IntegratorOptions& options)
     : patches_(patches),
-      owned_geometry_(std::move(owned)),
-      geometry_(given ? given : owned_geometry_.get()),
+      geometry_(geometry),
       visibility_(visibility),
       options_(options),
-      lights_(patches, *geometry_, options.light_selection) {
+      lights_(patches, geometry, options.light_selection) {
   if (options.rr_depth < 0) throw InputError("path tracer: rr_depth must be >= 0");
   if (options.max_depth < 0) throw InputError("path tracer: max_depth must be >= 0 (0 = no cap)");
   bsdfs_.reserve(patches.size());
@@ -84,7 +72,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   if (options_.kind != IntegratorKind::implicit && !bsdf.is_delta() && !lights_.empty()) {
     const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const LightSample ls = lights_.sample(us, u1, u2);
-    if (ls.patch != patch || geometry_->sees_itself(patch)) {
+    if (ls.patch != patch || geometry_.sees_itself(patch)) {
       const Vec3 d = ls.point - x;
       const double dist2 = d.squaredNorm();
       const double dist = std::sqrt(dist2);
@@ -94,7 +82,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
         const Vec3 wi = frame.to_local(wi_world);
         const Rgb f = bsdf.f(wo, wi);
         if ((f > 0).any()) {
-          const Ray shadow = geometry_->spawn_ray(patch, x, wi_world);
+          const Ray shadow = geometry_.spawn_ray(patch, x, wi_world);
           ++counters.rays;
           if (visibility_.intersect(shadow).patch == ls.patch) {
             const double p_light = ls.pdf_area * dist2 / cos_y;
@@ -122,7 +110,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
     if (!(rng.uniform() < q)) return false;
     state.beta /= q;
   }
-  next = geometry_->spawn_ray(patch, x, frame.to_world(s->wi));
+  next = geometry_.spawn_ray(patch, x, frame.to_world(s->wi));
   return true;
 }
 
@@ -133,7 +121,7 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
     if (hit.missed()) return;
     const auto j = static_cast<std::size_t>(hit.patch);
     const Vec3 x = ray.origin + hit.t * ray.direction;
-    const Vec3 n_front = geometry_->normal(hit.patch, x);
+    const Vec3 n_front = geometry_.normal(hit.patch, x);
 
     // Emission from the front of an emitter, weighted against next-event estimation.
     if (hit.front && (patches_.E[j] > 0).any()) {
@@ -165,7 +153,7 @@ Rgb PathIntegrator::radiance(const Ray& ray, Rng& rng, PathCounters& counters) c
 Rgb PathIntegrator::irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const {
   // A white Lambertian vertex at x facing the patch's front: reflected radiance = E_irr / pi.
   static const Bsdf white(Lambertian(Rgb::Ones()));
-  const Vec3 n = geometry_->normal(i, x);
+  const Vec3 n = geometry_.normal(i, x);
   PathState state;
   Rgb L = Rgb::Zero();
   Ray ray;

@@ -17,10 +17,9 @@
 // max_depth > 0; a cap drops every path with more than max_depth scattering events (a bias, reported as such).
 //
 // Surfaces: every model but the dielectric reflects on both sides; emission is on the front side only. Normals,
-// points on patches and ray origins come from a SurfaceGeometry: the planar facets of the PatchSet by default
-// (FacetGeometry), or exact curved surfaces given by the caller.
+// points on patches and ray origins come from a SurfaceGeometry: the planar facets of the PatchSet
+// (FacetGeometry) for a mesh, or exact curved surfaces.
 // Reproducibility: the estimate is a pure function of the Rng passed in.
-#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,10 +57,8 @@ struct PathCounters {
 
 class PathIntegrator {
  public:
-  // Keeps references to patches and visibility (they must outlive it); builds one Bsdf per patch. The surfaces
-  // are the patches' planar facets.
-  PathIntegrator(const PatchSet& patches, const Visibility& visibility, const IntegratorOptions& options = {});
-  // The same on the surfaces `geometry` describes (kept by reference; visibility must trace the same surfaces).
+  // Keeps references to patches, geometry and visibility (they must outlive it; visibility must trace the
+  // surfaces geometry describes, for a mesh FacetGeometry(patches)); builds one Bsdf per patch.
   PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry, const Visibility& visibility,
                  const IntegratorOptions& options = {});
 
@@ -75,20 +72,17 @@ class PathIntegrator {
 
   const IntegratorOptions& options() const { return options_; }
   const LightSampler& lights() const { return lights_; }
-  const SurfaceGeometry& geometry() const { return *geometry_; }
+  const SurfaceGeometry& geometry() const { return geometry_; }
   const Bsdf& bsdf(PatchIndex i) const;
 
  private:
   struct PathState;
-  PathIntegrator(const PatchSet& patches, std::unique_ptr<const SurfaceGeometry> owned,
-                 const SurfaceGeometry* given, const Visibility& visibility, const IntegratorOptions& options);
   bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world,
                PathState& state, Rgb& L, Ray& next, Rng& rng, PathCounters& counters) const;
   void trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const;
 
   const PatchSet& patches_;
-  std::unique_ptr<const SurfaceGeometry> owned_geometry_;  // the facets, when no geometry was given
-  const SurfaceGeometry* geometry_;
+  const SurfaceGeometry& geometry_;
   const Visibility& visibility_;
   IntegratorOptions options_;
   LightSampler lights_;

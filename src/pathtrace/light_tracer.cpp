@@ -55,7 +55,6 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
     const Hit hit = visibility.intersect(ray);
     ++counters.rays;
     if (hit.missed()) return;
-    if (options.max_depth > 0 && depth >= options.max_depth) return;
     const Vec3 x = ray.origin + hit.t * ray.direction;
     const Bsdf& bsdf = integrator.bsdf(hit.patch);
     const Vec3 n_front = geometry.normal(hit.patch, x);
@@ -76,6 +75,7 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
       if (!(rng.uniform() < q)) return;
       beta /= q;
     }
+    if (options.max_depth > 0 && depth >= options.max_depth) return;  // the cap: no ray that could not score
     dir = frame.to_world(bs->wi);
     ray = geometry.spawn_ray(hit.patch, x, dir);
   }
@@ -254,7 +254,8 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   const PinholeCamera pinhole(camera, width, height);
   IntegratorOptions io;
   io.kind = IntegratorKind::implicit;
-  const PathIntegrator integrator(patches, visibility, io);
+  const FacetGeometry facets(patches);
+  const PathIntegrator integrator(patches, facets, visibility, io);
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   Tally total(pixels);
   if (!integrator.lights().empty())

@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"
+#include "pathtrace/facet_geometry.h"
 
 namespace radwalk {
 
@@ -15,7 +16,8 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
   if (options.spp < 2) throw InputError("render: spp must be >= 2 (got " + std::to_string(options.spp) + ")");
   const Timer timer;
   const PinholeCamera pinhole(camera, options.width, options.height);
-  const PathIntegrator integrator(patches, visibility, options.integrator);
+  const FacetGeometry facets(patches);
+  const PathIntegrator integrator(patches, facets, visibility, options.integrator);
   RenderResult result;
   result.mean = RgbImage(options.width, options.height);
   result.se = RgbImage(options.width, options.height);

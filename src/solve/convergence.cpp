@@ -26,11 +26,11 @@ double needed(double tol, double radius, double rate_factor) {
 }  // namespace
 
 StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& options, const std::string& method,
-                               double rate_factor, double shots_per_sweep) {
+                               double rate_factor) {
   StabilityCheck check;
   check.radius = spectral_radius_bound(p);
   const double budget = double(options.max_iterations);
-  check.iterations_needed = shots_per_sweep * needed(options.tol, check.radius.bound, rate_factor);
+  check.iterations_needed = needed(options.tol, check.radius.bound, rate_factor);
   if (check.iterations_needed <= budget) return check;
 
   // The bound alone cannot clear it: estimate the radius and use its lower bound (the optimistic side).
@@ -50,7 +50,7 @@ StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& op
                     " be < 1 where the scene is closed) and the form factors (rows must sum to <= 1).";
     return check;
   }
-  check.iterations_needed = shots_per_sweep * needed(options.tol, radius, rate_factor);
+  check.iterations_needed = needed(options.tol, radius, rate_factor);
   if (check.iterations_needed > budget) {
     check.ok = false;
     check.status = SolveStatus::max_iterations;
@@ -62,23 +62,23 @@ StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& op
   return check;
 }
 
-Progress judge_progress(const std::vector<double>& h, long entry_size, const SolveOptions& options,
-                        const std::string& method, std::string* why) {
+Verdict judge_progress(const std::vector<double>& h, long entry_size, const SolveOptions& options,
+                       const std::string& method, std::string* why) {
   const double last = h.back();
   const long k = long(h.size()) - 1;
   const long done = k * entry_size;
   if (!std::isfinite(last)) {
     *why = method + " diverged: the relative residual is not finite after " + std::to_string(done) +
            " iterations. Use the direct solver and check reflectances and form factors.";
-    return Progress::diverged;
+    return Verdict::diverged;
   }
-  if (last <= options.tol) return Progress::converged;
+  if (last <= options.tol) return Verdict::converged;
   const double least = *std::min_element(h.begin(), h.end());
   if (last > kGrowthFactor * least) {
     *why = method + " diverged: the relative residual grew from " + fmt(least) + " to " + fmt(last) + " in " +
            std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1. Use the direct"
            " solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
-    return Progress::diverged;
+    return Verdict::diverged;
   }
   if (k >= 2 * kRateWindow) {
     const double before = h[std::size_t(k - kRateWindow)];
@@ -88,14 +88,14 @@ Progress judge_progress(const std::vector<double>& h, long entry_size, const Sol
              (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") + " to " + fmt(last) +
              " after " + std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1."
              " Use the direct solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
-      return Progress::diverged;
+      return Verdict::diverged;
     }
     if (!(rate < 1)) {
       *why = method + " stagnated: the relative residual stayed at " + fmt(last) + " over the last " +
              std::to_string(kRateWindow * entry_size) + " iterations, above tol " + fmt(options.tol) +
              ": either tol is below the rounding level of this problem (loosen it) or the spectral radius of the"
              " iteration is about 1 (use the direct solver, check reflectances and form factors).";
-      return Progress::stagnated;
+      return Verdict::stagnated;
     }
     const double projected = double(done) + double(entry_size) * std::log(options.tol / last) / std::log(rate);
     if (projected > double(options.max_iterations)) {
@@ -105,15 +105,15 @@ Progress judge_progress(const std::vector<double>& h, long entry_size, const Sol
              fmt(std::ceil(projected)) + " iterations, above max-iterations " +
              std::to_string(options.max_iterations) +
              ". Raise --max-iterations, use the direct solver, or loosen the tolerance.";
-      return Progress::too_slow;
+      return Verdict::too_slow;
     }
   }
-  return Progress::keep_going;
+  return Verdict::keep_going;
 }
 
-Progress refusal(const StabilityCheck& check) {
-  if (check.ok) return Progress::keep_going;
-  return check.status == SolveStatus::diverged ? Progress::diverged : Progress::too_slow;
+Verdict refusal(const StabilityCheck& check) {
+  if (check.ok) return Verdict::keep_going;
+  return check.status == SolveStatus::diverged ? Verdict::diverged : Verdict::too_slow;
 }
 
 void record_stability(const StabilityCheck& check, Solution& s) {
@@ -128,7 +128,7 @@ void record_stability(const StabilityCheck& check, Solution& s) {
 namespace radwalk {
 
 void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B,
-                      Progress verdict, const std::string& why, long iterations, std::vector<double> history,
+                      Verdict verdict, const std::string& why, long iterations, std::vector<double> history,
                       const std::string& unit) {
   std::string note;
   if (!B.allFinite()) {
@@ -147,12 +147,12 @@ void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions
   if (s.residual <= options.tol) {
     s.status = SolveStatus::converged;
     s.message = s.method + " converged" + summary;
-  } else if (verdict == Progress::diverged) {
+  } else if (verdict == Verdict::diverged) {
     s.status = SolveStatus::diverged;
     s.message = why + note;
   } else {
     s.status = SolveStatus::max_iterations;
-    s.message = (verdict == Progress::keep_going || verdict == Progress::converged
+    s.message = (verdict == Verdict::keep_going || verdict == Verdict::converged
                      ? s.method + " reached max-iterations " + std::to_string(options.max_iterations) + summary +
                            " Raise --max-iterations or use the direct solver."
                      : why + " Stopped" + summary) +

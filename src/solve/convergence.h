@@ -37,19 +37,19 @@ struct StabilityCheck {
   double iterations_needed = 0;                     // rate_factor * log(tol) / log(radius); inf if radius >= 1
 };
 
-// method names the solver in messages ("jacobi"); unit is "sweeps" or "shots"; shots_per_sweep scales the
-// estimate for Southwell (1 for the others).
+// method names the solver in messages ("jacobi").
 StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& options, const std::string& method,
-                               double rate_factor, double shots_per_sweep = 1);
+                               double rate_factor);
 
-enum class Progress { keep_going, converged, diverged, too_slow, stagnated };
+// How an iteration is going, as judged from its residual history.
+enum class Verdict { keep_going, converged, diverged, too_slow, stagnated };
 
 // history[k]: relative residual after k entries of entry_size iterations each. Fills *why when it stops.
-Progress judge_progress(const std::vector<double>& history, long entry_size, const SolveOptions& options,
-                        const std::string& method, std::string* why);
+Verdict judge_progress(const std::vector<double>& history, long entry_size, const SolveOptions& options,
+                       const std::string& method, std::string* why);
 
 // The verdict a failed check stands for: diverged, or too_slow (status max_iterations); keep_going if ok.
-Progress refusal(const StabilityCheck& check);
+Verdict refusal(const StabilityCheck& check);
 
 // Puts radius and needed iterations into Solution.info ("spectral_radius_bound", "spectral_radius_estimate",
 // "spectral_radius_lower", "iterations_needed").
@@ -58,7 +58,7 @@ void record_stability(const StabilityCheck& check, Solution& s);
 // Ends an iterative solve: sets s.B (a non-finite iterate is replaced by E and said so), the exact relative
 // residual of B, status (converged whenever that residual is <= tol), message, iterations and history.
 void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B,
-                      Progress verdict, const std::string& why, long iterations, std::vector<double> history,
+                      Verdict verdict, const std::string& why, long iterations, std::vector<double> history,
                       const std::string& unit);
 
 // The sweep loop of Jacobi and Gauss-Seidel, from the iterate B: each call sweep(B) updates B in place by one
@@ -69,17 +69,17 @@ template <class Sweep>
 void run_sweeps(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B, Sweep&& sweep) {
   std::vector<double> history;
   std::string why;
-  Progress verdict = Progress::keep_going;
+  Verdict verdict = Verdict::keep_going;
   long sweeps = 0;
   while (sweeps < options.max_iterations) {
     history.push_back(sweep(B));
     ++sweeps;
     if (options.on_iterate) options.on_iterate(sweeps, B);
     verdict = judge_progress(history, 1, options, s.method, &why);
-    if (verdict == Progress::converged) {
+    if (verdict == Verdict::converged) {
       if (relative_residual(p, B) <= options.tol) break;
-      verdict = Progress::keep_going;  // rounding: r(B^k) met tol but B^{k+1} did not yet
-    } else if (verdict != Progress::keep_going) {
+      verdict = Verdict::keep_going;  // rounding: r(B^k) met tol but B^{k+1} did not yet
+    } else if (verdict != Verdict::keep_going) {
       break;
     }
   }

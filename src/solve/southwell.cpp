@@ -111,7 +111,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
   long reported = 0;  // shot count of the last on_iterate call
   std::vector<double> history{relative()};
   std::string why;
-  Progress verdict = Progress::keep_going;
+  Verdict verdict = Verdict::keep_going;
   long shots = 0;
   for (int restart = 0; restart < 3; ++restart) {
     while (shots < options.max_iterations && relative() > options.tol) {
@@ -139,16 +139,16 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
       if (shots % n == 0) {
         history.push_back(relative());
         verdict = judge_progress(history, long(n), options, s.method, &why);
-        if (verdict != Progress::keep_going) break;
+        if (verdict != Verdict::keep_going) break;
       }
     }
-    if (verdict != Progress::keep_going && verdict != Progress::converged) break;
+    if (verdict != Verdict::keep_going && verdict != Verdict::converged) break;
     if (relative() > options.tol) break;  // out of budget
     // The tracked dB met tol; make sure rounding drift did not fool it.
     dB = residual(p, B);
     for (Eigen::Index j = 0; j < n; ++j) refresh(j);
     if (relative() <= options.tol) {
-      verdict = Progress::converged;
+      verdict = Verdict::converged;
       break;
     }
   }

@@ -29,8 +29,4 @@ PatchRayOffset patch_ray_offset(const PatchSet& patches, std::size_t patch, doub
   return o;
 }
 
-Ray spawn_ray(const PatchSet& patches, std::size_t patch, const Vec3& point, const Vec3& direction) {
-  return spawn_ray(patches, patch, point, direction, ray_epsilon(patches));
-}
-
 }  // namespace radwalk

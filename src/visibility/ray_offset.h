@@ -50,8 +50,4 @@ inline Ray spawn_ray(const PatchSet& patches, std::size_t patch, const Vec3& poi
   return spawn_ray(patch_ray_offset(patches, patch, eps), point, direction);
 }
 
-// Same, computing ray_epsilon(patches) on every call: O(number of points). For tests and one-off rays only;
-// loops should compute ray_epsilon once and call the overload above.
-Ray spawn_ray(const PatchSet& patches, std::size_t patch, const Vec3& point, const Vec3& direction);
-
 }  // namespace radwalk

@@ -88,28 +88,28 @@ TEST_CASE("the residual watch: growth, stagnation, a rate too slow, convergence"
   std::vector<double> growing;
   for (int k = 0; k < 40; ++k) growing.push_back(std::pow(1.3, k));  // growing over a full window at k = 20
   std::vector<double> h;
-  Progress verdict = Progress::keep_going;
+  Verdict verdict = Verdict::keep_going;
   for (double r : growing) {
     h.push_back(r);
     verdict = judge_progress(h, 1, o, "jacobi", &why);
-    if (verdict != Progress::keep_going) break;
+    if (verdict != Verdict::keep_going) break;
   }
-  CHECK(verdict == Progress::diverged);
+  CHECK(verdict == Verdict::diverged);
   CHECK(h.size() == 2 * kRateWindow + 1);
   CHECK_THAT(why, Contains("grew"));
 
   std::vector<double> flat(25, 1e-8);
-  CHECK(judge_progress(flat, 1, o, "jacobi", &why) == Progress::stagnated);
+  CHECK(judge_progress(flat, 1, o, "jacobi", &why) == Verdict::stagnated);
   CHECK_THAT(why, Contains("rounding level"));
 
   std::vector<double> slow;  // 0.99 per sweep needs about 2291 sweeps > 1000
   for (int k = 0; k < 25; ++k) slow.push_back(std::pow(0.99, k));
-  CHECK(judge_progress(slow, 1, o, "jacobi", &why) == Progress::too_slow);
+  CHECK(judge_progress(slow, 1, o, "jacobi", &why) == Verdict::too_slow);
   CHECK_THAT(why, Contains("observed rate 0.99"));
   o.max_iterations = 3000;
-  CHECK(judge_progress(slow, 1, o, "jacobi", &why) == Progress::keep_going);
+  CHECK(judge_progress(slow, 1, o, "jacobi", &why) == Verdict::keep_going);
 
-  CHECK(judge_progress({1.0, 1e-11}, 1, o, "jacobi", &why) == Progress::converged);
-  CHECK(judge_progress({1.0, std::nan("")}, 1, o, "jacobi", &why) == Progress::diverged);
-  CHECK(judge_progress({1e-3, 1.1}, 1, o, "jacobi", &why) == Progress::diverged);  // 1e3 above its minimum
+  CHECK(judge_progress({1.0, 1e-11}, 1, o, "jacobi", &why) == Verdict::converged);
+  CHECK(judge_progress({1.0, std::nan("")}, 1, o, "jacobi", &why) == Verdict::diverged);
+  CHECK(judge_progress({1e-3, 1.1}, 1, o, "jacobi", &why) == Verdict::diverged);  // 1e3 above its minimum
 }
