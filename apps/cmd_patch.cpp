@@ -4,6 +4,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "io/obj_writer.h"
@@ -14,6 +15,7 @@ int run_patch(const PatchCommand& command) {
   const std::string ext = std::filesystem::path(command.output).extension().string();
   if (ext != ".vtp" && ext != ".obj")
     throw InputError(command.output + ": unknown output format '" + ext + "' (use .vtp or .obj)");
+  require_output_directory(command.output);
   RunSummary summary("patch", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
   std::printf("%s: %zu faces -> %zu patches (max edge %g), total area %.6g\n", command.scene.scene.c_str(),

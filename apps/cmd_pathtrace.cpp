@@ -6,6 +6,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
@@ -67,6 +68,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     const std::string ext = std::filesystem::path(command.image).extension().string();
     if (ext != ".png" && ext != ".exr")
       throw InputError(command.image + ": unknown image format '" + ext + "' (use .png or .exr)");
+    require_output_directory(command.image);
   }
   if (!command.camera.empty() && command.camera.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");

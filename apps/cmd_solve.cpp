@@ -145,11 +145,13 @@ int run_solve(const SolveCommand& command) {
 
   const bool ray_walk = command.solver == "random-walk" && command.kernel == "ray";
   std::vector<CellField> fields;
+  // The form-factor diagnostics (a transpose of F and a pass over it) only when a per-patch file is written.
+  const bool per_patch_output = !command.scene.vtp.empty() || !command.scene.csv.empty();
   Solution solution;
   if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
-    fields = form_factor_fields(refined.form_factors, patches);
+    if (per_patch_output) fields = form_factor_fields(refined.form_factors, patches);
     fields.push_back(scalar_field("jump", refined.jump));
     solution = std::move(refined.solution);
   } else if (ray_walk) {
@@ -160,8 +162,7 @@ int run_solve(const SolveCommand& command) {
     solution = solve_random_walk(problem, &patches, &visibility, walk_options(command));
   } else {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
-    const auto diagnostics = form_factor_fields(ff, patches);
-    fields.insert(fields.end(), diagnostics.begin(), diagnostics.end());
+    if (per_patch_output) fields = form_factor_fields(ff, patches);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     if (command.solver == "random-walk") {
       solution = solve_random_walk(problem, &patches, nullptr, walk_options(command));

@@ -81,7 +81,6 @@ struct PathtraceCommand {
   std::string image;
   int width = 256, height = 256;
   std::vector<double> camera;  // px py pz tx ty tz ux uy uz fov_deg (empty: the scene's default)
-  long light_particles = 0;
 };
 
 int run_check(const SceneOptions& options);

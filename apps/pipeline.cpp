@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/parallel.h"
@@ -13,7 +14,6 @@
 #include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
 #include "mesh/read_scene.h"
-#include "mesh/validate.h"
 #include "patch/patching.h"
 
 namespace radwalk::app {
@@ -35,9 +35,9 @@ void note(const std::string& message) {
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
+  for (const std::string* out : {&options.vtp, &options.csv, &options.json}) require_output_directory(*out);
   Timer timer;
-  Mesh mesh = read_scene(options.scene);
-  validate_mesh(mesh);
+  Mesh mesh = load_scene(options.scene);
   summary.add_timing("load", timer.seconds());
   for (const std::string& w : mesh.warnings) warn(summary, w);
   summary.json()["scene"] = options.scene;

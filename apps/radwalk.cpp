@@ -2,7 +2,9 @@
 //   0 success, 1 a solver did not converge (its status says why), 2 bad input (file, option), 3 numerical
 //   failure detected (singular or divergent system), 4 internal error.
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <thread>
@@ -19,16 +21,33 @@ namespace {
 
 bool g_quiet = false;
 
+// A finite number, > 0 (strictly_positive) or >= 0, with a one-line message naming what was given (CLI11's
+// own PositiveNumber reports a non-number as out of a 309-digit range). Integer options are converted by
+// CLI11 after it.
+CLI::Validator finite_number(bool strictly_positive) {
+  const std::string what = strictly_positive ? "a positive number" : "a number >= 0";
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        const bool ok =
+            end != text.c_str() && *end == '\0' && std::isfinite(v) && (strictly_positive ? v > 0 : v >= 0);
+        return ok ? std::string() : "expected " + what + ", got '" + text + "'";
+      },
+      strictly_positive ? "POSITIVE" : "NONNEGATIVE");
+}
+const CLI::Validator kPositive = finite_number(true), kNonNegative = finite_number(false);
+
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
   cmd->add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
                     "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
-        ->check(CLI::NonNegativeNumber)
+        ->check(kNonNegative)
         ->capture_default_str();
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed; same seed, same output, whatever the thread count")
       ->capture_default_str();
@@ -40,18 +59,19 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
 
 void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
   auto* rays = cmd->add_option("--rays", o.rays, "Rays per patch for the form factors")
-                   ->check(CLI::PositiveNumber)
+                   ->check(kPositive)
                    ->capture_default_str();
   auto* density = cmd->add_option("--rays-per-area", o.rays_per_area,
                                   "Rays per unit area (at least --min-rays per patch) instead of --rays")
-                      ->check(CLI::PositiveNumber);
+                      ->check(kPositive);
   rays->excludes(density);
   cmd->add_option("--min-rays", o.min_rays, "Minimum rays per patch with --rays-per-area")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
-  auto* file = cmd->add_option("--form-factors", o.form_factors,
-                               "Read F from a Matrix Market file (from 'radwalk formfactors') instead of tracing")
-                   ->check(CLI::ExistingFile);
+  auto* file =
+      cmd->add_option("--form-factors", o.form_factors,
+                      "Read F from a Matrix Market file (from 'radwalk formfactors') instead of tracing")
+          ->check(CLI::ExistingFile);
   file->excludes(rays)->excludes(density);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
@@ -91,7 +111,8 @@ int main(int argc, char** argv) {
   auto* solve_cmd = app.add_subcommand("solve", "Solve for the radiosity B of every patch");
   add_scene_options(solve_cmd, solve.scene);
   add_form_factor_options(solve_cmd, solve.ff);
-  solve_cmd->add_option("-o,--output", solve.scene.vtp, "Write the solution as .vtp (cell field B, point field B)");
+  solve_cmd->add_option("-o,--output", solve.scene.vtp,
+                        "Write the solution as .vtp (cell field B, point field B)");
   solve_cmd
       ->add_option("--solver", solve.solver,
                    "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell, "
@@ -99,15 +120,17 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
       ->capture_default_str();
   solve_cmd
-      ->add_option("--tol", solve.tol,
-                   "Iterative solvers stop when max over channels of |E - (I - diag(rho) F) B|_inf / |E|_inf <= tol")
-      ->check(CLI::PositiveNumber)
+      ->add_option(
+          "--tol", solve.tol,
+          "Iterative solvers stop when max over channels of |E - (I - diag(rho) F) B|_inf / |E|_inf <= tol")
+      ->check(kPositive)
       ->capture_default_str();
   solve_cmd
-      ->add_option("--max-iterations", solve.max_iterations,
-                   "Iteration budget: sweeps for jacobi and gauss-seidel (default 10000), shots for southwell "
-                   "(default 1000 x the patch count)")
-      ->check(CLI::PositiveNumber);
+      ->add_option(
+          "--max-iterations", solve.max_iterations,
+          "Iteration budget: sweeps for jacobi and gauss-seidel (default 10000), shots for southwell "
+          "(default 1000 x the patch count)")
+      ->check(kPositive);
   solve_cmd->add_option("--walk", solve.walk, "Random walk direction: gather (adjoint) or shoot (forward)")
       ->check(CLI::IsMember({"gather", "shoot"}))
       ->capture_default_str();
@@ -116,47 +139,53 @@ int main(int argc, char** argv) {
                    "Random-walk estimator: absorption, collision, expected-value (gather), survival (shoot)")
       ->check(CLI::IsMember({"absorption", "collision", "expected-value", "survival"}))
       ->capture_default_str();
-  solve_cmd->add_option("--kernel", solve.kernel, "Transition kernel: matrix (stored F) or ray (Embree, no F)")
+  solve_cmd
+      ->add_option("--kernel", solve.kernel, "Transition kernel: matrix (stored F) or ray (Embree, no F)")
       ->check(CLI::IsMember({"matrix", "ray"}))
       ->capture_default_str();
   solve_cmd->add_option("--walks", solve.walks, "Walks per patch (gather) or particles in total (shoot)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
   solve_cmd->add_option("--patches", solve.patches, "Gathering: estimate only these patches (0-based)");
   solve_cmd
-      ->add_option("--survival", solve.survival,
-                   "Random-walk survival probability p_k: analog (mean rho_k over channels), max (max rho_k), "
-                   "constant (--survival-constant)")
+      ->add_option(
+          "--survival", solve.survival,
+          "Random-walk survival probability p_k: analog (mean rho_k over channels), max (max rho_k), "
+          "constant (--survival-constant)")
       ->check(CLI::IsMember({"analog", "max", "constant"}))
       ->capture_default_str();
-  solve_cmd->add_option("--survival-constant", solve.survival_constant, "p for --survival constant, in (0, 1)")
+  solve_cmd
+      ->add_option("--survival-constant", solve.survival_constant, "p for --survival constant, in (0, 1)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
-  solve_cmd->add_flag("--theory", solve.theory, "Also compute the exact per-walk variance (dense; small scenes)");
+  solve_cmd->add_flag("--theory", solve.theory,
+                      "Also compute the exact per-walk variance (dense; small scenes)");
   solve_cmd
-      ->add_option("--refine", solve.refine,
-                   "Adaptive patching: solve, split every patch whose irradiance (B - E) / rho differs from a "
-                   "coplanar edge neighbour's by more than TOL (relative), re-solve, repeat")
-      ->check(CLI::PositiveNumber);
+      ->add_option(
+          "--refine", solve.refine,
+          "Adaptive patching: solve, split every patch whose irradiance (B - E) / rho differs from a "
+          "coplanar edge neighbour's by more than TOL (relative), re-solve, repeat")
+      ->check(kPositive);
   solve_cmd->add_option("--refine-steps", solve.refine_steps, "Adaptive patching: at most K refinement steps")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   solve_cmd->add_option("--max-patches", solve.max_patches, "Adaptive patching: never split beyond M patches")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
   solve_cmd
       ->add_option("--refine-floor", solve.refine_floor,
                    "Adaptive patching: differences are relative to max(H_i, H_j, F x the mean irradiance)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
   solve_cmd
       ->add_option("--refine-noise", solve.refine_noise,
                    "Adaptive patching: ignore differences within Z form-factor standard errors (0: off)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->capture_default_str();
-  solve_cmd->add_option("--progressive", solve.progressive,
-                        "Write the iterates as DIR/step_NNNN.vtp and DIR/solve.pvd (time = iteration; at most 200 "
-                        "steps) for ParaView; jacobi, gauss-seidel or southwell");
+  solve_cmd->add_option(
+      "--progressive", solve.progressive,
+      "Write the iterates as DIR/step_NNNN.vtp and DIR/solve.pvd (time = iteration; at most 200 "
+      "steps) for ParaView; jacobi, gauss-seidel or southwell");
 
   CompareCommand compare;
   auto* compare_cmd =
@@ -174,10 +203,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"matrix", "ray"}))
       ->capture_default_str();
   compare_cmd->add_option("--walks", compare.walks, "Walks per patch (gather) / per patch of budget (shoot)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
   compare_cmd->add_option("--runs", compare.runs, "Independent runs per estimator")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
 
   PathtraceCommand pt;
@@ -185,27 +214,33 @@ int main(int argc, char** argv) {
   add_scene_options(pt_cmd, pt.scene);
   pt_cmd->add_option("-o,--output", pt.scene.vtp, "Write patch-average radiosity as .vtp");
   pt_cmd->add_option("--spp", pt.spp, "Samples per patch (patch averages) or per pixel (images)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
-  pt_cmd->add_option("--integrator", pt.integrator, "implicit, nee, mis (power heuristic) or light (light tracing)")
+  pt_cmd
+      ->add_option("--integrator", pt.integrator,
+                   "implicit, nee, mis (power heuristic) or light (light tracing)")
       ->check(CLI::IsMember({"implicit", "nee", "mis", "light"}))
       ->capture_default_str();
   pt_cmd->add_option("--image", pt.image, "Render an image: FILE.png (sRGB) or FILE.exr (linear)");
-  pt_cmd->add_option("--width", pt.width, "Image width in pixels")->check(CLI::PositiveNumber)->capture_default_str();
+  pt_cmd->add_option("--width", pt.width, "Image width in pixels")->check(kPositive)->capture_default_str();
   pt_cmd->add_option("--height", pt.height, "Image height in pixels")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->capture_default_str();
-  pt_cmd->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
+  pt_cmd
+      ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
       ->expected(10);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    std::fprintf(stderr, "radwalk: error: %s (see radwalk --help)\n", e.what());
+    return 2;
   }
   Progress::set_enabled(!g_quiet);
   set_quiet(g_quiet);
-  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene}) o->argv = args;
+  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene})
+    o->argv = args;
 
   try {
     if (*check_cmd) return run_check(check);

@@ -25,12 +25,9 @@
 #include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/progress.h"
-#include "core/rng.h"
-#include "core/sampling.h"
 #include "core/timer.h"
 #include "formfactor/form_factors.h"
 #include "visibility/embree_visibility.h"
-#include "visibility/ray_offset.h"
 
 using namespace radwalk;
 
@@ -71,21 +68,17 @@ struct RawEmbree {
   }
 };
 
-// Incoherent rays as form factors shoot them: random patch, uniform point, cosine direction.
+// bench::incoherent_rays in Embree's single-ray layout.
 std::vector<RTCRay> make_rays(const PatchSet& ps, std::size_t n) {
+  const std::vector<Ray> source = bench::incoherent_rays(ps, n, 99);
   std::vector<RTCRay> rays(n);
-  const double eps = ray_epsilon(ps);
-  parallel_for(n, [&](std::size_t k) {
-    Rng rng(99, k);
-    const std::size_t i = rng.uniform_index(std::uint32_t(ps.size()));
-    const Vec3 p = sample_patch_point(ps, i, rng.uniform(), rng.uniform());
-    const Vec3 w = Frame(ps.normal[i]).to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
-    const Ray r = spawn_ray(ps, i, p, w, eps);
+  for (std::size_t k = 0; k < n; ++k) {
+    const Ray& r = source[k];
     RTCRay& e = rays[k];
     e.org_x = float(r.origin.x()), e.org_y = float(r.origin.y()), e.org_z = float(r.origin.z());
-    e.dir_x = float(w.x()), e.dir_y = float(w.y()), e.dir_z = float(w.z());
+    e.dir_x = float(r.direction.x()), e.dir_y = float(r.direction.y()), e.dir_z = float(r.direction.z());
     e.tnear = 0, e.tfar = INFINITY, e.time = 0, e.mask = ~0u, e.id = unsigned(k), e.flags = 0;
-  });
+  }
   return rays;
 }
 

@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_scene.h"
 #include "core/timer.h"
 #include "formfactor/form_factors.h"
 #include "mesh/read_scene.h"
@@ -117,7 +118,7 @@ RadiosityProblem make_bench_problem(const std::string& scene, const std::string&
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string scene = "meshes/cornell_box.obj";
+  std::string scene = bench::default_scene();
   std::vector<std::string> sizes = {"50", "14", "5"};
   bool synthetic = false;
   std::vector<std::string> solvers = {"direct-dense", "direct-sparse", "jacobi", "gauss-seidel", "southwell"};

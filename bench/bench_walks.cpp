@@ -27,17 +27,16 @@
 #include <cstdio>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/rng.h"
-#include "core/sampling.h"
 #include "core/timer.h"
 #include "formfactor/form_factors.h"
 #include "solve/problem.h"
 #include "visibility/embree_visibility.h"
-#include "visibility/ray_offset.h"
 #include "visibility/ray_packet.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
@@ -110,24 +109,24 @@ Rate walks_rate(const RadiosityProblem& problem, const PatchSet& patches, const 
   return {rate, rate * w / c};
 }
 
-// Raw Embree: EmbreeVisibility::intersect on `count` pre-generated rays, one Ray per call (rtcIntersect1) or,
-// with `packet`, one RayPacket of 16 per call (rtcIntersect16).
-Rate embree_rate(const PatchSet& patches, const EmbreeVisibility& vis, std::size_t count, bool packet) {
-  const double eps = ray_epsilon(patches);
-  std::vector<Ray> rays(count);
-  Rng rng(99, 0, 0);
-  for (auto& ray : rays) {
-    const std::size_t k = rng.uniform_index(static_cast<std::uint32_t>(patches.size()));
-    const Vec3 x = sample_patch_point(patches, k, rng.uniform(), rng.uniform());
-    const Vec3 w = Frame(patches.normal[k]).to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
-    ray = spawn_ray(patches, k, x, w, eps);
+// Raw Embree: EmbreeVisibility::intersect on pre-generated rays, one Ray per call (rtcIntersect1), or the same rays
+// packed beforehand, one RayPacket of 16 per call (rtcIntersect16).
+struct RawRays {
+  std::vector<Ray> rays;
+  std::vector<RayPacket> packets;  // the same rays, 16 per packet
+  explicit RawRays(std::vector<Ray> r) : rays(std::move(r)), packets((rays.size() + kPacketSize - 1) / kPacketSize) {
+    for (std::size_t k = 0; k < rays.size(); ++k) {
+      RayPacket& p = packets[k / kPacketSize];
+      p.set(k % kPacketSize, rays[k]);
+      p.count = k % kPacketSize + 1;
+    }
   }
-  std::vector<RayPacket> packets(packet ? (count + kPacketSize - 1) / kPacketSize : 0);
-  for (std::size_t r = 0; packet && r < count; ++r) {
-    RayPacket& p = packets[r / kPacketSize];
-    p.set(r % kPacketSize, rays[r]);
-    p.count = r % kPacketSize + 1;
-  }
+};
+
+Rate embree_rate(const EmbreeVisibility& vis, const RawRays& raw, bool packet) {
+  const std::vector<Ray>& rays = raw.rays;
+  const std::vector<RayPacket>& packets = raw.packets;
+  const std::size_t count = rays.size();
   std::vector<int> hit(count);
   return measure([&] {
     if (packet)
@@ -219,10 +218,11 @@ int main(int argc, char** argv) {
   const Rates ray_shoot = row("ray shoot-collision", [&] {
     return walks_rate(no_F, patches, vis, "shoot-collision", "ray", ray_walks * long(patches.size()));
   });
+  const RawRays raw_rays(bench::incoherent_rays(patches, embree_rays, 99));  // made once, outside the timing
   const Rates single =
-      row("raw Embree rays (intersect1)", [&] { return embree_rate(patches, vis, embree_rays, false); });
+      row("raw Embree rays (intersect1)", [&] { return embree_rate(vis, raw_rays, false); });
   const Rates packet =
-      row("raw Embree rays (intersect16)", [&] { return embree_rate(patches, vis, embree_rays, true); });
+      row("raw Embree rays (intersect16)", [&] { return embree_rate(vis, raw_rays, true); });
   // Issue 6: ray-kernel transitions >= 0.8 x the better raw Embree rate, per CPU second.
   const double raw_one = std::max(single.one.cpu, packet.one.cpu);
   const double raw_all = std::max(single.all.cpu, packet.all.cpu);

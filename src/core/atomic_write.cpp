@@ -26,7 +26,17 @@ void publish(const std::string& tmp, const std::string& path) {
 
 }  // namespace
 
+void require_output_directory(const std::string& path) {
+  if (path.empty()) return;
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  const std::filesystem::path dir = parent.empty() ? std::filesystem::path(".") : parent;
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec))
+    throw InputError(path + ": cannot open for writing (no directory " + dir.string() + ")");
+}
+
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  require_output_directory(path);
   const std::string tmp = temporary_name(path);
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
@@ -48,9 +58,11 @@ void write_atomically(const std::string& path, const std::function<void(std::ost
   publish(tmp, path);
 }
 
-void write_atomically_via_path(const std::string& path, const std::function<void(const std::string&)>& write) {
+void write_atomically_via_path(const std::string& path,
+                               const std::function<void(const std::string&)>& write) {
   // Keep the extension last: some writers (VTK) care about it.
   const std::filesystem::path p(path);
+  require_output_directory(path);  // in one line, before the writer (VTK logs its own failures at length)
   const std::string tmp =
       (p.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + p.filename().string())).string();
   try {

@@ -7,6 +7,10 @@
 
 namespace radwalk {
 
+// Throws InputError "PATH: cannot open for writing (no directory D)" unless the directory PATH would be written in
+// exists (an empty path is allowed: no output). Commands call it for every output before computing anything.
+void require_output_directory(const std::string& path);
+
 // Calls write(stream) on a temporary file next to `path`, flushes, checks the stream, and renames it to `path`.
 // Throws InputError naming the path when the file cannot be created or written.
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);

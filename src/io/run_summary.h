@@ -16,7 +16,6 @@ class RunSummary {
   // Records the wall time of a named stage ("load", "patch", "form factors", "solve", "write").
   void add_timing(const std::string& stage, double seconds);
   void add_warning(const std::string& warning);
-  const std::vector<std::string>& warnings() const { return warnings_; }
 
   // Writes the summary to path (atomically), adding peak memory and the warnings.
   void write(const std::string& path);

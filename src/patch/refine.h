@@ -20,11 +20,12 @@
 #include <vector>
 
 #include "patch/patch_set.h"
+#include "patch/patching.h"
 
 namespace radwalk {
 
-// A guard against runaway refinement (the same bound as make_patches' kMaxPatchCount).
-inline constexpr std::size_t kMaxRefinedPatchCount = 10'000'000;
+// A guard against runaway refinement: make_patches' bound.
+inline constexpr std::size_t kMaxRefinedPatchCount = kMaxPatchCount;
 
 // split[i]: split patch i. Throws InputError if split.size() != patches.size() or the result would exceed
 // kMaxRefinedPatchCount.

@@ -50,7 +50,10 @@ RefinedSolution solve_adaptive(PatchSet patches, const FormFactorStage& form_fac
     record.patches = patches.size();
     FormFactors ff = form_factors(patches);
     record.form_factor_seconds = timer.seconds();
-    Solution solution = solve_radiosity(make_problem(patches, ff.F), solve);
+    // F moves into the problem for the solve (no copy) and back into ff afterwards.
+    RadiosityProblem problem = make_problem(patches, std::move(ff.F));
+    Solution solution = solve_radiosity(problem, solve);
+    ff.F = std::move(problem.F);
     record.solve_seconds = solution.seconds;
     record.method = solution.method;
     record.iterations = solution.iterations;

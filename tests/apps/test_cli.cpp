@@ -56,6 +56,20 @@ TEST_CASE("radwalk: bad options and missing files exit 2", "[cli]") {
   CHECK(run("").exit_code == 2);
 }
 
+TEST_CASE("radwalk: bad option values and outputs in missing directories give one prefixed line", "[cli]") {
+  const std::string cube = source("meshes/cube.obj");
+  for (const std::string args : {"solve " + cube + " --rays abc", "solve " + cube + " --max-edge inf",
+                                 "solve " + cube + " --tol -1", "solve " + cube + " --bogus", std::string(""),
+                                 "solve " + cube + " -q -o /nonexistent-dir/b.vtp",
+                                 "solve " + cube + " -q --csv /nonexistent-dir/b.csv"}) {
+    const Run r = run(args);
+    INFO("radwalk " << args << " -> exit " << r.exit_code << ": " << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.rfind("radwalk: error: ", 0) == 0);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+  }
+}
+
 TEST_CASE("radwalk solve: the furnace gives B = E / (1 - rho) = 2 pi on every patch", "[cli]") {
   // Direct solve of the estimated F. The closed furnace is exact for any F whose rows sum to 1, and the
   // closed cube's rows sum to 1 exactly (no ray leaks), so B must equal 2 pi to the solver's precision.
