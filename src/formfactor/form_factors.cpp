@@ -10,6 +10,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "patch/patch_point_sampler.h"
 #include "visibility/ray_offset.h"
 
 namespace radwalk {
@@ -40,26 +41,6 @@ struct RowScratch {
 
 struct RowResult {
   std::uint32_t nnz = 0, escaped = 0, back_hits = 0;
-};
-
-// sample_patch_point with the per-patch work (corners, triangle split of a quad) done once per row.
-struct PatchPointSampler {
-  Vec3 a, b, c, d;
-  double p1 = 1;  // probability of the first triangle (a, b, c); the second is (a, c, d)
-  PatchPointSampler(const PatchSet& ps, std::size_t i)
-      : a(ps.corner(i, 0)), b(ps.corner(i, 1)), c(ps.corner(i, 2)), d(ps.is_quad(i) ? ps.corner(i, 3) : c) {
-    if (ps.is_quad(i)) {
-      const double a1 = (b - a).cross(c - a).norm(), a2 = (c - a).cross(d - a).norm();
-      p1 = a1 / (a1 + a2);
-    }
-  }
-  Vec3 point(double u1, double u2) const {
-    const bool first = u1 < p1;
-    u1 = first ? u1 / p1 : (u1 - p1) / (1.0 - p1);
-    const double s = std::sqrt(std::min(u1, kBelowOne));
-    const double w0 = 1.0 - s, w1 = u2 * s;
-    return first ? Vec3(w0 * a + w1 * b + (1.0 - w0 - w1) * c) : Vec3(w0 * a + w1 * c + (1.0 - w0 - w1) * d);
-  }
 };
 
 // sample_cosine_hemisphere (Malley's method) with the angle in single precision: the ray is traced in single

@@ -1,8 +1,9 @@
 #include "patch/patch_set.h"
 
+#include "patch/patch_point_sampler.h"
+
 #include <algorithm>
 
-#include "core/sampling.h"
 
 namespace radwalk {
 
@@ -53,24 +54,7 @@ void compute_patch_geometry(PatchSet& patches) {
 }
 
 Vec3 sample_patch_point(const PatchSet& patches, std::size_t i, double u1, double u2) {
-  const Vec3& a = patches.corner(i, 0);
-  const Vec3& b = patches.corner(i, 1);
-  const Vec3& c = patches.corner(i, 2);
-  if (patches.is_quad(i)) {
-    const Vec3& d = patches.corner(i, 3);
-    const double a1 = (b - a).cross(c - a).norm();
-    const double a2 = (c - a).cross(d - a).norm();
-    const double p1 = a1 / (a1 + a2);
-    if (u1 < p1) {
-      u1 = std::min(u1 / p1, 0x1.fffffffffffffp-1);
-    } else {
-      u1 = std::min((u1 - p1) / (1.0 - p1), 0x1.fffffffffffffp-1);
-      const Eigen::Vector2d w = sample_uniform_triangle(u1, u2);
-      return w.x() * a + w.y() * c + (1.0 - w.x() - w.y()) * d;
-    }
-  }
-  const Eigen::Vector2d w = sample_uniform_triangle(u1, u2);
-  return w.x() * a + w.y() * b + (1.0 - w.x() - w.y()) * c;
+  return PatchPointSampler(patches, i).point(u1, u2);
 }
 
 }  // namespace radwalk

@@ -40,7 +40,8 @@ struct PatchSet {
 void compute_patch_geometry(PatchSet& patches);
 
 // A uniform point on patch i (pdf = 1 / area), from u in [0, 1)^2. A quad is two triangles (0,1,2), (0,2,3)
-// chosen in proportion to their areas.
+// chosen in proportion to their areas. Loops over many points of one patch: PatchPointSampler
+// (patch_point_sampler.h), which gives the same points.
 Vec3 sample_patch_point(const PatchSet& patches, std::size_t i, double u1, double u2);
 
 }  // namespace radwalk

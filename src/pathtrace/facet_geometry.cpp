@@ -7,13 +7,17 @@ namespace radwalk {
 FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches) {
   const double eps = ray_epsilon(patches);
   offsets_.reserve(patches.size());
-  for (std::size_t i = 0; i < patches.size(); ++i) offsets_.push_back(patch_ray_offset(patches, i, eps));
+  points_.reserve(patches.size());
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    offsets_.push_back(patch_ray_offset(patches, i, eps));
+    points_.emplace_back(patches, i);
+  }
 }
 
 Vec3 FacetGeometry::normal(PatchIndex i, const Vec3&) const { return patches_.normal[static_cast<std::size_t>(i)]; }
 
 Vec3 FacetGeometry::sample_point(PatchIndex i, double u1, double u2) const {
-  return sample_patch_point(patches_, static_cast<std::size_t>(i), u1, u2);
+  return points_[static_cast<std::size_t>(i)].point(u1, u2);
 }
 
 Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {

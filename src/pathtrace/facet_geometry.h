@@ -1,13 +1,14 @@
 #pragma once
 // FacetGeometry: the patches of a PatchSet as the planar triangles and quads they are (SurfaceGeometry).
 //   normal(i, x)          = PatchSet::normal[i], constant over the patch;
-//   sample_point(i, u)    = sample_patch_point (pdf 1 / A_i);
-//   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon (the
-//                           per-patch part precomputed: 56 bytes per patch);
+//   sample_point(i, u)    = sample_patch_point's point (pdf 1 / A_i) from each patch's PatchPointSampler;
+//   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon;
+// The per-patch parts of both are precomputed (160 bytes per patch).
 //   sees_itself(i)        = false (a plane does not see itself).
 // Keeps a reference to the patches (they must outlive it).
 #include <vector>
 
+#include "patch/patch_point_sampler.h"
 #include "pathtrace/surface_geometry.h"
 #include "visibility/ray_offset.h"
 
@@ -23,7 +24,8 @@ class FacetGeometry final : public SurfaceGeometry {
 
  private:
   const PatchSet& patches_;
-  std::vector<PatchRayOffset> offsets_;  // patch_ray_offset of every patch, with eps = ray_epsilon(patches)
+  std::vector<PatchRayOffset> offsets_;     // patch_ray_offset of every patch, with eps = ray_epsilon(patches)
+  std::vector<PatchPointSampler> points_;  // PatchPointSampler of every patch
 };
 
 }  // namespace radwalk
