@@ -35,13 +35,7 @@ PatchIndex PatchBuilder::add_quad(const Vec3& a, const Vec3& b, const Vec3& c, c
 
 PatchSet PatchBuilder::build() const {
   PatchSet s = set_;
-  s.rho.resize(s.corners.size());
-  s.E.resize(s.corners.size());
-  for (std::size_t i = 0; i < s.corners.size(); ++i) {
-    const Material& m = s.materials[s.material[i]];
-    s.rho[i] = m.Kd;
-    s.E[i] = kPi * m.Ke;
-  }
+  set_radiometry_from_materials(s);
   compute_patch_geometry(s);
   return s;
 }

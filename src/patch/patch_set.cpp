@@ -53,6 +53,16 @@ void compute_patch_geometry(PatchSet& patches) {
   }
 }
 
+void set_radiometry_from_materials(PatchSet& patches) {
+  patches.rho.resize(patches.corners.size());
+  patches.E.resize(patches.corners.size());
+  for (std::size_t i = 0; i < patches.corners.size(); ++i) {
+    const Material& m = patches.materials[static_cast<std::size_t>(patches.material[i])];
+    patches.rho[i] = m.Kd;
+    patches.E[i] = kPi * m.Ke;
+  }
+}
+
 Vec3 sample_patch_point(const PatchSet& patches, std::size_t i, double u1, double u2) {
   return PatchPointSampler(patches, i).point(u1, u2);
 }

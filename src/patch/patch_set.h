@@ -36,6 +36,9 @@ struct PatchSet {
   double scene_extent() const;
 };
 
+// rho = Kd and E = pi Ke (Ke is emitted radiance) of every patch's material.
+void set_radiometry_from_materials(PatchSet& patches);
+
 // Recomputes centroid, normal and area of every patch from its corners.
 void compute_patch_geometry(PatchSet& patches);
 

@@ -217,13 +217,7 @@ PatchSet make_patches(const Mesh& mesh, double max_edge) {
   }
 
   // Step 3: radiometry from the materials, then geometry.
-  s.rho.resize(s.corners.size());
-  s.E.resize(s.corners.size());
-  for (std::size_t i = 0; i < s.corners.size(); ++i) {
-    const Material& m = s.materials[static_cast<std::size_t>(s.material[i])];
-    s.rho[i] = m.Kd;
-    s.E[i] = kPi * m.Ke;
-  }
+  set_radiometry_from_materials(s);
   compute_patch_geometry(s);
   return s;
 }

@@ -35,6 +35,28 @@ inline PatchSet closed_box(const Vec3& size, int k, PatchBuilder& builder,
   return builder.build();
 }
 
+// Closed box with every patch emitting Le and reflecting rho (the furnace).
+inline PatchSet furnace(const Rgb& rho, const Rgb& Le) {
+  PatchBuilder b;
+  const int m = b.add_material("furnace", rho, Le);
+  return closed_box(Vec3(1, 1.3, 0.8), 2, b, [&](int, int, int) { return m; });
+}
+
+// Closed box, uniform rho, one emitting cell in the middle of the ceiling (which also reflects).
+inline PatchSet lit_box(const Rgb& rho, const Rgb& Le) {
+  PatchBuilder b;
+  const int wall = b.add_material("wall", rho);
+  const int lamp = b.add_material("lamp", rho, Le);
+  return closed_box(Vec3(1, 0.8, 1.3), 3, b,
+                    [&](int f, int a, int c) { return (f == 3 && a == 1 && c == 1) ? lamp : wall; });
+}
+// Emitted power per channel, sum_i A_i E_i (W).
+inline Rgb emitted_power(const PatchSet& p) {
+  Rgb power = Rgb::Zero();
+  for (std::size_t i = 0; i < p.size(); ++i) power += p.area[i] * p.E[i];
+  return power;
+}
+
 }  // namespace radwalk::test
 
 namespace radwalk::test {

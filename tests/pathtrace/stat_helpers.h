@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "core/solution.h"
 #include "core/stats.h"
 #include "core/types.h"
 
@@ -30,6 +31,19 @@ inline void check_z(const char* what, double estimate, double se, double exact, 
   INFO(what << ": estimate " << estimate << " +- " << se << " (se), exact " << exact << ", |z| limit " << z_crit);
   REQUIRE(se > 0);
   CHECK(std::abs(estimate - exact) / se < z_crit);
+}
+
+// Two-sample z-tests: every patch and channel of two independent estimates agree, |B_a - B_b| / sqrt(se_a^2 +
+// se_b^2) < z_crit; prints both operands on failure.
+inline void check_solutions_agree(const Solution& a, const Solution& b, double z_crit) {
+  for (Eigen::Index i = 0; i < a.B.rows(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double se = std::hypot(a.B_se(i, c), b.B_se(i, c));
+      INFO(a.method << " vs " << b.method << ", patch " << i << " channel " << c << ": " << a.B(i, c) << " +- "
+                    << a.B_se(i, c) << " vs " << b.B(i, c) << " +- " << b.B_se(i, c));
+      REQUIRE(se > 0);
+      CHECK(std::abs(a.B(i, c) - b.B(i, c)) / se < z_crit);
+    }
 }
 
 // Uniform direction on the sphere (pdf 1 / (4 pi)).

@@ -16,16 +16,6 @@ using namespace radwalk;
 namespace {
 const std::string kCornell = std::string(RADWALK_SOURCE_DIR) + "/meshes/cornell_box.obj";
 
-void check_agree(const Solution& a, const Solution& b, double z) {
-  for (Eigen::Index i = 0; i < a.B.rows(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double se = std::hypot(a.B_se(i, c), b.B_se(i, c));
-      INFO(a.method << " vs " << b.method << ", patch " << i << " channel " << c << ": " << a.B(i, c) << " +- "
-                    << a.B_se(i, c) << " vs " << b.B(i, c) << " +- " << b.B_se(i, c));
-      REQUIRE(se > 0);
-      CHECK(std::abs(a.B(i, c) - b.B(i, c)) / se < z);
-    }
-}
 }  // namespace
 
 TEST_CASE("Cornell box: implicit, NEE and light tracing agree with MIS on every patch", "[pathtrace][cornell][statistical]") {
@@ -53,9 +43,9 @@ TEST_CASE("Cornell box: implicit, NEE and light tracing agree with MIS on every 
   lo.progress = false;
   const Solution light = light_trace_patches(p, vis, lo);
   const double z = z_critical(sidak(1e-3, 3 * p.size() * 3));
-  check_agree(implicit, mis, z);
-  check_agree(nee, mis, z);
-  check_agree(light, mis, z);
+  test::check_solutions_agree(implicit, mis, z);
+  test::check_solutions_agree(nee, mis, z);
+  test::check_solutions_agree(light, mis, z);
 }
 
 TEST_CASE("Cornell box image: red wall on the left, green on the right", "[render][cornell][statistical]") {

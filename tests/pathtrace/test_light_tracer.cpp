@@ -23,9 +23,7 @@ LightTraceOptions lt_options(long particles, std::uint64_t seed) {
 TEST_CASE("light tracer: furnace B = E / (1 - rho) on every patch", "[lighttrace][statistical]") {
   // H0 for 24 patches x 3 channels; alpha = 1e-3 family-wise.
   const Rgb rho(0.3, 0.5, 0.7), Le(1.0, 2.0, 0.5);
-  PatchBuilder b;
-  const int m = b.add_material("furnace", rho, Le);
-  const PatchSet p = test::closed_box(Vec3(1, 1.3, 0.8), 2, b, [&](int, int, int) { return m; });
+  const PatchSet p = test::furnace(rho, Le);
   const BruteForceVisibility vis(p);
   const Solution s = light_trace_patches(p, vis, lt_options(200000, 201));
   CHECK(s.method == "lighttrace");
@@ -55,26 +53,14 @@ TEST_CASE("light tracer agrees with the MIS path tracer and conserves energy", "
   po.progress = false;
   const Solution pt = estimate_patch_averages(p, vis, po);
   const double z = z_critical(sidak(1e-3, p.size() * 3));
-  for (std::size_t i = 0; i < p.size(); ++i)
-    for (int c = 0; c < 3; ++c) {
-      const double se = std::hypot(lt.B_se(i, c), pt.B_se(i, c));
-      INFO("patch " << i << " channel " << c << ": light " << lt.B(i, c) << " +- " << lt.B_se(i, c) << ", path "
-                    << pt.B(i, c) << " +- " << pt.B_se(i, c));
-      REQUIRE(se > 0);
-      CHECK(std::abs(lt.B(i, c) - pt.B(i, c)) / se < z);
-    }
+  test::check_solutions_agree(lt, pt, z);
 
   // Energy balance with uniform rho.
-  PatchBuilder u;
   const Rgb rho(0.6, 0.5, 0.4);
-  const int wall = u.add_material("wall", rho);
-  const int light = u.add_material("light", rho, Rgb(5, 4, 3));
-  const PatchSet q = test::closed_box(Vec3(1, 0.8, 1.3), 3, u,
-                                      [&](int f, int a, int c) { return (f == 3 && a == 1 && c == 1) ? light : wall; });
+  const PatchSet q = test::lit_box(rho, Rgb(5, 4, 3));
   const BruteForceVisibility vq(q);
   const Solution e = light_trace_patches(q, vq, lt_options(200000, 204));
-  Rgb emitted = Rgb::Zero();
-  for (std::size_t i = 0; i < q.size(); ++i) emitted += q.area[i] * q.E[i];
+  const Rgb emitted = test::emitted_power(q);
   const double z3 = z_critical(sidak(1e-3, 3));
   for (int c = 0; c < 3; ++c) {
     // Patches share particles (correlated scores), so the se of the weighted sum is bounded by the sum of the

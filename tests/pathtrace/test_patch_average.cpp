@@ -22,21 +22,6 @@ PatchAverageOptions options_for(IntegratorKind kind, long spp, std::uint64_t see
   return o;
 }
 
-// Closed box with every patch emitting Le and reflecting rho (the furnace).
-PatchSet furnace(const Rgb& rho, const Rgb& Le) {
-  PatchBuilder b;
-  const int m = b.add_material("furnace", rho, Le);
-  return test::closed_box(Vec3(1, 1.3, 0.8), 2, b, [&](int, int, int) { return m; });
-}
-
-// Closed box, uniform rho, one emitting cell in the middle of the ceiling (which also reflects).
-PatchSet lit_box(const Rgb& rho, const Rgb& Le) {
-  PatchBuilder b;
-  const int wall = b.add_material("wall", rho);
-  const int lamp = b.add_material("lamp", rho, Le);
-  return test::closed_box(Vec3(1, 0.8, 1.3), 3, b,
-                          [&](int f, int a, int c) { return (f == 3 && a == 1 && c == 1) ? lamp : wall; });
-}
 }  // namespace
 
 // Why NEE is left out of the furnace tests: when an emitter meets a receiver at a concave edge, the area-form
@@ -47,7 +32,7 @@ PatchSet lit_box(const Rgb& rho, const Rgb& Le) {
 TEST_CASE("furnace: every patch has B = E / (1 - rho), implicit and MIS", "[pathtrace][statistical]") {
   // H0: B_i = pi Le / (1 - rho) for 24 patches x 3 channels x 2 integrators; alpha = 1e-3 family-wise (Sidak).
   const Rgb rho(0.3, 0.5, 0.7), Le(1.0, 2.0, 0.5);
-  const PatchSet p = furnace(rho, Le);
+  const PatchSet p = test::furnace(rho, Le);
   const BruteForceVisibility vis(p);
   const Rgb exact = kPi * Le / (1 - rho);
   const double z = z_critical(sidak(1e-3, p.size() * 3 * 2));
@@ -69,7 +54,7 @@ TEST_CASE("furnace with a depth cap: the biased estimate has the known expectati
   // E[B] = E + rho E exactly. MIS only (implicit is exact here: every direction sees Le; NEE: see above).
   // 24 patches x 3 channels; alpha = 1e-3 family-wise.
   const Rgb rho(0.3, 0.5, 0.7), Le(1.0, 2.0, 0.5);
-  const PatchSet p = furnace(rho, Le);
+  const PatchSet p = test::furnace(rho, Le);
   const BruteForceVisibility vis(p);
   const Rgb E = kPi * Le;
   const double z = z_critical(sidak(1e-3, p.size() * 3));
@@ -95,11 +80,9 @@ TEST_CASE("closed box, uniform rho: area-weighted mean of B = sum(A E) / (A_tota
   // Energy balance (REFERENCE-DATA.md). Patches use independent streams, so se(mean) = sqrt(sum (A_i se_i)^2)
   // / A_total. 3 integrators x 3 channels; alpha = 1e-3 family-wise.
   const Rgb rho(0.6, 0.5, 0.4), Le(5.0, 4.0, 3.0);
-  const PatchSet p = lit_box(rho, Le);
+  const PatchSet p = test::lit_box(rho, Le);
   const BruteForceVisibility vis(p);
-  Rgb emitted = Rgb::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) emitted += p.area[i] * p.E[i];
-  const Rgb exact = emitted / (p.total_area() * (1 - rho));
+  const Rgb exact = test::emitted_power(p) / (p.total_area() * (1 - rho));
   const double z = z_critical(sidak(1e-3, 9));
   for (IntegratorKind kind : kAll) {
     const Solution s = estimate_patch_averages(p, vis, options_for(kind, 2000, 103));
@@ -133,24 +116,14 @@ TEST_CASE("implicit, NEE and MIS agree patch by patch on a coloured room with an
   for (int k = 0; k < 3; ++k) s[k] = estimate_patch_averages(p, vis, options_for(kAll[k], 1500, 104 + k));
   const double z = z_critical(sidak(1e-3, 3 * p.size() * 3));
   for (int a = 0; a < 3; ++a)
-    for (int c2 = a + 1; c2 < 3; ++c2)
-      for (std::size_t i = 0; i < p.size(); ++i)
-        for (int ch = 0; ch < 3; ++ch) {
-          const double d = s[a].B(i, ch) - s[c2].B(i, ch);
-          const double se = std::hypot(s[a].B_se(i, ch), s[c2].B_se(i, ch));
-          INFO(to_string(kAll[a]) << " vs " << to_string(kAll[c2]) << ", patch " << i << " channel " << ch << ": "
-                                  << s[a].B(i, ch) << " +- " << s[a].B_se(i, ch) << " vs " << s[c2].B(i, ch)
-                                  << " +- " << s[c2].B_se(i, ch));
-          REQUIRE(se > 0);
-          CHECK(std::abs(d) / se < z);
-        }
+    for (int b = a + 1; b < 3; ++b) test::check_solutions_agree(s[a], s[b], z);
   // MIS should not be worse than implicit on a small light: total variance comparison (not a hypothesis test;
   // a sanity check of the weights, with a wide factor).
   CHECK(s[2].var.sum() < s[0].var.sum());
 }
 
 TEST_CASE("patch averages are bit-identical for 1 and 2 threads", "[pathtrace]") {
-  const PatchSet p = lit_box(Rgb::Constant(0.5), Rgb::Constant(3.0));
+  const PatchSet p = test::lit_box(Rgb::Constant(0.5), Rgb::Constant(3.0));
   const BruteForceVisibility vis(p);
   const PatchAverageOptions o = options_for(IntegratorKind::mis, 300, 105);
   Solution one, two;

@@ -7,6 +7,7 @@
 #include "analytic_sphere.h"
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
+#include "scenes.h"
 #include "stat_helpers.h"
 
 using namespace radwalk;
@@ -21,10 +22,8 @@ constexpr int kEmittingBands = 2;
 
 // Irradiance at every wall point: Phi_e / ((1 - rho) A), A = 4 pi R^2.
 Rgb exact_irradiance(const PatchSet& p) {
-  Rgb power = Rgb::Zero();
-  for (std::size_t i = 0; i < p.size(); ++i) power += p.area[i] * p.E[i];
   const double A = 4 * kPi * kCells.radius * kCells.radius;
-  return power / ((1 - kRho) * A);
+  return test::emitted_power(p) / ((1 - kRho) * A);
 }
 }  // namespace
 
