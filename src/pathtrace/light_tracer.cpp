@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/power_sums.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/sampling.h"
@@ -185,11 +186,6 @@ void run_particles(std::size_t bins, const LightTraceOptions& options, std::size
   if (progress) progress->finish();
 }
 
-// Mean and unbiased per-particle variance of a bin's score.
-std::pair<Rgb, Rgb> mean_var(const Tally& t, std::size_t i, double m) {
-  const Rgb mean = t.sum[i] / m;
-  return {mean, ((t.sum2[i] - m * mean * mean) / (m - 1.0)).max(0.0)};
-}
 }  // namespace
 
 Solution light_trace_patches(const PatchSet& patches, const Visibility& visibility,
@@ -224,7 +220,7 @@ Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geo
   sol.var.resize(rows, 3);
   const double m = static_cast<double>(options.particles);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto [mean, var] = mean_var(total, i, m);
+    const auto [mean, var] = mean_and_variance(total.sum[i], total.sum2[i], m);
     const auto r = static_cast<Eigen::Index>(i);
     sol.B.row(r) = (patches.E[i] + mean).transpose();
     sol.var.row(r) = var.transpose();
@@ -269,7 +265,7 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   result.se = RgbImage(width, height);
   const double m = static_cast<double>(options.particles);
   for (std::size_t k = 0; k < pixels; ++k) {
-    const auto [mean, var] = mean_var(total, k, m);
+    const auto [mean, var] = mean_and_variance(total.sum[k], total.sum2[k], m);
     result.mean.pixels[k] = mean;
     result.se.pixels[k] = (var / m).sqrt();
   }

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/power_sums.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"
@@ -78,8 +79,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
       sum2 += parts[i * blocks + b].sum2;
       total.add(parts[i * blocks + b].counters);
     }
-    const Rgb mean = sum / m;
-    const Rgb var = ((sum2 - m * mean * mean) / (m - 1.0)).max(0.0);
+    const auto [mean, var] = mean_and_variance(sum, sum2, m);
     const auto r = static_cast<Eigen::Index>(i);
     sol.B.row(r) = (patches.E[i] + mean).transpose();
     sol.var.row(r) = var.transpose();

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/power_sums.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"
@@ -43,9 +44,9 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
             sum += L;
             sum2 += L * L;
           }
-          const Rgb mean = sum / m;
+          const auto [mean, var] = mean_and_variance(sum, sum2, m);
           result.mean.at(px, py) = mean;
-          result.se.at(px, py) = (((sum2 - m * mean * mean) / (m - 1.0)).max(0.0) / m).sqrt();
+          result.se.at(px, py) = (var / m).sqrt();
         }
         if (progress) progress->advance(1);
       },

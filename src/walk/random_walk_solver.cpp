@@ -5,8 +5,10 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include "core/error.h"
+#include "core/power_sums.h"
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "solve/spectral_radius.h"
@@ -226,9 +228,9 @@ RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityPr
   }
   // B = E + mean Y; per-particle variance from the power sums (clamped at 0 against rounding).
   const double n = static_cast<double>(particles);
-  const PatchRgb mean = sum / n;
+  PatchRgb mean;
+  std::tie(mean, r.var) = mean_and_variance(sum, sum2, n);
   r.B = problem.E + mean;
-  r.var = ((sum2 - n * mean * mean) / (n - 1)).max(0.0);
   r.se = (r.var / n).sqrt();
   return r;
 }
