@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/sampling.h"
 #include "patch/patch_set.h"
+#include "pathtrace/russian_roulette.h"
 
 namespace radwalk {
 
@@ -104,12 +105,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   state.delta_prev = s->delta;
   ++state.depth;
 
-  // Russian roulette with the weight correction.
-  if (state.depth >= options_.rr_depth) {
-    const double q = std::min(1.0, state.beta.maxCoeff());
-    if (!(rng.uniform() < q)) return false;
-    state.beta /= q;
-  }
+  if (state.depth >= options_.rr_depth && !survive_russian_roulette(state.beta, rng)) return false;
   next = geometry_.spawn_ray(patch, x, frame.to_world(s->wi));
   return true;
 }

@@ -14,6 +14,7 @@
 #include "core/timer.h"
 #include "patch/patch_set.h"
 #include "pathtrace/facet_geometry.h"
+#include "pathtrace/russian_roulette.h"
 
 namespace radwalk {
 
@@ -70,12 +71,7 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
     if (!bs || !(bs->weight > 0).any()) return;
     beta *= bs->weight;
     ++depth;
-    // Russian roulette with the weight correction.
-    if (depth >= options.rr_depth) {
-      const double q = std::min(1.0, beta.maxCoeff());
-      if (!(rng.uniform() < q)) return;
-      beta /= q;
-    }
+    if (depth >= options.rr_depth && !survive_russian_roulette(beta, rng)) return;
     if (options.max_depth > 0 && depth >= options.max_depth) return;  // the cap: no ray that could not score
     dir = frame.to_world(bs->wi);
     ray = geometry.spawn_ray(hit.patch, x, dir);

@@ -64,7 +64,8 @@ RefinedSolution solve_adaptive(PatchSet patches, const FormFactorStage& form_fac
       JumpOptions o;
       o.floor_fraction = refine.floor_fraction;
       o.noise_z = refine.noise_z;
-      if (!ff.rays.empty()) o.H_se = irradiance_standard_error(ff.F, solution.B, ff.rays);
+      // The noise allowance needs the standard errors only when it is on (noise_z > 0).
+      if (refine.noise_z > 0 && !ff.rays.empty()) o.H_se = irradiance_standard_error(ff.F, solution.B, ff.rays);
       if (refine.visible_from_back_hits && !ff.back_hits.empty()) {
         o.visible.resize(patches.size());
         for (std::size_t i = 0; i < patches.size(); ++i)

@@ -36,6 +36,7 @@ struct SphereCells {
   Vec3 point(PatchIndex i, double a, double b) const;
 };
 
+// SphereGeometry and SphereVisibility keep a reference to their cells (which must outlive them).
 class SphereGeometry final : public SurfaceGeometry {
  public:
   explicit SphereGeometry(const SphereCells& cells) : cells_(cells) {}
@@ -45,7 +46,7 @@ class SphereGeometry final : public SurfaceGeometry {
   bool sees_itself(PatchIndex) const override { return true; }
 
  private:
-  SphereCells cells_;
+  const SphereCells& cells_;
 };
 
 class SphereVisibility final : public Visibility {
@@ -55,7 +56,7 @@ class SphereVisibility final : public Visibility {
   bool occluded(const Ray& ray) const override { return intersect(ray).t < ray.tmax; }
 
  private:
-  SphereCells cells_;
+  const SphereCells& cells_;
 };
 
 struct SphereScene {
@@ -63,7 +64,7 @@ struct SphereScene {
   PatchSet patches;
   SphereGeometry geometry;
   SphereVisibility visibility;
-  explicit SphereScene(const SphereCells& c) : cells(c), geometry(c), visibility(c) {}
+  explicit SphereScene(const SphereCells& c) : cells(c), geometry(cells), visibility(cells) {}
 };
 
 // The inside of a sphere with reflectance rho everywhere and emission E on the top `emitting_bands` bands.
