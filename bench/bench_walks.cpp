@@ -78,7 +78,7 @@ Rate matrix_chain(const MatrixKernel& kernel, long steps) {
     WalkCounters counters;
     std::size_t k = 0, visited = 0;
     for (std::size_t s = b; s < e; ++s) {
-      PatchIndex j = rng.uniform() < kernel.survival(k) ? kernel.sample(k, rng, counters) : kEscaped;
+      PatchIndex j = rng.uniform() < kernel.tables().p[k] ? kernel.sample(k, rng, counters) : kEscaped;
       if (j < 0) j = static_cast<PatchIndex>(rng.uniform_index(static_cast<std::uint32_t>(kernel.size())));
       k = static_cast<std::size_t>(j);
       visited += k;

@@ -32,8 +32,6 @@ class MatrixKernel {
                WalkDirection direction = WalkDirection::gather);
 
   std::size_t size() const { return rows_.rows(); }
-  double survival(std::size_t k) const { return tables_.p[k]; }
-  double row_scale(std::size_t k) const { return tables_.n[k]; }
   const WalkTables& tables() const { return tables_; }
   const RowAliasTables& rows() const { return rows_; }
 

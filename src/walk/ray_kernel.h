@@ -77,8 +77,6 @@ class RayKernel {
             std::vector<double> p);
 
   std::size_t size() const { return samplers_.size(); }
-  double survival(std::size_t k) const { return tables_.p[k]; }
-  double row_scale(std::size_t /*k*/) const { return 1.0; }
   const WalkTables& tables() const { return tables_; }
 
   PatchIndex sample(std::size_t k, Rng& rng, WalkCounters& counters) const {

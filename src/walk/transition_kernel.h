@@ -11,7 +11,7 @@
 //   w_k = H_kj / P_kj = rho_k n_k / p_k   (per channel; = rho_k / p_k for the analog walk, 1 if p_k = rho_k),
 // shooting particles move first and roulette at the patch they reach (tables below).
 // A kernel K provides (all const, thread-safe, O(1) except the ray tracing):
-//   size(), survival(k) = p_k, row_scale(k) = n_k, tables() (WalkTables),
+//   size(), tables() (WalkTables: p_k, n_k and the weight factors),
 //   static constexpr bool kEscapeScores: an escape is a scored stop for gathering absorption,
 //   static constexpr bool kHESampled: (H E)_k is estimated from one extra destination sample j of k (see HE),
 //   static constexpr std::size_t kLanes (1..kMaxLanes): how many walks the drivers advance in lockstep
@@ -93,8 +93,6 @@ template <class K>
 concept TransitionKernel = requires(const K& kernel, std::size_t k, PatchIndex j, Rng& rng, WalkCounters& counters,
                                     std::span<const SampleRequest> requests, std::span<PatchIndex> out) {
   { kernel.size() } -> std::convertible_to<std::size_t>;
-  { kernel.survival(k) } -> std::convertible_to<double>;
-  { kernel.row_scale(k) } -> std::convertible_to<double>;
   { kernel.tables() } -> std::convertible_to<const WalkTables&>;
   { kernel.sample(k, rng, counters) } -> std::convertible_to<PatchIndex>;
   kernel.sample(requests, out, counters);
