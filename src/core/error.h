@@ -1,5 +1,6 @@
 #pragma once
-// Errors radwalk reports to users. Every message is one line that names where the problem is.
+// Errors radwalk reports to users. Every message is one line that names where the problem is. The program maps
+// them to exit codes: InputError 2 (the user can fix it), NumericalError 3, InternalError and anything else 4.
 #include <stdexcept>
 #include <string>
 
@@ -15,6 +16,12 @@ class InputError : public std::runtime_error {
 class NumericalError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// A broken internal invariant: a bug in radwalk, not the user's input (core/check.h throws it; exit code 4).
+class InternalError : public std::logic_error {
+ public:
+  using std::logic_error::logic_error;
 };
 
 // "FILE:LINE: face F: WHAT" with the parts that are known (line <= 0 or face < 0 are left out).
