@@ -38,13 +38,13 @@ inline PatchSet patched_to(const std::string& path, std::size_t target, double t
 }
 
 // n incoherent rays as form factors and ray-kernel walks shoot them: a random patch, a uniform point on it, a
-// cosine-weighted direction about its normal, spawn_ray's offset. Ray k uses Rng(seed, k): the same rays for any
+// cosine-weighted direction about its normal, spawn_ray's offset. Ray k uses the stream (seed, benchmark, k): the same rays for any
 // thread count.
 inline std::vector<Ray> incoherent_rays(const PatchSet& ps, std::size_t n, std::uint64_t seed) {
   std::vector<Ray> rays(n);
   const double eps = ray_epsilon(ps);
   parallel_for(n, [&](std::size_t k) {
-    Rng rng(seed, k);
+    Rng rng = stream(seed, StreamDomain::benchmark, k);
     const std::size_t i = rng.uniform_index(std::uint32_t(ps.size()));
     const Vec3 p = sample_patch_point(ps, i, rng.uniform(), rng.uniform());
     const Vec3 w = Frame(ps.normal[i]).to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));

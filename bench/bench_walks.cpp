@@ -74,7 +74,7 @@ Rate matrix_chain(const MatrixKernel& kernel, long steps) {
   std::vector<std::size_t> sink((n + chunk - 1) / chunk);
   const Rate rate = measure([&] {
     parallel_chunks(n, chunk, [&](std::size_t b, std::size_t e) {
-    Rng rng(7, b / chunk, 0);
+    Rng rng = stream(7, StreamDomain::benchmark, b / chunk);
     WalkCounters counters;
     std::size_t k = 0, visited = 0;
     for (std::size_t s = b; s < e; ++s) {

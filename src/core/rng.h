@@ -1,13 +1,39 @@
 #pragma once
-// Counter-based random streams (ARCHITECTURE.md, convention 5).
+// Counter-based random streams, addressed by (seed, domain, a, b).
 //
-// A stream is a pure function of (seed, a, b), e.g. (seed, patch, walk index): the numbers a walk or a ray
-// batch sees never depend on which thread runs it, so any thread count gives identical results and a single
-// walk can be replayed. The generator is PCG32 (O'Neill 2014, XSH-RR output); the (seed, a, b) triple is
-// hashed to the PCG state and stream increment with SplitMix64 finalisers.
+// Every consumer of random numbers draws from stream(seed, domain, a, b): a pure function of the user's seed, the
+// consumer's own StreamDomain, and two indices the domain defines (for example patch and walk index). So
+//   - the numbers a walk, a ray batch or a sample sees never depend on which thread runs it: any thread count
+//     gives identical results, and a single walk can be replayed;
+//   - two consumers never share a stream: the domains are disjoint by construction (below), so for example
+//     form-factor row i and gathering walk 0 from patch i are independent (they would replay the same numbers if
+//     both were addressed by (seed, i, 0) alone).
+// The generator is PCG32 (O'Neill 2014, XSH-RR output). The address is hashed with SplitMix64 finalisers
+// (mix64, a bijection of 64-bit words):
+//   family = mix64(mix64(seed) ^ (domain << 48 | a)),   a < 2^48,
+//   state, increment = mix64 hashes of family ^ b * 0xd1b54a32d192ed03.
+// For one seed, (domain, a) -> domain << 48 | a is one-to-one for a < 2^48 and mix64 is a bijection, so different
+// (domain, a) give different families; streams of one family differ in b. The list of domains, with what their
+// indices mean, is in docs/ARCHITECTURE.md ("Random streams").
 #include <cstdint>
 
 namespace radwalk {
+
+// Who draws the numbers; each value is used by exactly one consumer (docs/ARCHITECTURE.md lists them).
+enum class StreamDomain : std::uint64_t {
+  test = 0,            // tests' own random inputs (a, b as the test chooses)
+  form_factor_row = 1, // estimate_form_factors: a = patch i (its whole row of rays), b = 0
+  gather_walk = 2,     // gathering random walks: a = start patch i, b = walk index w
+  shoot_particle = 3,  // shooting random walks: a = 0, b = particle index w
+  patch_average = 4,   // path-traced patch averages: a = patch i, b = sample index s
+  render_pixel = 5,    // path-traced images: a = pixel index y * width + x, b = sample index s
+  light_particle = 6,  // light tracing (patch tallies and images): a = 0, b = particle index k
+  synthetic_problem = 7,  // synthetic test problems (solve/synthetic_problem.h): a = row i, b = 0
+  benchmark = 8,       // bench/ programs' own inputs
+};
+
+// The largest first index a stream address may have (exclusive): a < 2^48.
+inline constexpr std::uint64_t kStreamIndexLimit = std::uint64_t{1} << 48;
 
 // SplitMix64 finaliser: a bijective 64-bit mix.
 constexpr std::uint64_t mix64(std::uint64_t z) {
@@ -17,15 +43,18 @@ constexpr std::uint64_t mix64(std::uint64_t z) {
   return z ^ (z >> 31);
 }
 
+// The hash every stream (seed, domain, a, b) starts from (see the top of this file); a is reduced modulo 2^48.
+constexpr std::uint64_t stream_family(std::uint64_t seed, StreamDomain domain, std::uint64_t a) {
+  return mix64(mix64(seed) ^ (static_cast<std::uint64_t>(domain) << 48 | (a & (kStreamIndexLimit - 1))));
+}
+
 class Rng {
  public:
-  // The stream identified by (seed, a, b). Different triples give statistically independent streams.
-  Rng(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0) : Rng(FromFamily{}, family_hash(seed, a), b) {}
+  // The stream of `family` (stream_family) and index b; stream() and RngFamily are the ways to get one.
+  static Rng from_family(std::uint64_t family, std::uint64_t b) { return Rng(family, b); }
 
-  // The hash of (seed, a) that every stream (seed, a, b) starts from (see RngFamily).
-  static constexpr std::uint64_t family_hash(std::uint64_t seed, std::uint64_t a) { return mix64(mix64(seed) ^ a); }
-  // The stream (seed, a, b) from family_hash(seed, a): equal to Rng(seed, a, b).
-  static Rng from_family(std::uint64_t family, std::uint64_t b) { return Rng(FromFamily{}, family, b); }
+  // A placeholder stream (family 0), to be replaced by a real one before use (e.g. default-constructed walks).
+  Rng() : Rng(0, 0) {}
 
   // Uniform 32-bit integer.
   std::uint32_t next_u32() {
@@ -58,8 +87,7 @@ class Rng {
   }
 
  private:
-  struct FromFamily {};
-  Rng(FromFamily, std::uint64_t family, std::uint64_t b) {
+  Rng(std::uint64_t family, std::uint64_t b) {
     const std::uint64_t h = mix64(family ^ (b * 0xd1b54a32d192ed03ULL));
     inc_ = (mix64(h ^ 0xa0761d6478bd642fULL) << 1u) | 1u;
     state_ = 0;
@@ -72,11 +100,16 @@ class Rng {
   std::uint64_t inc_ = 1;
 };
 
-// The streams (seed, a, b) for one (seed, a) and many b, e.g. all walks started from one patch: the hash of
-// (seed, a) is computed once. RngFamily(seed, a).stream(b) is the same stream as Rng(seed, a, b).
+// The stream (seed, domain, a, b).
+inline Rng stream(std::uint64_t seed, StreamDomain domain, std::uint64_t a, std::uint64_t b = 0) {
+  return Rng::from_family(stream_family(seed, domain, a), b);
+}
+
+// The streams (seed, domain, a, b) for one (seed, domain, a) and many b, e.g. all walks started from one patch:
+// the family hash is computed once. RngFamily(seed, domain, a).stream(b) == stream(seed, domain, a, b).
 class RngFamily {
  public:
-  RngFamily(std::uint64_t seed, std::uint64_t a) : family_(Rng::family_hash(seed, a)) {}
+  RngFamily(std::uint64_t seed, StreamDomain domain, std::uint64_t a) : family_(stream_family(seed, domain, a)) {}
   Rng stream(std::uint64_t b) const { return Rng::from_family(family_, b); }
 
  private:

@@ -73,7 +73,7 @@ void sort_indices(std::vector<std::int32_t>& v, std::vector<std::int32_t>& tmp, 
 RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& opt, double eps,
                     int sort_passes, std::size_t i, std::uint32_t n, RowScratch& s, std::int32_t* cols,
                     std::uint32_t* counts) {
-  Rng rng(opt.seed, i);
+  Rng rng = stream(opt.seed, StreamDomain::form_factor_row, i);
   // 32-bit uniforms in [0, 1): ample resolution for single-precision rays, half the cost of Rng::uniform.
   const auto uniform = [&rng] { return rng.next_u32() * 0x1p-32; };
   const Frame frame(ps.normal[i]);

@@ -15,7 +15,7 @@
 // F_ij (1 - F_ij) / n_i up to the Latin-hypercube factor m^2/(m^2 - 1) (Owen 1997), so binomial standard errors
 // are (essentially) conservative. `stratified = false` draws all four numbers uniformly (pure binomial counts).
 //
-// Reproducible: patch i uses the stream Rng(seed, i) only, so F is bit-identical for any thread count.
+// Reproducible: patch i uses the stream (seed, form_factor_row, i) only (core/rng.h), so F is bit-identical for any thread count.
 // Rays leave through spawn_ray (visibility/ray_offset.h). Parallel over patches (core/parallel.h); rows are
 // assembled into CSR without a global sort or lock: each row's hits are sorted into (j, count) runs in place,
 // then rows are copied at prefix-sum offsets. Memory: about 8 bytes per non-zero of F plus a working buffer of

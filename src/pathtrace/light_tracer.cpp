@@ -19,7 +19,6 @@
 namespace radwalk {
 
 namespace {
-constexpr std::uint64_t kStream = 0x4C54;  // "LT"
 constexpr long kChunk = 4096;              // particles per work item
 constexpr std::size_t kBatch = 32;         // work items whose patch tallies are held in memory at once
 constexpr std::size_t kImageBatch = 8;     // the same for image tallies (one entry per pixel)
@@ -148,6 +147,7 @@ void run_particles(std::size_t bins, const LightTraceOptions& options, std::size
   std::vector<Tally> tallies(std::min(chunks, batch), Tally(bins));
   std::optional<Progress> progress;
   if (options.progress) progress.emplace(label, chunks);
+  const RngFamily particles(options.seed, StreamDomain::light_particle, 0);
   // Batches of chunks: chunks in parallel, each into its own tally, then added in chunk order.
   for (std::size_t b0 = 0; b0 < chunks; b0 += batch) {
     const std::size_t b1 = std::min(chunks, b0 + batch);
@@ -160,7 +160,7 @@ void run_particles(std::size_t bins, const LightTraceOptions& options, std::size
           const long k0 = static_cast<long>(b0 + c) * kChunk;
           const long k1 = std::min(options.particles, k0 + kChunk);
           for (long k = k0; k < k1; ++k) {
-            Rng rng(options.seed, static_cast<std::uint64_t>(k), kStream);
+            Rng rng = particles.stream(static_cast<std::uint64_t>(k));
             scores.entries.clear();
             trace(rng, scores, t.counters);
             for (const auto& [i, s] : scores.entries) {

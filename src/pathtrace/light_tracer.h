@@ -11,7 +11,7 @@
 // Per-particle scores give the per-particle variance var and B_se = sqrt(var / particles).
 // Depth cap: max_depth > 0 keeps at most max_depth reflections (as PathIntegrator: paths of at most max_depth
 // scattering events), a bias.
-// Random streams: particle k uses Rng(seed, k, 0x4C54); bit-identical for any thread count.
+// Random streams: particle k uses the stream (seed, light_particle, 0, k) (core/rng.h); bit-identical for any thread count.
 //
 // Image by light tracing (light_trace_image): every particle vertex y with a non-delta BSDF (and the emission
 // point itself) is connected to the pinhole by a shadow ray and splatted into the pixel it projects to:

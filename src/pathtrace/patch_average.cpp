@@ -50,8 +50,9 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
         const long s0 = static_cast<long>(item % blocks) * kBlock;
         const long s1 = std::min(options.spp, s0 + kBlock);
         Partial& p = parts[item];
+        const RngFamily samples(options.seed, StreamDomain::patch_average, i);
         for (long s = s0; s < s1; ++s) {
-          Rng rng(options.seed, i, static_cast<std::uint64_t>(s));
+          Rng rng = samples.stream(static_cast<std::uint64_t>(s));
           const double u1 = rng.uniform(), u2 = rng.uniform();
           const auto patch = static_cast<PatchIndex>(i);
           const Vec3 x = geometry.sample_point(patch, u1, u2);

@@ -8,7 +8,7 @@
 // mean B_i. The Solution gives B (mean of spp samples), var (per-sample variance, unbiased) and
 // B_se = sqrt(var / spp) per patch and channel.
 //
-// Random streams: sample s of patch i uses Rng(seed, i, s); the result is bit-identical for any thread count.
+// Random streams: sample s of patch i uses the stream (seed, patch_average, i, s) (core/rng.h); the result is bit-identical for any thread count.
 // rho_i is the patch's Kd whatever its material: on non-diffuse scenes (is_diffuse_scene false) the paths still
 // follow the materials, but B has its radiosity meaning only on diffuse patches.
 #include <cstdint>

@@ -3,7 +3,7 @@
 //
 // Pixel (px, py) = (1/spp) sum_s L(ray through (px + u, py + v)), (u, v) uniform in [0, 1)^2 (box filter):
 // the mean radiance over the pixel (W / (m^2 sr)). The per-pixel standard error is sqrt(var / spp) with the
-// unbiased per-sample variance. Sample s of pixel p = py * width + px uses Rng(seed, p, s): the image is
+// unbiased per-sample variance. Sample s of pixel p = py * width + px uses the stream (seed, render_pixel, p, s) (core/rng.h): the image is
 // bit-identical for any thread count.
 #include <cstdint>
 

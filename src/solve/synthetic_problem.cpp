@@ -30,7 +30,7 @@ RadiosityProblem make_synthetic_problem(long patches, int rays, std::uint64_t se
       p.E.row(i) = kPi * Rgb(17, 12, 4).transpose();
     }
     // Landing counts of the rays from i.
-    Rng rng(seed, std::uint64_t(i));
+    Rng rng = stream(seed, StreamDomain::synthetic_problem, std::uint64_t(i));
     std::map<std::int32_t, int> hits;
     for (int r = 0; r < rays; ++r) {
       const double u = rng.uniform();

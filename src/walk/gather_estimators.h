@@ -63,7 +63,7 @@ class GatherAbsorption {
   const WalkTables* t_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-  Rng rng_{0, 0};
+  Rng rng_;
   bool done_ = false;
 };
 
@@ -98,7 +98,7 @@ class GatherCollision {
   const WalkTables* t_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-  Rng rng_{0, 0};
+  Rng rng_;
   bool done_ = false;
 };
 
@@ -148,7 +148,7 @@ class GatherExpectedValue {
   const K* kernel_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-  Rng rng_{0, 0};
+  Rng rng_;
   bool awaiting_HE_ = false;
   bool done_ = false;
 };

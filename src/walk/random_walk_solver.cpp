@@ -34,7 +34,7 @@ template <class Walk, TransitionKernel K>
 Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::uint64_t seed,
                      WalkCounters& counters) {
   const auto count = static_cast<std::size_t>(end - begin);
-  const RngFamily streams(seed, i);  // walk w from patch i: Rng(seed, i, w)
+  const RngFamily streams(seed, StreamDomain::gather_walk, i);  // walk w from patch i
   auto make = [&](std::size_t w) { return Walk(kernel, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
   ShiftedSums sums;
@@ -160,7 +160,7 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
     }
     touched.clear();
   };
-  const RngFamily particles(seed, kShootStream);  // particle w: Rng(seed, kShootStream, w)
+  const RngFamily particles(seed, StreamDomain::shoot_particle, 0);  // particle w: stream w
   auto make = [&](std::size_t w) {
     return Particle(kernel, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
   };

@@ -58,7 +58,7 @@ class ShootParticle {
   const WalkTables* t_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Zero();
-  Rng rng_{0, 0};
+  Rng rng_;
   bool done_ = false;
 };
 

@@ -5,8 +5,8 @@
 // `walks` walks per patch) and shoot-collision, shoot-absorption, shoot-survival (estimate all patches, `walks`
 // particles in total). Kernels: "matrix" (stored F, alias tables) or "ray" (trace each step, needs a PatchSet and
 // a Visibility). Survival p_k: "analog" (mean rho_k over channels), "max", "constant" (survival_constant).
-// Random streams: gathering walk w from patch i is Rng(seed, i, w); shooting particle w is
-// Rng(seed, kShootStream, w). Results are bit-identical for any thread count.
+// Random streams (core/rng.h): gathering walk w from patch i is (seed, gather_walk, i, w); shooting particle w is
+// (seed, shoot_particle, 0, w). Results are bit-identical for any thread count.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -15,8 +15,6 @@
 #include "walk/shoot_estimators.h"
 
 namespace radwalk {
-
-inline constexpr std::uint64_t kShootStream = ~std::uint64_t{0};
 
 struct WalkOptions {
   std::string walk = "gather";           // "gather" | "shoot"

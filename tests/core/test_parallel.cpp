@@ -11,7 +11,7 @@ static double noisy_sum() {
       100000, 97, 0.0,
       [](std::size_t b, std::size_t e) {
         double s = 0;
-        for (std::size_t i = b; i < e; ++i) s += Rng(1, i).uniform() * 1e-3 + 1e6 * (i % 3);
+        for (std::size_t i = b; i < e; ++i) s += stream(1, StreamDomain::test, i).uniform() * 1e-3 + 1e6 * (i % 3);
         return s;
       },
       [](double a, double b) { return a + b; });

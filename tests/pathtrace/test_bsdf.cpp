@@ -29,7 +29,7 @@ TEST_CASE("white furnace: a rho = 1 Lambertian reflects everything (uniform-sphe
   for (double theta : {0.1, 0.8, 1.4}) {
     const Vec3 wo = direction(theta, 0.3);
     Moments m;
-    Rng rng(11, k++);
+    Rng rng = stream(11, StreamDomain::test, k++);
     for (int s = 0; s < 200000; ++s) {
       const Vec3 wi = uniform_sphere(rng.uniform(), rng.uniform());
       m.add(lambert.f(wo, wi)[0] * std::abs(wi.z()) * 4 * kPi);
@@ -46,7 +46,7 @@ TEST_CASE("GGX: D is normalised and passes the weak white furnace test", "[bsdf]
   for (double alpha : {0.2, 0.6}) {
     const Ggx ggx(alpha);
     Moments norm;
-    Rng rng(21, k++);
+    Rng rng = stream(21, StreamDomain::test, k++);
     for (int s = 0; s < 400000; ++s) {
       const Vec3 wm = uniform_sphere(rng.uniform(), rng.uniform());
       norm.add(ggx.D(wm) * std::max(0.0, wm.z()) * 4 * kPi);
@@ -55,7 +55,7 @@ TEST_CASE("GGX: D is normalised and passes the weak white furnace test", "[bsdf]
     for (double theta : {0.0, 0.9, 1.45}) {
       const Vec3 wo = direction(theta, 1.1);
       Moments weak;
-      Rng r2(22, k++);
+      Rng r2 = stream(22, StreamDomain::test, k++);
       for (int s = 0; s < 400000; ++s) {
         const Vec3 wi = uniform_sphere(r2.uniform(), r2.uniform());
         const Vec3 wh = (wo + wi).normalized();
@@ -103,7 +103,7 @@ TEST_CASE("microfacet: sample weight equals f cos / pdf, f is reciprocal, albedo
   for (double alpha : {0.1, 0.5, 0.9}) {
     const MicrofacetConductor mf = white_ggx(alpha);
     const Vec3 wo = direction(0.3 + alpha, 2.0);
-    Rng rng(41, k++);
+    Rng rng = stream(41, StreamDomain::test, k++);
     Moments sampled, uniform;
     for (int s = 0; s < 200000; ++s) {
       const auto bs = mf.sample(wo, rng.uniform(), rng.uniform(), rng.uniform());
@@ -153,7 +153,7 @@ TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance; die
       Vec3 w = direction(theta, 0.2);
       w.z() *= side;
       const double F = fresnel_dielectric(w.z(), 1.5);
-      Rng rng(51, k++);
+      Rng rng = stream(51, StreamDomain::test, k++);
       Moments reflected;
       for (int s = 0; s < 100000; ++s) {
         const auto bs = glass.sample(w, rng.uniform(), rng.uniform(), rng.uniform());

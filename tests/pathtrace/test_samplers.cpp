@@ -35,7 +35,7 @@ TEST_CASE("discrete distribution: pmf, inverse round trip, chi-square", "[sample
   // H0: counts follow the pmf; alpha = 1e-3 (one test).
   const int n = 100000;
   std::vector<double> obs(w.size(), 0), exp(w.size(), 0);
-  Rng rng(61, 0);
+  Rng rng = stream(61, StreamDomain::test, 0);
   for (int s = 0; s < n; ++s) obs[d.sample(rng.uniform())] += 1;
   for (std::size_t k = 0; k < w.size(); ++k) exp[k] = n * d.pmf(k);
   CHECK(obs[1] == 0);
@@ -68,7 +68,7 @@ TEST_CASE("light sampler: emitters chosen by power or area, points on the chosen
   int seed = 0;
   for (const LightSampler* ls : {&by_power, &by_area}) {
     std::vector<double> obs(2, 0), exp = {0, 0};
-    Rng rng(71, seed++);
+    Rng rng = stream(71, StreamDomain::test, seed++);
     const int n = 50000;
     for (int s = 0; s < n; ++s) {
       const LightSample x = ls->sample(rng.uniform(), rng.uniform(), rng.uniform());

@@ -32,7 +32,7 @@ TEST_CASE("analytic sphere test scene: areas, sampling and intersection agree", 
   const PatchSet& p = scene->patches;
   REQUIRE(p.size() == 128);
   CHECK(p.total_area() == Approx(4 * kPi * kCells.radius * kCells.radius).epsilon(1e-12));
-  Rng rng(7, 0);
+  Rng rng = stream(7, StreamDomain::test, 0);
   for (int k = 0; k < 2000; ++k) {
     const auto i = static_cast<PatchIndex>(k % p.size());
     // Points sampled on patch i lie on the sphere and in patch i.
@@ -64,7 +64,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
     io.kind = kind;
     const PathIntegrator integrator(p, scene->geometry, scene->visibility, io);
     PathCounters counters;
-    Rng pick(11, 0);
+    Rng pick = stream(11, StreamDomain::test, 0);
     // Wall points: irradiance estimates at fixed points, 8 on the cap and 16 below it.
     for (int k = 0; k < 24; ++k) {
       const int band = k < 8 ? kCells.n_z - 1 - k % kEmittingBands : k % (kCells.n_z - kEmittingBands);
@@ -72,7 +72,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       const Vec3 x = scene->geometry.sample_point(i, pick.uniform(), pick.uniform());
       std::vector<test::Moments> m(3);
       for (long s = 0; s < n; ++s) {
-        Rng rng(12, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
+        Rng rng = stream(12, StreamDomain::test, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
         const Rgb y = p.E[i] + p.rho[i] * integrator.irradiance(i, x, rng, counters);
         for (int c = 0; c < 3; ++c) m[c].add(y[c]);
       }
@@ -92,7 +92,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       REQUIRE(j >= 0);
       std::vector<test::Moments> m(3);
       for (long s = 0; s < n; ++s) {
-        Rng rng(13, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
+        Rng rng = stream(13, StreamDomain::test, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
         const Rgb L = integrator.radiance(ray, rng, counters);
         for (int c = 0; c < 3; ++c) m[c].add(L[c]);
       }

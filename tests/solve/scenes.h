@@ -64,7 +64,7 @@ inline RadiosityProblem plates(const Rgb& rho1, const Rgb& rho2, const Rgb& E1, 
 // Random rho per channel in [0.2, 0.8), a few emitters.
 inline RadiosityProblem sphere(int n, std::uint64_t seed) {
   RadiosityProblem p;
-  Rng rng(seed, 0);
+  Rng rng = stream(seed, StreamDomain::test, 0);
   p.area.resize(n);
   for (int i = 0; i < n; ++i) p.area(i) = 0.5 + rng.uniform();
   const double total = p.area.sum();

@@ -52,7 +52,7 @@ double distance_to_boundary(const PatchSet& ps, PatchIndex i, const Vec3& x) {
 // side, or |t_a - t_ref| > 1e-5 (the scene is the unit cube: float rounding is about 1e-7).
 long unexplained_mismatches(const PatchSet& ps, const Visibility& a, const Visibility& ref, int rays,
                             std::uint64_t seed, long* edge_cases = nullptr) {
-  Rng rng(seed, 0);
+  Rng rng = stream(seed, StreamDomain::test, 0);
   long bad = 0, edge = 0;
   for (int k = 0; k < rays; ++k) {
     Ray ray;
@@ -100,7 +100,7 @@ TEST_CASE("Embree agrees with brute force on random rays", "[visibility]") {
 TEST_CASE("batch intersect and occluded equal single rays", "[visibility]") {
   const PatchSet ps = cluttered_room();
   const EmbreeVisibility embree(ps);
-  Rng rng(3, 0);
+  Rng rng = stream(3, StreamDomain::test, 0);
   const std::size_t n = 1000 + 7;  // not a multiple of 16 or 256
   std::vector<Ray> rays(n);
   for (auto& r : rays) {
@@ -133,7 +133,7 @@ TEST_CASE("a ray packet in single precision gives the hits of its rays traced on
   const PatchSet ps = cluttered_room();
   const EmbreeVisibility embree(ps);
   const BruteForceVisibility brute(ps);
-  Rng rng(4, 0);
+  Rng rng = stream(4, StreamDomain::test, 0);
   long differ = 0, hits = 0;
   auto same = [](const Hit& a, const Hit& b) {
     return a.patch == b.patch && a.t == b.t && a.front == b.front;
@@ -171,7 +171,7 @@ TEST_CASE("spawned rays never hit their own patch and never leak from a closed r
   long self = 0, escaped = 0, back = 0, rays = 0;
   const double corner_u[] = {0.0, 0x1.fffffffffffffp-1, 0.5};
   for (std::size_t i = 0; i < ps.size(); ++i) {
-    Rng rng(11, i);
+    Rng rng = stream(11, StreamDomain::test, i);
     const Frame frame(ps.normal[i]);
     for (int k = 0; k < 2000; ++k, ++rays) {
       const double u1 = k < 9 ? corner_u[k % 3] : rng.uniform();

@@ -22,7 +22,7 @@ TEST_CASE("alias table reproduces its weights (pdf) and passes a chi-square test
   for (std::size_t i = 0; i < w.size(); ++i) CHECK(table.pdf(i) == Approx(w[i] / total).margin(1e-15));
   const long n = 1'000'000;
   std::vector<double> observed(w.size(), 0), expected(w.size());
-  Rng rng(7, 0, 0);
+  Rng rng = stream(7, StreamDomain::test, 0, 0);
   for (long k = 0; k < n; ++k) observed[table.sample(rng.uniform())] += 1;
   for (std::size_t i = 0; i < w.size(); ++i) expected[i] = n * w[i] / total;
   CHECK(observed[1] == 0);
@@ -54,7 +54,7 @@ TEST_CASE("row alias tables sample F_kj / n_k with the escape outcome", "[walk][
   // Chi-square on row 1 (4 patches + escape).
   const long n = 1'000'000;
   std::vector<double> observed(6, 0), expected(6, 0);
-  Rng rng(11, 0, 0);
+  Rng rng = stream(11, StreamDomain::test, 0, 0);
   for (long k = 0; k < n; ++k) {
     const PatchIndex j = rows.sample(1, rng.uniform());
     observed[j < 0 ? 5 : static_cast<std::size_t>(j)] += 1;

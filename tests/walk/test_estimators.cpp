@@ -86,7 +86,7 @@ TEST_CASE("the z-test rejects a deliberately biased estimator", "[walk][unbiased
     Moments m;
     WalkCounters counters;
     for (long w = 0; w < walks; ++w) {
-      Rng rng(42, i, static_cast<std::uint64_t>(w));
+      Rng rng = stream(42, StreamDomain::test, i, static_cast<std::uint64_t>(w));
       const WalkTables& t = kernel.tables();
       std::size_t k = i;
       Rgb W = Rgb::Ones(), X = Rgb::Zero();

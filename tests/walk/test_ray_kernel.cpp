@@ -79,7 +79,7 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
 
 namespace {
 
-// Per-walk gathering scores of patch i, walks 0..walks-1 from the streams Rng(seed, i, w): one at a time
+// Per-walk gathering scores of patch i, walks 0..walks-1 from the solver's streams (seed, gather_walk, i, w): one at a time
 // (gather_walk) or `lanes` at a time in lockstep (run_lockstep, as the solver runs them).
 template <class K>
 std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, std::size_t i, std::size_t walks,
@@ -93,13 +93,13 @@ std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, st
   };
   switch (est) {
     case GatherEstimator::absorption:
-      run([&](std::size_t w) { return GatherAbsorption<K>(kernel, i, Rng(seed, i, w)); });
+      run([&](std::size_t w) { return GatherAbsorption<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
       break;
     case GatherEstimator::collision:
-      run([&](std::size_t w) { return GatherCollision<K>(kernel, i, Rng(seed, i, w)); });
+      run([&](std::size_t w) { return GatherCollision<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
       break;
     case GatherEstimator::expected_value:
-      run([&](std::size_t w) { return GatherExpectedValue<K>(kernel, i, Rng(seed, i, w)); });
+      run([&](std::size_t w) { return GatherExpectedValue<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
       break;
   }
   return X;
@@ -119,7 +119,7 @@ void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, c
       const std::vector<Rgb> single = lockstep_gather_scores(est, kernel, i, walks, seed, 1, single_counters);
       int mismatches = 0;
       for (std::size_t w = 0; w < walks; ++w) {
-        Rng rng(seed, i, w);
+        Rng rng = stream(seed, StreamDomain::gather_walk, i, w);
         WalkCounters counters;
         const Rgb alone = gather_walk(est, kernel, i, rng, counters);
         mismatches += !(alone == batched[w]).all() || !(alone == single[w]).all();
@@ -137,7 +137,7 @@ void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, c
     WalkCounters counters;
     run_lockstep(
         kernel, walks, lanes,
-        [&](std::size_t w) { return ShootCollision<K>(kernel, source, Rng(seed, kShootStream, w)); },
+        [&](std::size_t w) { return ShootCollision<K>(kernel, source, stream(seed, StreamDomain::shoot_particle, 0, w)); },
         [&](ShootCollision<K>& particle, std::size_t w, PatchIndex j) {
           particle.advance(j, [&](std::size_t jj, const Rgb& power) { scores[w].push_back({jj, power}); });
         },
@@ -191,7 +191,7 @@ TEST_CASE("the ray kernel's rays are spawn_ray's for the same uniforms, to singl
   double origin_error = 0, direction_error = 0, lowest = INFINITY;
   for (std::size_t k = 0; k < patches.size(); ++k)
     for (std::uint64_t n = 0; n < 20000; ++n) {
-      Rng rng(5, k, n), copy = rng;
+      Rng rng = stream(5, StreamDomain::test, k, n), copy = rng;
       const Ray ray = kernel.sample_ray(k, rng);
       auto u = [&] { return static_cast<double>(copy.next_u32() >> 8) * 0x1.0p-24; };
       const double u1 = u(), u2 = u(), u3 = u(), u4 = u();

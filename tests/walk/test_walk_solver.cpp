@@ -79,7 +79,7 @@ TEST_CASE("1 and 2 threads give bit-identical results", "[walk][threads]") {
     }
 }
 
-TEST_CASE("walk w from patch i uses the stream Rng(seed, i, w)", "[walk][threads]") {
+TEST_CASE("walk w from patch i uses the stream (seed, gather_walk, i, w)", "[walk][threads]") {
   // The solver's estimate equals the mean of walks replayed one by one from their streams.
   const RadiosityProblem p = test::mixed_cube();
   WalkOptions o;

@@ -103,21 +103,21 @@ inline SampleMoments sample_moments(const std::vector<double>& x) {
   return m;
 }
 
-// Per-walk scores of patch i, channel by channel: x[c][w], from the streams Rng(seed, i, w).
+// Per-walk scores of patch i, channel by channel: x[c][w], from the solver's streams (seed, gather_walk, i, w).
 template <class K>
 std::vector<std::vector<double>> gather_scores(GatherEstimator est, const K& kernel, std::size_t i, long walks,
                                                std::uint64_t seed) {
   std::vector<std::vector<double>> x(3, std::vector<double>(static_cast<std::size_t>(walks)));
   WalkCounters counters;
   for (long w = 0; w < walks; ++w) {
-    Rng rng(seed, i, static_cast<std::uint64_t>(w));
+    Rng rng = stream(seed, StreamDomain::gather_walk, i, static_cast<std::uint64_t>(w));
     const Rgb s = gather_walk(est, kernel, i, rng, counters);
     for (int c = 0; c < 3; ++c) x[c][static_cast<std::size_t>(w)] = s(c);
   }
   return x;
 }
 
-// Per-particle scores Y_j (radiosity units, emission excluded): y[j * 3 + c][w], streams Rng(seed, kShootStream, w).
+// Per-particle scores Y_j (radiosity units, emission excluded): y[j * 3 + c][w], the solver's streams (seed, shoot_particle, 0, w).
 template <class K>
 std::vector<std::vector<double>> shoot_scores(ShootEstimator est, const K& kernel, const RadiosityProblem& problem,
                                               long particles, std::uint64_t seed) {
@@ -126,7 +126,7 @@ std::vector<std::vector<double>> shoot_scores(ShootEstimator est, const K& kerne
   std::vector<std::vector<double>> y(3 * N, std::vector<double>(static_cast<std::size_t>(particles), 0.0));
   WalkCounters counters;
   for (long w = 0; w < particles; ++w) {
-    Rng rng(seed, kShootStream, static_cast<std::uint64_t>(w));
+    Rng rng = stream(seed, StreamDomain::shoot_particle, 0, static_cast<std::uint64_t>(w));
     shoot_particle(est, kernel, source, rng, counters, [&](std::size_t j, const Rgb& power) {
       for (int c = 0; c < 3; ++c)
         y[j * 3 + static_cast<std::size_t>(c)][static_cast<std::size_t>(w)] +=
