@@ -3,6 +3,7 @@
 // them to exit codes: InputError 2 (the user can fix it), NumericalError 3, InternalError and anything else 4.
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace radwalk {
 
@@ -23,6 +24,10 @@ class InternalError : public std::logic_error {
  public:
   using std::logic_error::logic_error;
 };
+
+// `text` made safe to print in a one-line message or a JSON string: control characters, DEL and bytes that are
+// not valid UTF-8 become \xNN escapes; everything else (valid UTF-8 included) is kept.
+std::string printable(std::string_view text);
 
 // "FILE:LINE: face F: WHAT" with the parts that are known (line <= 0 or face < 0 are left out).
 std::string locate(const std::string& file, long line, long face, const std::string& what);

@@ -38,8 +38,9 @@ double parse_scalar(const std::vector<std::string_view>& tokens, const std::stri
 
 }  // namespace
 
-std::vector<MtlEntry> scan_mtl(const std::string& path) {
-  const std::string text = read_text_file(path);
+std::vector<MtlEntry> scan_mtl(const std::string& path) { return scan_mtl_text(path, read_input_file(path)); }
+
+std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view text) {
   std::vector<MtlEntry> entries;
   for_each_line(text, [&](long line, std::string_view content) {
     const auto tokens = split_tokens(content);
@@ -48,12 +49,7 @@ std::vector<MtlEntry> scan_mtl(const std::string& path) {
     if (key == "newmtl") {
       if (tokens.size() < 2) throw InputError(locate(path, line, -1, "newmtl without a name"));
       MtlEntry e;
-      // A name may contain spaces: everything after the keyword.
-      const std::size_t start = content.find(tokens[1]);
-      const std::size_t end = content.find('#');
-      std::string_view name = content.substr(start, end == std::string_view::npos ? end : end - start);
-      while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.remove_suffix(1);
-      e.name = std::string(name);
+      e.name = std::string(rest_of_statement(content, tokens[1]));  // the name rule of text_scan.h
       e.file = path;
       e.line = line;
       entries.push_back(std::move(e));
@@ -73,7 +69,7 @@ std::vector<MtlEntry> scan_mtl(const std::string& path) {
     else if (key == "Pr") e.Pr = parse_scalar(tokens, path, line);
     else if (key == "Pm") e.Pm = parse_scalar(tokens, path, line);
     else {
-      const auto v = tokens.size() == 2 ? parse_long(tokens[1]) : std::nullopt;
+      const auto v = tokens.size() == 2 ? parse_integral(tokens[1]) : std::nullopt;  // "2" or "2.0"
       if (!v || *v < 0 || *v > 10) throw InputError(locate(path, line, -1, "illum needs one integer in 0..10"));
       e.illum = static_cast<int>(*v);
     }

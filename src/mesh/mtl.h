@@ -1,8 +1,9 @@
 #pragma once
 // MTL material libraries: the statements radwalk reads, and their mapping to a Material.
 //
-// Statements read (others are ignored): newmtl NAME; Kd, Ke, Ks as "r g b" or a single "v" (g = b = v);
-// illum N; Ni, Ns, Pr, Pm as one number. Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the
+// Statements read (others are ignored): newmtl NAME (the rest of the statement, spaces included: the name rule of
+// text_scan.h); Kd, Ke, Ks as "r g b" or a single "v" (g = b = v); illum N (an integer, "2.0" allowed); Ni, Ns,
+// Pr, Pm as one number. Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the
 // emitted radiosity is E = pi * Ke). Numbers are read exactly (correctly rounded, see text_scan.h).
 //
 // BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
@@ -14,6 +15,7 @@
 // the Blinn-Phong equivalent sqrt(2 / (Ns + 2)) (Walter et al. 2007); otherwise 0.
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/types.h"
@@ -34,6 +36,8 @@ struct MtlEntry {
 // All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement radwalk
 // cannot read (a number that does not parse, a spectral or xyz colour, a statement before the first newmtl).
 std::vector<MtlEntry> scan_mtl(const std::string& path);
+// The same for the bytes of an MTL file already read (path names it in messages).
+std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view text);
 
 // The Material for an entry, with the kind and roughness mapping above. Missing Kd and Ke stay zero.
 Material material_from_mtl(const MtlEntry& entry);

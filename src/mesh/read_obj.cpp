@@ -1,12 +1,10 @@
 #include "mesh/read_obj.h"
 
 #include <cmath>
-#include <fstream>
 #include <limits>
 #include <map>
-#include <stdexcept>
 
-#include <tiny_obj_loader.h>
+#include <sys/stat.h>
 
 #include "core/error.h"
 #include "mesh/mtl.h"
@@ -36,7 +34,7 @@ struct ObjScan {
   long first_ignored_line = 0;
 };
 
-// The line scan: lines, exact coordinates and strict checks (see read_obj.h).
+// The parser: one pass over the statements, exact coordinates and strict checks (see read_obj.h).
 ObjScan scan_obj(const std::string& path, const std::string& text) {
   ObjScan s;
   for_each_line(text, [&](long line, std::string_view content) {
@@ -70,9 +68,6 @@ ObjScan scan_obj(const std::string& path, const std::string& text) {
         throw InputError(locate(path, line, face, "has " + std::to_string(n) +
                                                       " vertices; radwalk takes triangles and quads only "
                                                       "(triangulate or split the polygon)"));
-      if (content.find('#') != std::string_view::npos)
-        throw InputError(locate(path, line, face, "a comment after a face statement is not supported (tinyobjloader "
-                                                  "rejects it); put the comment on its own line"));
       ScannedFace f;
       f.line = line;
       f.usemtl = static_cast<int>(s.usemtl.size()) - 1;
@@ -93,10 +88,10 @@ ObjScan scan_obj(const std::string& path, const std::string& text) {
       s.faces.push_back(std::move(f));
     } else if (key == "usemtl") {
       if (tokens.size() < 2) throw InputError(locate(path, line, -1, "usemtl without a material name"));
-      s.usemtl.push_back({std::string(tokens[1]), line});
+      s.usemtl.push_back({std::string(rest_of_statement(content, tokens[1])), line});
     } else if (key == "mtllib") {
       if (tokens.size() < 2) throw InputError(locate(path, line, -1, "mtllib without a file name"));
-      for (std::size_t k = 1; k < tokens.size(); ++k) s.mtllib.push_back({std::string(tokens[k]), line});
+      s.mtllib.push_back({std::string(rest_of_statement(content, tokens[1])), line});
     } else if (key == "l" || key == "p") {
       if (s.ignored_elements++ == 0) s.first_ignored_line = line;
     }
@@ -104,89 +99,84 @@ ObjScan scan_obj(const std::string& path, const std::string& text) {
   return s;
 }
 
-// tinyobjloader's faces in file order (shapes in order, faces in order within a shape).
-struct TinyFace {
-  std::vector<int> v;
-  int material = -1;
-};
+// "a\ b" -> "a b": a space escaped with a backslash is part of a file name.
+std::string unescape_spaces(std::string_view name) {
+  std::string out;
+  for (std::size_t k = 0; k < name.size(); ++k) {
+    if (name[k] == '\\' && k + 1 < name.size() && (name[k + 1] == ' ' || name[k + 1] == '\t')) ++k;
+    out.push_back(name[k]);
+  }
+  return out;
+}
 
-std::vector<TinyFace> tiny_faces(const std::vector<tinyobj::shape_t>& shapes) {
-  std::vector<TinyFace> faces;
-  for (const auto& shape : shapes) {
-    std::size_t offset = 0;
-    for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
-      TinyFace t;
-      const std::size_t n = shape.mesh.num_face_vertices[f];
-      for (std::size_t k = 0; k < n; ++k) t.v.push_back(shape.mesh.indices[offset + k].vertex_index);
-      offset += n;
-      t.material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      faces.push_back(std::move(t));
+bool is_regular_file(const std::string& path) {
+  struct stat st {};
+  return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// The files an mtllib statement names, resolved against the OBJ's directory (absolute paths as given). The
+// whole rest of the statement is one file name if such a file exists (names with spaces, as some exporters write
+// them); otherwise it is a list of file names separated by spaces or tabs, every one of which must exist.
+std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine& lib, const std::string& dir) {
+  auto resolved = [&](const std::string& name) { return !name.empty() && name[0] == '/' ? name : dir + name; };
+  const std::string whole = resolved(unescape_spaces(lib.name));
+  if (is_regular_file(whole)) return {whole};
+  std::vector<std::string> files;
+  std::string name;
+  auto add = [&] {
+    if (name.empty()) return;
+    const std::string file = resolved(name);
+    if (!is_regular_file(file))
+      throw InputError(locate(path, lib.line, -1, "material library '" + printable(name) + "' not found (looked for " +
+                                                      printable(file) + ")"));
+    files.push_back(file);
+    name.clear();
+  };
+  for (std::size_t k = 0; k < lib.name.size(); ++k) {
+    const char c = lib.name[k];
+    if (c == '\\' && k + 1 < lib.name.size() && (lib.name[k + 1] == ' ' || lib.name[k + 1] == '\t')) {
+      name.push_back(lib.name[++k]);
+    } else if (c == ' ' || c == '\t') {
+      add();
+    } else {
+      name.push_back(c);
     }
   }
-  return faces;
+  add();
+  return files;
 }
 
 }  // namespace
 
 Mesh read_obj(const std::string& path) {
-  const std::string text = read_text_file(path);
+  const std::string text = read_input_file(path);
   const ObjScan scan = scan_obj(path, text);
   const std::string dir = directory_of(path);
 
   // Material libraries: every listed file must exist; each is read once, in statement order.
   std::vector<MtlEntry> entries;
   std::vector<std::string> libraries;
-  for (const auto& lib : scan.mtllib) {
-    const std::string file = dir + lib.name;
-    if (!std::ifstream(file))
-      throw InputError(locate(path, lib.line, -1, "material library '" + lib.name + "' not found (looked for " +
-                                                      file + ")"));
-    bool seen = false;
-    for (const auto& l : libraries) seen = seen || l == file;
-    if (seen) continue;
-    libraries.push_back(file);
-    auto more = scan_mtl(file);
-    entries.insert(entries.end(), more.begin(), more.end());
-  }
-
-  // Structure from tinyobjloader.
-  tinyobj::attrib_t attrib;
-  std::vector<tinyobj::shape_t> shapes;
-  std::vector<tinyobj::material_t> tiny_materials;
-  std::string warn, err;
-  const bool ok = tinyobj::LoadObj(&attrib, &shapes, &tiny_materials, &warn, &err, path.c_str(),
-                                   dir.empty() ? "./" : dir.c_str(), /*triangulate=*/false);
-  if (!ok) throw InputError(locate(path, 0, -1, "tinyobjloader: " + err.substr(0, err.find('\n'))));
-
-  // Cross-check tinyobjloader against the scan, so that nothing is dropped or reordered silently.
-  const std::vector<TinyFace> tiny = tiny_faces(shapes);
-  auto disagree = [&](const std::string& what) {
-    return std::logic_error("read_obj: tinyobjloader and the line scan disagree: " + what + " in " + path);
-  };
-  if (attrib.vertices.size() != 3 * scan.vertices.size())
-    throw disagree("vertex count " + std::to_string(attrib.vertices.size() / 3) + " vs " +
-                   std::to_string(scan.vertices.size()));
-  if (tiny.size() != scan.faces.size())
-    throw disagree("face count " + std::to_string(tiny.size()) + " vs " + std::to_string(scan.faces.size()));
-  for (std::size_t f = 0; f < tiny.size(); ++f)
-    for (std::size_t k = 0; k < scan.faces[f].v.size(); ++k)
-      if (tiny[f].v.size() != scan.faces[f].v.size() || tiny[f].v[k] != scan.faces[f].v[k])
-        throw disagree("face " + std::to_string(f) + " (line " + std::to_string(scan.faces[f].line) + ")");
-  if (tiny_materials.size() != entries.size())
-    throw disagree("material count " + std::to_string(tiny_materials.size()) + " vs " +
-                   std::to_string(entries.size()));
+  for (const auto& lib : scan.mtllib)
+    for (const std::string& file : resolve_mtllib(path, lib, dir)) {
+      bool seen = false;
+      for (const auto& l : libraries) seen = seen || l == file;
+      if (seen) continue;
+      libraries.push_back(file);
+      auto more = scan_mtl(file);
+      entries.insert(entries.end(), more.begin(), more.end());
+    }
 
   Mesh mesh;
   mesh.path = path;
   mesh.vertices = scan.vertices;
 
-  // Materials: the first definition of a name wins (as in tinyobjloader); later ones are reported.
+  // Materials: the first definition of a name wins; later ones are reported.
   std::map<std::string, int> by_name;
   for (const auto& e : entries) {
     const int index = static_cast<int>(mesh.materials.size());
     mesh.materials.push_back(material_from_mtl(e));
     if (!by_name.emplace(e.name, index).second)
-      mesh.warnings.push_back(locate(e.file, e.line, -1, "material '" + e.name +
+      mesh.warnings.push_back(locate(e.file, e.line, -1, "material '" + printable(e.name) +
                                                              "' is defined again; the first definition is used"));
   }
 
@@ -210,7 +200,7 @@ Mesh read_obj(const std::string& path) {
       std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
       for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
       throw InputError(locate(path, sf.line, static_cast<long>(f),
-                              "unknown material '" + use.name + "' (usemtl at line " + std::to_string(use.line) +
+                              "unknown material '" + printable(use.name) + "' (usemtl at line " + std::to_string(use.line) +
                                   ": " + where + ")"));
     }
     mesh.face_material[f] = it->second;

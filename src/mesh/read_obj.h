@@ -6,14 +6,17 @@
 // statement order, newmtl blocks in file order (see mtl.h for the statements and the BsdfKind mapping); a face
 // before any `usemtl` gets material -1 (validate_mesh gives it a default with a warning).
 //
-// tinyobjloader parses the structure (faces, material assignment, MTL blocks). A light line scan of both files
-// supplies what tinyobjloader does not give or papers over, and the two are cross-checked face by face:
-//   - source lines of faces and materials;
-//   - exact numbers (tinyobjloader's parser is off by one ulp for 0.73; it reads "nan" as 0 and a short
-//     `v 1 2` or `Kd 0.5` line as zeros);
-//   - strictness: a vertex without three finite coordinates, a face with fewer than 3 or more than 4 vertices, index
-//     0 or a relative index before the first vertex, a missing mtllib file, an unknown usemtl name (when a face
-//     uses it) are InputErrors naming file, line and face. `l` and `p` statements are ignored with a warning.
+// The file is read once and parsed from those bytes by one scanner (text_scan.h: one line rule, one name rule for
+// OBJ and MTL alike). What it reads: `v` (exact, correctly rounded coordinates), `f` (the vertex index of each
+// corner; texture and normal indices are ignored), `usemtl NAME` and `newmtl NAME` (a name is the rest of the
+// statement, spaces included), `mtllib` (the rest of the statement names one file if such a file exists, else a
+// list of files separated by spaces; "\ " escapes a space; absolute paths are used as given). Other statements
+// (vn, vt, o, g, s, ...) are ignored; `l` and `p` are ignored with a warning.
+// Strict: a vertex without three finite coordinates, a face with fewer than 3 or more than 4 vertices, index 0
+// or a relative index before the first vertex, a missing mtllib file, an unknown usemtl name (when a face uses it)
+// are InputErrors naming file, line and face.
+// tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
+// reader here.
 // Out-of-range vertex indices are kept and reported by validate_mesh.
 #include <string>
 

@@ -1,21 +1,74 @@
 #include "mesh/text_scan.h"
 
 #include <cctype>
+#include <cerrno>
 #include <charconv>
-#include <fstream>
-#include <sstream>
+#include <cmath>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/error.h"
 
 namespace radwalk {
 
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(locate(path, 0, -1, "cannot open the file"));
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) throw InputError(locate(path, 0, -1, "read error"));
-  return content.str();
+namespace {
+
+// Closes a file descriptor on every path out.
+struct FileDescriptor {
+  int fd = -1;
+  ~FileDescriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+std::string size_text(std::uint64_t bytes) {
+  return bytes >= (std::uint64_t{1} << 30) ? std::to_string(bytes >> 30) + " GiB" : std::to_string(bytes) + " bytes";
+}
+
+}  // namespace
+
+std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
+  // O_NONBLOCK: opening a FIFO without a writer must not block; fstat then refuses it.
+  FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  if (file.fd < 0) throw InputError(locate(path, 0, -1, std::string("cannot open the file (") + std::strerror(errno) + ")"));
+  struct stat st {};
+  if (::fstat(file.fd, &st) != 0) throw InputError(locate(path, 0, -1, "cannot read the file's status"));
+  if (!S_ISREG(st.st_mode)) {
+    const char* kind = S_ISDIR(st.st_mode)    ? "a directory"
+                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                       : S_ISSOCK(st.st_mode)                      ? "a socket"
+                                                                   : "not a regular file";
+    throw InputError(locate(path, 0, -1, std::string("is ") + kind + "; radwalk reads input only from regular files"));
+  }
+  const auto size = static_cast<std::uint64_t>(st.st_size);
+  if (size > max_bytes)
+    throw InputError(locate(path, 0, -1, "is " + size_text(size) + ", more than the " + size_text(max_bytes) +
+                                             " radwalk reads"));
+  // One byte more than fstat said, to see the end of the file (or that it grew) without a second pass.
+  const std::uint64_t limit = max_bytes + 1;
+  std::string content;
+  content.resize(static_cast<std::size_t>(std::min(limit, size + 1)));
+  std::size_t have = 0;
+  for (;;) {
+    if (have == content.size()) {
+      if (have >= limit)
+        throw InputError(locate(path, 0, -1, "grew beyond the " + size_text(max_bytes) + " radwalk reads"));
+      content.resize(static_cast<std::size_t>(std::min<std::uint64_t>(limit, 2 * content.size() + 4096)));
+    }
+    const ssize_t got = ::read(file.fd, content.data() + have, content.size() - have);
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(locate(path, 0, -1, std::string("read error (") + std::strerror(errno) + ")"));
+    }
+    if (got == 0) break;
+    have += static_cast<std::size_t>(got);
+  }
+  content.resize(have);
+  return content;
 }
 
 std::vector<std::string_view> split_tokens(std::string_view line) {
@@ -32,13 +85,45 @@ std::vector<std::string_view> split_tokens(std::string_view line) {
   return tokens;
 }
 
-std::optional<double> parse_double(std::string_view token) {
+std::string_view rest_of_statement(std::string_view line, std::string_view first) {
+  const auto start = static_cast<std::size_t>(first.data() - line.data());
+  std::string_view rest = line.substr(start);
+  rest = rest.substr(0, rest.find('#'));
+  while (!rest.empty() && (rest.back() == ' ' || rest.back() == '\t')) rest.remove_suffix(1);
+  return rest;
+}
+
+ParsedNumber parse_number(std::string_view token) {
   if (!token.empty() && token.front() == '+') token.remove_prefix(1);
-  if (token.empty()) return std::nullopt;
-  double value = 0;
-  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec != std::errc() || end != token.data() + token.size()) return std::nullopt;
-  return value;
+  ParsedNumber r;
+  if (token.empty()) return r;
+  const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), r.value);
+  if (end != token.data() + token.size()) return r;
+  if (ec == std::errc::result_out_of_range) {
+    // from_chars reports underflow and overflow alike: underflow is a value that rounds to (nearly) zero.
+    bool nonzero_digit = false, exponent = false, negative_exponent = false;
+    for (char c : token) {
+      if (c == 'e' || c == 'E') exponent = true;
+      else if (exponent && c == '-') negative_exponent = true;
+      else if (!exponent && c >= '1' && c <= '9') nonzero_digit = true;
+    }
+    if (negative_exponent || !nonzero_digit) {
+      r.value = token.front() == '-' ? -0.0 : 0.0;
+      r.status = NumberStatus::ok;
+      return r;
+    }
+    r.status = NumberStatus::out_of_range;
+    return r;
+  }
+  if (ec != std::errc()) return r;
+  r.status = NumberStatus::ok;
+  return r;
+}
+
+std::optional<double> parse_double(std::string_view token) {
+  const ParsedNumber n = parse_number(token);
+  if (n.status != NumberStatus::ok) return std::nullopt;
+  return n.value;
 }
 
 std::optional<long> parse_long(std::string_view token) {
@@ -48,6 +133,13 @@ std::optional<long> parse_long(std::string_view token) {
   const auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
   if (ec != std::errc() || end != token.data() + token.size()) return std::nullopt;
   return value;
+}
+
+std::optional<long> parse_integral(std::string_view token) {
+  if (const auto v = parse_long(token)) return v;
+  const auto x = parse_double(token);
+  if (!x || !std::isfinite(*x) || std::floor(*x) != *x || std::abs(*x) > 1e15) return std::nullopt;
+  return static_cast<long>(*x);
 }
 
 std::string directory_of(const std::string& path) {

@@ -1,10 +1,20 @@
 #pragma once
-// Strict scanning of the text scene formats (OBJ, MTL, PLY header): whole-file reading, line splitting into
-// whitespace-separated tokens, and number parsing that refuses what it cannot read exactly.
+// Strict scanning of the text scene formats (OBJ, MTL, PLY header): each input file is read ONCE into memory and
+// parsed from those bytes, with one line rule and one name rule for every statement of every format.
 //
-// Numbers are parsed with std::from_chars, which rounds correctly (0.73 becomes the double nearest 0.73), unlike
-// the hand-written parsers of tinyobjloader (off by one ulp for 0.73) and OpenMesh (8-bit colours). NaN and
-// infinity are parsed as such so that callers can reject them with a precise message.
+// Reading (read_input_file): only regular files are read (a FIFO, a device or a directory is refused before a
+// byte is read, so nothing blocks or reads forever), at most max_bytes of them.
+// Line rule (for_each_line): a line ends at "\n", "\r\n" or a lone "\r"; a UTF-8 byte-order mark at the start of
+// the file is skipped; a line whose last character is '\' continues on the next line (the backslash and the line
+// break become one space), and the joined statement is numbered by its first line.
+// Tokens (split_tokens): separated by spaces and tabs, up to a '#' comment.
+// Name rule (rest_of_statement): a name (material, material library) is everything from its first token to the
+// end of the statement or a '#' comment, trailing spaces and tabs removed, so "newmtl red paint" and "usemtl red
+// paint" name the same material.
+// Numbers are parsed with std::from_chars, which rounds correctly (0.73 becomes the double nearest 0.73); NaN and
+// infinity parse as such so that callers can reject them with a precise message; a number whose magnitude
+// overflows a double is "out of range", not "not a number".
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -12,36 +22,78 @@
 
 namespace radwalk {
 
-// The whole content of a file; throws InputError("PATH: cannot open ...") if it cannot be read.
-std::string read_text_file(const std::string& path);
+// The largest input file radwalk reads (16 GiB): a bound on what one read may allocate.
+inline constexpr std::uint64_t kMaxInputBytes = std::uint64_t{16} << 30;
 
-// Calls visit(line_number, line) for each line of text (line numbers start at 1; a trailing '\r' is removed).
+// The whole content of a regular file. Throws InputError("PATH: ...") if it cannot be opened, is not a regular
+// file, is larger than max_bytes, or a read fails.
+std::string read_input_file(const std::string& path, std::uint64_t max_bytes = kMaxInputBytes);
+
+// Calls visit(line_number, line) for each statement of text under the line rule above (line numbers from 1).
 template <class Visit>
-void for_each_line(std::string_view text, Visit&& visit) {
-  long number = 0;
-  while (!text.empty()) {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-    visit(++number, line);
-    if (end == std::string_view::npos) break;
-    text.remove_prefix(end + 1);
-  }
-}
+void for_each_line(std::string_view text, Visit&& visit);
 
-// Tokens of a line separated by spaces and tabs, up to a '#' comment.
+// Tokens of a line separated by spaces and tabs, up to a '#' comment; each a view into `line`.
 std::vector<std::string_view> split_tokens(std::string_view line);
 
-// A double from the whole token (a leading '+' is allowed; "nan" and "inf" parse), or nothing.
+// The name rule: from the start of `first` (a token of `line`, from split_tokens) to the end of the statement or a
+// '#', without trailing spaces and tabs.
+std::string_view rest_of_statement(std::string_view line, std::string_view first);
+
+// What parse_number found.
+enum class NumberStatus { ok, not_a_number, out_of_range };
+struct ParsedNumber {
+  NumberStatus status = NumberStatus::not_a_number;
+  double value = 0;
+};
+// A double from the whole token (a leading '+' is allowed; "nan" and "inf" parse). A value below the smallest
+// double rounds to 0 (or the nearest subnormal); one above the largest is out_of_range.
+ParsedNumber parse_number(std::string_view token);
+// parse_number's value when ok, else nothing.
 std::optional<double> parse_double(std::string_view token);
 
 // A long from the whole token (a leading '+' is allowed), or nothing.
 std::optional<long> parse_long(std::string_view token);
+
+// An integer written as an integer or as a number with a zero fractional part ("2", "2.0"), or nothing.
+std::optional<long> parse_integral(std::string_view token);
 
 // The directory part of a path including its trailing '/', or "" for a bare file name.
 std::string directory_of(const std::string& path);
 
 // The extension of a path in lower case without the dot ("" if none).
 std::string lower_extension(const std::string& path);
+
+// ---------------------------------------------------------------------------------------------------------------
+
+template <class Visit>
+void for_each_line(std::string_view text, Visit&& visit) {
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
+  long number = 0;
+  std::string joined;  // a statement continued over several lines
+  long joined_first = 0;
+  while (!text.empty()) {
+    const std::size_t end = text.find_first_of("\r\n");
+    std::string_view line = text.substr(0, end);
+    ++number;
+    std::size_t next = end == std::string_view::npos ? text.size() : end + 1;
+    if (end != std::string_view::npos && text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n')
+      ++next;
+    text.remove_prefix(next);
+    const bool continues = !line.empty() && line.back() == '\\';
+    if (continues || !joined.empty()) {
+      if (joined.empty()) joined_first = number;
+      joined.append(line.substr(0, continues ? line.size() - 1 : line.size()));
+      if (continues) {
+        joined.push_back(' ');
+        if (!text.empty()) continue;
+      }
+      visit(joined_first, std::string_view(joined));
+      joined.clear();
+      continue;
+    }
+    visit(number, line);
+  }
+}
 
 }  // namespace radwalk
