@@ -1,13 +1,15 @@
 #include "mesh/read_ply.h"
 
-#include <fstream>
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <map>
-#include <sstream>
-
-// GCC 12 reports a false -Wmaybe-uninitialized inside OpenMesh's property vectors of Vec3uc colours.
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-#include <OpenMesh/Core/IO/MeshIO.hh>
-#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
+#include <optional>
+#include <vector>
 
 #include "core/error.h"
 #include "mesh/text_scan.h"
@@ -16,124 +18,262 @@ namespace radwalk {
 
 namespace {
 
-struct PlyTraits : public OpenMesh::DefaultTraits {
-  using Point = OpenMesh::Vec3d;
-  using Color = OpenMesh::Vec3uc;
-};
-using PlyMesh = OpenMesh::PolyMesh_ArrayKernelT<PlyTraits>;
+enum class PlyType { int8, uint8, int16, uint16, int32, uint32, float32, float64 };
 
-// What the header says, read independently of OpenMesh.
-struct PlyHeader {
-  bool ascii = false;
-  long header_lines = 0;
-  long faces = -1;                  // -1: no face element
-  long elements_before_faces = 0;   // sum of counts of the elements before "element face"
-};
-
-PlyHeader scan_ply_header(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(locate(path, 0, -1, "cannot open the file"));
-  PlyHeader h;
-  std::string line;
-  bool seen_faces = false;
-  while (std::getline(in, line)) {
-    ++h.header_lines;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const auto tokens = split_tokens(line);
-    if (h.header_lines == 1 && (tokens.empty() || tokens[0] != "ply"))
-      throw InputError(locate(path, 1, -1, "not a PLY file (first line is not 'ply')"));
-    if (tokens.empty()) continue;
-    if (tokens[0] == "format" && tokens.size() >= 2) h.ascii = tokens[1] == "ascii";
-    if (tokens[0] == "element") {
-      const auto count = tokens.size() == 3 ? parse_long(tokens[2]) : std::nullopt;
-      if (!count || *count < 0) throw InputError(locate(path, h.header_lines, -1, "malformed element statement"));
-      if (tokens[1] == "face") {
-        h.faces = *count;
-        seen_faces = true;
-      } else if (!seen_faces) {
-        h.elements_before_faces += *count;
-      }
-    }
-    if (tokens[0] == "end_header") return h;
-  }
-  throw InputError(locate(path, 0, -1, "PLY header has no end_header (truncated file?)"));
+std::optional<PlyType> ply_type(std::string_view name) {
+  static const std::pair<std::string_view, PlyType> kNames[] = {
+      {"char", PlyType::int8},      {"int8", PlyType::int8},       {"uchar", PlyType::uint8},
+      {"uint8", PlyType::uint8},    {"short", PlyType::int16},     {"int16", PlyType::int16},
+      {"ushort", PlyType::uint16},  {"uint16", PlyType::uint16},   {"int", PlyType::int32},
+      {"int32", PlyType::int32},    {"uint", PlyType::uint32},     {"uint32", PlyType::uint32},
+      {"float", PlyType::float32},  {"float32", PlyType::float32}, {"double", PlyType::float64},
+      {"float64", PlyType::float64}};
+  for (const auto& [n, t] : kNames)
+    if (n == name) return t;
+  return std::nullopt;
 }
 
-// Captures OpenMesh's error stream while alive. OpenMesh's mostream::disconnect() forgets, without deleting, the
-// target that connect() allocated, so connecting and disconnecting per read would leak; instead omerr() is
-// redirected once, for the life of the process, into one stream that each capture empties first.
-class OmerrCapture {
+std::size_t type_size(PlyType t) {
+  switch (t) {
+    case PlyType::int8:
+    case PlyType::uint8: return 1;
+    case PlyType::int16:
+    case PlyType::uint16: return 2;
+    case PlyType::int32:
+    case PlyType::uint32:
+    case PlyType::float32: return 4;
+    case PlyType::float64: return 8;
+  }
+  return 1;
+}
+
+bool is_float(PlyType t) { return t == PlyType::float32 || t == PlyType::float64; }
+
+struct PlyProperty {
+  std::string name;
+  PlyType type = PlyType::float32;  // the value type, or the item type of a list
+  bool list = false;
+  PlyType count_type = PlyType::uint8;
+};
+
+struct PlyElement {
+  std::string name;
+  std::uint64_t count = 0;
+  long line = 0;  // header line of the element statement
+  std::vector<PlyProperty> properties;
+  // Bytes (binary) or values (ascii) an element takes at the least: a list counts as its count alone.
+  std::uint64_t minimum_size(bool binary) const {
+    std::uint64_t s = 0;
+    for (const auto& p : properties) s += binary ? type_size(p.list ? p.count_type : p.type) : 1;
+    return s;
+  }
+};
+
+enum class PlyFormat { ascii, little_endian, big_endian };
+
+struct PlyHeader {
+  PlyFormat format = PlyFormat::ascii;
+  std::vector<PlyElement> elements;
+  std::size_t body = 0;  // byte offset of the body
+  long body_line = 0;    // line number of the body's first line (ascii)
+};
+
+PlyHeader parse_header(const std::string& path, std::string_view bytes) {
+  PlyHeader h;
+  std::size_t at = 0;
+  long line = 0;
+  bool format_seen = false;
+  for (;;) {
+    const std::size_t end = bytes.find('\n', at);
+    if (end == std::string_view::npos)
+      throw InputError(locate(path, 0, -1, "PLY header has no end_header (truncated file?)"));
+    std::string_view text = bytes.substr(at, end - at);
+    if (!text.empty() && text.back() == '\r') text.remove_suffix(1);
+    at = end + 1;
+    ++line;
+    const auto tokens = split_tokens(text);
+    if (line == 1) {
+      if (tokens.size() != 1 || tokens[0] != "ply")
+        throw InputError(locate(path, 1, -1, "not a PLY file (the first line is not 'ply')"));
+      continue;
+    }
+    if (tokens.empty() || tokens[0] == "comment" || tokens[0] == "obj_info") continue;
+    const std::string_view key = tokens[0];
+    if (key == "format") {
+      if (tokens.size() != 3) throw InputError(locate(path, line, -1, "malformed format statement"));
+      if (tokens[1] == "ascii") h.format = PlyFormat::ascii;
+      else if (tokens[1] == "binary_little_endian") h.format = PlyFormat::little_endian;
+      else if (tokens[1] == "binary_big_endian") h.format = PlyFormat::big_endian;
+      else throw InputError(locate(path, line, -1, "unknown PLY format '" + std::string(tokens[1]) + "'"));
+      format_seen = true;
+    } else if (key == "element") {
+      const auto count = tokens.size() == 3 ? parse_long(tokens[2]) : std::nullopt;
+      if (!count || *count < 0)
+        throw InputError(locate(path, line, -1, "malformed element statement (expected 'element NAME COUNT')"));
+      h.elements.push_back({std::string(tokens[1]), static_cast<std::uint64_t>(*count), line, {}});
+    } else if (key == "property") {
+      if (h.elements.empty()) throw InputError(locate(path, line, -1, "property before the first element"));
+      PlyProperty p;
+      bool ok = false;
+      if (tokens.size() == 5 && tokens[1] == "list") {
+        const auto c = ply_type(tokens[2]), t = ply_type(tokens[3]);
+        ok = c && t && !is_float(*c);
+        if (ok) {
+          p.list = true;
+          p.count_type = *c;
+          p.type = *t;
+          p.name = std::string(tokens[4]);
+        }
+      } else if (tokens.size() == 3) {
+        const auto t = ply_type(tokens[1]);
+        ok = t.has_value();
+        if (ok) {
+          p.type = *t;
+          p.name = std::string(tokens[2]);
+        }
+      }
+      if (!ok)
+        throw InputError(locate(path, line, -1, "malformed property statement '" + std::string(text) +
+                                                    "' (expected 'property TYPE NAME' or 'property list "
+                                                    "COUNT_TYPE ITEM_TYPE NAME' with integer COUNT_TYPE)"));
+      h.elements.back().properties.push_back(p);
+    } else if (key == "end_header") {
+      if (!format_seen) throw InputError(locate(path, line, -1, "PLY header has no format statement"));
+      h.body = at;
+      h.body_line = line + 1;
+      return h;
+    } else {
+      throw InputError(locate(path, line, -1, "unknown PLY header statement '" + std::string(key) + "'"));
+    }
+  }
+}
+
+// Reads the values of the body in order: ascii tokens across lines, or binary numbers of either byte order.
+class PlyReader {
  public:
-  OmerrCapture() : captured_(stream()) {
-    captured_.str("");
-    captured_.clear();
+  PlyReader(const std::string& path, std::string_view bytes, const PlyHeader& header)
+      : path_(path), bytes_(bytes), at_(header.body), line_(header.body_line), format_(header.format) {}
+
+  // The next value as a double (exact for every PLY type); `what` names it in messages.
+  double value(PlyType type, const std::string& what) {
+    if (format_ == PlyFormat::ascii) return ascii_value(type, what);
+    const std::size_t n = type_size(type);
+    if (bytes_.size() - at_ < n)
+      throw InputError(locate(path_, 0, -1, "file ends inside " + what + " (truncated file?)"));
+    std::array<unsigned char, 8> b{};
+    std::memcpy(b.data(), bytes_.data() + at_, n);
+    at_ += n;
+    const bool swap = (format_ == PlyFormat::big_endian) != (std::endian::native == std::endian::big);
+    if (swap) std::reverse(b.begin(), b.begin() + static_cast<std::ptrdiff_t>(n));
+    switch (type) {
+      case PlyType::int8: return static_cast<double>(static_cast<std::int8_t>(b[0]));
+      case PlyType::uint8: return static_cast<double>(b[0]);
+      case PlyType::int16: return static_cast<double>(load<std::int16_t>(b));
+      case PlyType::uint16: return static_cast<double>(load<std::uint16_t>(b));
+      case PlyType::int32: return static_cast<double>(load<std::int32_t>(b));
+      case PlyType::uint32: return static_cast<double>(load<std::uint32_t>(b));
+      case PlyType::float32: return static_cast<double>(load<float>(b));
+      case PlyType::float64: return load<double>(b);
+    }
+    return 0;
   }
-  OmerrCapture(const OmerrCapture&) = delete;
-  OmerrCapture& operator=(const OmerrCapture&) = delete;
-  std::vector<std::string> lines() const {
-    std::vector<std::string> out;
-    std::istringstream s(captured_.str());
-    for (std::string l; std::getline(s, l);)
-      if (!l.empty()) out.push_back(l);
-    return out;
+  // The line of the next ascii value (0 for binary files).
+  long line() {
+    if (format_ != PlyFormat::ascii) return 0;
+    skip_space();
+    return line_;
   }
+  std::size_t remaining() const { return bytes_.size() - at_; }
 
  private:
-  static std::ostringstream& stream() {
-    // Never deleted: omerr() may still write to it while static objects are destroyed at exit.
-    static std::ostringstream* const captured = [] {
-      auto* s = new std::ostringstream;
-      ::omerr().disconnect(std::cerr);
-      ::omerr().connect(*s);
-      return s;
-    }();
-    return *captured;
+  template <class T>
+  static T load(const std::array<unsigned char, 8>& b) {
+    T v;
+    std::memcpy(&v, b.data(), sizeof(T));
+    return v;
+  }
+  void skip_space() {
+    while (at_ < bytes_.size() && (bytes_[at_] == ' ' || bytes_[at_] == '\t' || bytes_[at_] == '\r' ||
+                                   bytes_[at_] == '\n')) {
+      if (bytes_[at_] == '\n') ++line_;
+      ++at_;
+    }
+  }
+  double ascii_value(PlyType type, const std::string& what) {
+    skip_space();
+    if (at_ >= bytes_.size()) throw InputError(locate(path_, line_, -1, "file ends before " + what + " (truncated file?)"));
+    std::size_t end = at_;
+    while (end < bytes_.size() && bytes_[end] != ' ' && bytes_[end] != '\t' && bytes_[end] != '\r' &&
+           bytes_[end] != '\n')
+      ++end;
+    const std::string_view token = bytes_.substr(at_, end - at_);
+    at_ = end;
+    const ParsedNumber n = parse_number(token);
+    if (n.status != NumberStatus::ok)
+      throw InputError(locate(path_, line_, -1, what + ": '" + printable(token) + "' is not " +
+                                                    (n.status == NumberStatus::out_of_range ? "in range" : "a number")));
+    if (!is_float(type) && std::floor(n.value) != n.value)
+      throw InputError(locate(path_, line_, -1, what + ": '" + printable(token) + "' is not an integer"));
+    return n.value;
   }
 
-  std::ostringstream& captured_;
+  const std::string& path_;
+  std::string_view bytes_;
+  std::size_t at_;
+  long line_;
+  PlyFormat format_;
 };
+
+int property_index(const PlyElement& e, std::initializer_list<std::string_view> names) {
+  for (std::size_t k = 0; k < e.properties.size(); ++k)
+    for (std::string_view n : names)
+      if (e.properties[k].name == n) return static_cast<int>(k);
+  return -1;
+}
 
 }  // namespace
 
-Mesh read_ply(const std::string& path) {
-  const PlyHeader header = scan_ply_header(path);
-  if (header.faces < 0) throw InputError(locate(path, 0, -1, "PLY file has no face element"));
+Mesh read_ply(const std::string& path) { return read_ply_bytes(path, read_input_file(path)); }
 
-  PlyMesh om;
-  om.request_face_colors();
-  OpenMesh::IO::Options options = OpenMesh::IO::Options::FaceColor;
-  std::vector<std::string> messages;
-  bool ok = false;
-  {
-    OmerrCapture capture;
-    ok = OpenMesh::IO::read_mesh(om, path, options);
-    messages = capture.lines();
+Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
+  const PlyHeader header = parse_header(path, bytes);
+  const bool binary = header.format != PlyFormat::ascii;
+  const PlyElement* vertex_element = nullptr;
+  const PlyElement* face_element = nullptr;
+  for (const PlyElement& e : header.elements) {
+    if (e.name == "vertex" && !vertex_element) vertex_element = &e;
+    if (e.name == "face" && !face_element) face_element = &e;
   }
-  auto joined = [&] {
-    std::string s;
-    for (std::size_t i = 0; i < messages.size() && i < 3; ++i) s += (i ? "; " : " (OpenMesh: ") + messages[i];
-    return messages.empty() ? s : s + ")";
-  };
-  if (!ok) throw InputError(locate(path, 0, -1, "OpenMesh could not read this PLY file" + joined()));
-
-  // Nothing may vanish: OpenMesh must return every face of the header.
-  const long read_faces = static_cast<long>(om.n_faces());
-  if (read_faces != header.faces)
-    throw InputError(locate(path, 0, -1, "header declares " + std::to_string(header.faces) + " faces but OpenMesh read " +
-                                             std::to_string(read_faces) +
-                                             " (faces with repeated vertex indices are dropped)" + joined()));
+  if (!face_element) throw InputError(locate(path, 0, -1, "PLY file has no face element"));
+  if (!vertex_element) throw InputError(locate(path, 0, -1, "PLY file has no vertex element"));
+  // Every count must fit the bytes left (a bound on every allocation below).
+  std::uint64_t needed = 0;
+  const std::uint64_t available = bytes.size() - header.body;
+  for (const PlyElement& e : header.elements) {
+    const std::uint64_t each = std::max<std::uint64_t>(1, e.minimum_size(binary));
+    if (e.count > available / each || needed + e.count * each > available)
+      throw InputError(locate(path, e.line, -1, "element '" + printable(e.name) + "' declares " +
+                                                    std::to_string(e.count) + " items, but only " +
+                                                    std::to_string(available) +
+                                                    " bytes follow the header (truncated file or wrong count)"));
+    needed += e.count * each;
+  }
+  const int px = property_index(*vertex_element, {"x"}), py = property_index(*vertex_element, {"y"}),
+            pz = property_index(*vertex_element, {"z"});
+  if (px < 0 || py < 0 || pz < 0 || vertex_element->properties[static_cast<std::size_t>(px)].list)
+    throw InputError(locate(path, vertex_element->line, -1, "the vertex element has no x, y and z properties"));
+  const int pv = property_index(*face_element, {"vertex_indices", "vertex_index"});
+  if (pv < 0 || !face_element->properties[static_cast<std::size_t>(pv)].list)
+    throw InputError(locate(path, face_element->line, -1, "the face element has no vertex_indices list"));
+  const int pr = property_index(*face_element, {"red"}), pg = property_index(*face_element, {"green"}),
+            pb = property_index(*face_element, {"blue"});
+  const bool coloured = pr >= 0 && pg >= 0 && pb >= 0;
+  if (vertex_element->count > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()) ||
+      face_element->count > static_cast<std::uint64_t>(std::numeric_limits<std::int32_t>::max()))
+    throw InputError(locate(path, 0, -1, "too many vertices or faces (at most 2^31 - 1 each)"));
 
   Mesh mesh;
   mesh.path = path;
-  for (std::string& m : messages) mesh.warnings.push_back(locate(path, 0, -1, "OpenMesh: " + m));
-
-  mesh.vertices.reserve(om.n_vertices());
-  for (const auto vh : om.vertices()) {
-    const auto& p = om.point(vh);
-    mesh.vertices.emplace_back(p[0], p[1], p[2]);
-  }
-
-  const bool coloured = options.face_has_color();
   if (!coloured) {
     Material m;
     m.name = "ply_default";
@@ -141,38 +281,90 @@ Mesh read_ply(const std::string& path) {
     mesh.materials.push_back(m);
     mesh.warnings.push_back(locate(path, 0, -1, "no face colours: every face gets reflectance 0.5"));
   }
-  std::map<std::array<int, 3>, int> material_of_colour;
+  std::map<std::array<double, 3>, int> material_of_colour;
 
-  for (const auto fh : om.faces()) {
-    const long f = fh.idx();
-    const long line = header.ascii ? header.header_lines + header.elements_before_faces + f + 1 : 0;
-    std::array<std::int32_t, 4> corners{-1, -1, -1, -1};
-    int k = 0;
-    for (const auto vh : om.fv_range(fh)) {
-      if (k == 4)
-        throw InputError(locate(path, line, f, "has " + std::to_string(om.valence(fh)) +
-                                                   " vertices; radwalk takes triangles and quads only"));
-      corners[static_cast<std::size_t>(k++)] = vh.idx();
+  PlyReader in(path, bytes, header);
+  for (const PlyElement& e : header.elements) {
+    const bool is_vertex = &e == vertex_element, is_face = &e == face_element;
+    if (is_vertex) mesh.vertices.reserve(e.count);
+    if (is_face) {
+      mesh.faces.reserve(e.count);
+      mesh.face_line.reserve(e.count);
+      mesh.face_material.reserve(e.count);
     }
-    if (k < 3) throw InputError(locate(path, line, f, "has fewer than 3 vertices"));
-    mesh.faces.push_back(corners);
-    mesh.face_line.push_back(line);
-
-    int material = 0;
-    if (coloured) {
-      const auto c = om.color(fh);
-      const std::array<int, 3> key{c[0], c[1], c[2]};
-      auto it = material_of_colour.find(key);
-      if (it == material_of_colour.end()) {
-        Material m;
-        m.name = "ply_" + std::to_string(key[0]) + "_" + std::to_string(key[1]) + "_" + std::to_string(key[2]);
-        m.Kd = Rgb(key[0], key[1], key[2]) / 255.0;
-        it = material_of_colour.emplace(key, static_cast<int>(mesh.materials.size())).first;
-        mesh.materials.push_back(m);
+    for (std::uint64_t item = 0; item < e.count; ++item) {
+      const long line = in.line();
+      const long face = is_face ? static_cast<long>(item) : -1;
+      const std::string what = is_vertex ? "vertex " + std::to_string(item + 1)
+                               : is_face ? "face " + std::to_string(item)
+                                         : printable(e.name) + " " + std::to_string(item);
+      Vec3 point = Vec3::Zero();
+      std::array<std::int32_t, 4> corners{-1, -1, -1, -1};
+      std::array<double, 3> colour{};
+      for (std::size_t k = 0; k < e.properties.size(); ++k) {
+        const PlyProperty& p = e.properties[k];
+        const std::string value_name = what + " " + printable(p.name);
+        if (!p.list) {
+          const double v = in.value(p.type, value_name);
+          if (is_vertex && (static_cast<int>(k) == px || static_cast<int>(k) == py || static_cast<int>(k) == pz)) {
+            if (!std::isfinite(v))
+              throw InputError(locate(path, line, -1, what + " has a non-finite coordinate"));
+            point[static_cast<int>(k) == px ? 0 : static_cast<int>(k) == py ? 1 : 2] = v;
+          }
+          if (is_face && coloured && (static_cast<int>(k) == pr || static_cast<int>(k) == pg || static_cast<int>(k) == pb)) {
+            const double top = is_float(p.type) ? 1.0 : 255.0;
+            if (!(v >= 0 && v <= top))
+              throw InputError(locate(path, line, face, "colour " + p.name + " = " + std::to_string(v) +
+                                                            " is outside 0.." + (is_float(p.type) ? "1" : "255")));
+            colour[static_cast<int>(k) == pr ? 0 : static_cast<int>(k) == pg ? 1 : 2] = v / top;
+          }
+          continue;
+        }
+        const double n = in.value(p.count_type, value_name + " count");
+        if (n < 0) throw InputError(locate(path, line, face, "negative list length"));
+        if (n > static_cast<double>(in.remaining()))
+          throw InputError(locate(path, line, face, "list length " + std::to_string(static_cast<long>(n)) +
+                                                        " runs past the end of the file"));
+        const auto count = static_cast<std::size_t>(n);
+        const bool indices = is_face && static_cast<int>(k) == pv;
+        if (indices && count < 3)
+          throw InputError(locate(path, line, face, "has " + std::to_string(count) + " vertices, a face needs 3 or 4"));
+        if (indices && count > 4)
+          throw InputError(locate(path, line, face, "has " + std::to_string(count) +
+                                                        " vertices; radwalk takes triangles and quads only "
+                                                        "(triangulate or split the polygon)"));
+        for (std::size_t c = 0; c < count; ++c) {
+          const double v = in.value(p.type, value_name + " entry " + std::to_string(c));
+          if (!indices) continue;
+          if (!(v >= 0 && v < static_cast<double>(vertex_element->count)))
+            throw InputError(locate(path, line, face, "vertex index " + std::to_string(static_cast<long long>(v)) +
+                                                          " is out of range (" +
+                                                          std::to_string(vertex_element->count) + " vertices)"));
+          corners[c] = static_cast<std::int32_t>(v);
+        }
       }
-      material = it->second;
+      if (is_vertex) mesh.vertices.push_back(point);
+      if (!is_face) continue;
+      mesh.faces.push_back(corners);
+      mesh.face_line.push_back(line);
+      int material = 0;
+      if (coloured) {
+        auto it = material_of_colour.find(colour);
+        if (it == material_of_colour.end()) {
+          Material m;
+          const bool bytes_colour = !is_float(face_element->properties[static_cast<std::size_t>(pr)].type);
+          m.name = bytes_colour ? "ply_" + std::to_string(std::lround(colour[0] * 255)) + "_" +
+                                      std::to_string(std::lround(colour[1] * 255)) + "_" +
+                                      std::to_string(std::lround(colour[2] * 255))
+                                : "ply_colour_" + std::to_string(material_of_colour.size());
+          m.Kd = Rgb(colour[0], colour[1], colour[2]);
+          it = material_of_colour.emplace(colour, static_cast<int>(mesh.materials.size())).first;
+          mesh.materials.push_back(m);
+        }
+        material = it->second;
+      }
+      mesh.face_material.push_back(material);
     }
-    mesh.face_material.push_back(material);
   }
   return mesh;
 }

@@ -1,23 +1,33 @@
 #pragma once
-// Stanford PLY input through OpenMesh (ascii or binary).
+// Stanford PLY input (ascii, binary_little_endian, binary_big_endian), read once and parsed by radwalk itself.
 //
-// Reads vertex positions and, if the face element has red/green/blue properties, a per-face colour used as the
-// diffuse reflectance rho = colour / 255 (one material per distinct colour, named "ply_R_G_B"). Without face colours
-// every face gets rho 0.5 with a warning. PLY carries no emission (OpenMesh reads no such property): a PLY scene has
-// no emitter unless one is added later.
-//
-// OpenMesh silently drops some faces (repeated vertex indices) and re-adds non-manifold ones on duplicated
-// vertices. The header's face count is read here and compared with what OpenMesh returns: a difference is an
-// InputError, so that face f stays the f-th face of the file. Whatever OpenMesh writes to omerr while reading is
-// turned into warnings. For ascii files face_line holds the line of each face (one element per line assumed);
-// for binary files it is 0.
-// Not thread-safe: OpenMesh's error stream is global.
+// Header: `ply`, `format`, `comment`/`obj_info`, `element NAME COUNT`, `property TYPE NAME` and
+// `property list COUNT_TYPE ITEM_TYPE NAME`, `end_header` (lines end at LF or CRLF). TYPE is one of char, uchar,
+// short, ushort, int, uint, float, double or their sized names (int8 ... float64).
+// What radwalk reads:
+//   - element `vertex`: properties x, y, z (any numeric type; doubles stay doubles, so UTM-sized coordinates keep
+//     their centimetres);
+//   - element `face`: the list `vertex_indices` (or `vertex_index`), 3 or 4 indices (larger polygons are refused,
+//     as in OBJ), and optional colours red, green, blue used as the diffuse reflectance rho: integer types as
+//     colour / 255 with colour in 0..255, float types as given in [0, 1]; one material per distinct colour, named
+//     "ply_R_G_B" (integers) or "ply_colour_K" (floats). Without face colours every face gets rho 0.5, with a
+//     warning. PLY carries no emission: a PLY scene has no emitter unless one is added later.
+//   - every other element and property is read past and ignored.
+// Face f is the f-th face of the file (none is dropped: repeated indices are validate_mesh's to report). For
+// ascii files face_line holds the line where face f starts; for binary files it is 0.
+// Bounded: an element count must fit the bytes that follow the header (each element takes at least its fixed-size
+// properties in binary, at least one character per value in ascii), so a 200-byte file that declares 4e9 vertices
+// is refused before anything is allocated. Every refusal is one InputError naming the file (and line or element).
 #include <string>
+#include <string_view>
 
 #include "mesh/mesh.h"
 
 namespace radwalk {
 
 Mesh read_ply(const std::string& path);
+
+// The same for the bytes of a PLY file already read (path names it in messages).
+Mesh read_ply_bytes(const std::string& path, std::string_view bytes);
 
 }  // namespace radwalk

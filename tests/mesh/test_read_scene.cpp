@@ -144,7 +144,7 @@ TEST_CASE("MTL values are read exactly and mapped to material kinds", "[mesh][re
   auto material = [&](std::size_t f) -> const Material& {
     return mesh.materials[static_cast<std::size_t>(mesh.face_material[f])];
   };
-  // 0.73 stays 0.73 (OpenMesh's reader gives 0.7294, tinyobjloader's parser 0.73000000000000009).
+  // 0.73 stays 0.73 (OpenMesh's PLY reader would give 0.7294, tinyobjloader's parser 0.73000000000000009).
   INFO("Kd " << material(0).Kd.transpose());
   CHECK(material(0).Kd[0] == 0.73);
   CHECK(material(0).Kd[1] == 0.725);
@@ -171,7 +171,7 @@ TEST_CASE("MTL values are read exactly and mapped to material kinds", "[mesh][re
   CHECK(notes == 4);
 }
 
-TEST_CASE("PLY: face colours become reflectances, missing colours and dropped faces are reported", "[mesh][ply]") {
+TEST_CASE("PLY: face colours become reflectances, missing colours and repeated indices are reported", "[mesh][ply]") {
   const Mesh cube = load_scene(bundled("cube.ply"));
   REQUIRE(cube.face_count() == 6);
   for (const auto& w : cube.warnings) INFO("warning: " << w);
@@ -194,15 +194,13 @@ TEST_CASE("PLY: face colours become reflectances, missing colours and dropped fa
   for (const auto& w : plain.warnings) warned = warned || w.find("no face colours") != std::string::npos;
   CHECK(warned);
 
-  try {
-    (void)read_scene(data("ply_dropped_face.ply"));
-    FAIL("no error for a face OpenMesh dropped");
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    INFO(what);
-    CHECK(what.find("ply_dropped_face.ply") != std::string::npos);
-    CHECK(what.find("declares 2 faces but OpenMesh read 1") != std::string::npos);
-  }
+  // A face with a repeated index is kept by the reader (OpenMesh used to drop it) and refused by validation.
+  const Mesh repeated = read_scene(data("ply_repeated_index.ply"));
+  CHECK(repeated.face_count() == 2);
+  CHECK(repeated.face_line[1] == 15);
+  CHECK_THROWS_WITH(load_scene(data("ply_repeated_index.ply")),
+                    Catch::Contains("ply_repeated_index.ply:15") && Catch::Contains("face 1") &&
+                        Catch::Contains("repeated vertex"));
 }
 
 TEST_CASE("unknown formats and missing files are input errors", "[mesh][read]") {
