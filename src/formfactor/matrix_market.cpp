@@ -13,6 +13,7 @@
 
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace radwalk {
 namespace {
@@ -104,6 +105,7 @@ void write_matrix_market(const std::string& path, const SparseF& F) {
 }
 
 SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
+  const std::uint64_t file_bytes = input_file_size(path);  // refuses FIFOs and devices before opening a stream
   LineReader reader(path);
   std::string line;
 
@@ -144,6 +146,12 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
     throw reader.error("entry count " + std::to_string(entries) + " out of range for a " + std::to_string(rows) +
                        " x " + std::to_string(rows) + " matrix");
 
+  // Every entry line takes at least 6 bytes ("1 1 0\n"): a count the file cannot hold is refused before the
+  // entries are allocated.
+  if (static_cast<std::uint64_t>(entries) > file_bytes / 6)
+    throw reader.error("declares " + std::to_string(entries) + " entries, more than a file of " +
+                       std::to_string(file_bytes) + " bytes can hold (truncated file or wrong count)");
+
   // Step 3: entries, checked one by one; sortedness tracked so a file in row-major order needs no sort.
   const std::size_t nnz = std::size_t(entries);
   std::vector<std::int32_t> row(nnz), col(nnz);
@@ -154,17 +162,17 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
       throw reader.error("file ends after " + std::to_string(k) + " of " + std::to_string(nnz) + " entries");
     const char *p = line.data(), *end = p + line.size();
     long long i = 0, j = 0;
-    float v = 0;
+    double v = 0;  // read as a double: a tiny value (1e-50) rounds to the nearest float instead of failing
     if (!parse(p, end, i) || !parse(p, end, j) || !parse(p, end, v) || (skip_space(p, end), p != end))
       throw reader.error("malformed entry '" + line + "', expected 'row column value'");
     if (i < 1 || i > rows || j < 1 || j > cols)
       throw reader.error("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range 1.." +
                          std::to_string(rows));
-    if (!std::isfinite(v) || v < 0.0f || v > 1.0f)
+    if (!std::isfinite(v) || v < 0.0 || v > 1.0)
       throw reader.error("value '" + line.substr(line.find_first_not_of(" \t")) + "' is not in [0, 1]");
     row[k] = std::int32_t(i - 1);
     col[k] = std::int32_t(j - 1);
-    value[k] = v;
+    value[k] = static_cast<float>(v);
     if (k > 0 && sorted && (row[k] < row[k - 1] || (row[k] == row[k - 1] && col[k] <= col[k - 1]))) sorted = false;
   }
   if (reader.next_data(line)) throw reader.error("more entries than the " + std::to_string(nnz) + " declared");

@@ -1,6 +1,7 @@
 #include "io/obj_writer.h"
 
 #include <cstdio>
+#include <cmath>
 #include <filesystem>
 #include <ostream>
 
@@ -30,7 +31,8 @@ void write_obj(const std::string& path, const PatchSet& patches) {
       if (m.illum >= 0) out << "illum " << m.illum << "\n";
       if (m.kind != BsdfKind::diffuse) {
         out << "Ks " << rgb(m.Ks) << "\nNi " << num(m.Ni) << "\n";
-        if (m.roughness > 0) out << "Pr " << num(m.roughness) << "\n";
+        // The reader takes Pr as perceptual roughness (GGX alpha = Pr^2): write Pr = sqrt(alpha), not alpha.
+        if (m.roughness > 0) out << "Pr " << num(std::sqrt(m.roughness)) << "\n";
         if (m.metallic > 0) out << "Pm " << num(m.metallic) << "\n";
       }
     }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstring>
+#include <numeric>
 #include <unordered_map>
 
 namespace radwalk {
@@ -11,16 +12,7 @@ namespace {
 
 struct PositionKey {
   std::uint64_t x, y, z;
-  bool operator==(const PositionKey&) const = default;
-};
-
-struct PositionHash {
-  std::size_t operator()(const PositionKey& k) const {
-    std::uint64_t h = k.x * 0x9E3779B97F4A7C15ull;
-    h ^= k.y + 0x7F4A7C159E3779B9ull + (h << 6) + (h >> 2);
-    h ^= k.z + 0x94D049BB133111EBull + (h << 6) + (h >> 2);
-    return static_cast<std::size_t>(h);
-  }
+  auto operator<=>(const PositionKey&) const = default;
 };
 
 PositionKey key_of(const Vec3& p) {
@@ -32,14 +24,30 @@ PositionKey key_of(const Vec3& p) {
 }  // namespace
 
 std::vector<std::int32_t> weld_vertices(const Mesh& mesh, std::int32_t* welded_count) {
-  std::unordered_map<PositionKey, std::int32_t, PositionHash> id_of;
-  id_of.reserve(mesh.vertices.size());
-  std::vector<std::int32_t> weld(mesh.vertices.size());
-  for (std::size_t v = 0; v < mesh.vertices.size(); ++v) {
-    const auto [it, added] = id_of.emplace(key_of(mesh.vertices[v]), static_cast<std::int32_t>(id_of.size()));
-    weld[v] = it->second;
+  // By sorting, not hashing: O(n log n) whatever the coordinates (crafted bit patterns made a position hash
+  // collide on every vertex, which took quadratic time). Vertices in order of their key, equal keys in index
+  // order; the first (smallest) index of each run of equal keys represents the run.
+  const std::size_t n = mesh.vertices.size();
+  std::vector<PositionKey> key(n);
+  for (std::size_t v = 0; v < n; ++v) key[v] = key_of(mesh.vertices[v]);
+  std::vector<std::int32_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::int32_t a, std::int32_t b) {
+    return key[static_cast<std::size_t>(a)] < key[static_cast<std::size_t>(b)];
+  });
+  std::vector<std::int32_t> representative(n);
+  for (std::size_t r = 0; r < n; ++r) {
+    const bool starts_run = r == 0 || key[static_cast<std::size_t>(order[r])] != key[static_cast<std::size_t>(order[r - 1])];
+    representative[static_cast<std::size_t>(order[r])] = starts_run ? order[r] : representative[static_cast<std::size_t>(order[r - 1])];
   }
-  if (welded_count) *welded_count = static_cast<std::int32_t>(id_of.size());
+  // Welded ids in order of first appearance (a representative comes before the rest of its run).
+  std::vector<std::int32_t> weld(n);
+  std::int32_t next = 0;
+  for (std::size_t v = 0; v < n; ++v) {
+    const auto rep = static_cast<std::size_t>(representative[v]);
+    weld[v] = rep == v ? next++ : weld[rep];
+  }
+  if (welded_count) *welded_count = next;
   return weld;
 }
 

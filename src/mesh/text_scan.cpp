@@ -1,75 +1,12 @@
 #include "mesh/text_scan.h"
 
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
 
 #include "core/error.h"
 
 namespace radwalk {
-
-namespace {
-
-// Closes a file descriptor on every path out.
-struct FileDescriptor {
-  int fd = -1;
-  ~FileDescriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
-std::string size_text(std::uint64_t bytes) {
-  return bytes >= (std::uint64_t{1} << 30) ? std::to_string(bytes >> 30) + " GiB" : std::to_string(bytes) + " bytes";
-}
-
-}  // namespace
-
-std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
-  // O_NONBLOCK: opening a FIFO without a writer must not block; fstat then refuses it.
-  FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
-  if (file.fd < 0) throw InputError(locate(path, 0, -1, std::string("cannot open the file (") + std::strerror(errno) + ")"));
-  struct stat st {};
-  if (::fstat(file.fd, &st) != 0) throw InputError(locate(path, 0, -1, "cannot read the file's status"));
-  if (!S_ISREG(st.st_mode)) {
-    const char* kind = S_ISDIR(st.st_mode)    ? "a directory"
-                       : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
-                       : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
-                       : S_ISSOCK(st.st_mode)                      ? "a socket"
-                                                                   : "not a regular file";
-    throw InputError(locate(path, 0, -1, std::string("is ") + kind + "; radwalk reads input only from regular files"));
-  }
-  const auto size = static_cast<std::uint64_t>(st.st_size);
-  if (size > max_bytes)
-    throw InputError(locate(path, 0, -1, "is " + size_text(size) + ", more than the " + size_text(max_bytes) +
-                                             " radwalk reads"));
-  // One byte more than fstat said, to see the end of the file (or that it grew) without a second pass.
-  const std::uint64_t limit = max_bytes + 1;
-  std::string content;
-  content.resize(static_cast<std::size_t>(std::min(limit, size + 1)));
-  std::size_t have = 0;
-  for (;;) {
-    if (have == content.size()) {
-      if (have >= limit)
-        throw InputError(locate(path, 0, -1, "grew beyond the " + size_text(max_bytes) + " radwalk reads"));
-      content.resize(static_cast<std::size_t>(std::min<std::uint64_t>(limit, 2 * content.size() + 4096)));
-    }
-    const ssize_t got = ::read(file.fd, content.data() + have, content.size() - have);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      throw InputError(locate(path, 0, -1, std::string("read error (") + std::strerror(errno) + ")"));
-    }
-    if (got == 0) break;
-    have += static_cast<std::size_t>(got);
-  }
-  content.resize(have);
-  return content;
-}
 
 std::vector<std::string_view> split_tokens(std::string_view line) {
   std::vector<std::string_view> tokens;

@@ -2,8 +2,7 @@
 // Strict scanning of the text scene formats (OBJ, MTL, PLY header): each input file is read ONCE into memory and
 // parsed from those bytes, with one line rule and one name rule for every statement of every format.
 //
-// Reading (read_input_file): only regular files are read (a FIFO, a device or a directory is refused before a
-// byte is read, so nothing blocks or reads forever), at most max_bytes of them.
+// Reading: core/input_file.h (read_input_file: regular files only, bounded).
 // Line rule (for_each_line): a line ends at "\n", "\r\n" or a lone "\r"; a UTF-8 byte-order mark at the start of
 // the file is skipped; a line whose last character is '\' continues on the next line (the backslash and the line
 // break become one space), and the joined statement is numbered by its first line.
@@ -20,14 +19,9 @@
 #include <string_view>
 #include <vector>
 
+#include "core/input_file.h"
+
 namespace radwalk {
-
-// The largest input file radwalk reads (16 GiB): a bound on what one read may allocate.
-inline constexpr std::uint64_t kMaxInputBytes = std::uint64_t{16} << 30;
-
-// The whole content of a regular file. Throws InputError("PATH: ...") if it cannot be opened, is not a regular
-// file, is larger than max_bytes, or a read fails.
-std::string read_input_file(const std::string& path, std::uint64_t max_bytes = kMaxInputBytes);
 
 // Calls visit(line_number, line) for each statement of text under the line rule above (line numbers from 1).
 template <class Visit>

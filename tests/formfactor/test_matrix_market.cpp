@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <fstream>
 
+#include <sys/stat.h>
+
 #include "core/error.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/matrix_market.h"
@@ -120,4 +122,21 @@ TEST_CASE("Matrix Market refusals name the file and line", "[formfactor]") {
     CHECK(msg.find('\n') == std::string::npos);
   }
   CHECK_THROWS_AS(read_matrix_market(temp_path("no_such_file.mtx"), 3), InputError);
+  // O1: a two-line file declaring 2^31-1 entries allocated 25.8 GB before reading any entry.
+  const std::string huge = refusal(kHeader + "50000 50000 2147483647\n", 50000);
+  INFO(huge);
+  CHECK(huge.rfind(file + ":2: declares 2147483647 entries, more than a file of", 0) == 0);
+}
+
+TEST_CASE("Matrix Market: tiny values are values, FIFOs are refused", "[formfactor]") {
+  // P9: 1e-50 was refused as "malformed" (it underflows a float); it is a legal, negligible form factor.
+  const SparseF F = read_matrix_market(write_text("tiny.mtx", kHeader + "3 3 2\n1 2 1e-50\n1 3 0.5\n"), 3);
+  CHECK(F.nonZeros() == 2);
+  CHECK(F.coeff(0, 1) == 0.0f);
+  CHECK(F.coeff(0, 2) == 0.5f);
+  // H1: a FIFO would block the reader (and a second read of it for error lines).
+  const std::string fifo = temp_path("pipe.mtx");
+  std::filesystem::remove(fifo);
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(read_matrix_market(fifo, 3), Catch::Contains("pipe.mtx") && Catch::Contains("FIFO"));
 }

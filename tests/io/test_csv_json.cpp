@@ -8,6 +8,7 @@
 #include "io/csv_writer.h"
 #include "io/obj_writer.h"
 #include "io/run_summary.h"
+#include "mesh/read_scene.h"
 #include "patch/patch_builder.h"
 
 using namespace radwalk;
@@ -85,4 +86,25 @@ TEST_CASE("write_obj writes faces in patch order with an MTL beside it", "[io][o
   CHECK(so.str().find("mtllib radwalk_test_out.mtl") != std::string::npos);
   CHECK(so.str().find("f 1 2 3 4\nf 5 6 7\n") != std::string::npos);
   CHECK(sm.str().find("newmtl wall\nKd 0.72999999999999998 0.5 0.25\nKe 0 0 1\n") != std::string::npos);
+}
+
+TEST_CASE("write_obj: a material's roughness survives the round trip", "[io][obj]") {
+  // W8: the writer wrote the GGX alpha as Pr, which the reader squares: every round trip squared the roughness.
+  PatchBuilder b;
+  const int m = b.add_material("brushed", Rgb(0.5, 0.5, 0.5));
+  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, m);
+  PatchSet p = b.build();
+  p.materials[0].kind = BsdfKind::microfacet;
+  p.materials[0].illum = 3;
+  p.materials[0].roughness = 0.3;
+  const auto path = (std::filesystem::temp_directory_path() / "radwalk_roughness.obj").string();
+  for (int trip = 0; trip < 3; ++trip) {
+    write_obj(path, p);
+    const Mesh back = read_scene(path);
+    REQUIRE(back.materials.size() == 1);
+    INFO("round trip " << trip);
+    CHECK(back.materials[0].kind == BsdfKind::microfacet);
+    CHECK(back.materials[0].roughness == Approx(0.3).epsilon(1e-15));
+    p.materials[0].roughness = back.materials[0].roughness;
+  }
 }
