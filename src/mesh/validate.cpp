@@ -102,6 +102,35 @@ void check_indices_and_coordinates(const Mesh& mesh) {
                                                     " has a non-finite coordinate (NaN or inf)"));
 }
 
+// Step: the scene's size suits single-precision ray tracing (before any area is computed: with coordinates of
+// 1e77 a squared length overflows to inf). The diagonal is a scaled norm, exact at 1e-100 and at 1e300.
+void check_extent(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < mesh.corner_count(f); ++k) {
+      const Vec3& p = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  const Vec3 span = hi - lo;
+  const double extent = span.allFinite() ? span.stableNorm() : std::numeric_limits<double>::infinity();
+  const double reach = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  if (!(extent <= tol.max_extent) || !(reach <= tol.max_extent))
+    throw InputError(locate(mesh.path, 0, -1, "the scene is too large for single-precision ray tracing: extent " +
+                                                  fmt(extent) + ", largest |coordinate| " + fmt(reach) +
+                                                  " (limit " + fmt(tol.max_extent) +
+                                                  " mesh units); rescale the mesh (e.g. to metres)"));
+  if (!(extent >= tol.min_extent))
+    throw InputError(locate(mesh.path, 0, -1, "the scene is too small for single-precision ray tracing: extent " +
+                                                  fmt(extent) + " (limit " + fmt(tol.min_extent) +
+                                                  " mesh units); rescale the mesh (e.g. to millimetres)"));
+  if (reach > tol.max_offset_ratio * extent)
+    log.add_global("the scene lies far from the origin: largest |coordinate| " + fmt(reach) + " is " +
+                   fmt(reach / extent) + " x its extent " + fmt(extent) +
+                   ", so rays (single precision) resolve only about " + fmt(reach * 6e-8) +
+                   " mesh units; move the origin into the scene");
+}
+
 // Step: repeated corners (same index, or bit-identical positions). A quad with one repeat at adjacent corners
 // becomes a triangle; anything else is refused.
 void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
@@ -151,7 +180,7 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-  const double diagonal = (hi - lo).norm();
+  const double diagonal = (hi - lo).stableNorm();
   const double min_area = tol.degenerate_area * diagonal * diagonal;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
@@ -159,6 +188,12 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
       fail(mesh, f, "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
                         " x (scene diagonal " + fmt(diagonal) + ")^2");
     if (!mesh.is_quad(f)) continue;
+    // A planar simple quad has |vector area| = area; a folded or self-intersecting one (a bow-tie) has less, down
+    // to 0, and then no normal to measure planarity or convexity against.
+    const double vector_area = face_vector_area(mesh, f).norm();
+    if (!(vector_area > 0.5 * area))
+      fail(mesh, f, "self-intersecting or folded quad: its vector area " + fmt(vector_area) + " is below half its area " +
+                        fmt(area) + " (a bow-tie); split it into two triangles");
     const double bend = quad_nonplanarity(mesh, f);
     if (bend > tol.planar_error)
       fail(mesh, f, "non-planar quad: a corner is " + fmt(100 * bend) + "% of the diagonal off its plane (limit " +
@@ -319,6 +354,7 @@ void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
   WarningLog log(mesh, tolerances.max_warnings_per_kind);
 
   check_indices_and_coordinates(mesh);
+  check_extent(mesh, tolerances, log);
   repair_repeated_corners(mesh, log);
   check_face_geometry(mesh, tolerances, log);
   check_materials(mesh, log);

@@ -26,6 +26,14 @@ struct ValidationTolerances {
   double planar_error = 1e-2;      // above this a quad is refused
   double convex_sine = 1e-9;       // turning sine below -convex_sine makes a quad non-convex
   int max_warnings_per_kind = 10;
+  // The scene's extent (bounding-box diagonal, in mesh units) must lie in [min_extent, max_extent]: rays are
+  // traced in single precision, where a scene much larger (squared lengths overflow) or much smaller (they
+  // underflow) than these loses every ray without a visible error.
+  double min_extent = 1e-8;
+  double max_extent = 1e16;
+  // Coordinates far from the origin relative to the scene (max |coordinate| / extent above this) leave too few
+  // float digits for the scene's detail: a warning (move the origin into the scene).
+  double max_offset_ratio = 1e4;
 };
 
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances = {});

@@ -159,6 +159,53 @@ TEST_CASE("validation of programmatic meshes: NaN, index range, warning cap", "[
   CHECK(contains(many.warnings.back(), "20 more warnings: face without material"));
 }
 
+TEST_CASE("scenes too large, too small or far from the origin for single precision are caught", "[mesh][validate]") {
+  // W1, W2, P4: a closed furnace at 1e19 "converged" to a wrong B; coordinates of 1e77 overflowed areas to inf
+  // and passed; a scene at 1e-100 was refused as degenerate with a diagonal of 0.
+  auto square = [](double scale, double offset) {
+    Mesh mesh;
+    mesh.path = "scaled";
+    mesh.vertices = {{offset, 0, 0}, {offset + scale, 0, 0}, {offset + scale, scale, 0}, {offset, scale, 0}};
+    mesh.faces = {{0, 1, 2, 3}};
+    Material light;
+    light.name = "light";
+    light.Ke = Rgb::Ones();
+    mesh.materials = {light};
+    mesh.face_material = {0};
+    return mesh;
+  };
+  for (double scale : {1e-6, 1.0, 1e6, 1e12}) {
+    Mesh ok = square(scale, 0);
+    INFO("scale " << scale);
+    CHECK_NOTHROW(validate_mesh(ok));
+    CHECK(ok.warnings.empty());
+  }
+  for (double scale : {1e19, 1e77, 1e300}) {
+    Mesh big = square(scale, 0);
+    INFO("scale " << scale);
+    CHECK_THROWS_WITH(validate_mesh(big), Catch::Contains("too large for single-precision"));
+  }
+  Mesh tiny = square(1e-100, 0);
+  CHECK_THROWS_WITH(validate_mesh(tiny), Catch::Contains("too small") && Catch::Contains("extent 1.41421e-100"));
+  // A 1 m square 1e6 m from the origin: traced in float it resolves only about 0.06 m.
+  Mesh far = square(1, 1e6);
+  REQUIRE_NOTHROW(validate_mesh(far));
+  CHECK(!warning_with(far, {"far from the origin", "move the origin"}).empty());
+}
+
+TEST_CASE("a self-intersecting (bow-tie) quad is refused", "[mesh][validate]") {
+  // W3: v 0 0 0 / v 1 0 0 / v 1 1 0 / v 2 1 0 / f 1 2 3 4 has zero vector area and passed validation.
+  Mesh mesh;
+  mesh.path = "bowtie";
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {2, 1, 0}};
+  mesh.faces = {{0, 1, 2, 3}};
+  mesh.face_material = {-1};
+  CHECK_THROWS_WITH(validate_mesh(mesh), Catch::StartsWith("bowtie: face 0: self-intersecting or folded quad"));
+  // A grossly folded (non-planar) quad whose halves nearly cancel.
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0.01}, {2, 1, 0}};
+  CHECK_THROWS_WITH(validate_mesh(mesh), Catch::Contains("self-intersecting or folded quad"));
+}
+
 TEST_CASE("the planarity and degeneracy limits separate the cases they are meant to", "[mesh][validate]") {
   // A unit square with one corner lifted by h: non-planarity grows linearly with h. The limits of
   // ValidationTolerances refuse a lift of 2 % of the diagonal and accept a lift of 0.1 %.
