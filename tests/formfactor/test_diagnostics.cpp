@@ -5,7 +5,7 @@
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/reciprocity.h"
-#include "test_scenes.h"
+#include "support/box_scenes.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;
