@@ -158,10 +158,11 @@ Mesh read_obj(const std::string& path) {
                                    dir.empty() ? "./" : dir.c_str(), /*triangulate=*/false);
   if (!ok) throw InputError(locate(path, 0, -1, "tinyobjloader: " + err.substr(0, err.find('\n'))));
 
-  // Cross-check tinyobjloader against the scan, so that nothing is dropped or reordered silently.
+  // Cross-check tinyobjloader against the scan, so that nothing is dropped or reordered silently: a disagreement
+  // is a bug in the scan (or the loader), not in the file, which both read.
   const std::vector<TinyFace> tiny = tiny_faces(shapes);
   auto disagree = [&](const std::string& what) {
-    return std::logic_error("read_obj: tinyobjloader and the line scan disagree: " + what + " in " + path);
+    return InternalError("read_obj: tinyobjloader and the line scan disagree: " + what + " in " + path);
   };
   if (attrib.vertices.size() != 3 * scan.vertices.size())
     throw disagree("vertex count " + std::to_string(attrib.vertices.size() / 3) + " vs " +
