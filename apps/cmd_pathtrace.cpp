@@ -10,11 +10,11 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
 #include "pathtrace/camera.h"
-#include "pathtrace/exr_writer.h"
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
-#include "pathtrace/png_writer.h"
 #include "pathtrace/render.h"
 #include "visibility/embree_visibility.h"
 

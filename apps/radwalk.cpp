@@ -255,6 +255,9 @@ int main(int argc, char** argv) {
   } catch (const NumericalError& e) {
     std::fprintf(stderr, "radwalk: numerical error: %s\n", e.what());
     return 3;
+  } catch (const InternalError& e) {  // a failed RADWALK_CHECK: a bug in radwalk
+    std::fprintf(stderr, "radwalk: internal error: %s\n", e.what());
+    return 4;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "radwalk: out of memory (try fewer patches: a larger --max-edge)\n");
     return 4;

@@ -19,11 +19,11 @@
 #include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
 #include "mesh/read_scene.h"
 #include "patch/patching.h"
-#include "pathtrace/exr_writer.h"
 #include "pathtrace/patch_average.h"
-#include "pathtrace/png_writer.h"
 #include "pathtrace/render.h"
 #include "visibility/embree_visibility.h"
 

@@ -15,17 +15,18 @@ function(radwalk_add_layer name)
   target_link_libraries(radwalk_${name} PUBLIC radwalk_options ${L_DEPS})
 endfunction()
 
-# radwalk_add_test(NAME SOURCES... DEPS ...): one Catch2 executable, each TEST_CASE discovered as a CTest test.
+# radwalk_add_test(NAME SOURCES... DEPS ...): one Catch2 executable linking the test support (tests/support), each
+# TEST_CASE discovered as a CTest test; hidden cases (tag "[.]", run only by name) are left out.
 function(radwalk_add_test name)
   cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
   add_executable(${name} ${T_SOURCES})
-  target_link_libraries(${name} PRIVATE radwalk_options Catch2::Catch2WithMain ${T_DEPS})
+  target_link_libraries(${name} PRIVATE radwalk_options Catch2::Catch2WithMain radwalk_test_support ${T_DEPS})
   target_compile_definitions(${name} PRIVATE RADWALK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   set(env "")
   if(RADWALK_SANITIZE)
     set(env "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/tests/lsan.supp:print_suppressions=0")
   endif()
-  catch_discover_tests(${name} TEST_SPEC "~[slow]" PROPERTIES TIMEOUT 600 ENVIRONMENT "${env}")
+  catch_discover_tests(${name} TEST_SPEC "~[slow]~[.]" PROPERTIES TIMEOUT 600 ENVIRONMENT "${env}")
   catch_discover_tests(${name} TEST_SPEC "[slow]" TEST_PREFIX "slow: " PROPERTIES TIMEOUT 3600 LABELS slow
                        ENVIRONMENT "${env}")
 endfunction()

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "core/error.h"
+#include "core/check.h"
 #include "core/parallel.h"
 
 namespace radwalk {
@@ -13,15 +13,10 @@ FormFactorDiagnostics diagnose_form_factors(const SparseF& F, const std::vector<
                                             const std::vector<std::uint32_t>& rays,
                                             const std::vector<std::uint32_t>& back_hits) {
   const std::size_t N = std::size_t(F.rows());
-  const auto size_error = [&](const char* what, std::size_t got) {
-    return InputError(locate("form factor diagnostics", 0, -1,
-                             std::string(what) + " has " + std::to_string(got) + " entries, F has " +
-                                 std::to_string(N) + " rows"));
-  };
-  if (F.cols() != F.rows()) throw InputError(locate("form factor diagnostics", 0, -1, "F is not square"));
-  if (area.size() != N) throw size_error("area", area.size());
-  if (!rays.empty() && rays.size() != N) throw size_error("rays", rays.size());
-  if (!back_hits.empty() && back_hits.size() != N) throw size_error("back_hits", back_hits.size());
+  RADWALK_CHECK_EQ(F.cols(), F.rows());
+  RADWALK_CHECK_EQ(area.size(), N);
+  if (!rays.empty()) RADWALK_CHECK_EQ(rays.size(), N);
+  if (!back_hits.empty()) RADWALK_CHECK_EQ(back_hits.size(), N);
 
   FormFactorDiagnostics d;
   d.row_sum.assign(N, 0.0);

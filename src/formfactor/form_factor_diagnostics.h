@@ -22,7 +22,7 @@ struct FormFactorDiagnostics {
 };
 
 // `area` has N entries; `rays` and `back_hits` are either empty or have N entries (from FormFactors).
-// InputError when the sizes disagree with F.
+// Sizes that disagree with F are InternalError (RADWALK_CHECK).
 FormFactorDiagnostics diagnose_form_factors(const SparseF& F, const std::vector<double>& area,
                                             const std::vector<std::uint32_t>& rays = {},
                                             const std::vector<std::uint32_t>& back_hits = {});

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/atomic_write.h"
+#include "core/check.h"
 #include "core/error.h"
 #include "core/input_file.h"
 
@@ -90,7 +91,7 @@ void write_matrix_market(const std::string& path, const SparseF& F) {
     char* const end = buf + sizeof buf;
     const auto field = [&](char* p, auto v, char sep) {
       const auto r = std::to_chars(p, end - 1, v);
-      if (r.ec != std::errc()) throw std::runtime_error("write_matrix_market: number does not fit its buffer");
+      RADWALK_CHECK(r.ec == std::errc());  // 96 characters hold two indices and a float
       *r.ptr = sep;
       return r.ptr + 1;
     };

@@ -3,16 +3,15 @@
 #include <cmath>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 ReciprocityChange enforce_reciprocity(SparseF& F, const std::vector<double>& area) {
   const std::size_t N = std::size_t(F.rows());
-  if (F.cols() != F.rows() || area.size() != N)
-    throw InputError(locate("enforce_reciprocity", 0, -1,
-                            "F is " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) + " but there are " +
-                                std::to_string(area.size()) + " areas"));
+  RADWALK_CHECK_EQ(F.cols(), F.rows());
+  RADWALK_CHECK_EQ(area.size(), N);
   for (std::size_t i = 0; i < N; ++i)
     if (!(std::isfinite(area[i]) && area[i] > 0))
       throw InputError(locate("enforce_reciprocity", 0, long(i), "area " + std::to_string(area[i]) + " is not > 0"));

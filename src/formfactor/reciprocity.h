@@ -22,7 +22,8 @@ struct ReciprocityChange {
   double max_row_excess = 0;  // largest (row sum - 1) after averaging, before rescaling (0 if none exceeded 1)
 };
 
-// InputError when area has the wrong size or an area is not finite and positive.
+// InputError when an area is not finite and positive; InternalError (RADWALK_CHECK) when F is not square or area
+// has the wrong size.
 ReciprocityChange enforce_reciprocity(SparseF& F, const std::vector<double>& area);
 
 }  // namespace radwalk

@@ -13,6 +13,7 @@
 #include <ostream>
 
 #include "core/atomic_write.h"
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
@@ -53,8 +54,7 @@ void write_vtp(const std::string& path, const PatchSet& patches, const std::vect
     for (int c = 0; c < patches.corner_count(i); ++c) point_weight[patches.corners[i][c]] += patches.area[i];
 
   for (const CellField& f : fields) {
-    if (f.values.size() != n * static_cast<std::size_t>(f.components))
-      throw std::logic_error("write_vtp: field " + f.name + " has the wrong size");
+    RADWALK_CHECK_EQ(f.values.size(), n * static_cast<std::size_t>(f.components));  // a value per patch, component
     auto cell = make_array(f.name, f.components, n);
     auto point = make_array(f.name, f.components, patches.points.size());
     point->Fill(0.0);

@@ -4,15 +4,14 @@
 #include <string>
 #include <utility>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 PatchSet split_patches(const PatchSet& patches, const std::vector<bool>& split, std::vector<std::int32_t>* parent) {
   const std::size_t n = patches.size();
-  if (split.size() != n)
-    throw InputError("split_patches: " + std::to_string(split.size()) + " split flags for " + std::to_string(n) +
-                     " patches");
+  RADWALK_CHECK_EQ(split.size(), n);
   std::size_t splits = 0;
   for (std::size_t i = 0; i < n; ++i) splits += split[i];
   if (n + 3 * splits > kMaxRefinedPatchCount)

@@ -27,8 +27,8 @@ namespace radwalk {
 // A guard against runaway refinement: make_patches' bound.
 inline constexpr std::size_t kMaxRefinedPatchCount = kMaxPatchCount;
 
-// split[i]: split patch i. Throws InputError if split.size() != patches.size() or the result would exceed
-// kMaxRefinedPatchCount.
+// split[i]: split patch i (split.size() == patches.size(), checked: InternalError). Throws InputError if the
+// result would exceed kMaxRefinedPatchCount.
 // If parent is given, (*parent)[k] is the index in `patches` of new patch k.
 PatchSet split_patches(const PatchSet& patches, const std::vector<bool>& split,
                        std::vector<std::int32_t>* parent = nullptr);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
@@ -15,19 +16,13 @@ std::vector<double> radiosity_jumps(const PatchSet& patches, const PatchRgb& B,
   const double floor_fraction = options.floor_fraction, noise_z = options.noise_z;
   const PatchRgb& H_se = options.H_se;
   const std::vector<double>& visible = options.visible;
-  if (!visible.empty() && visible.size() != n)
-    throw InputError("radiosity_jumps: " + std::to_string(visible.size()) + " visible fractions for " +
-                     std::to_string(n) + " patches");
+  if (!visible.empty()) RADWALK_CHECK_EQ(visible.size(), n);
   for (double v : visible)
     if (!(v >= 0 && v <= 1)) throw InputError("radiosity_jumps: visible fraction " + std::to_string(v) + " not in [0, 1]");
   const auto ignored = [&](std::size_t i) { return !visible.empty() && visible[i] == 0; };
   const auto visible_part = [&](std::size_t i) { return visible.empty() || visible[i] == 0 ? 1.0 : visible[i]; };
-  if (std::size_t(B.rows()) != n)
-    throw InputError("radiosity_jumps: B has " + std::to_string(B.rows()) + " rows for " + std::to_string(n) +
-                     " patches");
-  if (H_se.size() != 0 && std::size_t(H_se.rows()) != n)
-    throw InputError("radiosity_jumps: H_se has " + std::to_string(H_se.rows()) + " rows for " + std::to_string(n) +
-                     " patches");
+  RADWALK_CHECK_EQ(std::size_t(B.rows()), n);
+  if (H_se.size() != 0) RADWALK_CHECK_EQ(std::size_t(H_se.rows()), n);
   if (!(noise_z >= 0) || !std::isfinite(noise_z))
     throw InputError("radiosity_jumps: noise z must be finite and >= 0, got " + std::to_string(noise_z));
   if (!(floor_fraction >= 0) || !std::isfinite(floor_fraction))
@@ -51,9 +46,8 @@ std::vector<double> radiosity_jumps(const PatchSet& patches, const PatchRgb& B,
   std::vector<double> jump(n, 0.0);
   std::vector<bool> judged(n, false);
   for (const auto& [a, b] : neighbours) {
-    if (a < 0 || b < 0 || std::size_t(a) >= n || std::size_t(b) >= n)
-      throw InputError("radiosity_jumps: neighbour pair (" + std::to_string(a) + ", " + std::to_string(b) +
-                       ") out of range for " + std::to_string(n) + " patches");
+    RADWALK_CHECK_LT(std::size_t(a), n);  // a negative index wraps around to a large one
+    RADWALK_CHECK_LT(std::size_t(b), n);
     const auto i = std::size_t(a), j = std::size_t(b);
     judged[i] = judged[j] = true;
     if (ignored(i) || ignored(j)) continue;

@@ -46,8 +46,8 @@ struct JumpOptions {
 // compared (H_se scales alike); otherwise the patches along a contact line would look darker than their
 // neighbours at every size and split without bound. A patch with v_i = 0 is ignored: jump 0, its pairs skipped
 // (a patch whose only neighbours are ignored gets jump 0, not 1). B: N x 3.
-// Throws InputError if B, H_se or visible has the wrong size, a visible fraction is outside [0, 1],
-// floor_fraction < 0, noise_z < 0 or a neighbour index is out of range.
+// Throws InputError if a visible fraction is outside [0, 1], floor_fraction < 0 or noise_z < 0; B, H_se and
+// visible of the wrong size and a neighbour index out of range are InternalError (RADWALK_CHECK).
 std::vector<double> radiosity_jumps(const PatchSet& patches, const PatchRgb& B,
                                     const std::vector<std::pair<PatchIndex, PatchIndex>>& neighbours,
                                     const JumpOptions& options = {});

@@ -11,8 +11,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/discrete_distribution.h"
 #include "core/types.h"
-#include "pathtrace/discrete_distribution.h"
 
 namespace radwalk {
 

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
-#include "core/power_sums.h"
+#include "core/moments.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/sampling.h"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "core/power_sums.h"
+#include "core/moments.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"

@@ -7,8 +7,8 @@
 // bit-identical for any thread count.
 #include <cstdint>
 
+#include "core/image.h"
 #include "pathtrace/camera.h"
-#include "pathtrace/image.h"
 #include "pathtrace/integrator.h"
 
 namespace radwalk {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "patch/patch_neighbours.h"
@@ -15,13 +16,12 @@ namespace radwalk {
 
 PatchRgb irradiance_standard_error(const SparseF& F, const PatchRgb& B, const std::vector<std::uint32_t>& rays) {
   const Eigen::Index n = F.rows();
-  if (F.cols() != n || B.rows() != n || Eigen::Index(rays.size()) != n)
-    throw InputError("irradiance_standard_error: F is " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) +
-                     ", B has " + std::to_string(B.rows()) + " rows, rays " + std::to_string(rays.size()));
+  RADWALK_CHECK_EQ(F.cols(), n);
+  RADWALK_CHECK_EQ(B.rows(), n);
+  RADWALK_CHECK_EQ(Eigen::Index(rays.size()), n);
   PatchRgb se(n, 3);
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (rays[std::size_t(i)] == 0)
-      throw InputError("irradiance_standard_error: patch " + std::to_string(i) + " has no rays");
+    RADWALK_CHECK_GT(rays[std::size_t(i)], 0u);  // every patch traces at least min_rays >= 1 rays
     Rgb m1 = Rgb::Zero(), m2 = Rgb::Zero();
     for (SparseF::InnerIterator it(F, i); it; ++it) {
       const Rgb b = B.row(it.col()).transpose();
@@ -39,7 +39,7 @@ RefinedSolution solve_adaptive(PatchSet patches, const FormFactorStage& form_fac
     throw InputError("refine tolerance " + std::to_string(refine.tol) + " must be finite and > 0");
   if (refine.max_steps < 0) throw InputError("refine steps " + std::to_string(refine.max_steps) + " must be >= 0");
   if (refine.max_patches < 1) throw InputError("refine max patches must be >= 1");
-  if (!form_factors) throw InputError("solve_adaptive: no form-factor stage given");
+  RADWALK_CHECK(form_factors);  // the caller's form-factor stage
 
   RefinedSolution result;
   bool last = false;  // the budget of patches was used up by the previous split

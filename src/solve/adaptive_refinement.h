@@ -58,7 +58,7 @@ struct RefinedSolution {
 
 // Standard error of H_i = (F B)_i from the form-factor noise of row i alone: the rays of patch i score B_j of the
 // patch j they hit (0 when they escape), so se_ic = sqrt((sum_j F_ij B_jc^2 - (sum_j F_ij B_jc)^2) / n_i).
-// rays: n_i per patch (FormFactors::rays). Throws InputError on size mismatch or n_i = 0.
+// rays: n_i per patch (FormFactors::rays). Sizes that disagree and n_i = 0 are InternalError (RADWALK_CHECK).
 PatchRgb irradiance_standard_error(const SparseF& F, const PatchRgb& B, const std::vector<std::uint32_t>& rays);
 
 using FormFactorStage = std::function<FormFactors(const PatchSet&)>;

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <vector>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "solve/residual.h"
@@ -177,9 +178,7 @@ Solution DirectSolver::solve(const RadiosityProblem& p) const {
   Eigen::Index solver_n = 0;
   if (m.dense && !m.dense_lu.empty()) solver_n = m.dense_lu[0].rows();
   if (!m.dense && !m.sparse_lu.empty()) solver_n = m.sparse_lu[0]->rows();
-  if (solver_n != n)
-    throw InputError("direct solver was factorised for " + std::to_string(solver_n) + " patches, the problem has " +
-                     std::to_string(n));
+  RADWALK_CHECK_EQ(solver_n, n);  // solve() takes the problem the solver was factorised for
 
   // Substitution per channel with its group's factors.
   s.B.resize(n, 3);

@@ -3,15 +3,16 @@
 #include <cmath>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 RadiosityProblem make_problem(const PatchSet& patches, SparseF F) {
   const auto n = static_cast<Eigen::Index>(patches.size());
-  if (F.rows() != n || F.cols() != n)
-    throw InputError("form factors are " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) +
-                     " but the scene has " + std::to_string(n) + " patches");
+  // F comes from estimate_form_factors or from read_matrix_market, which refuses a file of another size.
+  RADWALK_CHECK_EQ(F.rows(), n);
+  RADWALK_CHECK_EQ(F.cols(), n);
   RadiosityProblem p;
   p.F = std::move(F);
   p.rho.resize(n, 3);
@@ -30,13 +31,13 @@ RadiosityProblem make_problem(const PatchSet& patches, SparseF F) {
 namespace radwalk {
 
 void check_problem(const RadiosityProblem& p) {
+  // The arrays of one problem agree in size (make_problem builds them together); their values come from the
+  // user's scene and form factors.
   const Eigen::Index n = p.area.size();
-  const auto dims = [](Eigen::Index r, Eigen::Index c) { return std::to_string(r) + " x " + std::to_string(c); };
-  if (p.F.rows() != n || p.F.cols() != n)
-    throw InputError("form factors are " + dims(p.F.rows(), p.F.cols()) + " but there are " + std::to_string(n) +
-                     " patch areas");
-  if (p.rho.rows() != n) throw InputError("rho is " + dims(p.rho.rows(), 3) + ", expected " + dims(n, 3));
-  if (p.E.rows() != n) throw InputError("E is " + dims(p.E.rows(), 3) + ", expected " + dims(n, 3));
+  RADWALK_CHECK_EQ(p.F.rows(), n);
+  RADWALK_CHECK_EQ(p.F.cols(), n);
+  RADWALK_CHECK_EQ(p.rho.rows(), n);
+  RADWALK_CHECK_EQ(p.E.rows(), n);
   for (Eigen::Index i = 0; i < n; ++i) {
     const std::string at = "patch " + std::to_string(i) + ": ";
     if (!std::isfinite(p.area(i)) || !(p.area(i) > 0))

@@ -18,11 +18,11 @@ struct RadiosityProblem {
   std::size_t size() const { return static_cast<std::size_t>(area.size()); }
 };
 
-// Takes rho, E and area from the patches and F as given. Throws InputError if F is not N x N.
+// Takes rho, E and area from the patches and F as given; F must be N x N (RADWALK_CHECK: InternalError).
 RadiosityProblem make_problem(const PatchSet& patches, SparseF F);
 
-// Throws InputError naming the first defect: sizes that disagree (F N x N, rho and E N x 3, area N), a value that
-// is not finite, rho < 0, E < 0, F_ij < 0 or area <= 0. Reflectances >= 1 and rows of F summing above 1 are
+// Throws InputError naming the first defect: a value that is not finite, rho < 0, E < 0, F_ij < 0 or area <= 0.
+// Sizes that disagree (F N x N, rho and E N x 3, area N) are InternalError (RADWALK_CHECK). Reflectances >= 1 and rows of F summing above 1 are
 // accepted here: the solvers report what they do to the spectral radius (SolveStatus, message).
 void check_problem(const RadiosityProblem& p);
 

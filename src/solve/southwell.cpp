@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "solve/convergence.h"
@@ -50,9 +51,7 @@ class TournamentTree {
 // ambient_c = sum_j A_j dB_jc / sum_j A_j / (1 - rho_avg,c), dB = E - (I - H) B.
 Rgb ambient_level(const RadiosityProblem& p, const PatchRgb& B) {
   const Eigen::Index n = Eigen::Index(p.size());
-  if (B.rows() != n)
-    throw InputError("southwell_ambient: B has " + std::to_string(B.rows()) + " rows, expected " +
-                     std::to_string(n));
+  RADWALK_CHECK_EQ(B.rows(), n);
   Rgb level = Rgb::Zero();
   if (n == 0) return level;
   const PatchRgb dB = residual(p, B);
@@ -60,7 +59,7 @@ Rgb ambient_level(const RadiosityProblem& p, const PatchRgb& B) {
   for (int c = 0; c < 3; ++c) {
     const double rho_avg = p.area.dot(p.rho.col(c).matrix()) / total_area;
     if (!(rho_avg < 1))
-      throw InputError("southwell_ambient: area-weighted mean reflectance " + std::to_string(rho_avg) +
+      throw NumericalError("southwell_ambient: area-weighted mean reflectance " + std::to_string(rho_avg) +
                        " of channel " + std::to_string(c) +
                        " is >= 1, so the interreflection factor 1 / (1 - rho_avg) does not exist");
     level(c) = p.area.dot(dB.col(c).matrix()) / total_area / (1 - rho_avg);
@@ -159,7 +158,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
     try {
       const Rgb level = ambient_level(p, s.B);
       for (int c = 0; c < 3; ++c) s.info[std::string("ambient_") + "rgb"[c]] = level(c);
-    } catch (const InputError&) {  // rho_avg >= 1: no ambient term exists
+    } catch (const NumericalError&) {  // rho_avg >= 1: no ambient term exists
     }
   }
   s.seconds = timer.seconds();

@@ -23,7 +23,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options 
 // dB = E - (I - H) B of an approximate B, the area-weighted mean reflectance rho_avg,c and the interreflection
 // factor R_c = 1 / (1 - rho_avg,c),
 //   ambient_c = R_c sum_j A_j dB_jc / sum_j A_j,   returned per patch as rho_ic * ambient_c (W/m^2).
-// Throws InputError if some rho_avg,c >= 1 (the factor R_c does not exist).
+// Throws NumericalError if some rho_avg,c >= 1 (the factor R_c does not exist); B must have a row per patch.
 PatchRgb southwell_ambient(const RadiosityProblem& p, const PatchRgb& B);
 
 }  // namespace radwalk

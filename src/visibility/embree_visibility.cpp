@@ -8,6 +8,7 @@
 #include <mutex>
 #include <stdexcept>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "visibility/ray_packet.h"
 
@@ -68,8 +69,8 @@ void copy_lanes(float* dst, const float* src, std::size_t m) {
 
 void validate(const PatchSet& patches) {
   const std::size_t n = patches.size();
-  if (patches.corners.size() != n || patches.normal.size() != n)
-    throw InputError(locate(patches.source, 0, -1, "patch set arrays disagree in length (corners, normal, area)"));
+  RADWALK_CHECK_EQ(patches.corners.size(), n);  // the arrays of a PatchSet are built together
+  RADWALK_CHECK_EQ(patches.normal.size(), n);
   for (std::size_t p = 0; p < patches.points.size(); ++p)
     if (!patches.points[p].allFinite())
       throw InputError(locate(patches.source, 0, -1, "point " + std::to_string(p) + " is not finite"));

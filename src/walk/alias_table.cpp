@@ -7,48 +7,6 @@
 
 namespace radwalk {
 
-void build_alias_buckets(const double* q, const std::int32_t* outcome, std::size_t n, AliasBucket* buckets) {
-  // Scaled probabilities n q_b; "small" buckets (< 1) borrow from "large" ones (>= 1).
-  std::vector<double> scaled(n);
-  std::vector<std::size_t> small, large;
-  small.reserve(n);
-  large.reserve(n);
-  for (std::size_t b = 0; b < n; ++b) {
-    scaled[b] = q[b] * static_cast<double>(n);
-    (scaled[b] < 1.0 ? small : large).push_back(b);
-  }
-  // Pair each small bucket with a large donor; the donor's remainder goes back to the matching list.
-  while (!small.empty() && !large.empty()) {
-    const std::size_t s = small.back(), l = large.back();
-    small.pop_back();
-    large.pop_back();
-    buckets[s] = {scaled[s], outcome[s], outcome[l]};
-    scaled[l] = (scaled[l] + scaled[s]) - 1.0;
-    (scaled[l] < 1.0 ? small : large).push_back(l);
-  }
-  // Leftovers are full buckets up to rounding.
-  for (std::size_t b : large) buckets[b] = {1.0, outcome[b], outcome[b]};
-  for (std::size_t b : small) buckets[b] = {1.0, outcome[b], outcome[b]};
-}
-
-AliasTable::AliasTable(const std::vector<double>& weights) {
-  double total = 0;
-  for (double w : weights) {
-    if (!(w >= 0) || !std::isfinite(w)) throw InputError("alias table: weight " + std::to_string(w) + " is not a finite non-negative number");
-    total += w;
-  }
-  if (!(total > 0)) throw InputError("alias table: all weights are zero");
-  const std::size_t n = weights.size();
-  pdf_.resize(n);
-  std::vector<std::int32_t> outcome(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    pdf_[i] = weights[i] / total;
-    outcome[i] = static_cast<std::int32_t>(i);
-  }
-  buckets_.resize(n);
-  build_alias_buckets(pdf_.data(), outcome.data(), n, buckets_.data());
-}
-
 RowAliasTables::RowAliasTables(const SparseF& F) {
   if (F.rows() != F.cols())
     throw InputError("row alias tables: F is " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) +

@@ -1,13 +1,6 @@
 #pragma once
-// Alias tables (Walker 1977, Vose 1991): O(1) sampling of a discrete distribution after O(n) set-up.
-//
-// A table of n buckets; bucket b keeps outcome primary[b] with probability threshold[b] and hands over to
-// alias[b] otherwise. Drawing u in [0, 1): b = floor(u n), f = u n - b, outcome = f < threshold[b] ? primary[b]
-// : alias[b]. Built in double precision, so pdf(outcome) is reproduced to about 1e-16 absolute.
-//
-// AliasTable: one distribution over {0..n-1}, proportional to non-negative weights.
-// RowAliasTables: one table per row k of a sparse row-major F (the form factors), over the columns j of row k
-// plus an escape outcome (kEscaped):
+// Row alias tables: one alias table (core/discrete_distribution.h) per row k of a sparse row-major F (the form
+// factors), over the columns j of row k plus an escape outcome (kEscaped):
 //   P(j) = F_kj / n_k,  P(escape) = 1 - s_k / n_k,  s_k = sum_j F_kj,  n_k = max(s_k, 1) (the row scale).
 // A row that sums below 1 (open scene) escapes with the deficit; a row that sums above 1 (rounding of a closed
 // scene, or a biased F) is sampled in proportion and the caller multiplies its weight by n_k, which keeps
@@ -16,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/discrete_distribution.h"
 #include "core/types.h"
 #include "formfactor/sparse_f.h"
 
@@ -24,42 +18,6 @@ namespace radwalk {
 // Outcome of sampling a destination that is not a patch.
 inline constexpr PatchIndex kEscaped = -1;  // the walk left the scene (row deficit, or a ray that hit nothing)
 inline constexpr PatchIndex kBackHit = -2;  // a ray hit the back of a patch (ray kernel)
-
-struct AliasBucket {
-  double threshold = 1;  // probability of keeping `primary`
-  std::int32_t primary = 0;
-  std::int32_t alias = 0;
-};
-
-// Fills buckets[0..n) from probabilities q[0..n) summing to 1 (Vose's stable variant); `outcome[b]` labels
-// entry b. Exposed for the two table kinds below.
-void build_alias_buckets(const double* q, const std::int32_t* outcome, std::size_t n, AliasBucket* buckets);
-
-inline std::int32_t sample_alias_buckets(const AliasBucket* buckets, std::size_t n, double u) {
-  const double x = u * static_cast<double>(n);
-  std::size_t b = static_cast<std::size_t>(x);
-  if (b >= n) b = n - 1;
-  const AliasBucket& bucket = buckets[b];
-  return x - static_cast<double>(b) < bucket.threshold ? bucket.primary : bucket.alias;
-}
-
-class AliasTable {
- public:
-  AliasTable() = default;
-  // Throws InputError if a weight is negative or not finite, or all are zero.
-  explicit AliasTable(const std::vector<double>& weights);
-  std::size_t size() const { return pdf_.size(); }
-  // Outcome for u in [0, 1).
-  std::size_t sample(double u) const {
-    return static_cast<std::size_t>(sample_alias_buckets(buckets_.data(), buckets_.size(), u));
-  }
-  // Probability of outcome i (= weight_i / sum of weights).
-  double pdf(std::size_t i) const { return pdf_[i]; }
-
- private:
-  std::vector<AliasBucket> buckets_;
-  std::vector<double> pdf_;
-};
 
 class RowAliasTables {
  public:

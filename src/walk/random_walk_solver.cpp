@@ -8,14 +8,13 @@
 #include <tuple>
 
 #include "core/error.h"
-#include "core/power_sums.h"
+#include "core/moments.h"
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "solve/spectral_radius.h"
 #include "walk/matrix_kernel.h"
 #include "walk/ray_kernel.h"
 #include "walk/walk_lockstep.h"
-#include "walk/walk_moments.h"
 #include "walk/walk_variance.h"
 
 namespace radwalk {

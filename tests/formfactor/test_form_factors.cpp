@@ -11,10 +11,11 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
-#include "core/stats.h"
 #include "formfactor/form_factors.h"
-#include "test_scenes.h"
-#include "view_factor_references.h"
+#include "support/box_scenes.h"
+#include "support/reference_problems.h"
+#include "support/stat_checks.h"
+#include "support/view_factors.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;
@@ -25,11 +26,8 @@ constexpr double kAlpha = 1e-3;
 
 double entry(const SparseF& F, int i, int j) { return F.coeff(i, j); }
 
-// z-score of an estimated fraction p_hat from n rays against the exact p.
-double z_score(double p_hat, double p, double n) {
-  const double se = std::sqrt(p_hat * (1 - p_hat) / n);
-  return (p_hat - p) / se;
-}
+// z-score of an estimated fraction p_hat from n rays against the exact p (binomial se from p_hat).
+double z_score(double p_hat, double p, double n) { return test::z_score(p_hat, p, test::binomial_se(p_hat, n)); }
 
 // Two squares facing each other: patch 0 at z = 0 (normal +z), patch 1 at z = 1 (normal -z, or +z when
 // `second_faces_away`).
@@ -56,8 +54,8 @@ std::vector<Vec3> regular_polygon(double r, int sides, double z, bool facing_up)
 }  // namespace
 
 TEST_CASE("reference view factors: closed forms and the polygon contour integral agree", "[formfactor]") {
-  CHECK(test::parallel_rectangles(1, 1, 1) == Approx(0.199824896).epsilon(1e-8));
-  CHECK(test::perpendicular_rectangles(1, 1, 1) == Approx(0.200043776).epsilon(1e-8));
+  CHECK(test::parallel_rectangles(1, 1, 1) == Approx(test::kOpposite).epsilon(1e-8));
+  CHECK(test::perpendicular_rectangles(1, 1, 1) == Approx(test::kAdjacent).epsilon(1e-8));
   CHECK(test::coaxial_disks(1, 1, 1) == Approx(0.381966).epsilon(1e-5));
   // Unit cube closure: opposite + 4 adjacent = 1.
   CHECK(test::parallel_rectangles(1, 1, 1) + 4 * test::perpendicular_rectangles(1, 1, 1) == Approx(1).epsilon(1e-8));
@@ -84,18 +82,18 @@ TEST_CASE("parallel squares: F12 and the escape fraction in an open scene", "[fo
   const FormFactors ff = estimate_form_factors(ps, vis, opt);
   const double exact = test::parallel_rectangles(1, 1, 1), n = opt.rays_per_patch;
   const double zc = z_critical(sidak(kAlpha, 4));
+  test::ZTable table("F12 and escapes", zc);
   for (int i = 0; i < 2; ++i) {
     const double f = entry(ff.F, i, 1 - i), escape = ff.escaped[i] / n;
-    INFO("row " << i << ": F = " << f << " (exact " << exact << "), escaped " << escape << " (expected "
-                << 1 - exact << "), z = " << z_score(f, exact, n) << ", critical " << zc);
-    CHECK(std::abs(z_score(f, exact, n)) <= zc);
-    CHECK(std::abs(z_score(escape, 1 - exact, n)) <= zc);
+    table.add("row " + std::to_string(i) + " F", f, test::binomial_se(f, n), exact);
+    table.add("row " + std::to_string(i) + " escaped", escape, test::binomial_se(escape, n), 1 - exact);
     CHECK(ff.back_hits[i] == 0);
     CHECK(entry(ff.F, i, i) == 0);
     CHECK(ff.rays[i] == opt.rays_per_patch);
     // Every ray is accounted for: front hits + escapes = rays.
     CHECK(std::lround(f * n) + ff.escaped[i] == ff.rays[i]);
   }
+  table.check();
 }
 
 TEST_CASE("perpendicular squares sharing an edge", "[formfactor]") {
@@ -111,12 +109,13 @@ TEST_CASE("perpendicular squares sharing an edge", "[formfactor]") {
   const FormFactors ff = estimate_form_factors(ps, vis, opt);
   const double exact = test::perpendicular_rectangles(1, 1, 1), n = opt.rays_per_patch;
   const double zc = z_critical(sidak(kAlpha, 2));
+  test::ZTable table("perpendicular F", zc);
   for (int i = 0; i < 2; ++i) {
     const double f = entry(ff.F, i, 1 - i);
-    INFO("row " << i << ": F = " << f << " exact " << exact << " z = " << z_score(f, exact, n) << " critical " << zc);
-    CHECK(std::abs(z_score(f, exact, n)) <= zc);
+    table.add("row " + std::to_string(i), f, test::binomial_se(f, n), exact);
     CHECK(ff.back_hits[i] == 0);
   }
+  table.check();
 }
 
 TEST_CASE("unit cube: closure, closed forms, reciprocity, and the test rejects a wrong value", "[formfactor]") {
@@ -131,6 +130,7 @@ TEST_CASE("unit cube: closure, closed forms, reciprocity, and the test rejects a
     const double n = opt.rays_per_patch;
     const double opposite = test::parallel_rectangles(1, 1, 1), adjacent = test::perpendicular_rectangles(1, 1, 1);
     const double zc = z_critical(sidak(kAlpha, 30 + 15));
+    test::ZTable table(std::string("unit cube F, stratified ") + (stratified ? "on" : "off"), zc);
     double max_z = 0, min_z_wrong = INFINITY;
     for (int i = 0; i < 6; ++i) {
       // Closed scene: no ray escapes or meets a back face, so the row sums to 1 up to float rounding.
@@ -145,19 +145,19 @@ TEST_CASE("unit cube: closure, closed forms, reciprocity, and the test rejects a
         const double exact = (j / 2 == i / 2) ? opposite : adjacent;
         const double z = z_score(entry(ff.F, i, j), exact, n);
         max_z = std::max(max_z, std::abs(z));
-        INFO("F(" << i << "," << j << ") = " << entry(ff.F, i, j) << " exact " << exact << " z " << z << " critical "
-                  << zc);
-        CHECK(std::abs(z) <= zc);
+        const std::string ij = std::to_string(i) + "," + std::to_string(j);
+        table.add("F(" + ij + ")", entry(ff.F, i, j), test::binomial_se(entry(ff.F, i, j), n), exact);
         if (j / 2 == i / 2) min_z_wrong = std::min(min_z_wrong, std::abs(z_score(entry(ff.F, i, j), 0.19, n)));
         if (j > i) {
           // Reciprocity (all areas 1): F_ij - F_ji against its standard error (rows are independent).
           const double fij = entry(ff.F, i, j), fji = entry(ff.F, j, i);
           const double se = std::sqrt((fij * (1 - fij) + fji * (1 - fji)) / n);
-          INFO("reciprocity " << i << "," << j << ": " << fij << " - " << fji << " = " << fij - fji << ", se " << se);
-          CHECK(std::abs(fij - fji) / se <= zc);
+          table.add("reciprocity F(" + ij + ") - F(" + std::to_string(j) + "," + std::to_string(i) + ")", fij - fji,
+                    se, 0.0);
         }
       }
     }
+    table.check();
     std::printf("unit cube (stratified %d): largest |z| %.2f of critical %.2f; wrong value 0.19 gives |z| >= %.1f\n",
                 stratified, max_z, zc, min_z_wrong);
     // The same check rejects a wrong reference: 0.19 instead of 0.199825 for opposite faces.
@@ -199,6 +199,7 @@ TEST_CASE("subdivided cube with triangles: no leaks, face-to-face factors", "[fo
   CHECK(back == 0);
   CHECK(self == 0);
   const double zc = z_critical(sidak(kAlpha, 36));
+  test::ZTable table("face to face F", zc);
   for (int a = 0; a < 6; ++a)
     for (int b = 0; b < 6; ++b) {
       const double exact =
@@ -208,8 +209,9 @@ TEST_CASE("subdivided cube with triangles: no leaks, face-to-face factors", "[fo
       if (a == b)
         CHECK(f == 0);
       else
-        CHECK(std::abs(z_score(f, exact, rays[a])) <= zc);
+        table.add("face " + std::to_string(a) + " -> " + std::to_string(b), f, test::binomial_se(f, rays[a]), exact);
     }
+  table.check();
 }
 
 TEST_CASE("F is bit-identical for 1 and 2 threads", "[formfactor]") {
@@ -244,8 +246,7 @@ TEST_CASE("back-face hits are counted when a patch faces the wrong way", "[formf
   const FormFactors ff = estimate_form_factors(ps, vis, opt);
   const double exact = test::parallel_rectangles(1, 1, 1), n = opt.rays_per_patch;
   const double back = ff.back_hits[0] / n, zc = z_critical(sidak(kAlpha, 1));
-  INFO("back-hit fraction " << back << " exact " << exact << " z " << z_score(back, exact, n));
-  CHECK(std::abs(z_score(back, exact, n)) <= zc);
+  test::check_z("back-hit fraction", back, test::binomial_se(back, n), exact, zc);
   CHECK(ff.F.nonZeros() == 0);                   // nothing reaches a front face
   CHECK(ff.escaped[0] + ff.back_hits[0] == ff.rays[0]);
   CHECK(ff.escaped[1] == ff.rays[1]);             // patch 1 shoots away from patch 0
@@ -277,11 +278,12 @@ TEST_CASE("coaxial disks as 48-gons against the exact polygon value", "[formfact
   }
   const double zc = z_critical(sidak(kAlpha, 2));
   std::printf("coaxial 48-gons: exact polygon F %.6f, disk F %.6f (discretisation %.2e)\n", exact, disk, exact - disk);
+  test::ZTable table("48-gon F", zc);
   for (int d = 0; d < 2; ++d) {
     const double f = hits[d] / rays[d];
-    INFO("disk " << d << ": F " << f << " exact polygon " << exact << " z " << z_score(f, exact, rays[d]));
-    CHECK(std::abs(z_score(f, exact, rays[d])) <= zc);
+    table.add("disk " + std::to_string(d), f, test::binomial_se(f, rays[d]), exact);
   }
+  table.check();
   CHECK(std::abs(exact - disk) < 0.01);  // the 48-gon is close to the disk (area ratio 0.9971)
 }
 
@@ -340,6 +342,7 @@ TEST_CASE("closed polyhedral sphere: rows sum to 1, entries match exact polygon 
   const std::vector<int> rows = {0, 57, 160, 311};
   const double zc = z_critical(sidak(kAlpha, rows.size()));
   const double total_area = ps.total_area();
+  test::ZTable table("sum over S_i of F", zc);
   for (int i : rows) {
     const std::vector<Vec3> pi = {ps.corner(i, 0), ps.corner(i, 1), ps.corner(i, 2)};
     double exact = 0, estimate = 0, sphere_limit = 0;
@@ -356,9 +359,9 @@ TEST_CASE("closed polyhedral sphere: rows sum to 1, entries match exact polygon 
     const double z = z_score(estimate, exact, opt.rays_per_patch);
     std::printf("sphere row %d: sum over S_i of F: estimate %.5f, exact polygon %.5f, A_S/A %.5f, z %.2f\n", i,
                 estimate, exact, sphere_limit, z);
-    INFO("row " << i << " estimate " << estimate << " exact " << exact << " z " << z << " critical " << zc);
-    CHECK(std::abs(z) <= zc);
+    table.add("row " + std::to_string(i), estimate, test::binomial_se(estimate, opt.rays_per_patch), exact);
   }
+  table.check();
 }
 
 TEST_CASE("rays per area and bad options", "[formfactor]") {

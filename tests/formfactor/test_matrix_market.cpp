@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/matrix_market.h"
-#include "test_scenes.h"
+#include "support/box_scenes.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;

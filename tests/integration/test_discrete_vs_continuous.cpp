@@ -11,13 +11,14 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "core/stats.h"
 #include "formfactor/form_factors.h"
 #include "mesh/read_scene.h"
 #include "patch/patching.h"
 #include "pathtrace/patch_average.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
+#include "support/reference_problems.h"
+#include "support/stat_checks.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;
@@ -51,6 +52,7 @@ TEST_CASE("parallel squares: direct solve of estimated F agrees with path-traced
   const double rho1 = 0.5, E0 = kPi;
   int receivers = 0;
   double worst = 0;
+  test::ZTable table("discrete vs continuous B", z_crit);
   for (std::size_t j = 0; j < patches.size(); ++j) {
     if (patches.E[j][0] > 0) {
       CHECK(discrete.B(j, 0) == Approx(E0));  // the emitter: exact in both models
@@ -64,19 +66,20 @@ TEST_CASE("parallel squares: direct solve of estimated F agrees with path-traced
     const double se = std::hypot(se_ff, continuous.B_se(j, 0));
     const double z = (discrete.B(j, 0) - continuous.B(j, 0)) / se;
     worst = std::max(worst, std::abs(z));
-    INFO("patch " << j << ": discrete " << discrete.B(j, 0) << ", continuous " << continuous.B(j, 0) << " +- "
-                  << continuous.B_se(j, 0) << ", form-factor se " << se_ff << ", z " << z);
-    CHECK(std::abs(z) < z_crit);
+    table.add_patch(static_cast<Eigen::Index>(j), 0,
+                    "patch " + std::to_string(j) + " (form-factor se " + std::to_string(se_ff) + ")",
+                    discrete.B(j, 0), se, continuous.B(j, 0));
   }
+  table.check(&patches);
   CHECK(receivers == 16);
   INFO("largest |z| " << worst << " against " << z_crit);
   // The receiver's area-weighted mean is the whole-square form factor times rho1 E0 (Howell C-11).
   double mean = 0;
   for (std::size_t j = 0; j < patches.size(); ++j)
     if (patches.E[j][0] == 0) mean += continuous.B(j, 0) * patches.area[j];
-  const double expected = rho1 * E0 * 0.199824896;
+  const double expected = rho1 * E0 * test::kOpposite;
   double var = 0;
   for (std::size_t j = 0; j < patches.size(); ++j)
     if (patches.E[j][0] == 0) var += std::pow(continuous.B_se(j, 0) * patches.area[j], 2);
-  CHECK(std::abs(mean - expected) < z_critical(1e-3) * std::sqrt(var));
+  test::check_z("receiver's area-weighted mean", mean, std::sqrt(var), expected, z_critical(1e-3));
 }

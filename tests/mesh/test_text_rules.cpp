@@ -119,7 +119,7 @@ TEST_CASE("mtllib: several files, tabs, escaped spaces, names with spaces and ab
     CHECK(mesh.materials[static_cast<std::size_t>(mesh.face_material[1])].name == "two");
   }
   // P14: a name with a space, escaped or not; an absolute path.
-  for (const std::string line : {std::string("mtllib with space.mtl\n"), std::string("mtllib with\\ space.mtl\n"),
+  for (const std::string& line : {std::string("mtllib with space.mtl\n"), std::string("mtllib with\\ space.mtl\n"),
                                  "mtllib " + (dir / "with space.mtl").string() + "\n"}) {
     INFO(line);
     write(dir / "s.obj", line + "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl three\nf 1 2 3\n");

@@ -96,7 +96,7 @@ TEST_CASE("split_patches: children tile their parent (area, face, rho, E, orient
   }
   SECTION("bad input") {
     const PatchSet p = cornell(0);
-    CHECK_THROWS_AS(split_patches(p, std::vector<bool>(p.size() + 1)), InputError);
+    CHECK_THROWS_AS(split_patches(p, std::vector<bool>(p.size() + 1)), InternalError);
   }
 }
 
@@ -195,13 +195,13 @@ TEST_CASE("radiosity_jumps: marks exactly the patches that differ from a neighbo
   CHECK(j3[3] == 0.0);
   CHECK(j3[4] == 0.0);
 
-  CHECK_THROWS_AS(radiosity_jumps(p, PatchRgb(3, 3), neighbours), InputError);
+  CHECK_THROWS_AS(radiosity_jumps(p, PatchRgb(3, 3), neighbours), InternalError);
   JumpOptions bad;
   bad.floor_fraction = -1;
   CHECK_THROWS_AS(radiosity_jumps(p, B, neighbours, bad), InputError);
   bad = JumpOptions{};
   bad.visible = {1};
-  CHECK_THROWS_AS(radiosity_jumps(p, B, neighbours, bad), InputError);
+  CHECK_THROWS_AS(radiosity_jumps(p, B, neighbours, bad), InternalError);
   bad.visible = {1, 1, 1, 1.5, 1, 1};
   CHECK_THROWS_AS(radiosity_jumps(p, B, neighbours, bad), InputError);
 

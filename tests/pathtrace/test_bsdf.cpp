@@ -3,14 +3,15 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "core/moments.h"
+#include "direction_bins.h"
 #include "patch/patch_builder.h"
 #include "pathtrace/bsdf.h"
 #include "pathtrace/fresnel.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 
 using namespace radwalk;
 using radwalk::test::check_z;
-using radwalk::test::Moments;
 using radwalk::test::uniform_sphere;
 
 namespace {
@@ -28,13 +29,13 @@ TEST_CASE("white furnace: a rho = 1 Lambertian reflects everything (uniform-sphe
   int k = 0;
   for (double theta : {0.1, 0.8, 1.4}) {
     const Vec3 wo = direction(theta, 0.3);
-    Moments m;
+    PowerSums m;
     Rng rng = stream(11, StreamDomain::test, k++);
     for (int s = 0; s < 200000; ++s) {
       const Vec3 wi = uniform_sphere(rng.uniform(), rng.uniform());
       m.add(lambert.f(wo, wi)[0] * std::abs(wi.z()) * 4 * kPi);
     }
-    check_z("Lambertian albedo", m.mean(), m.se(), 1.0, z);
+    check_z("Lambertian albedo", m.mean(), m.standard_error(), 1.0, z);
   }
 }
 
@@ -45,23 +46,23 @@ TEST_CASE("GGX: D is normalised and passes the weak white furnace test", "[bsdf]
   int k = 0;
   for (double alpha : {0.2, 0.6}) {
     const Ggx ggx(alpha);
-    Moments norm;
+    PowerSums norm;
     Rng rng = stream(21, StreamDomain::test, k++);
     for (int s = 0; s < 400000; ++s) {
       const Vec3 wm = uniform_sphere(rng.uniform(), rng.uniform());
       norm.add(ggx.D(wm) * std::max(0.0, wm.z()) * 4 * kPi);
     }
-    check_z("int D cos", norm.mean(), norm.se(), 1.0, z);
+    check_z("int D cos", norm.mean(), norm.standard_error(), 1.0, z);
     for (double theta : {0.0, 0.9, 1.45}) {
       const Vec3 wo = direction(theta, 1.1);
-      Moments weak;
+      PowerSums weak;
       Rng r2 = stream(22, StreamDomain::test, k++);
       for (int s = 0; s < 400000; ++s) {
         const Vec3 wi = uniform_sphere(r2.uniform(), r2.uniform());
         const Vec3 wh = (wo + wi).normalized();
         weak.add(ggx.D(wh) * ggx.G1(wo) / (4 * wo.z()) * 4 * kPi);
       }
-      check_z("weak white furnace", weak.mean(), weak.se(), 1.0, z);
+      check_z("weak white furnace", weak.mean(), weak.standard_error(), 1.0, z);
     }
   }
 }
@@ -71,26 +72,28 @@ TEST_CASE("samplers follow their pdfs (chi-square): Lambertian and GGX microface
   const double alpha_each = sidak(1e-3, 5);
   const Lambertian lambert(Rgb::Constant(0.5));
   const Vec3 wo0 = direction(0.5, 0.2);
-  CHECK(radwalk::test::direction_chi_square(
-            [&](Rng& r, Vec3& w) {
-              const auto s = lambert.sample(wo0, r.uniform(), r.uniform(), r.uniform());
-              if (s) w = s->wi;
-              return s.has_value();
-            },
-            [&](const Vec3& wi) { return lambert.pdf(wo0, wi); }, 200000, 31) > alpha_each);
+  const test::BinCounts lambert_counts = test::direction_counts(
+      [&](Rng& r, Vec3& w) {
+        const auto s = lambert.sample(wo0, r.uniform(), r.uniform(), r.uniform());
+        if (s) w = s->wi;
+        return s.has_value();
+      },
+      [&](const Vec3& wi) { return lambert.pdf(wo0, wi); }, 200000, 31);
+  test::check_chi_square("Lambertian sampler", lambert_counts.observed, lambert_counts.expected, alpha_each);
   std::uint64_t seed = 32;
   for (double alpha : {0.3, 0.7})
     for (double theta : {0.2, 1.2}) {
       const MicrofacetConductor mf(alpha, Rgb::Constant(1.5), Rgb::Constant(3.0));
       const Vec3 wo = direction(theta, 0.4);
-      INFO("alpha " << alpha << ", theta_o " << theta);
-      CHECK(radwalk::test::direction_chi_square(
-                [&](Rng& r, Vec3& w) {
-                  const auto s = mf.sample(wo, r.uniform(), r.uniform(), r.uniform());
-                  if (s) w = s->wi;
-                  return s.has_value();
-                },
-                [&](const Vec3& wi) { return mf.pdf(wo, wi); }, 300000, seed++) > alpha_each);
+      const test::BinCounts counts = test::direction_counts(
+          [&](Rng& r, Vec3& w) {
+            const auto s = mf.sample(wo, r.uniform(), r.uniform(), r.uniform());
+            if (s) w = s->wi;
+            return s.has_value();
+          },
+          [&](const Vec3& wi) { return mf.pdf(wo, wi); }, 300000, seed++);
+      test::check_chi_square("GGX sampler, alpha " + std::to_string(alpha) + ", theta_o " + std::to_string(theta),
+                             counts.observed, counts.expected, alpha_each);
     }
 }
 
@@ -104,7 +107,7 @@ TEST_CASE("microfacet: sample weight equals f cos / pdf, f is reciprocal, albedo
     const MicrofacetConductor mf = white_ggx(alpha);
     const Vec3 wo = direction(0.3 + alpha, 2.0);
     Rng rng = stream(41, StreamDomain::test, k++);
-    Moments sampled, uniform;
+    PowerSums sampled, uniform;
     for (int s = 0; s < 200000; ++s) {
       const auto bs = mf.sample(wo, rng.uniform(), rng.uniform(), rng.uniform());
       if (bs) {
@@ -117,11 +120,12 @@ TEST_CASE("microfacet: sample weight equals f cos / pdf, f is reciprocal, albedo
       const Vec3 wi = uniform_sphere(rng.uniform(), rng.uniform());
       uniform.add(mf.f(wo, wi)[0] * std::max(0.0, wi.z()) * 4 * kPi);
     }
-    INFO("alpha " << alpha << ": sampled albedo " << sampled.mean() << " +- " << sampled.se() << ", uniform "
-                  << uniform.mean() << " +- " << uniform.se());
-    const double se = std::sqrt(sampled.se() * sampled.se() + uniform.se() * uniform.se());
-    CHECK(std::abs(sampled.mean() - uniform.mean()) / se < z);
-    CHECK(sampled.mean() - 1.0 < z * sampled.se());
+    INFO("alpha " << alpha << ": sampled albedo " << sampled.mean() << " +- " << sampled.standard_error()
+                  << ", uniform " << uniform.mean() << " +- " << uniform.standard_error());
+    const double se_a = sampled.standard_error(), se_b = uniform.standard_error();
+    check_z("importance-sampled vs uniform albedo", sampled.mean(), std::sqrt(se_a * se_a + se_b * se_b),
+            uniform.mean(), z);
+    CHECK(sampled.mean() - 1.0 < z * sampled.standard_error());
     // Single scattering loses energy, more with roughness: a loose physical sanity bound.
     CHECK(sampled.mean() > 0.5);
   }
@@ -154,7 +158,7 @@ TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance; die
       w.z() *= side;
       const double F = fresnel_dielectric(w.z(), 1.5);
       Rng rng = stream(51, StreamDomain::test, k++);
-      Moments reflected;
+      PowerSums reflected;
       for (int s = 0; s < 100000; ++s) {
         const auto bs = glass.sample(w, rng.uniform(), rng.uniform(), rng.uniform());
         REQUIRE(bs);
@@ -165,8 +169,7 @@ TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance; die
       }
       INFO("side " << side << ", theta " << theta << ", F " << F);
       if (F < 1.0) {
-        const double se = std::sqrt(F * (1 - F) / reflected.n);
-        CHECK(std::abs(reflected.mean() - F) / se < z);
+        check_z("reflected fraction", reflected.mean(), std::sqrt(F * (1 - F) / reflected.n), F, z);
       } else {
         CHECK(reflected.mean() == 1.0);  // total internal reflection
       }

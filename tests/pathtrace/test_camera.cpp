@@ -3,8 +3,10 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/moments.h"
+#include "core/rng.h"
 #include "pathtrace/camera.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 
 using namespace radwalk;
 
@@ -51,7 +53,7 @@ TEST_CASE("camera importance integrates to 1 over each pixel's solid angle", "[c
   int k = 0;
   for (auto [px, py] : {std::pair{0, 0}, std::pair{3, 2}, std::pair{7, 5}}) {
     Rng rng = stream(82, StreamDomain::test, k++);
-    radwalk::test::Moments m;
+    PowerSums m;
     for (int s = 0; s < 400000; ++s) {
       const double cz = 1 - rng.uniform() * (1 - cos_max), r = std::sqrt(1 - cz * cz), phi = 2 * kPi * rng.uniform();
       const Vec3 w(r * std::cos(phi), r * std::sin(phi), cz);
@@ -59,6 +61,6 @@ TEST_CASE("camera importance integrates to 1 over each pixel's solid angle", "[c
       const bool in = f && static_cast<int>(f->x()) == px && static_cast<int>(f->y()) == py;
       m.add(in ? cam.importance(w) * cz * cone : 0.0);
     }
-    radwalk::test::check_z("pixel importance", m.mean(), m.se(), 1.0, z);
+    radwalk::test::check_z("pixel importance", m.mean(), m.standard_error(), 1.0, z);
   }
 }

@@ -8,7 +8,7 @@
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
 #include "pathtrace/render.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;
@@ -43,9 +43,9 @@ TEST_CASE("Cornell box: implicit, NEE and light tracing agree with MIS on every 
   lo.progress = false;
   const Solution light = light_trace_patches(p, vis, lo);
   const double z = z_critical(sidak(1e-3, 3 * p.size() * 3));
-  test::check_solutions_agree(implicit, mis, z);
-  test::check_solutions_agree(nee, mis, z);
-  test::check_solutions_agree(light, mis, z);
+  test::check_solutions_agree(implicit, mis, z, &p);
+  test::check_solutions_agree(nee, mis, z, &p);
+  test::check_solutions_agree(light, mis, z, &p);
 }
 
 TEST_CASE("Cornell box image: red wall on the left, green on the right", "[render][cornell][statistical]") {

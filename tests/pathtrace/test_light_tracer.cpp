@@ -5,7 +5,7 @@
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
 #include "scenes.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 #include "visibility/brute_force_visibility.h"
 
 using namespace radwalk;
@@ -28,8 +28,12 @@ TEST_CASE("light tracer: furnace B = E / (1 - rho) on every patch", "[lighttrace
   const Solution s = light_trace_patches(p, vis, lt_options(200000, 201));
   CHECK(s.method == "lighttrace");
   const double z = z_critical(sidak(1e-3, p.size() * 3));
+  test::ZTable table("light-traced furnace B", z);
   for (std::size_t i = 0; i < p.size(); ++i)
-    for (int c = 0; c < 3; ++c) test::check_z("light-traced furnace B", s.B(i, c), s.B_se(i, c), kPi * Le[c] / (1 - rho[c]), z);
+    for (int c = 0; c < 3; ++c)
+      table.add_patch(i, c, "patch " + std::to_string(i) + " channel " + std::to_string(c), s.B(i, c), s.B_se(i, c),
+                      kPi * Le[c] / (1 - rho[c]));
+  table.check(&p);
 }
 
 TEST_CASE("light tracer agrees with the MIS path tracer and conserves energy", "[lighttrace][statistical]") {
@@ -53,7 +57,7 @@ TEST_CASE("light tracer agrees with the MIS path tracer and conserves energy", "
   po.progress = false;
   const Solution pt = estimate_patch_averages(p, vis, po);
   const double z = z_critical(sidak(1e-3, p.size() * 3));
-  test::check_solutions_agree(lt, pt, z);
+  test::check_solutions_agree(lt, pt, z, &p);
 
   // Energy balance with uniform rho.
   const Rgb rho(0.6, 0.5, 0.4);

@@ -5,7 +5,7 @@
 #include "core/parallel.h"
 #include "pathtrace/patch_average.h"
 #include "scenes.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 #include "visibility/brute_force_visibility.h"
 
 using namespace radwalk;
@@ -40,11 +40,12 @@ TEST_CASE("furnace: every patch has B = E / (1 - rho), implicit and MIS", "[path
     const Solution s = estimate_patch_averages(p, vis, options_for(kind, 1000, 101));
     CHECK(s.method == std::string("pathtrace-") + to_string(kind));
     CHECK(s.walks == 1000 * static_cast<long>(p.size()));
+    test::ZTable table(std::string("furnace B, ") + to_string(kind), z);
     for (std::size_t i = 0; i < p.size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        INFO(to_string(kind) << " patch " << i << " channel " << c);
-        test::check_z("furnace B", s.B(i, c), s.B_se(i, c), exact[c], z);
-      }
+      for (int c = 0; c < 3; ++c)
+        table.add_patch(i, c, "patch " + std::to_string(i) + " channel " + std::to_string(c), s.B(i, c),
+                        s.B_se(i, c), exact[c]);
+    table.check(&p);
   }
 }
 
@@ -62,6 +63,7 @@ TEST_CASE("furnace with a depth cap: the biased estimate has the known expectati
     PatchAverageOptions o = options_for(kind, 400, 102);
     o.integrator.max_depth = 1;
     const Solution s = estimate_patch_averages(p, vis, o);
+    test::ZTable table(std::string("capped furnace B, ") + to_string(kind), z);
     for (std::size_t i = 0; i < p.size(); ++i)
       for (int c = 0; c < 3; ++c) {
         if (kind == IntegratorKind::implicit) {  // every cosine-sampled direction scores pi Le: exact
@@ -70,8 +72,10 @@ TEST_CASE("furnace with a depth cap: the biased estimate has the known expectati
           continue;
         }
         if (kind == IntegratorKind::nee) continue;
-        test::check_z("capped furnace B", s.B(i, c), s.B_se(i, c), E[c] * (1 + rho[c]), z);
+        table.add_patch(i, c, "patch " + std::to_string(i) + " channel " + std::to_string(c), s.B(i, c),
+                        s.B_se(i, c), E[c] * (1 + rho[c]));
       }
+    table.check(&p);
   }
 }
 
@@ -116,7 +120,7 @@ TEST_CASE("implicit, NEE and MIS agree patch by patch on a coloured room with an
   for (int k = 0; k < 3; ++k) s[k] = estimate_patch_averages(p, vis, options_for(kAll[k], 1500, 104 + k));
   const double z = z_critical(sidak(1e-3, 3 * p.size() * 3));
   for (int a = 0; a < 3; ++a)
-    for (int b = a + 1; b < 3; ++b) test::check_solutions_agree(s[a], s[b], z);
+    for (int b = a + 1; b < 3; ++b) test::check_solutions_agree(s[a], s[b], z, &p);
   // MIS should not be worse than implicit on a small light: total variance comparison (not a hypothesis test;
   // a sanity check of the weights, with a wide factor).
   CHECK(s[2].var.sum() < s[0].var.sum());

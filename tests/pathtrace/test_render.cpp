@@ -4,10 +4,10 @@
 
 #include "core/parallel.h"
 #include "pathtrace/light_tracer.h"
-#include "pathtrace/png_writer.h"
+#include "io/png_writer.h"
 #include "pathtrace/render.h"
 #include "scenes.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 #include "visibility/brute_force_visibility.h"
 
 using namespace radwalk;

@@ -2,12 +2,13 @@
 #include <catch2/catch.hpp>
 #include <vector>
 
+#include "core/discrete_distribution.h"
 #include "core/error.h"
+#include "core/rng.h"
 #include "patch/patch_builder.h"
-#include "pathtrace/discrete_distribution.h"
 #include "pathtrace/facet_geometry.h"
 #include "pathtrace/light_sampler.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 
 using namespace radwalk;
 
@@ -40,7 +41,7 @@ TEST_CASE("discrete distribution: pmf, inverse round trip, chi-square", "[sample
   for (std::size_t k = 0; k < w.size(); ++k) exp[k] = n * d.pmf(k);
   CHECK(obs[1] == 0);
   CHECK(obs[4] == 0);
-  CHECK(chi_square_gof_p_value(obs, exp) > 1e-3);
+  test::check_chi_square("discrete distribution", obs, exp, 1e-3);
 }
 
 TEST_CASE("light sampler: emitters chosen by power or area, points on the chosen patch", "[samplers][statistical]") {
@@ -80,6 +81,6 @@ TEST_CASE("light sampler: emitters chosen by power or area, points on the chosen
     }
     exp[0] = n * ls->pmf(1);
     exp[1] = n * ls->pmf(2);
-    CHECK(chi_square_gof_p_value(obs, exp) > a);
+    test::check_chi_square(ls == &by_power ? "emitters by power" : "emitters by area", obs, exp, a);
   }
 }

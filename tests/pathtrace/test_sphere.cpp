@@ -5,10 +5,12 @@
 #include <vector>
 
 #include "analytic_sphere.h"
+#include "core/moments.h"
+#include "direction_bins.h"
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
 #include "scenes.h"
-#include "stat_helpers.h"
+#include "support/stat_checks.h"
 
 using namespace radwalk;
 
@@ -70,7 +72,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       const int band = k < 8 ? kCells.n_z - 1 - k % kEmittingBands : k % (kCells.n_z - kEmittingBands);
       const PatchIndex i = kCells.index(band, static_cast<int>(pick.uniform() * kCells.n_phi));
       const Vec3 x = scene->geometry.sample_point(i, pick.uniform(), pick.uniform());
-      std::vector<test::Moments> m(3);
+      std::vector<PowerSums> m(3);
       for (long s = 0; s < n; ++s) {
         Rng rng = stream(12, StreamDomain::test, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
         const Rgb y = p.E[i] + p.rho[i] * integrator.irradiance(i, x, rng, counters);
@@ -78,7 +80,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       }
       for (int c = 0; c < 3; ++c) {
         INFO(to_string(kind) << " wall point " << k << " on patch " << i << " channel " << c);
-        test::check_z("B(x)", m[c].mean(), m[c].se(), p.E[i][c] + kRho[c] * E_irr[c], z);
+        test::check_z("B(x)", m[c].mean(), m[c].standard_error(), p.E[i][c] + kRho[c] * E_irr[c], z);
       }
     }
     // Radiance seen from inside: a random interior point, a random direction; L = B(y) / pi at the hit y.
@@ -90,7 +92,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       ray.direction = test::uniform_sphere(pick.uniform(), pick.uniform());
       const PatchIndex j = scene->visibility.intersect(ray).patch;
       REQUIRE(j >= 0);
-      std::vector<test::Moments> m(3);
+      std::vector<PowerSums> m(3);
       for (long s = 0; s < n; ++s) {
         Rng rng = stream(13, StreamDomain::test, static_cast<std::uint64_t>(k), static_cast<std::uint64_t>(s));
         const Rgb L = integrator.radiance(ray, rng, counters);
@@ -98,7 +100,7 @@ TEST_CASE("inside a sphere with an emissive cap every wall point has the same ra
       }
       for (int c = 0; c < 3; ++c) {
         INFO(to_string(kind) << " interior ray " << k << " to patch " << j << " channel " << c);
-        test::check_z("L", m[c].mean(), m[c].se(), (p.E[j][c] + kRho[c] * E_irr[c]) * kInvPi, z);
+        test::check_z("L", m[c].mean(), m[c].standard_error(), (p.E[j][c] + kRho[c] * E_irr[c]) * kInvPi, z);
       }
     }
   }
@@ -126,10 +128,12 @@ TEST_CASE("inside a sphere, path-traced and light-traced patch averages equal th
   lo.seed = 22;
   lo.progress = false;
   solutions.push_back(light_trace_patches(p, scene->geometry, scene->visibility, lo));
-  for (const Solution& s : solutions)
+  for (const Solution& s : solutions) {
+    test::ZTable table("B_i, " + s.method, z);
     for (std::size_t i = 0; i < p.size(); ++i)
-      for (int c = 0; c < 3; ++c) {
-        INFO(s.method << " patch " << i << " channel " << c);
-        test::check_z("B_i", s.B(i, c), s.B_se(i, c), p.E[i][c] + kRho[c] * E_irr[c], z);
-      }
+      for (int c = 0; c < 3; ++c)
+        table.add_patch(i, c, "patch " + std::to_string(i) + " channel " + std::to_string(c), s.B(i, c),
+                        s.B_se(i, c), p.E[i][c] + kRho[c] * E_irr[c]);
+    table.check(&p);
+  }
 }

@@ -5,31 +5,14 @@
 
 #include "core/rng.h"
 #include "solve/problem.h"
+#include "support/reference_problems.h"
 
 namespace radwalk::test {
 
-// Unit-cube view factors (REFERENCE-DATA.md): opposite faces (C-11, X = Y = 1), faces sharing an edge (C-14).
-inline constexpr double kOpposite = 0.199824896;
-inline constexpr double kAdjacent = 0.200043776;
-
-// Faces of the unit cube: 0 floor, 1 ceiling, 2 and 3 (x = 0, x = 1), 4 and 5 (z = 0, z = 1). Opposite pairs
-// (0,1), (2,3), (4,5).
-inline int opposite_face(int i) { return i ^ 1; }
-
-// The unit cube, one patch per face, F scaled by f_scale (1: the exact closed form), rho the same on every face.
+// The unit cube of reference_problems.h, one patch per face, F scaled by f_scale (1: the exact closed form), rho
+// the same on every face.
 inline RadiosityProblem cube(const Rgb& rho, const PatchRgb& E, double f_scale = 1) {
-  RadiosityProblem p;
-  p.F.resize(6, 6);
-  std::vector<Eigen::Triplet<float, std::int32_t>> t;
-  for (int i = 0; i < 6; ++i)
-    for (int j = 0; j < 6; ++j)
-      if (j != i) t.emplace_back(i, j, float(f_scale * (j == opposite_face(i) ? kOpposite : kAdjacent)));
-  p.F.setFromTriplets(t.begin(), t.end());
-  p.rho.resize(6, 3);
-  for (int i = 0; i < 6; ++i) p.rho.row(i) = rho.transpose();
-  p.E = E;
-  p.area = Eigen::VectorXd::Ones(6);
-  return p;
+  return cube_problem(rho.transpose().replicate(6, 1), E, kCubeFaces, f_scale);
 }
 
 // Every face emitting E (the furnace).
@@ -37,7 +20,7 @@ inline RadiosityProblem furnace(double rho, double E) {
   return cube(Rgb::Constant(rho), PatchRgb::Constant(6, 3, E));
 }
 
-// Only the ceiling (face 1) emitting.
+// Only face 1 emitting (the ceiling of a lit room).
 inline RadiosityProblem lit_cube(const Rgb& rho, const Rgb& E_ceiling) {
   PatchRgb E = PatchRgb::Zero(6, 3);
   E.row(1) = E_ceiling.transpose();

@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <limits>
 
+#include "core/error.h"
 #include "scenes.h"
 #include "solve/residual.h"
 #include "solve/solve_radiosity.h"
@@ -166,6 +167,8 @@ TEST_CASE("Cohen's ambient term completes any uniform guess in the furnace", "[s
   const Solution s = solve_southwell(p, {});
   CHECK(s.info.count("ambient_r") == 1);
   CHECK(std::abs(s.info.at("ambient_r")) <= s.residual * E / (1 - rho));  // nothing left to add once converged
+  // rho = 1 everywhere: the interreflection factor 1 / (1 - rho_avg) does not exist, a numerical refusal.
+  CHECK_THROWS_AS(southwell_ambient(furnace(1.0, E), PatchRgb::Constant(6, 3, E)), NumericalError);
 }
 
 TEST_CASE("spectral radius bounds bracket the largest eigenvalue of diag(rho) F", "[solve][stability]") {

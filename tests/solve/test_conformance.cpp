@@ -114,7 +114,7 @@ TEST_CASE("solve_radiosity dispatches by name and says what auto chose", "[solve
   CHECK_THROWS_AS(solve_radiosity(p, o), InputError);
 }
 
-TEST_CASE("bad problems are InputError for every solver", "[solve][input]") {
+TEST_CASE("bad problems are InputError, mismatched arrays InternalError, for every solver", "[solve][input]") {
   RadiosityProblem negative = furnace(0.5, 1.0);
   negative.rho(2, 1) = -0.1;
   RadiosityProblem short_E = furnace(0.5, 1.0);
@@ -126,7 +126,7 @@ TEST_CASE("bad problems are InputError for every solver", "[solve][input]") {
     o.solver = name;
     INFO(name);
     CHECK_THROWS_AS(solve_radiosity(negative, o), InputError);
-    CHECK_THROWS_AS(solve_radiosity(short_E, o), InputError);
+    CHECK_THROWS_AS(solve_radiosity(short_E, o), InternalError);  // arrays of one problem: not user input
     CHECK_THROWS_AS(solve_radiosity(nan_E, o), InputError);
   }
 }

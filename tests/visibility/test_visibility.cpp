@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/sampling.h"
-#include "test_scenes.h"
+#include "support/box_scenes.h"
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_packet.h"

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/rng.h"
-#include "core/stats.h"
+#include "support/stat_checks.h"
 #include "walk/alias_table.h"
 #include "walk_test_scenes.h"
 
@@ -27,9 +27,7 @@ TEST_CASE("alias table reproduces its weights (pdf) and passes a chi-square test
   for (std::size_t i = 0; i < w.size(); ++i) expected[i] = n * w[i] / total;
   CHECK(observed[1] == 0);
   CHECK(observed[8] == 0);
-  const double p = chi_square_gof_p_value(observed, expected);
-  INFO("chi-square p = " << p << ", level " << kAlphaEach);
-  CHECK(p > kAlphaEach);
+  test::check_chi_square("alias table", observed, expected, kAlphaEach);
   // The same counts against a distribution 5% off in one outcome are rejected.
   std::vector<double> wrong = expected;
   wrong[4] *= 1.05;
@@ -39,7 +37,7 @@ TEST_CASE("alias table reproduces its weights (pdf) and passes a chi-square test
 
 TEST_CASE("row alias tables sample F_kj / n_k with the escape outcome", "[walk][alias]") {
   // Open cube (face 5 removed): rows sum to 0.8, escape 0.2. Row 0 scaled to sum above 1: n_0 = s_0.
-  SparseF F = test::cube_F({0, 1, 2, 3, 4});
+  SparseF F = test::unit_cube_F({0, 1, 2, 3, 4});
   for (SparseF::InnerIterator it(F, 0); it; ++it) it.valueRef() *= 1.3f;
   const RowAliasTables rows(F);
   for (std::size_t k = 0; k < 5; ++k) {
@@ -68,7 +66,5 @@ TEST_CASE("row alias tables sample F_kj / n_k with the escape outcome", "[walk][
       obs.push_back(observed[b]);
       exp.push_back(expected[b]);
     }
-  const double p = chi_square_gof_p_value(obs, exp);
-  INFO("chi-square p = " << p << ", level " << kAlphaEach);
-  CHECK(p > kAlphaEach);
+  test::check_chi_square("row alias table, row 1", obs, exp, kAlphaEach);
 }

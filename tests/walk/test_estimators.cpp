@@ -3,12 +3,11 @@
 // survival. And the test rejects a deliberately biased estimator.
 #include <catch2/catch.hpp>
 
-#include "core/stats.h"
+#include "core/moments.h"
+#include "support/stat_checks.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
-#include "walk/walk_moments.h"
 #include "walk/walk_variance.h"
-#include "walk_test_checks.h"
 #include "walk_test_scenes.h"
 
 using namespace radwalk;

@@ -13,8 +13,8 @@
 #include <utility>
 
 #include "core/sampling.h"
-#include "core/stats.h"
 #include "patch/patch_builder.h"
+#include "support/stat_checks.h"
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_offset.h"
@@ -25,7 +25,6 @@
 #include "walk/shoot_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
-#include "walk_test_checks.h"
 #include "walk_test_scenes.h"
 
 using namespace radwalk;
@@ -49,7 +48,8 @@ TEST_CASE("ray kernel agrees with the exact solution of the cube", "[walk][ray]"
       o.walks = o.walk == "gather" ? 20000 : 120000;
       o.seed = 3;
       const Solution s = solve_random_walk(no_F, &patches, &visibility, o);
-      rejected += test::count_rejections(s, B, z_crit, std::to_string(faces.size()) + " faces, ray " + method);
+      rejected +=
+          test::count_rejections(s, B, z_crit, std::to_string(faces.size()) + " faces, ray " + method, true, &patches);
       CHECK(s.info.at("back_hits") == 0);
       if (faces.size() == 6) CHECK(s.info.at("escapes") == 0);  // watertight: no ray leaks
       if (faces.size() == 5) CHECK(s.info.at("escapes") > 0);

@@ -1,13 +1,13 @@
 // Exact variances (walk_variance.h) against empirical per-walk variances (variance z-test with the sample fourth
-// moment, core/stats.h), family-wise alpha = 1e-3 with Sidak; the furnace and non-reflecting-emitter facts of
+// moment, support/statistics.h), family-wise alpha = 1e-3 with Sidak; the furnace and non-reflecting-emitter facts of
 // REFERENCE-DATA.md; and the finite-variance check.
 #include <catch2/catch.hpp>
 
-#include "core/stats.h"
+#include "core/moments.h"
+#include "support/stat_checks.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_variance.h"
-#include "walk_test_checks.h"
 #include "walk_test_scenes.h"
 
 using namespace radwalk;
@@ -17,7 +17,7 @@ namespace {
 // Variance z-test of per-walk samples x against var_true; zero-variance cases must be zero up to rounding.
 bool variance_matches(const std::vector<double>& x, double var_true, double scale2, double z_crit,
                       const std::string& label) {
-  const test::SampleMoments m = test::sample_moments(x);
+  const SampleMoments m = sample_moments(x);
   if (var_true <= 1e-14 * scale2) {
     if (m.var <= 1e-14 * scale2) return true;
     WARN(label << ": theory 0 but sample variance " << m.var);
@@ -92,7 +92,7 @@ TEST_CASE("the variance test rejects a wrong variance", "[walk][variance]") {
   o.estimator = "absorption";
   const PatchRgb wrong = theoretical_variance(p, o, B);
   const auto x = test::gather_scores(GatherEstimator::collision, kernel, 1, 100000, 5);
-  const test::SampleMoments m = test::sample_moments(x[0]);
+  const SampleMoments m = sample_moments(x[0]);
   INFO("collision sample variance " << m.var << " vs absorption theory " << wrong(1, 0));
   CHECK(std::abs(variance_z_score(m.var, wrong(1, 0), m.mu4, m.n)) > z_critical(1e-3));
 }
@@ -137,7 +137,7 @@ TEST_CASE("furnace: absorption has zero variance, collision E^2 rho / (1 - rho)^
     for (int c = 0; c < 3; ++c) {
       const double closed_form = E(0, c) * E(0, c) * rho / ((1 - rho) * (1 - rho));
       CHECK(theory(static_cast<Eigen::Index>(i), c) == Approx(closed_form).epsilon(1e-6));
-      const test::SampleMoments m = test::sample_moments(x[c]);
+      const SampleMoments m = sample_moments(x[c]);
       const double z = variance_z_score(m.var, closed_form, m.mu4, m.n);
       INFO("patch " << i << " channel " << c << ": sample variance " << m.var << ", closed form " << closed_form);
       CHECK(std::abs(z) <= z_crit);

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "core/error.h"
+#include "core/moments.h"
 #include "core/parallel.h"
 #include "visibility/brute_force_visibility.h"
 #include "walk/matrix_kernel.h"
@@ -91,7 +92,7 @@ TEST_CASE("walk w from patch i uses the stream (seed, gather_walk, i, w)", "[wal
   for (std::size_t i = 0; i < 6; ++i) {
     const auto x = test::gather_scores(GatherEstimator::expected_value, kernel, i, o.walks, o.seed);
     for (int c = 0; c < 3; ++c) {
-      const test::SampleMoments m = test::sample_moments(x[c]);
+      const SampleMoments m = sample_moments(x[c]);
       CHECK(s.B(static_cast<Eigen::Index>(i), c) == Approx(m.mean).epsilon(1e-12));
       CHECK(s.var(static_cast<Eigen::Index>(i), c) == Approx(m.var).epsilon(1e-9));
     }

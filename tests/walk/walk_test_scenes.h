@@ -1,50 +1,21 @@
 #pragma once
-// Small problems with exact form factors for the random-walk tests, and sample-moment helpers.
-//
-// Unit cube, faces in the order x=0, x=1, y=0, y=1, z=0, z=1 (face i is opposite face i ^ 1), normals inward;
-// exact form factors: opposite 0.199824896 (Howell C-11), adjacent 0.200043776 (C-14).
+// The random-walk tests' problems on the unit cube of reference_problems.h (exact F) and per-walk score helpers.
 #include <cmath>
 #include <vector>
 
 #include "core/rng.h"
 #include "patch/patch_builder.h"
 #include "solve/problem.h"
+#include "support/reference_problems.h"
 #include "walk/gather_estimators.h"
 #include "walk/shoot_estimators.h"
 #include "walk/walk_options.h"
 
 namespace radwalk::test {
 
-inline constexpr double kOpposite = 0.199824896;
-inline constexpr double kAdjacent = 0.200043776;
-
-// F of the closed cube restricted to the faces in `faces` (a face left out is a hole: rows then sum below 1).
-inline SparseF cube_F(const std::vector<int>& faces = {0, 1, 2, 3, 4, 5}) {
-  const auto n = static_cast<int>(faces.size());
-  std::vector<Eigen::Triplet<float, std::int32_t>> t;
-  for (int a = 0; a < n; ++a)
-    for (int b = 0; b < n; ++b)
-      if (faces[a] != faces[b])
-        t.emplace_back(a, b, static_cast<float>((faces[a] ^ 1) == faces[b] ? kOpposite : kAdjacent));
-  SparseF F(n, n);
-  F.setFromTriplets(t.begin(), t.end());
-  return F;
-}
-
-// A problem over cube_F(faces) with the given reflectances and emissions (one row per face kept), unit areas.
-inline RadiosityProblem cube_problem(const PatchRgb& rho, const PatchRgb& E,
-                                     const std::vector<int>& faces = {0, 1, 2, 3, 4, 5}) {
-  RadiosityProblem p;
-  p.F = cube_F(faces);
-  p.rho = rho;
-  p.E = E;
-  p.area = Eigen::VectorXd::Ones(static_cast<Eigen::Index>(faces.size()));
-  return p;
-}
-
 // A reflecting, emitting cube with different values per face and channel (every channel non-trivial; channel
 // spreads moderate, so weights rho/p stay near 1 and fourth moments are finite for the variance tests).
-inline RadiosityProblem mixed_cube(const std::vector<int>& faces = {0, 1, 2, 3, 4, 5}) {
+inline RadiosityProblem mixed_cube(const std::vector<int>& faces = kCubeFaces) {
   PatchRgb rho(6, 3), E(6, 3);
   rho << 0.6, 0.5, 0.4,  0.3, 0.4, 0.35,  0.5, 0.5, 0.5,  0.7, 0.6, 0.65,  0.4, 0.5, 0.3,  0.6, 0.55, 0.7;
   E << 5.0, 3.0, 1.0,  0.0, 0.0, 0.0,  0.0, 1.0, 0.0,  0.0, 0.0, 0.0,  2.0, 0.0, 0.5,  0.0, 0.0, 0.0;
@@ -57,7 +28,7 @@ inline RadiosityProblem mixed_cube(const std::vector<int>& faces = {0, 1, 2, 3, 
 }
 
 // The cube's faces as a PatchSet (inward normals), with the problem's rho and E.
-inline PatchSet cube_patches(const RadiosityProblem& problem, const std::vector<int>& faces = {0, 1, 2, 3, 4, 5}) {
+inline PatchSet cube_patches(const RadiosityProblem& problem, const std::vector<int>& faces = kCubeFaces) {
   PatchBuilder b;
   const Vec3 center(0.5, 0.5, 0.5);
   for (std::size_t k = 0; k < faces.size(); ++k) {
@@ -80,27 +51,6 @@ inline PatchSet cube_patches(const RadiosityProblem& problem, const std::vector<
     b.add_quad(q[0], q[1], q[2], q[3], m);
   }
   return b.build();
-}
-
-// Sample mean, unbiased variance and fourth central moment.
-struct SampleMoments {
-  double mean = 0, var = 0, mu4 = 0;
-  std::size_t n = 0;
-};
-inline SampleMoments sample_moments(const std::vector<double>& x) {
-  SampleMoments m;
-  m.n = x.size();
-  for (double v : x) m.mean += v;
-  m.mean /= static_cast<double>(m.n);
-  double s2 = 0, s4 = 0;
-  for (double v : x) {
-    const double d = v - m.mean;
-    s2 += d * d;
-    s4 += d * d * d * d;
-  }
-  m.var = s2 / static_cast<double>(m.n - 1);
-  m.mu4 = s4 / static_cast<double>(m.n);
-  return m;
 }
 
 // Per-walk scores of patch i, channel by channel: x[c][w], from the solver's streams (seed, gather_walk, i, w).

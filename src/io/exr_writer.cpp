@@ -1,4 +1,4 @@
-#include "pathtrace/exr_writer.h"
+#include "io/exr_writer.h"
 
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>

@@ -1,4 +1,4 @@
-#include "pathtrace/image.h"
+#include "core/image.h"
 
 namespace radwalk {
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "core/error.h"
-#include "pathtrace/exr_writer.h"
-#include "pathtrace/png_writer.h"
+#include "io/exr_writer.h"
+#include "io/png_writer.h"
 
 using namespace radwalk;
 namespace fs = std::filesystem;

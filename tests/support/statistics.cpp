@@ -1,4 +1,4 @@
-#include "core/stats.h"
+#include "support/statistics.h"
 
 #include <algorithm>
 #include <boost/math/distributions/chi_squared.hpp>

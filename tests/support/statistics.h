@@ -1,7 +1,8 @@
 #pragma once
-// Statistics for hypothesis tests (ARCHITECTURE.md, convention 7): every Monte Carlo check states a family-wise
-// significance level alpha, corrects it for the number of simultaneous tests m (Sidak), and derives its
-// tolerance from an estimated variance.
+// Distributions for the hypothesis tests of the test suite (test-only: Boost.Math, which src/ does not use). Every
+// Monte Carlo check states a family-wise significance level alpha, corrects it for the number m of simultaneous
+// tests (Sidak: alpha_each = 1 - (1 - alpha)^(1/m)), and derives its tolerance from an estimated variance
+// (docs/ARCHITECTURE.md, "Tests"). The checks built on these are in stat_checks.h.
 #include <cstddef>
 #include <vector>
 

@@ -1,5 +1,6 @@
 #pragma once
-// Test scenes built with PatchBuilder, shared by the visibility and form-factor tests.
+// Closed boxes built with PatchBuilder (watertight, k x k quads per face), shared by the visibility and form-factor
+// tests. unit_cube_room(1) is the geometry of the unit cube of reference_problems.h.
 #include <array>
 
 #include "patch/patch_builder.h"

@@ -4,7 +4,7 @@
 // standard error for an error image. Written atomically; throws InputError when the file cannot be written.
 #include <string>
 
-#include "pathtrace/image.h"
+#include "core/image.h"
 
 namespace radwalk {
 

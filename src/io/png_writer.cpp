@@ -1,4 +1,4 @@
-#include "pathtrace/png_writer.h"
+#include "io/png_writer.h"
 
 #include <png.h>
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "pathtrace/image.h"
+#include "core/image.h"
 
 namespace radwalk {
 

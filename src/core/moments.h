@@ -1,0 +1,134 @@
+#pragma once
+// Sample mean and variance: every accumulator of radwalk (solvers, path tracer, tests) in one place. For samples
+// x_1..x_n the estimates are
+//   mean = (1/n) sum x,   var = sum (x - mean)^2 / (n - 1)  (unbiased, per sample),   se = sqrt(var / n)
+// (the standard error of the mean), computed four ways, each exact to its own rounding and kept bit for bit:
+//
+//   mean_and_variance(S1, S2, m)  from power sums S1 = sum x, S2 = sum x^2 of m >= 2 samples, element by element
+//                                 for Eigen arrays (Rgb, PatchRgb) or doubles:
+//                                 mean = S1 / m, var = max(0, (S2 - m mean^2) / (m - 1));
+//                                 the clamp at 0 absorbs rounding when every sample is (nearly) equal.
+//   PowerSums                     a scalar running n, S1, S2 with the same formula (tests' estimates).
+//   Moments                       running mean and second central moment M2 per channel (Welford), mergeable
+//                                 (Chan et al. 1979): partial moments of fixed chunks merged in chunk order give
+//                                 bit-identical results for any thread count, and no cancellation when the
+//                                 variance is tiny (a zero-variance estimator stays at exactly 0):
+//                                   add x:    n += 1, d = x - mean, mean += d / n, M2 += d (x - mean)
+//                                   merge b:  d = mean_b - mean_a, mean = mean_a + d n_b / n,
+//                                             M2 = M2_a + M2_b + d^2 n_a n_b / n
+//                                 var = M2 / (n - 1).
+//   ShiftedSums                   the per-chunk accumulator of hot loops: sums of d = x - K and d^2 with the shift K
+//                                 = the chunk's first sample (shifted-data algorithm: no division per sample, no
+//                                 cancellation when K is a typical value; all-equal samples give M2 = 0 exactly);
+//                                 moments() converts: mean = K + S1 / n, M2 = max(0, S2 - S1^2 / n).
+//   sample_moments(x)             two passes over stored samples: mean, var and the fourth central moment
+//                                 mu4 = (1/n) sum (x - mean)^4 (for the variance z-test of the tests).
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+#include "core/types.h"
+
+namespace radwalk {
+
+namespace detail {
+inline double clamp_at_zero(double v) { return std::max(v, 0.0); }
+template <class Array>
+Array clamp_at_zero(const Array& v) {
+  return v.max(0.0);
+}
+}  // namespace detail
+
+template <class T>
+std::pair<T, T> mean_and_variance(const T& sum, const T& sum2, double m) {
+  T mean = sum / m;
+  T var = detail::clamp_at_zero(T((sum2 - m * mean * mean) / (m - 1.0)));
+  return {std::move(mean), std::move(var)};
+}
+
+struct PowerSums {
+  double n = 0, sum = 0, sum2 = 0;
+
+  void add(double x) {
+    n += 1;
+    sum += x;
+    sum2 += x * x;
+  }
+  double mean() const { return sum / n; }
+  double variance() const { return mean_and_variance(sum, sum2, n).second; }
+  double standard_error() const { return std::sqrt(variance() / n); }
+};
+
+struct Moments {
+  long n = 0;
+  Rgb mean = Rgb::Zero();
+  Rgb M2 = Rgb::Zero();
+
+  void add(const Rgb& x) {
+    ++n;
+    const Rgb d = x - mean;
+    mean += d / static_cast<double>(n);
+    M2 += d * (x - mean);
+  }
+  void merge(const Moments& b) {
+    if (b.n == 0) return;
+    if (n == 0) {
+      *this = b;
+      return;
+    }
+    const double na = static_cast<double>(n), nb = static_cast<double>(b.n), nn = na + nb;
+    const Rgb d = b.mean - mean;
+    mean += d * (nb / nn);
+    M2 += b.M2 + d * d * (na * nb / nn);
+    n += b.n;
+  }
+  Rgb variance() const { return n > 1 ? Rgb(M2 / static_cast<double>(n - 1)) : Rgb::Zero(); }
+  Rgb standard_error() const { return n > 0 ? Rgb((variance() / static_cast<double>(n)).sqrt()) : Rgb::Zero(); }
+};
+
+struct ShiftedSums {
+  long n = 0;
+  Rgb K = Rgb::Zero(), S1 = Rgb::Zero(), S2 = Rgb::Zero();
+
+  void add(const Rgb& x) {
+    if (n == 0) K = x;
+    const Rgb d = x - K;
+    S1 += d;
+    S2 += d * d;
+    ++n;
+  }
+  Moments moments() const {
+    Moments m;
+    m.n = n;
+    if (n == 0) return m;
+    const double nn = static_cast<double>(n);
+    m.mean = K + S1 / nn;
+    m.M2 = (S2 - S1 * S1 / nn).max(0.0);
+    return m;
+  }
+};
+
+struct SampleMoments {
+  double mean = 0, var = 0, mu4 = 0;
+  std::size_t n = 0;
+};
+
+inline SampleMoments sample_moments(const std::vector<double>& x) {
+  SampleMoments m;
+  m.n = x.size();
+  for (double v : x) m.mean += v;
+  m.mean /= static_cast<double>(m.n);
+  double s2 = 0, s4 = 0;
+  for (double v : x) {
+    const double d = v - m.mean;
+    s2 += d * d;
+    s4 += d * d * d * d;
+  }
+  m.var = s2 / static_cast<double>(m.n - 1);
+  m.mu4 = s4 / static_cast<double>(m.n);
+  return m;
+}
+
+}  // namespace radwalk
