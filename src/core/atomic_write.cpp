@@ -1,78 +1,227 @@
 #include "core/atomic_write.h"
 
-#include <unistd.h>
-
-#include <cstdio>
+#include <array>
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <string_view>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "core/error.h"
 
 namespace radwalk {
+namespace fs = std::filesystem;
 namespace {
 
-std::string temporary_name(const std::string& path) {
-  return path + ".tmp-" + std::to_string(::getpid());
+// ---- Temporaries removed on SIGINT, SIGTERM, SIGHUP -------------------------------------------------------------
+// A fixed table of heap-allocated path strings: the handler only loads pointers and calls unlink (both
+// async-signal-safe); registering and unregistering swap pointers atomically.
+constexpr int kSlots = 256;
+std::array<std::atomic<char*>, kSlots> g_pending{};
+struct sigaction g_previous[3];
+constexpr int kSignals[3] = {SIGINT, SIGTERM, SIGHUP};
+
+extern "C" void remove_pending_and_die(int sig) {
+  for (auto& slot : g_pending)
+    if (char* p = slot.load()) ::unlink(p);
+  // Die of the same signal, as the default action would (so the exit status tells the shell what happened).
+  for (int k = 0; k < 3; ++k)
+    if (kSignals[k] == sig) ::sigaction(sig, &g_previous[k], nullptr);
+  ::raise(sig);
 }
 
-void publish(const std::string& tmp, const std::string& path) {
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::filesystem::remove(tmp, ec);
-    throw InputError(path + ": cannot write output: rename failed");
+// Puts remove_pending_and_die in front of whatever handles each signal now (checked at every registration, so a
+// handler installed later by someone else, or a forked child's reset, does not silently drop ours).
+void install_handlers() {
+  static std::mutex mutex;
+  const std::lock_guard lock(mutex);
+  for (int k = 0; k < 3; ++k) {
+    struct sigaction current {};
+    ::sigaction(kSignals[k], nullptr, &current);
+    const bool ours = !(current.sa_flags & SA_SIGINFO) && current.sa_handler == remove_pending_and_die;
+    // An ignored signal (nohup) stays ignored; an earlier handler runs after ours (it is restored and the signal
+    // raised again).
+    const bool ignored = !(current.sa_flags & SA_SIGINFO) && current.sa_handler == SIG_IGN;
+    if (ours || ignored) continue;
+    g_previous[k] = current;
+    struct sigaction action {};
+    action.sa_handler = remove_pending_and_die;
+    sigemptyset(&action.sa_mask);
+    ::sigaction(kSignals[k], &action, nullptr);
   }
+}
+
+int register_pending(const std::string& path) {
+  install_handlers();
+  char* copy = ::strdup(path.c_str());
+  if (!copy) throw std::bad_alloc();
+  for (int s = 0; s < kSlots; ++s) {
+    char* expected = nullptr;
+    if (g_pending[static_cast<std::size_t>(s)].compare_exchange_strong(expected, copy)) return s;
+  }
+  std::free(copy);
+  return -1;  // table full: this temporary is still removed on every ordinary path, only not on a signal
+}
+
+void unregister_pending(int slot) {
+  if (slot < 0) return;
+  std::free(g_pending[static_cast<std::size_t>(slot)].exchange(nullptr));
+}
+
+// ---- Names ------------------------------------------------------------------------------------------------------
+
+std::atomic<unsigned> g_counter{0};
+
+bool process_is_dead(long pid) { return pid > 0 && ::kill(static_cast<pid_t>(pid), 0) != 0 && errno == ESRCH; }
+
+// Removes temporaries of `target` left by processes that no longer exist (a kill -9, a power cut): this module's
+// ".NAME.radwalk-tmp-PID-N" and the names earlier radwalk versions used, "NAME.tmp-PID" and ".tmp-PID-NAME".
+void remove_stale_temporaries(const fs::path& target) {
+  const std::string name = target.filename().string();
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
+  const std::string ours = "." + name + ".radwalk-tmp-", old_suffix = name + ".tmp-";
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string entry = it->path().filename().string();
+    long pid = 0;
+    if (entry.rfind(ours, 0) == 0) pid = std::atol(entry.c_str() + ours.size());
+    else if (entry.rfind(old_suffix, 0) == 0) pid = std::atol(entry.c_str() + old_suffix.size());
+    else if (entry.rfind(".tmp-", 0) == 0 && entry.size() > name.size() + 5 &&
+             entry[entry.size() - name.size() - 1] == '-' &&
+             std::string_view(entry).substr(entry.size() - name.size()) == name)
+      pid = std::atol(entry.c_str() + 5);
+    if (process_is_dead(pid)) fs::remove(it->path(), ec);
+  }
+}
+
+const char* kind_of(const struct stat& st) {
+  return S_ISDIR(st.st_mode)                           ? "a directory"
+         : S_ISFIFO(st.st_mode)                        ? "a FIFO (named pipe)"
+         : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)  ? "a device"
+         : S_ISSOCK(st.st_mode)                        ? "a socket"
+                                                       : "not a regular file";
+}
+
+void sync_path(const std::string& path, int flags) {
+  const int fd = ::open(path.c_str(), flags | O_CLOEXEC);
+  if (fd < 0) return;
+  const int rc = ::fsync(fd);
+  const int err = errno;
+  ::close(fd);
+  if (rc != 0 && err != EINVAL && err != EROFS)
+    throw InputError(path + ": cannot write output: " + std::strerror(err));
 }
 
 }  // namespace
 
+std::string output_target(const std::string& path) {
+  fs::path p(path);
+  std::error_code ec;
+  for (int depth = 0; depth < 40 && fs::is_symlink(fs::symlink_status(p, ec)); ++depth) {
+    const fs::path link = fs::read_symlink(p, ec);
+    if (ec) break;
+    p = link.is_absolute() ? link : p.parent_path() / link;
+  }
+  return p.string();
+}
+
 void require_output_directory(const std::string& path) {
   if (path.empty()) return;
-  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-  const std::filesystem::path dir = parent.empty() ? std::filesystem::path(".") : parent;
+  const fs::path target(output_target(path));
+  const fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
   std::error_code ec;
-  if (!std::filesystem::is_directory(dir, ec))
+  if (!fs::is_directory(dir, ec))
     throw InputError(path + ": cannot open for writing (no directory " + dir.string() + ")");
+  if (::access(dir.c_str(), W_OK | X_OK) != 0)
+    throw InputError(path + ": cannot open for writing (directory " + dir.string() + " is not writable)");
+  struct stat st {};
+  if (::stat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
+    throw InputError(path + ": cannot write output: it is " + kind_of(st) +
+                     "; radwalk writes outputs only to regular files");
+}
+
+PendingFile::PendingFile(const std::string& path) : path_(path), target_(output_target(path)) {
+  require_output_directory(path);
+  const fs::path t(target_);
+  remove_stale_temporaries(t);
+  // The extension stays last, for writers that look at it.
+  std::string name = ".";
+  name += t.filename().string();
+  name += ".radwalk-tmp-";
+  name += std::to_string(::getpid());
+  name += '-';
+  name += std::to_string(g_counter++);
+  name += t.extension().string();
+  temporary_ = (t.parent_path() / name).string();
+  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) throw InputError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
+  ::close(fd);
+  slot_ = register_pending(temporary_);
+}
+
+PendingFile::~PendingFile() {
+  if (!committed_) ::unlink(temporary_.c_str());
+  unregister_pending(slot_);
+}
+
+void PendingFile::write(const std::function<void(std::ostream&)>& write) {
+  std::streamoff bytes = 0;
+  {
+    std::ofstream out(temporary_, std::ios::binary | std::ios::trunc);
+    if (!out) throw InputError(path_ + ": cannot open for writing");
+    write(out);
+    out.flush();
+    bytes = out ? static_cast<std::streamoff>(out.tellp()) : -1;
+    out.close();
+    if (!out || bytes < 0) throw InputError(path_ + ": write failed (disk full?)");
+  }
+  std::error_code ec;
+  if (fs::file_size(temporary_, ec) != static_cast<std::uintmax_t>(bytes) || ec)
+    throw InputError(path_ + ": write failed: the file on disk is shorter than what was written (disk full?)");
+  written_ = true;
+}
+
+void PendingFile::write_via_path(const std::function<void(const std::string&)>& write) {
+  write(temporary_);
+  std::error_code ec;
+  const auto size = fs::file_size(temporary_, ec);
+  if (ec || size == 0) throw InputError(path_ + ": write failed: nothing was written (disk full?)");
+  written_ = true;
+}
+
+void PendingFile::commit() {
+  if (!written_) throw InternalError(path_ + ": commit before write");
+  sync_path(temporary_, O_RDONLY);
+  std::error_code ec;
+  fs::rename(temporary_, target_, ec);
+  if (ec) throw InputError(path_ + ": cannot write output: rename failed (" + ec.message() + ")");
+  committed_ = true;
+  const fs::path dir = fs::path(target_).parent_path();
+  sync_path(dir.empty() ? "." : dir.string(), O_RDONLY | O_DIRECTORY);
+}
+
+void commit_together(const std::vector<PendingFile*>& files) {
+  for (PendingFile* f : files) f->commit();
 }
 
 void write_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  require_output_directory(path);
-  const std::string tmp = temporary_name(path);
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path + ": cannot open for writing");
-    try {
-      write(out);
-    } catch (...) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw;
-    }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw InputError(path + ": write failed (disk full?)");
-    }
-  }
-  publish(tmp, path);
+  PendingFile file(path);
+  file.write(write);
+  file.commit();
 }
 
-void write_atomically_via_path(const std::string& path,
-                               const std::function<void(const std::string&)>& write) {
-  // Keep the extension last: some writers (VTK) care about it.
-  const std::filesystem::path p(path);
-  require_output_directory(path);  // in one line, before the writer (VTK logs its own failures at length)
-  const std::string tmp =
-      (p.parent_path() / (".tmp-" + std::to_string(::getpid()) + "-" + p.filename().string())).string();
-  try {
-    write(tmp);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
-  if (!std::filesystem::exists(tmp)) throw InputError(path + ": cannot write output");
-  publish(tmp, path);
+void write_atomically_via_path(const std::string& path, const std::function<void(const std::string&)>& write) {
+  PendingFile file(path);
+  file.write_via_path(write);
+  file.commit();
 }
 
 }  // namespace radwalk

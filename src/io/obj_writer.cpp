@@ -24,7 +24,10 @@ void write_obj(const std::string& path, const PatchSet& patches) {
   const std::filesystem::path obj(path);
   const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
 
-  write_atomically(mtl.string(), [&](std::ostream& out) {
+  // Both files are written completely before either replaces an old one (commit_together): a full disk leaves
+  // the old pair, never a new .mtl beside an old .obj.
+  PendingFile mtl_file(mtl.string()), obj_file(path);
+  mtl_file.write([&](std::ostream& out) {
     out << "# radwalk patches of " << patches.source << "\n# Kd = diffuse reflectance, Ke = emitted radiance\n";
     for (const Material& m : patches.materials) {
       out << "\nnewmtl " << m.name << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
@@ -37,7 +40,7 @@ void write_obj(const std::string& path, const PatchSet& patches) {
       }
     }
   });
-  write_atomically(path, [&](std::ostream& out) {
+  obj_file.write([&](std::ostream& out) {
     out << "# radwalk patches of " << patches.source << ": " << patches.size() << " patches\n";
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
@@ -52,6 +55,7 @@ void write_obj(const std::string& path, const PatchSet& patches) {
       out << '\n';
     }
   });
+  commit_together({&mtl_file, &obj_file});
 }
 
 }  // namespace radwalk

@@ -4,6 +4,11 @@
 #include <fstream>
 #include <sstream>
 
+#include <csignal>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include "core/atomic_write.h"
 #include "core/error.h"
 
@@ -41,4 +46,136 @@ TEST_CASE("write_atomically names the path when the directory does not exist", "
   } catch (const InputError& e) {
     CHECK(std::string(e.what()).find("/nonexistent-dir/x.csv") != std::string::npos);
   }
+}
+
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("radwalk_atomic_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::size_t entries(const fs::path& dir) {
+  return static_cast<std::size_t>(std::distance(fs::directory_iterator(dir), fs::directory_iterator()));
+}
+
+// A process id that is not running: a child that has exited and been reaped.
+pid_t dead_pid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return child;
+}
+
+}  // namespace
+
+TEST_CASE("outputs are written through symbolic links; devices, FIFOs and directories are refused", "[io][fault]") {
+  // D2: --csv /dev/null (as root) replaced /dev/null with a regular file; a symlink was replaced by a file.
+  const fs::path dir = fresh_dir("targets");
+  write_atomically((dir / "real.csv").string(), [](std::ostream& o) { o << "old\n"; });
+  fs::create_symlink("real.csv", dir / "link.csv");
+  write_atomically((dir / "link.csv").string(), [](std::ostream& o) { o << "new\n"; });
+  CHECK(fs::is_symlink(fs::symlink_status(dir / "link.csv")));
+  CHECK(slurp(dir / "real.csv") == "new\n");
+  CHECK(entries(dir) == 2);
+
+  struct stat before {};
+  REQUIRE(::stat("/dev/null", &before) == 0);
+  CHECK_THROWS_WITH(write_atomically("/dev/null", [](std::ostream& o) { o << "x"; }),
+                    Catch::Contains("/dev/null") && Catch::Contains("a device"));
+  CHECK_THROWS_WITH(require_output_directory("/dev/null"), Catch::Contains("a device"));
+  struct stat after {};
+  REQUIRE(::stat("/dev/null", &after) == 0);
+  CHECK(S_ISCHR(after.st_mode));
+  const fs::path fifo = dir / "pipe.csv";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(write_atomically(fifo.string(), [](std::ostream& o) { o << "x"; }), Catch::Contains("FIFO"));
+  CHECK(fs::is_fifo(fifo));
+  fs::create_directories(dir / "folder.csv");
+  CHECK_THROWS_WITH(require_output_directory((dir / "folder.csv").string()), Catch::Contains("a directory"));
+}
+
+TEST_CASE("files committed together appear together; an abandoned one leaves the old file", "[io][fault]") {
+  const fs::path dir = fresh_dir("together");
+  write_atomically((dir / "a.obj").string(), [](std::ostream& o) { o << "old obj\n"; });
+  write_atomically((dir / "a.mtl").string(), [](std::ostream& o) { o << "old mtl\n"; });
+  {
+    PendingFile mtl((dir / "a.mtl").string()), obj((dir / "a.obj").string());
+    mtl.write([](std::ostream& o) { o << "new mtl\n"; });
+    // The second write fails (as on a full disk): neither file may change.
+    CHECK_THROWS(obj.write([](std::ostream& o) {
+      o << "partial";
+      throw InputError("disk full");
+    }));
+  }
+  CHECK(slurp(dir / "a.obj") == "old obj\n");
+  CHECK(slurp(dir / "a.mtl") == "old mtl\n");
+  CHECK(entries(dir) == 2);
+  {
+    PendingFile mtl((dir / "a.mtl").string()), obj((dir / "a.obj").string());
+    mtl.write([](std::ostream& o) { o << "new mtl\n"; });
+    obj.write([](std::ostream& o) { o << "new obj\n"; });
+    commit_together({&mtl, &obj});
+  }
+  CHECK(slurp(dir / "a.obj") == "new obj\n");
+  CHECK(slurp(dir / "a.mtl") == "new mtl\n");
+  CHECK(entries(dir) == 2);
+}
+
+TEST_CASE("SIGTERM removes pending temporaries; temporaries of dead processes are cleaned up", "[io][fault]") {
+  // P2: kill -9 / SIGTERM / SIGHUP left .tmp-PID-* files (up to 16 MB each, accumulating).
+  const fs::path dir = fresh_dir("signals");
+  for (int sig : {SIGTERM, SIGHUP, SIGINT}) {
+    INFO("signal " << sig);
+    const pid_t child = ::fork();
+    if (child == 0) {
+      // A plain program: default dispositions (not the test framework's handlers).
+      for (int s : {SIGTERM, SIGHUP, SIGINT}) std::signal(s, SIG_DFL);
+      PendingFile f((dir / "out.vtp").string());
+      f.write([](std::ostream& o) { o << std::string(1 << 20, 'x'); });
+      ::raise(sig);
+      ::_exit(0);  // not reached
+    }
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    CHECK(WIFSIGNALED(status));
+    CHECK(WTERMSIG(status) == sig);
+    CHECK(entries(dir) == 0);
+  }
+  // What a kill -9 leaves: temporaries of a process that is gone, in this module's and earlier versions' names.
+  const std::string pid = std::to_string(dead_pid());
+  for (const std::string& name : {".out.vtp.radwalk-tmp-" + pid + "-0.vtp", "out.vtp.tmp-" + pid, ".tmp-" + pid + "-out.vtp"})
+    std::ofstream(dir / name) << "stale";
+  std::ofstream(dir / (".out.vtp.radwalk-tmp-" + std::to_string(::getpid()) + "-99.vtp")) << "ours, alive";
+  write_atomically((dir / "out.vtp").string(), [](std::ostream& o) { o << "fresh\n"; });
+  CHECK(slurp(dir / "out.vtp") == "fresh\n");
+  CHECK(entries(dir) == 2);  // the output and the live process's temporary
+}
+
+TEST_CASE("a full disk fails the write and keeps the old file", "[io][fault]") {
+  // A real full disk: a 256 KiB tmpfs (needs mount permission; skipped with a message where it is missing).
+  const fs::path mnt = fresh_dir("fulldisk");
+  if (::system(("mount -t tmpfs -o size=256k tmpfs " + mnt.string() + " 2>/dev/null").c_str()) != 0) {
+    WARN("skipped: cannot mount a tmpfs here (needs root and mount permission)");
+    return;
+  }
+  const std::string out = (mnt / "out.csv").string();
+  write_atomically(out, [](std::ostream& o) { o << "old\n"; });
+  CHECK_THROWS_WITH(write_atomically(out, [](std::ostream& o) { o << std::string(1 << 20, 'x'); }),
+                    Catch::Contains("out.csv") && Catch::Contains("disk full"));
+  CHECK(slurp(out) == "old\n");
+  CHECK(entries(mnt) == 1);
+  ::system(("umount " + mnt.string()).c_str());
 }
