@@ -1,6 +1,7 @@
 #pragma once
 // The scene as the user gave it: vertices, faces (triangles or quads) and materials, before patching.
-// Face f is input face f everywhere in radwalk (messages, CSV `face` column, patch-to-face map).
+// Messages and the CSV `face` column name input faces (face_source): face f is input face f unless a repair
+// (triangulating an n-gon, splitting a bent quad, dropping a zero-area face) changed the face list.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -11,18 +12,33 @@
 
 namespace radwalk {
 
+// How readers treat what they can repair (polygons of more than 4 corners, ...): repair with a warning, or with
+// strict refuse.
+struct ReadOptions {
+  bool strict = false;
+};
+
 struct Mesh {
   std::string path;                              // file it came from (for messages)
   std::vector<Vec3> vertices;
   std::vector<std::array<std::int32_t, 4>> faces;  // vertex indices; [3] == -1 for a triangle
   std::vector<std::int32_t> face_material;       // index into materials
   std::vector<long> face_line;                   // source line of the face (OBJ), 0 if unknown
+  std::vector<std::int32_t> face_source;         // the input face (f-th face of the file) face f comes from: f itself
+                                                 // unless a repair split or dropped faces (pieces share it)
+  std::vector<std::int32_t> face_group;          // index into groups, -1 outside any (OBJ `o` and `g`)
+  std::vector<std::string> groups;               // "object 'chair', group 'seat'" as the file names them
   std::vector<Material> materials;
   std::vector<std::string> warnings;             // one line per repair or notice, naming the face
 
   std::size_t face_count() const { return faces.size(); }
   bool is_quad(std::size_t f) const { return faces[f][3] >= 0; }
   int corner_count(std::size_t f) const { return is_quad(f) ? 4 : 3; }
+  // The input face of face f (f when face_source is not filled).
+  long source_face(std::size_t f) const { return f < face_source.size() ? face_source[f] : static_cast<long>(f); }
+  // " (object 'chair', group 'seat', material 'red')": where face f is in the file, as far as known ("" if
+  // nothing is).
+  std::string context(std::size_t f) const;
 };
 
 }  // namespace radwalk

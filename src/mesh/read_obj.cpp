@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "mesh/mtl.h"
+#include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
 
 namespace radwalk {
@@ -18,6 +19,7 @@ struct ScannedFace {
   long line = 0;
   std::vector<std::int32_t> v;  // 0-based vertex indices (may be out of range; validate_mesh reports that)
   int usemtl = -1;              // index into ObjScan::usemtl, -1 before any usemtl
+  std::int32_t group = -1;      // index into ObjScan::groups, -1 before any o or g
 };
 
 struct NamedLine {
@@ -30,6 +32,7 @@ struct ObjScan {
   std::vector<ScannedFace> faces;
   std::vector<NamedLine> usemtl;
   std::vector<NamedLine> mtllib;
+  std::vector<std::string> groups;  // "object 'o', group 'g'" labels in order of first use
   long ignored_elements = 0;  // `l` and `p` statements
   long first_ignored_line = 0;
 };
@@ -37,6 +40,8 @@ struct ObjScan {
 // The parser: one pass over the statements, exact coordinates and strict checks (see read_obj.h).
 ObjScan scan_obj(const std::string& path, const std::string& text) {
   ObjScan s;
+  std::string object, group_name;  // the current o and g names
+  std::int32_t group = -1;
   for_each_line(text, [&](long line, std::string_view content) {
     const auto tokens = split_tokens(content);
     if (tokens.empty()) return;
@@ -64,13 +69,10 @@ ObjScan scan_obj(const std::string& path, const std::string& text) {
       if (n < 3)
         throw InputError(locate(path, line, face, "has " + std::to_string(n) +
                                                       " vertices, a face needs 3 or 4 (truncated line?)"));
-      if (n > 4)
-        throw InputError(locate(path, line, face, "has " + std::to_string(n) +
-                                                      " vertices; radwalk takes triangles and quads only "
-                                                      "(triangulate or split the polygon)"));
       ScannedFace f;
       f.line = line;
       f.usemtl = static_cast<int>(s.usemtl.size()) - 1;
+      f.group = group;
       for (std::size_t k = 1; k <= n; ++k) {
         const std::string_view token = tokens[k];
         const auto index = parse_long(token.substr(0, token.find('/')));
@@ -92,6 +94,27 @@ ObjScan scan_obj(const std::string& path, const std::string& text) {
     } else if (key == "mtllib") {
       if (tokens.size() < 2) throw InputError(locate(path, line, -1, "mtllib without a file name"));
       s.mtllib.push_back({std::string(rest_of_statement(content, tokens[1])), line});
+    } else if (key == "o" || key == "g") {
+      // o NAME starts an object (and leaves its groups); g NAME ... sets the group(s) within it.
+      const std::string name = tokens.size() >= 2 ? std::string(rest_of_statement(content, tokens[1])) : "";
+      if (key == "o") {
+        object = name;
+        group_name.clear();
+      } else {
+        group_name = name;
+      }
+      std::string label;
+      if (!object.empty()) label = "object '" + object + "'";
+      if (!group_name.empty()) label += (label.empty() ? "" : ", ") + ("group '" + group_name + "'");
+      group = -1;
+      if (!label.empty()) {
+        for (std::size_t k = 0; k < s.groups.size() && group < 0; ++k)
+          if (s.groups[k] == label) group = static_cast<std::int32_t>(k);
+        if (group < 0) {
+          group = static_cast<std::int32_t>(s.groups.size());
+          s.groups.push_back(label);
+        }
+      }
     } else if (key == "l" || key == "p") {
       if (s.ignored_elements++ == 0) s.first_ignored_line = line;
     }
@@ -148,7 +171,7 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
 
 }  // namespace
 
-Mesh read_obj(const std::string& path) {
+Mesh read_obj(const std::string& path, const ReadOptions& options) {
   const std::string text = read_input_file(path);
   const ObjScan scan = scan_obj(path, text);
   const std::string dir = directory_of(path);
@@ -180,31 +203,30 @@ Mesh read_obj(const std::string& path) {
                                                              "' is defined again; the first definition is used"));
   }
 
-  // Faces, with their lines and materials.
+  // Faces, with their lines, groups and materials; polygons of more than 4 corners triangulated (polygon_faces.h).
   const std::size_t n_faces = scan.faces.size();
   if (n_faces > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw InputError(locate(path, 0, -1, "too many faces"));
-  mesh.faces.resize(n_faces);
-  mesh.face_material.resize(n_faces, -1);
-  mesh.face_line.resize(n_faces);
+  mesh.groups = scan.groups;
+  PolygonFaces faces(mesh, options.strict);
   for (std::size_t f = 0; f < n_faces; ++f) {
     const ScannedFace& sf = scan.faces[f];
-    std::array<std::int32_t, 4> corners{-1, -1, -1, -1};
-    for (std::size_t k = 0; k < sf.v.size(); ++k) corners[k] = sf.v[k];
-    mesh.faces[f] = corners;
-    mesh.face_line[f] = sf.line;
-    if (sf.usemtl < 0) continue;
-    const NamedLine& use = scan.usemtl[static_cast<std::size_t>(sf.usemtl)];
-    const auto it = by_name.find(use.name);
-    if (it == by_name.end()) {
-      std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
-      for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
-      throw InputError(locate(path, sf.line, static_cast<long>(f),
-                              "unknown material '" + printable(use.name) + "' (usemtl at line " + std::to_string(use.line) +
-                                  ": " + where + ")"));
+    std::int32_t material = -1;
+    if (sf.usemtl >= 0) {
+      const NamedLine& use = scan.usemtl[static_cast<std::size_t>(sf.usemtl)];
+      const auto it = by_name.find(use.name);
+      if (it == by_name.end()) {
+        std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
+        for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
+        throw InputError(locate(path, sf.line, static_cast<long>(f),
+                                "unknown material '" + printable(use.name) + "' (usemtl at line " +
+                                    std::to_string(use.line) + ": " + where + ")"));
+      }
+      material = it->second;
     }
-    mesh.face_material[f] = it->second;
+    faces.add(sf.v, sf.line, material, sf.group, static_cast<std::int32_t>(f));
   }
+  faces.report();
 
   if (scan.ignored_elements > 0)
     mesh.warnings.push_back(locate(path, scan.first_ignored_line, -1,

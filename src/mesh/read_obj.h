@@ -11,8 +11,10 @@
 // corner; texture and normal indices are ignored), `usemtl NAME` and `newmtl NAME` (a name is the rest of the
 // statement, spaces included), `mtllib` (the rest of the statement names one file if such a file exists, else a
 // list of files separated by spaces; "\ " escapes a space; absolute paths are used as given). Other statements
-// (vn, vt, o, g, s, ...) are ignored; `l` and `p` are ignored with a warning.
-// Strict: a vertex without three finite coordinates, a face with fewer than 3 or more than 4 vertices, index 0
+// (vn, vt, s, ...) are ignored; `l` and `p` are ignored with a warning.
+// Faces of more than 4 corners are triangulated (polygon_faces.h; a repair, reported) unless options.strict; `o`
+// and `g` name the face's object and group in messages (Mesh::groups).
+// Strict: a vertex without three finite coordinates, a face with fewer than 3 vertices, index 0
 // or a relative index before the first vertex, a missing mtllib file, an unknown usemtl name (when a face uses it)
 // are InputErrors naming file, line and face.
 // tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
@@ -24,6 +26,6 @@
 
 namespace radwalk {
 
-Mesh read_obj(const std::string& path);
+Mesh read_obj(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace radwalk

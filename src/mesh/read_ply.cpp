@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
+#include "mesh/triangulate.h"
 
 namespace radwalk {
 
@@ -233,9 +235,11 @@ int property_index(const PlyElement& e, std::initializer_list<std::string_view> 
 
 }  // namespace
 
-Mesh read_ply(const std::string& path) { return read_ply_bytes(path, read_input_file(path)); }
+Mesh read_ply(const std::string& path, const ReadOptions& options) {
+  return read_ply_bytes(path, read_input_file(path), options);
+}
 
-Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
+Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadOptions& options) {
   const PlyHeader header = parse_header(path, bytes);
   const bool binary = header.format != PlyFormat::ascii;
   const PlyElement* vertex_element = nullptr;
@@ -284,6 +288,7 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
   std::map<std::array<double, 3>, int> material_of_colour;
 
   PlyReader in(path, bytes, header);
+  PolygonFaces polygons(mesh, options.strict);
   for (const PlyElement& e : header.elements) {
     const bool is_vertex = &e == vertex_element, is_face = &e == face_element;
     if (is_vertex) mesh.vertices.reserve(e.count);
@@ -291,6 +296,8 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
       mesh.faces.reserve(e.count);
       mesh.face_line.reserve(e.count);
       mesh.face_material.reserve(e.count);
+      mesh.face_source.reserve(e.count);
+      mesh.face_group.reserve(e.count);
     }
     for (std::uint64_t item = 0; item < e.count; ++item) {
       const long line = in.line();
@@ -299,7 +306,7 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
                                : is_face ? "face " + std::to_string(item)
                                          : printable(e.name) + " " + std::to_string(item);
       Vec3 point = Vec3::Zero();
-      std::array<std::int32_t, 4> corners{-1, -1, -1, -1};
+      std::vector<std::int32_t> corners;
       std::array<double, 3> colour{};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& p = e.properties[k];
@@ -329,10 +336,10 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
         const bool indices = is_face && static_cast<int>(k) == pv;
         if (indices && count < 3)
           throw InputError(locate(path, line, face, "has " + std::to_string(count) + " vertices, a face needs 3 or 4"));
-        if (indices && count > 4)
-          throw InputError(locate(path, line, face, "has " + std::to_string(count) +
-                                                        " vertices; radwalk takes triangles and quads only "
-                                                        "(triangulate or split the polygon)"));
+        if (indices && count > kMaxPolygonCorners)
+          throw InputError(locate(path, line, face, "has " + std::to_string(count) + " vertices, more than the " +
+                                                        std::to_string(kMaxPolygonCorners) +
+                                                        " radwalk triangulates; split the polygon"));
         for (std::size_t c = 0; c < count; ++c) {
           const double v = in.value(p.type, value_name + " entry " + std::to_string(c));
           if (!indices) continue;
@@ -340,13 +347,11 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
             throw InputError(locate(path, line, face, "vertex index " + std::to_string(static_cast<long long>(v)) +
                                                           " is out of range (" +
                                                           std::to_string(vertex_element->count) + " vertices)"));
-          corners[c] = static_cast<std::int32_t>(v);
+          corners.push_back(static_cast<std::int32_t>(v));
         }
       }
       if (is_vertex) mesh.vertices.push_back(point);
       if (!is_face) continue;
-      mesh.faces.push_back(corners);
-      mesh.face_line.push_back(line);
       int material = 0;
       if (coloured) {
         auto it = material_of_colour.find(colour);
@@ -363,9 +368,10 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes) {
         }
         material = it->second;
       }
-      mesh.face_material.push_back(material);
+      polygons.add(corners, line, material, -1, static_cast<std::int32_t>(item));
     }
   }
+  polygons.report();
   return mesh;
 }
 

@@ -7,8 +7,8 @@
 // What radwalk reads:
 //   - element `vertex`: properties x, y, z (any numeric type; doubles stay doubles, so UTM-sized coordinates keep
 //     their centimetres);
-//   - element `face`: the list `vertex_indices` (or `vertex_index`), 3 or 4 indices (larger polygons are refused,
-//     as in OBJ), and optional colours red, green, blue used as the diffuse reflectance rho: integer types as
+//   - element `face`: the list `vertex_indices` (or `vertex_index`), 3 or more indices (polygons of more than 4
+//     corners are triangulated as in OBJ, polygon_faces.h), and optional colours red, green, blue used as the diffuse reflectance rho: integer types as
 //     colour / 255 with colour in 0..255, float types as given in [0, 1]; one material per distinct colour, named
 //     "ply_R_G_B" (integers) or "ply_colour_K" (floats). Without face colours every face gets rho 0.5, with a
 //     warning. PLY carries no emission: a PLY scene has no emitter unless one is added later.
@@ -25,9 +25,9 @@
 
 namespace radwalk {
 
-Mesh read_ply(const std::string& path);
+Mesh read_ply(const std::string& path, const ReadOptions& options = {});
 
 // The same for the bytes of a PLY file already read (path names it in messages).
-Mesh read_ply_bytes(const std::string& path, std::string_view bytes);
+Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadOptions& options = {});
 
 }  // namespace radwalk

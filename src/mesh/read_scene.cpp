@@ -8,16 +8,18 @@
 
 namespace radwalk {
 
-Mesh read_scene(const std::string& path) {
+Mesh read_scene(const std::string& path, const ReadOptions& options) {
   const std::string ext = lower_extension(path);
-  if (ext == "obj") return read_obj(path);
-  if (ext == "ply") return read_ply(path);
+  if (ext == "obj") return read_obj(path, options);
+  if (ext == "ply") return read_ply(path, options);
   throw InputError(locate(path, 0, -1, "unknown scene format '." + ext + "' (radwalk reads .obj and .ply)"));
 }
 
-Mesh load_scene(const std::string& path) {
-  Mesh mesh = read_scene(path);
-  validate_mesh(mesh);
+Mesh load_scene(const std::string& path, const ReadOptions& options) {
+  Mesh mesh = read_scene(path, options);
+  ValidationTolerances tolerances;
+  tolerances.strict = options.strict;
+  validate_mesh(mesh, tolerances);
   return mesh;
 }
 

@@ -11,9 +11,9 @@
 
 namespace radwalk {
 
-Mesh read_scene(const std::string& path);
+Mesh read_scene(const std::string& path, const ReadOptions& options = {});
 
-// read_scene + validate_mesh with the default tolerances.
-Mesh load_scene(const std::string& path);
+// read_scene + validate_mesh with the default tolerances (strict as in options: repairs become refusals).
+Mesh load_scene(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace radwalk

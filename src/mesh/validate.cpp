@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
+#include "mesh/triangulate.h"
 
 namespace radwalk {
 
@@ -61,7 +62,8 @@ class WarningLog {
   void add(const std::string& kind, std::size_t face, const std::string& what) {
     auto it = std::find_if(counts_.begin(), counts_.end(), [&](const auto& c) { return c.first == kind; });
     if (it == counts_.end()) it = counts_.insert(counts_.end(), {kind, 0});
-    if (++it->second <= cap_) mesh_.warnings.push_back(locate(mesh_.path, line(face), static_cast<long>(face), what));
+    if (++it->second <= cap_)
+      mesh_.warnings.push_back(locate(mesh_.path, line(face), mesh_.source_face(face), what + mesh_.context(face)));
   }
   void add_global(const std::string& what) { mesh_.warnings.push_back(locate(mesh_.path, 0, -1, what)); }
   void finish() {
@@ -76,9 +78,10 @@ class WarningLog {
   std::vector<std::pair<std::string, int>> counts_;
 };
 
+// A refusal naming face f as the user counts it (its input face), with its object, group and material.
 [[noreturn]] void fail(const Mesh& mesh, std::size_t f, const std::string& what) {
   const long line = f < mesh.face_line.size() ? mesh.face_line[f] : 0;
-  throw InputError(locate(mesh.path, line, static_cast<long>(f), what));
+  throw InputError(locate(mesh.path, line, mesh.source_face(f), what + mesh.context(f)));
 }
 
 // Step: every face has 3 or 4 corners with indices in range, and finite coordinates.
@@ -171,8 +174,8 @@ void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
   }
 }
 
-// Step: area, planarity and convexity, relative to the scene size.
-void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+// The bounding-box diagonal of the faces' corners (a scaled norm).
+double scene_diagonal(const Mesh& mesh) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t f = 0; f < mesh.face_count(); ++f)
     for (int k = 0; k < mesh.corner_count(f); ++k) {
@@ -180,13 +183,80 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
-  const double diagonal = (hi - lo).stableNorm();
+  return (hi - lo).stableNorm();
+}
+
+// Step (a repair unless strict): faces without area are dropped (they carry no power); quads bent beyond the
+// planarity limit or non-convex are split into two triangles along the better diagonal (triangulate.h). A
+// self-intersecting quad (a bow-tie) is left to check_face_geometry, which refuses it.
+void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+  if (tol.strict) return;  // check_face_geometry refuses what would be repaired here
+  const double diagonal = scene_diagonal(mesh);
+  const double min_area = tol.degenerate_area * diagonal * diagonal;
+  Mesh out;
+  bool changed = false;
+  auto keep = [&](std::size_t f, const std::array<std::int32_t, 4>& corners) {
+    out.faces.push_back(corners);
+    out.face_line.push_back(mesh.face_line[f]);
+    out.face_material.push_back(mesh.face_material[f]);
+    out.face_group.push_back(mesh.face_group[f]);
+    out.face_source.push_back(mesh.face_source[f]);
+  };
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const double area = face_area(mesh, f);
+    if (!(area > min_area)) {
+      log.add("zero-area face dropped", f,
+              "degenerate face dropped: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
+                  " x (scene diagonal " + fmt(diagonal) + ")^2; it carries no power");
+      changed = true;
+      continue;
+    }
+    if (!mesh.is_quad(f)) {
+      keep(f, mesh.faces[f]);
+      continue;
+    }
+    const double bend = quad_nonplanarity(mesh, f), turn = quad_min_turn_sine(mesh, f);
+    const bool folded = !(face_vector_area(mesh, f).norm() > 0.5 * area);
+    const bool bent = bend > tol.planar_error, concave = turn < -tol.convex_sine;
+    std::array<Vec3, 4> p;
+    for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][k])];
+    const auto split = !folded && (bent || concave) ? split_quad(p) : std::nullopt;
+    if (!split) {
+      keep(f, mesh.faces[f]);
+      continue;
+    }
+    for (const auto& t : *split)
+      keep(f, {mesh.faces[f][static_cast<std::size_t>(t[0])], mesh.faces[f][static_cast<std::size_t>(t[1])],
+               mesh.faces[f][static_cast<std::size_t>(t[2])], -1});
+    changed = true;
+    const std::string diag = (*split)[0][0] == 0 ? "0-2" : "1-3";
+    if (bent)
+      log.add("non-planar quad split", f,
+              "non-planar quad split into two triangles along its diagonal " + diag + " (a corner is " +
+                  fmt(100 * bend) + "% of the diagonal off its plane, limit " + fmt(100 * tol.planar_error) + "%)");
+    else
+      log.add("non-convex quad split", f,
+              "non-convex quad split into two triangles along its inner diagonal " + diag + " (turning sine " +
+                  fmt(turn) + ")");
+  }
+  if (!changed) return;
+  mesh.faces = std::move(out.faces);
+  mesh.face_line = std::move(out.face_line);
+  mesh.face_material = std::move(out.face_material);
+  mesh.face_group = std::move(out.face_group);
+  mesh.face_source = std::move(out.face_source);
+  if (mesh.faces.empty()) throw InputError(locate(mesh.path, 0, -1, "the scene has no faces with area"));
+}
+
+// Step: area, planarity and convexity, relative to the scene size.
+void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+  const double diagonal = scene_diagonal(mesh);
   const double min_area = tol.degenerate_area * diagonal * diagonal;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
     if (!(area > min_area))
       fail(mesh, f, "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
-                        " x (scene diagonal " + fmt(diagonal) + ")^2");
+                        " x (scene diagonal " + fmt(diagonal) + ")^2 (refused with --strict; otherwise dropped)");
     if (!mesh.is_quad(f)) continue;
     // A planar simple quad has |vector area| = area; a folded or self-intersecting one (a bow-tie) has less, down
     // to 0, and then no normal to measure planarity or convexity against.
@@ -197,7 +267,8 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
     const double bend = quad_nonplanarity(mesh, f);
     if (bend > tol.planar_error)
       fail(mesh, f, "non-planar quad: a corner is " + fmt(100 * bend) + "% of the diagonal off its plane (limit " +
-                        fmt(100 * tol.planar_error) + "%); split it into two triangles");
+                        fmt(100 * tol.planar_error) + "%); split it into two triangles (refused with --strict; "
+                        "otherwise split)");
     if (bend > tol.planar_clean)
       log.add("slightly non-planar quad", f,
               "slightly non-planar quad: a corner is " + fmt(100 * bend) +
@@ -205,7 +276,7 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
     const double turn = quad_min_turn_sine(mesh, f);
     if (turn < -tol.convex_sine)
       fail(mesh, f, "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
-                        "), the quad is concave or self-intersecting; split it into two triangles");
+                        "), the quad is concave; split it into two triangles (refused with --strict; otherwise split)");
   }
 }
 
@@ -270,7 +341,7 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
     const auto [it, added] = seen.emplace(key, f);
     if (added) continue;
     const std::size_t g = it->second;
-    const std::string other = "face " + std::to_string(g) + " (line " + std::to_string(log.line(g)) + ")";
+    const std::string other = "face " + std::to_string(mesh.source_face(g)) + " (line " + std::to_string(log.line(g)) + ")";
     if (face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0)
       fail(mesh, f, "duplicate face: same corners as " + other + "; overlapping faces are refused");
     fail(mesh, f, "duplicate face: same corners as " + other +
@@ -283,14 +354,15 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
     const EdgeUse* u = t.uses_begin(e);
     if (t.use_count(e) >= 3) {
       std::string faces;
-      for (const EdgeUse* x = u; x != t.uses_end(e); ++x) faces += (x == u ? "" : ", ") + std::to_string(x->face);
+      for (const EdgeUse* x = u; x != t.uses_end(e); ++x) faces += (x == u ? "" : ", ") + std::to_string(mesh.source_face(static_cast<std::size_t>(x->face)));
       log.add("non-manifold edge", static_cast<std::size_t>(u->face),
               "non-manifold edge: " + edge + " is shared by " + std::to_string(t.use_count(e)) + " faces (" + faces +
                   "); legal for radiosity, but check the model");
     } else if (t.use_count(e) == 2 && u[0].forward == u[1].forward) {
       const auto g = static_cast<std::size_t>(u[1].face);
       log.add("flipped face", g,
-              "flipped face: face " + std::to_string(g) + " and face " + std::to_string(u[0].face) + " (line " +
+              "flipped face: face " + std::to_string(mesh.source_face(g)) + " and face " +
+                  std::to_string(mesh.source_face(static_cast<std::size_t>(u[0].face))) + " (line " +
                   std::to_string(log.line(static_cast<std::size_t>(u[0].face))) + ") run their shared " + edge +
                   " the same way, so their normals disagree; legal for radiosity, but check the model");
     }
@@ -351,11 +423,17 @@ void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
   if (mesh.faces.empty()) throw InputError(locate(mesh.path, 0, -1, "the scene has no faces"));
   mesh.face_material.resize(mesh.face_count(), -1);
   mesh.face_line.resize(mesh.face_count(), 0);
+  mesh.face_group.resize(mesh.face_count(), -1);
+  if (mesh.face_source.size() != mesh.face_count()) {
+    mesh.face_source.resize(mesh.face_count());
+    for (std::size_t f = 0; f < mesh.face_count(); ++f) mesh.face_source[f] = static_cast<std::int32_t>(f);
+  }
   WarningLog log(mesh, tolerances.max_warnings_per_kind);
 
   check_indices_and_coordinates(mesh);
   check_extent(mesh, tolerances, log);
   repair_repeated_corners(mesh, log);
+  repair_face_geometry(mesh, tolerances, log);
   check_face_geometry(mesh, tolerances, log);
   check_materials(mesh, log);
   check_topology(mesh, log);

@@ -34,6 +34,8 @@ struct ValidationTolerances {
   // Coordinates far from the origin relative to the scene (max |coordinate| / extent above this) leave too few
   // float digits for the scene's detail: a warning (move the origin into the scene).
   double max_offset_ratio = 1e4;
+  // Repairs (dropping zero-area faces, splitting bent or concave quads) become refusals.
+  bool strict = false;
 };
 
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances = {});

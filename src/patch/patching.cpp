@@ -164,7 +164,7 @@ PatchSet make_patches(const Mesh& mesh, double max_edge) {
   PointPool pool(mesh, table, n, s.points);
   auto emit = [&](std::size_t f, std::array<std::int32_t, 4> corners) {
     s.corners.push_back(corners);
-    s.face.push_back(static_cast<std::int32_t>(f));
+    s.face.push_back(static_cast<std::int32_t>(mesh.source_face(f)));  // the input face, also after repairs
     s.material.push_back(mesh.face_material[f]);
   };
 

@@ -53,11 +53,8 @@ TEST_CASE("each malformed input is refused with its own one-line message", "[mes
       {"nan_coordinate.obj", "nan_coordinate.obj:4:", {"vertex 3", "non-finite", "nan"}},
       {"missing_mtl.obj", "missing_mtl.obj:1:", {"material library 'does_not_exist.mtl' not found"}},
       {"unknown_material.obj", "unknown_material.obj:9: face 1:", {"unknown material 'no_such_material'", "line 8"}},
-      {"zero_area.obj", "zero_area.obj:10: face 1:", {"degenerate face", "area 0"}},
       {"repeated_index_triangle.obj", "repeated_index_triangle.obj:9: face 1:",
        {"repeated vertex", "triangle repeats vertex 2"}},
-      {"nonplanar_quad.obj", "nonplanar_quad.obj:7: face 0:", {"non-planar quad", "split it into two triangles"}},
-      {"nonconvex_quad.obj", "nonconvex_quad.obj:7: face 0:", {"non-convex quad", "split it into two triangles"}},
       {"duplicate_face.obj", "duplicate_face.obj:9: face 1:", {"duplicate face", "face 0 (line 7)", "overlapping"}},
       {"duplicate_face_reversed.obj", "duplicate_face_reversed.obj:9: face 1:",
        {"duplicate face", "face 0 (line 7)", "facing the other way"}},
@@ -65,8 +62,30 @@ TEST_CASE("each malformed input is refused with its own one-line message", "[mes
        {"reflectance out of range", "'bright'", "common.mtl:9", "Kd (1, 0.5, 0.5)", "[0, 1)"}},
       {"negative_emission.obj", "negative_emission.obj:9: face 1:",
        {"negative emission", "'negative'", "common.mtl:12", "Ke (-1, 0, 0)"}},
-      {"pentagon.obj", "pentagon.obj:8: face 0:", {"has 5 vertices", "triangles and quads"}},
   };
+  // Repaired by default, refused with --strict.
+  const std::vector<Case> strict_cases = {
+      {"zero_area.obj", "zero_area.obj:10: face 1:", {"degenerate face", "area 0", "--strict"}},
+      {"nonplanar_quad.obj", "nonplanar_quad.obj:7: face 0:", {"non-planar quad", "split it into two triangles"}},
+      {"nonconvex_quad.obj", "nonconvex_quad.obj:7: face 0:", {"non-convex quad", "split it into two triangles"}},
+      {"pentagon.obj", "pentagon.obj:8: face 0:", {"has 5 vertices", "triangles and quads", "--strict"}},
+  };
+  ReadOptions strict;
+  strict.strict = true;
+  for (const Case& c : strict_cases) {
+    std::string message;
+    try {
+      (void)load_scene(data(c.file), strict);
+    } catch (const InputError& e) {
+      message = e.what();
+    }
+    INFO("input " << c.file << " (--strict)\n  message: " << message);
+    CHECK(message.rfind(data(c.where), 0) == 0);
+    for (const auto& key : c.keys) {
+      INFO("expected key: " << key);
+      CHECK(contains(message, key));
+    }
+  }
   for (const Case& c : cases) {
     const std::string message = error_of(c.file);
     INFO("input " << c.file << "\n  message: " << message);
@@ -91,6 +110,11 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
       {"repeated_index.obj", {"repeated_index.obj:12: face 1:", "repeats vertex 7", "repaired to a triangle"}},
       {"no_material.obj", {"no_material.obj:5: face 0:", "face without material", "radwalk_default"}},
       {"no_material.obj", {"no_material.obj:", "no emitter"}},
+      {"zero_area.obj", {"zero_area.obj:10: face 1:", "degenerate face dropped", "area 0", "material 'white'"}},
+      {"nonplanar_quad.obj", {"nonplanar_quad.obj:7: face 0:", "non-planar quad split into two triangles"}},
+      {"nonconvex_quad.obj", {"nonconvex_quad.obj:7: face 0:", "non-convex quad split", "inner diagonal"}},
+      {"pentagon.obj", {"pentagon.obj:", "1 polygons with more than 4 vertices triangulated", "face 0 (line 8, 5 corners)",
+                        "material 'light'", "into 3 triangles"}},
   };
   for (const Case& c : cases) {
     Mesh mesh;
@@ -105,6 +129,21 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
   // The repair itself: face 1 of repeated_index.obj becomes the triangle 5 6 7 (0-based 4 5 6).
   const Mesh repaired = load_scene(data("repeated_index.obj"));
   CHECK(repaired.faces[1] == std::array<std::int32_t, 4>{4, 5, 6, -1});
+  // The triangulated pentagon: 3 triangles of input face 0 tiling its area (1.25), refused with --strict.
+  const Mesh pentagon = load_scene(data("pentagon.obj"));
+  REQUIRE(pentagon.face_count() == 3);
+  double area = 0;
+  for (std::size_t f = 0; f < 3; ++f) {
+    CHECK(pentagon.source_face(f) == 0);
+    CHECK(pentagon.face_line[f] == 8);
+    area += face_area(pentagon, f);
+  }
+  CHECK(area == Approx(1.25).epsilon(1e-15));
+  ReadOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(load_scene(data("pentagon.obj"), strict),
+                    Catch::Contains("pentagon.obj:8: face 0: has 5 vertices (material 'light')") &&
+                        Catch::Contains("--strict"));
   // Faces without material get rho 0.5 and no emission.
   const Mesh plain = load_scene(data("no_material.obj"));
   const Material& m = plain.materials[static_cast<std::size_t>(plain.face_material[0])];
@@ -234,7 +273,14 @@ TEST_CASE("the planarity and degeneracy limits separate the cases they are meant
   CHECK(small.warnings.empty());
   REQUIRE_NOTHROW(validate_mesh(medium));
   CHECK(!warning_with(medium, {"slightly non-planar quad"}).empty());
-  CHECK_THROWS_WITH(validate_mesh(large), Catch::Contains("non-planar quad"));
+  Mesh large_strict = large;
+  ValidationTolerances strict = tol;
+  strict.strict = true;
+  CHECK_THROWS_WITH(validate_mesh(large_strict, strict), Catch::Contains("non-planar quad"));
+  REQUIRE_NOTHROW(validate_mesh(large));
+  CHECK(large.face_count() == 2);  // split into two triangles of input face 0
+  CHECK(large.source_face(1) == 0);
+  CHECK(!warning_with(large, {"non-planar quad split"}).empty());
 
   // A sliver triangle in a unit scene: refused below degenerate_area x diagonal^2, accepted above.
   auto sliver = [](double height) {
@@ -251,6 +297,11 @@ TEST_CASE("the planarity and degeneracy limits separate the cases they are meant
   const double diagonal2 = 9.0 + 1.0;  // bounding box 3 x 1 x 0
   Mesh thin = sliver(2 * 0.5 * tol.degenerate_area * diagonal2);   // area = half the limit
   Mesh fine = sliver(2 * 2.0 * tol.degenerate_area * diagonal2);   // area = twice the limit
-  CHECK_THROWS_WITH(validate_mesh(thin), Catch::Contains("sliver: face 1: degenerate face"));
+  Mesh thin_strict = thin;
+  CHECK_THROWS_WITH(validate_mesh(thin_strict, strict), Catch::Contains("sliver: face 1: degenerate face"));
+  REQUIRE_NOTHROW(validate_mesh(thin));  // dropped, with a warning
+  CHECK(thin.face_count() == 1);
+  CHECK(!warning_with(thin, {"sliver:", "face 1", "degenerate face dropped"}).empty());
   CHECK_NOTHROW(validate_mesh(fine));
+  CHECK(fine.face_count() == 2);
 }
