@@ -4,7 +4,6 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
-#include "core/atomic_write.h"
 #include "core/timer.h"
 #include "formfactor/matrix_market.h"
 
@@ -12,8 +11,6 @@ namespace radwalk::app {
 
 int run_formfactors(const FormFactorsCommand& command) {
   RunSummary summary("formfactors", command.scene.argv);
-  require_output_directory(command.mtx);
-  require_output_directory(command.diagnostics_vtp);
   const PatchSet patches = load_patches(command.scene, summary);
   const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
   if (!command.mtx.empty()) {

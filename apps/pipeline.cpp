@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/parallel.h"
@@ -34,8 +33,8 @@ void note(const std::string& message) {
 }
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
+  for (const std::string& w : options.warnings) summary.add_warning(w);
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
-  for (const std::string* out : {&options.vtp, &options.csv, &options.json}) require_output_directory(*out);
   Timer timer;
   Mesh mesh = load_scene(options.scene);
   summary.add_timing("load", timer.seconds());

@@ -13,7 +13,9 @@
 
 namespace radwalk::app {
 
-// Reads and validates the scene (throws InputError on refusal), prints the repairs as warnings.
+// Reads and validates the scene (throws InputError on refusal), prints the repairs as warnings; the summary also
+// gets the warnings printed while reading the command line (options.warnings). Output file names were checked
+// then too (apps/output_files.h).
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
 // load_validated_mesh, then make_patches with options.max_edge.
