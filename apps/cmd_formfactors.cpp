@@ -16,7 +16,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   if (!command.mtx.empty()) {
     Timer timer;
     write_matrix_market(command.mtx, ff.F);
-    summary.add_timing("write matrix", timer.seconds());
+    summary.add_timing("write_matrix", timer.seconds());
     note("wrote " + command.mtx);
   }
   const std::vector<CellField> diagnostics = form_factor_fields(ff, patches);

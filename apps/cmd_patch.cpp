@@ -23,7 +23,7 @@ int run_patch(const PatchCommand& command) {
   } else {
     Timer timer;
     write_obj(command.output, patches);
-    summary.add_timing("write obj", timer.seconds());
+    summary.add_timing("write_obj", timer.seconds());
     note("wrote " + command.output);
   }
   write_outputs(outputs, patches, {}, summary);

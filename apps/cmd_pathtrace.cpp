@@ -71,7 +71,7 @@ int run_pathtrace(const PathtraceCommand& command) {
   ThreadLimit limit(command.scene.threads);
   Timer timer;
   const EmbreeVisibility visibility(patches);
-  summary.add_timing("embree scene", timer.seconds());
+  summary.add_timing("embree_scene", timer.seconds());
   const bool light = command.integrator == "light";
   IntegratorOptions integrator;
   if (!light) integrator.kind = parse_integrator_kind(command.integrator);
@@ -116,14 +116,9 @@ int run_pathtrace(const PathtraceCommand& command) {
       o.integrator = integrator;
       s = estimate_patch_averages(patches, visibility, o);
     }
-    summary.add_timing("patch averages", s.seconds);
+    summary.add_timing("patch_averages", s.seconds);
     std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
-    auto& j = summary.json()["solution"];
-    j["method"] = s.method;
-    j["status"] = to_string(s.status);
-    j["message"] = s.message;
-    j["seconds"] = s.seconds;
-    for (const auto& [key, value] : s.info) j["info"][key] = value;
+    summary.json()["solution"] = solution_json(s);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(rgb_field("var", s.var));
     write_outputs(command.scene, patches, fields, summary);

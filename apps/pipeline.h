@@ -22,7 +22,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 
 // Form factors for the patches: read from --form-factors (ray counts left empty) or estimated with Embree
-// (timed as "form factors"); --reciprocity is applied either way and its change reported.
+// (timed as "form_factors"); --reciprocity is applied either way and its change reported.
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
                                 const PatchSet& patches, RunSummary& summary);
 
