@@ -1,5 +1,5 @@
 #pragma once
-// Counter-based random streams (ARCHITECTURE.md, convention 5).
+// Counter-based random streams (docs/ARCHITECTURE.md, convention 5: reproducible random streams).
 //
 // A stream is a pure function of (seed, a, b), e.g. (seed, patch, walk index): the numbers a walk or a ray
 // batch sees never depend on which thread runs it, so any thread count gives identical results and a single

@@ -1,5 +1,5 @@
 #pragma once
-// Statistics for hypothesis tests (ARCHITECTURE.md, convention 7): every Monte Carlo check states a family-wise
+// Statistics for hypothesis tests (docs/ARCHITECTURE.md, convention 7): every Monte Carlo check states a family-wise
 // significance level alpha, corrects it for the number of simultaneous tests m (Sidak), and derives its
 // tolerance from an estimated variance.
 #include <cstddef>

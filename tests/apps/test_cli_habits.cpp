@@ -3,6 +3,7 @@
 // anything is read; options the chosen method ignores are warned about; progress lines appear when stderr is a
 // file, and not with -q.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <catch2/catch.hpp>
 #include <cstdlib>
@@ -19,8 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// Per process: other checkouts may run the same tests on the same machine at the same time.
 fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / "radwalk_cli_habits_test";
+  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_habits_test_" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }

@@ -8,7 +8,7 @@
 
 namespace radwalk::test {
 
-// Unit-cube view factors (REFERENCE-DATA.md): opposite faces (C-11, X = Y = 1), faces sharing an edge (C-14).
+// Unit-cube view factors (docs/reference-data.md): opposite faces (C-11, X = Y = 1), faces sharing an edge (C-14).
 inline constexpr double kOpposite = 0.199824896;
 inline constexpr double kAdjacent = 0.200043776;
 

@@ -1,5 +1,6 @@
 #pragma once
-// Hypothesis-test helpers for the random-walk tests (ARCHITECTURE.md, convention 7).
+// Hypothesis-test helpers for the random-walk tests (docs/ARCHITECTURE.md, convention 7: Monte Carlo tests are
+// hypothesis tests).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
