@@ -5,8 +5,8 @@
 
 namespace radwalk {
 
-IterationProgress::IterationProgress(std::string label, double tol, long budget)
-    : progress_(std::move(label), static_cast<std::size_t>(std::max(budget, 1L))), tol_(tol),
+IterationProgress::IterationProgress(std::string label, double tol, long budget, ProgressOutput output)
+    : progress_(std::move(label), static_cast<std::size_t>(std::max(budget, 1L)), std::move(output)), tol_(tol),
       budget_(std::max(budget, 1L)) {}
 
 void IterationProgress::update(long iterations, double residual) {

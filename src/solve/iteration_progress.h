@@ -14,8 +14,8 @@ namespace radwalk {
 class IterationProgress {
  public:
   // `label` names the stage ("gauss-seidel sweeps"); tol > 0 is the target residual; budget >= 0 the most
-  // iterations the solver will run.
-  IterationProgress(std::string label, double tol, long budget);
+  // iterations the solver will run; `output` where the reports go (tests pass their own).
+  IterationProgress(std::string label, double tol, long budget, ProgressOutput output = ProgressOutput::standard());
   // `iterations` done so far, with relative residual `residual` (a non-finite residual only advances).
   void update(long iterations, double residual);
   void finish() { progress_.finish(); }
