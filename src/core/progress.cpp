@@ -25,24 +25,36 @@ void write_stderr(const std::string& text) {
 
 }  // namespace
 
-ProgressOutput ProgressOutput::standard() {
+ProgressOutput ProgressOutput::lines(double interval, std::function<double()> clock,
+                                     std::function<void(const std::string&)> write) {
   ProgressOutput o;
+  o.first_s = o.every_s = interval;
+  o.clock = std::move(clock);
+  o.write = std::move(write);
+  return o;
+}
+
+ProgressOutput ProgressOutput::standard() {
+  double interval = 5;
+  if (const char* s = std::getenv("RADWALK_PROGRESS_INTERVAL")) {
+    char* end = nullptr;
+    const double v = std::strtod(s, &end);
+    if (end != s && *end == '\0' && std::isfinite(v) && v > 0) interval = v;
+  }
+  ProgressOutput o = lines(interval);
   o.enabled = g_enabled;
   o.in_place = ::isatty(STDERR_FILENO) != 0;
   if (o.in_place) {
     o.first_s = 1;
     o.every_s = 0.25;
-  } else if (const char* s = std::getenv("RADWALK_PROGRESS_INTERVAL")) {
-    char* end = nullptr;
-    const double v = std::strtod(s, &end);
-    if (end != s && *end == '\0' && std::isfinite(v) && v > 0) o.first_s = o.every_s = v;
   }
   return o;
 }
 
 void Progress::set_enabled(bool enabled) { g_enabled = enabled; }
 
-Progress::Progress(std::string label, std::size_t total) : Progress(std::move(label), total, ProgressOutput::standard()) {}
+Progress::Progress(std::string label, std::size_t total)
+    : Progress(std::move(label), total, ProgressOutput::standard()) {}
 
 Progress::Progress(std::string label, std::size_t total, ProgressOutput output)
     : label_(std::move(label)), total_(total), output_(std::move(output)) {

@@ -33,6 +33,10 @@ struct ProgressOutput {
   // What Progress(label, total) uses: disabled after set_enabled(false); in place when stderr is a terminal;
   // otherwise lines every 5 s, or every RADWALK_PROGRESS_INTERVAL seconds when that variable holds a number > 0.
   static ProgressOutput standard();
+  // Plain lines every `interval` seconds, the first after one interval, given to `write` and timed by `clock`
+  // (empty: stderr, a steady clock), whatever stderr is: for callers that collect the reports (and tests).
+  static ProgressOutput lines(double interval, std::function<double()> clock = {},
+                              std::function<void(const std::string&)> write = {});
 };
 
 class Progress {

@@ -17,11 +17,8 @@ struct FakeOutput {
   std::vector<std::string> written;
 
   ProgressOutput lines(double interval) {
-    ProgressOutput o;
-    o.first_s = o.every_s = interval;
-    o.clock = [this] { return t; };
-    o.write = [this](const std::string& s) { written.push_back(s); };
-    return o;
+    return ProgressOutput::lines(
+        interval, [this] { return t; }, [this](const std::string& s) { written.push_back(s); });
   }
 };
 

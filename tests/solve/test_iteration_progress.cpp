@@ -16,11 +16,7 @@ struct Lines {
   double t = 0;
   std::vector<std::string> text;
   ProgressOutput output() {
-    ProgressOutput o;
-    o.first_s = o.every_s = 1;
-    o.clock = [this] { return t; };
-    o.write = [this](const std::string& s) { text.push_back(s); };
-    return o;
+    return ProgressOutput::lines(1, [this] { return t; }, [this](const std::string& s) { text.push_back(s); });
   }
 };
 
