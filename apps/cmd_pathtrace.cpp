@@ -6,7 +6,6 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
-#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
@@ -48,6 +47,7 @@ Camera choose_camera(const PathtraceCommand& c, const PatchSet& patches) {
   return cam;
 }
 
+// path ends in .png or .exr (checked with the command line: apps/output_files.h).
 void write_image(const std::string& path, const RenderResult& r) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".png") {
@@ -64,12 +64,6 @@ void write_image(const std::string& path, const RenderResult& r) {
 }  // namespace
 
 int run_pathtrace(const PathtraceCommand& command) {
-  if (!command.image.empty()) {
-    const std::string ext = std::filesystem::path(command.image).extension().string();
-    if (ext != ".png" && ext != ".exr")
-      throw InputError(command.image + ": unknown image format '" + ext + "' (use .png or .exr)");
-    require_output_directory(command.image);
-  }
   if (!command.camera.empty() && command.camera.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
   RunSummary summary("pathtrace", command.scene.argv);
@@ -77,7 +71,7 @@ int run_pathtrace(const PathtraceCommand& command) {
   ThreadLimit limit(command.scene.threads);
   Timer timer;
   const EmbreeVisibility visibility(patches);
-  summary.add_timing("embree scene", timer.seconds());
+  summary.add_timing("embree_scene", timer.seconds());
   const bool light = command.integrator == "light";
   IntegratorOptions integrator;
   if (!light) integrator.kind = parse_integrator_kind(command.integrator);
@@ -122,14 +116,9 @@ int run_pathtrace(const PathtraceCommand& command) {
       o.integrator = integrator;
       s = estimate_patch_averages(patches, visibility, o);
     }
-    summary.add_timing("patch averages", s.seconds);
+    summary.add_timing("patch_averages", s.seconds);
     std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
-    auto& j = summary.json()["solution"];
-    j["method"] = s.method;
-    j["status"] = to_string(s.status);
-    j["message"] = s.message;
-    j["seconds"] = s.seconds;
-    for (const auto& [key, value] : s.info) j["info"][key] = value;
+    summary.json()["solution"] = solution_json(s);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(rgb_field("var", s.var));
     write_outputs(command.scene, patches, fields, summary);

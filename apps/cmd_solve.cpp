@@ -124,7 +124,7 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
     solve_seconds += s.solve_seconds;
     refine_seconds += s.refine_seconds;
   }
-  summary.add_timing("form factors", ff_seconds);
+  summary.add_timing("form_factors", ff_seconds);
   summary.add_timing("refine", refine_seconds);
   result.solution.seconds = solve_seconds;  // timed as "solve": all the steps' solves
   summary.json()["patches"] = result.patches.size();
@@ -191,17 +191,8 @@ int run_solve(const SolveCommand& command) {
   if (solution.walks > 0) std::printf(", %ld walks, %ld steps", solution.walks, solution.steps);
   if (solution.residual == solution.residual) std::printf(", relative residual %.3g", solution.residual);
   std::printf(", %.3f s\n", solution.seconds);
+  summary.json()["solution"] = solution_json(solution);
   auto& j = summary.json()["solution"];
-  j["method"] = solution.method;
-  j["status"] = to_string(solution.status);
-  j["message"] = solution.message;
-  j["iterations"] = solution.iterations;
-  j["residual"] = solution.residual == solution.residual ? nlohmann::json(solution.residual) : nlohmann::json();
-  j["residual_history"] = solution.residual_history;
-  j["walks"] = solution.walks;
-  j["steps"] = solution.steps;
-  j["seconds"] = solution.seconds;
-  for (const auto& [key, value] : solution.info) j["info"][key] = value;
 
   if (solution.B.rows() == static_cast<Eigen::Index>(patches.size())) {
     // Area-weighted mean radiosity per channel, a quick sanity figure.

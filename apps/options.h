@@ -17,6 +17,7 @@ struct SceneOptions {
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE
   std::vector<std::string> argv;  // the command line, for the JSON summary
+  std::vector<std::string> warnings;  // printed while reading the command line (ignored options), for the summary
 };
 
 // Commands that need form factors: estimate them, or read them from a Matrix Market file.

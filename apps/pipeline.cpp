@@ -1,9 +1,10 @@
 #include "apps/pipeline.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
-#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/timer.h"
 #include "core/parallel.h"
@@ -34,13 +35,15 @@ void note(const std::string& message) {
 }
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
+  for (const std::string& w : options.warnings) summary.add_warning(w);
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
-  for (const std::string* out : {&options.vtp, &options.csv, &options.json}) require_output_directory(*out);
   Timer timer;
   Mesh mesh = load_scene(options.scene);
   summary.add_timing("load", timer.seconds());
   for (const std::string& w : mesh.warnings) warn(summary, w);
   summary.json()["scene"] = options.scene;
+  summary.json()["seed"] = options.seed;
+  summary.json()["threads"] = options.threads;
   summary.json()["faces"] = mesh.face_count();
   summary.json()["materials"] = mesh.materials.size();
   return mesh;
@@ -63,7 +66,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
   Timer timer;
   if (!options.form_factors.empty()) {
     ff.F = read_matrix_market(options.form_factors, patches.size());
-    summary.add_timing("read form factors", timer.seconds());
+    summary.add_timing("read_form_factors", timer.seconds());
     summary.json()["form_factors_file"] = options.form_factors;
   } else {
     FormFactorOptions o;
@@ -73,23 +76,24 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     o.seed = scene.seed;
     ThreadLimit limit(scene.threads);
     const EmbreeVisibility visibility(patches);
-    summary.add_timing("embree scene", timer.seconds());
+    summary.add_timing("embree_scene", timer.seconds());
     timer.reset();
     ff = estimate_form_factors(patches, visibility, o);
     const double seconds = timer.seconds();
-    summary.add_timing("form factors", seconds);
-    double rays = 0, escaped = 0, back = 0;
+    summary.add_timing("form_factors", seconds);
+    std::uint64_t rays = 0, escaped = 0, back = 0;
     for (std::size_t i = 0; i < patches.size(); ++i) {
       rays += ff.rays[i];
       escaped += ff.escaped[i];
       back += ff.back_hits[i];
     }
+    const double traced = double(std::max<std::uint64_t>(rays, 1));
     summary.json()["rays"] = rays;
-    summary.json()["rays_per_second"] = rays / std::max(seconds, 1e-9);
-    summary.json()["escaped_fraction"] = escaped / std::max(rays, 1.0);
-    summary.json()["back_hit_fraction"] = back / std::max(rays, 1.0);
-    note("form factors: " + std::to_string(static_cast<long>(rays)) + " rays in " + std::to_string(seconds) +
-         " s, " + std::to_string(ff.F.nonZeros()) + " non-zeros");
+    summary.json()["rays_per_second"] = double(rays) / std::max(seconds, 1e-9);
+    summary.json()["escaped_fraction"] = double(escaped) / traced;
+    summary.json()["back_hit_fraction"] = double(back) / traced;
+    note("form factors: " + std::to_string(rays) + " rays in " + std::to_string(seconds) + " s, " +
+         std::to_string(ff.F.nonZeros()) + " non-zeros");
     if (back > 0) {
       std::size_t worst = 0, patches_hit = 0, enclosed = 0;
       for (std::size_t i = 0; i < patches.size(); ++i) {

@@ -13,14 +13,16 @@
 
 namespace radwalk::app {
 
-// Reads and validates the scene (throws InputError on refusal), prints the repairs as warnings.
+// Reads and validates the scene (throws InputError on refusal), prints the repairs as warnings; the summary also
+// gets the warnings printed while reading the command line (options.warnings). Output file names were checked
+// then too (apps/output_files.h).
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
 // load_validated_mesh, then make_patches with options.max_edge.
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 
 // Form factors for the patches: read from --form-factors (ray counts left empty) or estimated with Embree
-// (timed as "form factors"); --reciprocity is applied either way and its change reported.
+// (timed as "form_factors"); --reciprocity is applied either way and its change reported.
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
                                 const PatchSet& patches, RunSummary& summary);
 

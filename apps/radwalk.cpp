@@ -1,6 +1,10 @@
 // radwalk: command-line front end. Parses arguments (CLI11), runs one command, maps errors to exit codes:
 //   0 success, 1 a solver did not converge (its status says why), 2 bad input (file, option), 3 numerical
 //   failure detected (singular or divergent system), 4 internal error.
+// This is the command-line boundary: before any command runs, a parse error is one line naming the unknown
+// command, option or value with a "did you mean" (apps/command_line.h) and pointing at the command's own --help;
+// output file names are checked against what is written (apps/output_files.h); options the chosen method ignores
+// are warned about (apps/ignored_options.h).
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -9,7 +13,10 @@
 #include <string>
 #include <thread>
 
+#include "apps/command_line.h"
+#include "apps/ignored_options.h"
 #include "apps/options.h"
+#include "apps/output_files.h"
 #include "apps/pipeline.h"
 #include "core/error.h"
 #include "core/progress.h"
@@ -38,6 +45,73 @@ CLI::Validator finite_number(bool strictly_positive) {
 }
 const CLI::Validator kPositive = finite_number(true), kNonNegative = finite_number(false);
 
+// The value of a choice option: one of `choices`, else "unknown value 'x' (did you mean 'y'?)".
+CLI::Validator one_of(const std::vector<std::string>& choices) {
+  std::string listed;
+  for (const std::string& c : choices) listed += (listed.empty() ? "{" : ",") + c;
+  return CLI::Validator(
+      [choices](std::string& text) -> std::string {
+        for (const std::string& c : choices)
+          if (text == c) return "";
+        return unknown_choice(text, choices);
+      },
+      listed + "}");
+}
+
+// An output file: the extension of what is written there, in an existing directory (apps/output_files.h).
+CLI::Validator output_file(OutputFile kind) {
+  return CLI::Validator([kind](std::string& path) { return check_output_file(path, kind); },
+                        "FILE" + output_extensions(kind));
+}
+
+// Every command name and option name the parser knows (for the messages about those it does not).
+CommandLineWords words_of(const CLI::App& app) {
+  CommandLineWords words;
+  const auto names = [](const CLI::App& a) {
+    std::vector<std::string> out;
+    for (const CLI::Option* o : a.get_options()) {
+      for (const std::string& n : o->get_snames()) out.push_back("-" + n);
+      for (const std::string& n : o->get_lnames()) out.push_back("--" + n);
+    }
+    return out;
+  };
+  words.options[""] = names(app);
+  for (const CLI::App* cmd : app.get_subcommands([](const CLI::App*) { return true; })) {
+    words.commands.push_back(cmd->get_name());
+    words.options[cmd->get_name()] = names(*cmd);
+  }
+  return words;
+}
+
+// The one-line message of a parse error: the first unknown command or option if there is one (the likely
+// cause whatever CLI11 reports, e.g. "A subcommand is required" for a mistyped command), else CLI11's own.
+std::string parse_error_message(const CLI::ParseError& e, const std::vector<std::string>& args,
+                                const CommandLineWords& words) {
+  const std::string unknown = unknown_word(args, words);
+  if (!unknown.empty()) return unknown;
+  const std::string what = e.what();
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    const std::string::size_type colon = what.find(": ");
+    if (colon != std::string::npos) return "unexpected argument '" + what.substr(colon + 2) + "'";
+  }
+  return what;
+}
+
+// Warns about the options `cmd` was given that its method ignores (apps/ignored_options.h) and keeps the
+// warnings for the JSON summary.
+template <class Command>
+void warn_ignored(const CLI::App* cmd, const Command& command, SceneOptions& scene) {
+  const OptionGiven given = [cmd](const std::string& name) {
+    const CLI::Option* o = cmd->get_option_no_throw(name);
+    if (!o) throw InternalError("ignored-options table names " + name + ", which '" + cmd->get_name() + "' lacks");
+    return o->count() > 0;
+  };
+  for (const std::string& w : ignored_options(command, given)) {
+    std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
+    scene.warnings.push_back(w);
+  }
+}
+
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
   cmd->add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
@@ -52,8 +126,9 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   cmd->add_option("--seed", o.seed, "Random seed; same seed, same output, whatever the thread count")
       ->capture_default_str();
   if (outputs) {
-    cmd->add_option("--csv", o.csv, "Write per-patch results as CSV");
-    cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)");
+    cmd->add_option("--csv", o.csv, "Write per-patch results as CSV")->check(output_file(OutputFile::csv));
+    cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)")
+        ->check(output_file(OutputFile::json));
   }
 }
 
@@ -92,32 +167,35 @@ int main(int argc, char** argv) {
   SceneOptions check;
   auto* check_cmd = app.add_subcommand("check", "Validate a scene and report what is wrong or was repaired");
   add_scene_options(check_cmd, check, false, false);
-  check_cmd->add_option("--json", check.json, "Write the findings as JSON");
+  check_cmd->add_option("--json", check.json, "Write the findings as JSON")->check(output_file(OutputFile::json));
 
   PatchCommand patch;
   auto* patch_cmd = app.add_subcommand("patch", "Validate and split a scene into patches; write them");
   add_scene_options(patch_cmd, patch.scene);
   patch_cmd->add_option("-o,--output", patch.output, "Output: FILE.vtp (ParaView) or FILE.obj (+ .mtl)")
-      ->required();
+      ->required()
+      ->check(output_file(OutputFile::vtp_or_obj));
 
   FormFactorsCommand ff;
   auto* ff_cmd = app.add_subcommand("formfactors", "Estimate form factors F by cosine-weighted ray shooting");
   add_scene_options(ff_cmd, ff.scene);
   add_form_factor_options(ff_cmd, ff.ff);
-  ff_cmd->add_option("-o,--output", ff.mtx, "Write F as Matrix Market (row i = patch i, 1-based)");
-  ff_cmd->add_option("--vtp", ff.diagnostics_vtp, "Write per-patch diagnostics as .vtp");
+  ff_cmd->add_option("-o,--output", ff.mtx, "Write F as Matrix Market, FILE.mtx (row i = patch i, 1-based)")
+      ->check(output_file(OutputFile::matrix_market));
+  ff_cmd->add_option("--vtp", ff.diagnostics_vtp, "Write per-patch diagnostics as .vtp")
+      ->check(output_file(OutputFile::vtp));
 
   SolveCommand solve;
   auto* solve_cmd = app.add_subcommand("solve", "Solve for the radiosity B of every patch");
   add_scene_options(solve_cmd, solve.scene);
   add_form_factor_options(solve_cmd, solve.ff);
-  solve_cmd->add_option("-o,--output", solve.scene.vtp,
-                        "Write the solution as .vtp (cell field B, point field B)");
+  solve_cmd->add_option("-o,--output", solve.scene.vtp, "Write the solution as .vtp (cell field B, point field B)")
+      ->check(output_file(OutputFile::vtp));
   solve_cmd
       ->add_option("--solver", solve.solver,
                    "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell, "
                    "random-walk")
-      ->check(CLI::IsMember({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
+      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
       ->capture_default_str();
   solve_cmd
       ->add_option(
@@ -192,7 +270,8 @@ int main(int argc, char** argv) {
       app.add_subcommand("compare", "Run random-walk estimators repeatedly; compare their variance and cost");
   add_scene_options(compare_cmd, compare.scene);
   add_form_factor_options(compare_cmd, compare.ff);
-  compare_cmd->add_option("-o,--output", compare.scene.vtp, "Write per-patch variances as .vtp");
+  compare_cmd->add_option("-o,--output", compare.scene.vtp, "Write per-patch variances as .vtp")
+      ->check(output_file(OutputFile::vtp));
   compare_cmd
       ->add_option("--estimators", compare.estimators,
                    "Comma-separated list from gather-absorption, gather-collision, gather-expected-value, "
@@ -212,16 +291,18 @@ int main(int argc, char** argv) {
   PathtraceCommand pt;
   auto* pt_cmd = app.add_subcommand("pathtrace", "Continuous path tracer: patch averages and images");
   add_scene_options(pt_cmd, pt.scene);
-  pt_cmd->add_option("-o,--output", pt.scene.vtp, "Write patch-average radiosity as .vtp");
+  pt_cmd->add_option("-o,--output", pt.scene.vtp, "Write patch-average radiosity as .vtp")
+      ->check(output_file(OutputFile::vtp));
   pt_cmd->add_option("--spp", pt.spp, "Samples per patch (patch averages) or per pixel (images)")
       ->check(kPositive)
       ->capture_default_str();
   pt_cmd
       ->add_option("--integrator", pt.integrator,
                    "implicit, nee, mis (power heuristic) or light (light tracing)")
-      ->check(CLI::IsMember({"implicit", "nee", "mis", "light"}))
+      ->check(one_of({"implicit", "nee", "mis", "light"}))
       ->capture_default_str();
-  pt_cmd->add_option("--image", pt.image, "Render an image: FILE.png (sRGB) or FILE.exr (linear)");
+  pt_cmd->add_option("--image", pt.image, "Render an image: FILE.png (sRGB) or FILE.exr (linear)")
+      ->check(output_file(OutputFile::image));
   pt_cmd->add_option("--width", pt.width, "Image width in pixels")->check(kPositive)->capture_default_str();
   pt_cmd->add_option("--height", pt.height, "Image height in pixels")
       ->check(kPositive)
@@ -234,7 +315,9 @@ int main(int argc, char** argv) {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    std::fprintf(stderr, "radwalk: error: %s (see radwalk --help)\n", e.what());
+    const CommandLineWords words = words_of(app);
+    std::fprintf(stderr, "radwalk: error: %s; %s\n", parse_error_message(e, args, words).c_str(),
+                 help_pointer(selected_command(args, words)).c_str());
     return 2;
   }
   Progress::set_enabled(!g_quiet);
@@ -243,6 +326,11 @@ int main(int argc, char** argv) {
     o->argv = args;
 
   try {
+    if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);
+    if (*solve_cmd) warn_ignored(solve_cmd, solve, solve.scene);
+    if (*compare_cmd) warn_ignored(compare_cmd, compare, compare.scene);
+    if (*pt_cmd) warn_ignored(pt_cmd, pt, pt.scene);
+
     if (*check_cmd) return run_check(check);
     if (*patch_cmd) return run_patch(patch);
     if (*ff_cmd) return run_formfactors(ff);

@@ -65,7 +65,7 @@ def main():
             extra_out = ["-o", rw.path(f"{tag}_reference.vtp")] if s == a.seed else []
             rw.run(["solve", scene, "--max-edge", me, "--solver", "direct", "--form-factors", F, "--csv", csvp]
                    + extra_out, rw.path(f"{tag}_reference_s{s}.json"))
-            refs.append((rwexp.read_B(csvp), ff["timings_s"]["form factors"], F))
+            refs.append((rwexp.read_B(csvp), ff["timings_s"]["form_factors"], F))
         B_ref, ref_ff_s, F_ref = refs[0]
         N = B_ref.shape[0]
         ref_noise = rwexp.rms_relative_error(refs[1][0], B_ref) / math.sqrt(2)
@@ -109,7 +109,7 @@ def main():
         for rays in ray_budgets:
             F = rw.path(f"{tag}_F_{rays}.mtx")
             ff = rw.run(["formfactors"] + common + ["--rays", rays, "-o", F], rw.path(f"{tag}_F_{rays}.json"))
-            ff_s = ff["json"]["timings_s"]["form factors"]
+            ff_s = ff["json"]["timings_s"]["form_factors"]
             for s in DETERMINISTIC:
                 solve("B", s, "matrix", rays, "rays/patch", ["--form-factors", F, "--solver", s, "--tol", 1e-6,
                                                              "--max-iterations", 100000000], ff_s, f"B_{s}_{rays}")
@@ -135,7 +135,7 @@ def main():
         for w in walk_budgets:
             csvp, jsp = rw.path(f"{tag}_B_pt_{w}.csv"), rw.path(f"{tag}_B_pt_{w}.json")
             js = rw.run(["pathtrace"] + common + ["--spp", w, "--csv", csvp], jsp)["json"]
-            t = js["timings_s"]["patch averages"]
+            t = js["timings_s"]["patch_averages"]
             B = rwexp.read_B(csvp)
             os.remove(csvp)
             os.remove(jsp)

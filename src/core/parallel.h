@@ -1,5 +1,5 @@
 #pragma once
-// One parallel-for helper and deterministic reductions (ARCHITECTURE.md, convention 6).
+// One parallel-for helper and deterministic reductions (docs/ARCHITECTURE.md, convention 6: deterministic parallelism).
 //
 // Work [0, n) is cut into fixed chunks of `chunk` items that do not depend on the thread count; chunks run in
 // parallel (TBB) and per-chunk results are combined in chunk order, so floating-point sums are bit-identical

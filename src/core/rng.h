@@ -1,5 +1,6 @@
 #pragma once
-// Counter-based random streams, addressed by (seed, domain, a, b).
+// Counter-based random streams, addressed by (seed, domain, a, b) (docs/ARCHITECTURE.md, convention 5:
+// reproducible random streams).
 //
 // Every consumer of random numbers draws from stream(seed, domain, a, b): a pure function of the user's seed, the
 // consumer's own StreamDomain, and two indices the domain defines (for example patch and walk index). So

@@ -1,5 +1,5 @@
 #pragma once
-// Sampling triplets (ARCHITECTURE.md, convention 4): sample, pdf and inverse for the warps radwalk uses.
+// Sampling triplets (docs/ARCHITECTURE.md, convention 4): sample, pdf and inverse for the warps radwalk uses.
 // u = (u1, u2) are uniform numbers in [0, 1)^2.
 #include <cmath>
 

@@ -15,9 +15,12 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/progress.h"
 
 namespace radwalk {
 namespace {
+
+constexpr std::size_t kProgressEntries = std::size_t(1) << 16;  // entries between progress updates
 
 bool blank(std::string_view s) { return s.find_first_not_of(" \t\r") == std::string_view::npos; }
 
@@ -87,6 +90,8 @@ void write_matrix_market(const std::string& path, const SparseF& F) {
        << "% diffusely that arrives at the front of patch j\n"
        << F.rows() << ' ' << F.cols() << ' ' << F.nonZeros() << '\n';
     // One line per entry: "i j value" (the value in the shortest form that reads back to the same float).
+    Progress progress("writing form factors", std::size_t(F.nonZeros()));
+    std::size_t written = 0;
     char buf[96];
     char* const end = buf + sizeof buf;
     const auto field = [&](char* p, auto v, char sep) {
@@ -101,7 +106,10 @@ void write_matrix_market(const std::string& path, const SparseF& F) {
         p = field(p, it.index() + 1, ' ');
         p = field(p, it.value(), '\n');
         os.write(buf, p - buf);
+        if (++written % kProgressEntries == 0) progress.advance(kProgressEntries);
       }
+    progress.advance(written % kProgressEntries);
+    progress.finish();
   });
 }
 
@@ -158,6 +166,7 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
   std::vector<std::int32_t> row(nnz), col(nnz);
   std::vector<float> value(nnz);
   bool sorted = true;
+  Progress progress("reading form factors", nnz);
   for (std::size_t k = 0; k < nnz; ++k) {
     if (!reader.next_data(line))
       throw reader.error("file ends after " + std::to_string(k) + " of " + std::to_string(nnz) + " entries");
@@ -175,8 +184,11 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
     col[k] = std::int32_t(j - 1);
     value[k] = static_cast<float>(v);
     if (k > 0 && sorted && (row[k] < row[k - 1] || (row[k] == row[k - 1] && col[k] <= col[k - 1]))) sorted = false;
+    if ((k + 1) % kProgressEntries == 0) progress.advance(kProgressEntries);
   }
   if (reader.next_data(line)) throw reader.error("more entries than the " + std::to_string(nnz) + " declared");
+  progress.advance(nnz % kProgressEntries);
+  progress.finish();
 
   // Step 4: order by (row, column) unless already so; refuse duplicates.
   std::vector<std::size_t> order;

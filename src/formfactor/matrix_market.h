@@ -13,6 +13,8 @@
 // an estimated row sums to at most 1 exactly (counts / n_i), and storing entries as floats moves the sum by at
 // most 2^-24 relative (6e-8); a larger excess means the file is not a form-factor matrix (or was rescaled
 // wrongly). Comment lines (%) and blank lines after the header are skipped. Entries in any order are accepted.
+//
+// Both directions report progress ("reading form factors", "writing form factors": core/progress.h) by entries.
 #include <cstddef>
 #include <string>
 

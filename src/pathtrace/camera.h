@@ -8,8 +8,8 @@
 // with forward = direction, right = forward x up, up' = right x forward (all unit), aspect = width / height.
 // A pixel's value is the mean radiance over its film square (measurement with importance W = 1 / (A_pixel
 // cos^4 theta) per unit film area at distance 1, which a uniform film sample estimates with weight 1).
-// The Cornell box camera (REFERENCE-DATA.md): position (278, 273, -800), direction +z, up +y, focal length
-// 0.035, film 0.025: vfov = 2 atan(0.0125 / 0.035) = 39.3077 degrees.
+// The Cornell box camera (docs/reference-data.md, "The Cornell box"): position (278, 273, -800), direction +z,
+// up +y, focal length 0.035, film 0.025: vfov = 2 atan(0.0125 / 0.035) = 39.3077 degrees.
 #include <cmath>
 #include <optional>
 

@@ -6,12 +6,13 @@
 //   front side of an emitter (Lambertian), 0 elsewhere.                            Units: W / (m^2 sr).
 //
 // Integrators (IntegratorKind):
-//   implicit  BSDF sampling only; emission counted when a path hits an emitter's front (seed 003).
+//   implicit  BSDF sampling only; emission counted when a path hits an emitter's front (Kajiya 1986).
 //   nee       next-event estimation: at each non-delta vertex one emitter point y (light_sampler.h) and a shadow
 //             ray; the area form f Le G / pdf_area with G = cos(theta_x) cos(theta_y) / |x - y|^2. Emission hit
 //             by a BSDF-sampled direction is then counted only after a delta bounce (or by the camera ray).
 //   mis       both, weighted by the power heuristic w_a = p_a^2 / (p_light^2 + p_bsdf^2), densities in solid
-//             angle (seed 004). The default.
+//             angle (Veach and Guibas 1995, "Optimally combining sampling techniques for Monte Carlo
+//             rendering"). The default.
 // Russian roulette: after rr_depth bounces a path survives with probability q = min(1, max channel of the
 // throughput) and its throughput is divided by q, which keeps the estimate unbiased. There is no depth cap unless
 // max_depth > 0; a cap drops every path with more than max_depth scattering events (a bias, reported as such).

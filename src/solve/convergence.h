@@ -20,6 +20,7 @@
 #include "solve/residual.h"
 #include "core/solution.h"
 #include "solve/solve_options.h"
+#include "solve/iteration_progress.h"
 #include "solve/spectral_radius.h"
 
 namespace radwalk {
@@ -63,17 +64,20 @@ void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions
 
 // The sweep loop of Jacobi and Gauss-Seidel, from the iterate B: each call sweep(B) updates B in place by one
 // sweep and returns the relative residual of the iterate it started from (max_ic |r_ic| / scale_c; not finite
-// when the iteration broke down). After each sweep: on_iterate, then judge_progress on the history; a converged
-// verdict is confirmed on the new iterate (the residual was the previous one's). Ends with finish_iterative.
+// when the iteration broke down). After each sweep: progress ("METHOD sweeps", core/progress.h), on_iterate, then
+// judge_progress on the history; a converged verdict is confirmed on the new iterate (the residual was the
+// previous one's). Ends with finish_iterative.
 template <class Sweep>
 void run_sweeps(Solution& s, const RadiosityProblem& p, const SolveOptions& options, PatchRgb B, Sweep&& sweep) {
   std::vector<double> history;
   std::string why;
   Verdict verdict = Verdict::keep_going;
   long sweeps = 0;
+  IterationProgress progress(s.method + " sweeps", options.tol, options.max_iterations);
   while (sweeps < options.max_iterations) {
     history.push_back(sweep(B));
     ++sweeps;
+    progress.update(sweeps, history.back());
     if (options.on_iterate) options.on_iterate(sweeps, B);
     verdict = judge_progress(history, 1, options, s.method, &why);
     if (verdict == Verdict::converged) {
@@ -83,6 +87,7 @@ void run_sweeps(Solution& s, const RadiosityProblem& p, const SolveOptions& opti
       break;
     }
   }
+  progress.finish();
   finish_iterative(s, p, options, std::move(B), verdict, why, sweeps, std::move(history), "sweeps");
 }
 

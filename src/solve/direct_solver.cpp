@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/progress.h"
 #include "core/timer.h"
 #include "solve/residual.h"
 
@@ -91,6 +92,7 @@ DirectSolver::DirectSolver(const RadiosityProblem& p, DirectMethod method) : imp
   }
 
   if (n == 0) representative.clear();
+  Progress progress("LU factorisations", representative.size());
   for (std::size_t g = 0; g < representative.size() && m.ok; ++g) {
     const int c = representative[g];
     const Eigen::VectorXd rho = p.rho.col(c).matrix();
@@ -144,7 +146,9 @@ DirectSolver::DirectSolver(const RadiosityProblem& p, DirectMethod method) : imp
       break;
     }
     m.kappa = std::max(m.kappa, kappa);
+    progress.advance(1);
   }
+  progress.finish();
   if (!m.ok) m.kappa = std::numeric_limits<double>::infinity();
   m.factor_seconds = timer.seconds();
 }

@@ -28,7 +28,8 @@ extern const long kDenseMaxPatches;
 
 class DirectSolver {
  public:
-  // Factorises I - diag(rho_c) F for each distinct rho column. Throws InputError for a bad problem (check_problem).
+  // Factorises I - diag(rho_c) F for each distinct rho column, reporting progress ("LU factorisations", one item
+  // per factorisation, core/progress.h). Throws InputError for a bad problem (check_problem).
   DirectSolver(const RadiosityProblem& p, DirectMethod method = DirectMethod::automatic);
   ~DirectSolver();
   DirectSolver(DirectSolver&&) noexcept;

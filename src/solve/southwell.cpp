@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/timer.h"
 #include "solve/convergence.h"
+#include "solve/iteration_progress.h"
 #include "solve/residual.h"
 
 namespace radwalk {
@@ -112,6 +113,8 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
   std::string why;
   Verdict verdict = Verdict::keep_going;
   long shots = 0;
+  IterationProgress progress("southwell shots", options.tol, options.max_iterations);
+  progress.update(0, history.back());
   for (int restart = 0; restart < 3; ++restart) {
     while (shots < options.max_iterations && relative() > options.tol) {
       // Shoot the patch with the most unshot power.
@@ -137,6 +140,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
       }
       if (shots % n == 0) {
         history.push_back(relative());
+        progress.update(shots, history.back());
         verdict = judge_progress(history, long(n), options, s.method, &why);
         if (verdict != Verdict::keep_going) break;
       }
@@ -152,6 +156,7 @@ Solution solve_southwell(const RadiosityProblem& p, const SolveOptions& options)
     }
   }
   history.push_back(relative());
+  progress.finish();
   if (options.on_iterate && shots > reported) options.on_iterate(shots, B);
   finish_iterative(s, p, options, std::move(B), verdict, why, shots, std::move(history), "shots");
   if (s.B.allFinite()) {

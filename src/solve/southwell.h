@@ -8,7 +8,7 @@
 // Column access needs F^T, built once (as much memory again as F). A tournament tree keeps both the next patch to
 // shoot and max_i |dB_ic| per channel, so the relative residual (residual.h) is known after every shot at
 // O(log N) per touched patch. iterations = shots; the history has one entry per N shots. The returned residual
-// is recomputed exactly from B at the end.
+// is recomputed exactly from B at the end. Progress ("southwell shots", solve/iteration_progress.h) every N shots.
 // Converges for H >= 0 with radius(H) < 1; checked before shooting and watched while shooting (convergence.h).
 #include "solve/problem.h"
 #include "core/solution.h"

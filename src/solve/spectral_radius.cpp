@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "core/progress.h"
 
 namespace radwalk {
 namespace {
@@ -35,7 +36,7 @@ struct ChannelRadius {
 };
 
 ChannelRadius power_iteration(const SparseF& F, const Eigen::VectorXd& rho, double bound, int max_products,
-                              double rel_tol) {
+                              double rel_tol, Progress& progress) {
   const Eigen::Index n = F.rows();
   ChannelRadius r;
   r.upper = bound;
@@ -44,6 +45,7 @@ ChannelRadius power_iteration(const SparseF& F, const Eigen::VectorXd& rho, doub
   for (int k = 0; k < max_products; ++k) {
     apply_H(F, rho, x, y);
     ++r.products;
+    progress.advance(1);
     // Upper bound from x > 0; lower bound from v = y_{k-1} with H v = s_prev * y - y_prev.
     double upper = 0;
     for (Eigen::Index i = 0; i < n; ++i) upper = std::max(upper, y(i) / x(i));
@@ -97,14 +99,19 @@ SpectralRadius estimate_spectral_radius(const RadiosityProblem& p, int max_produ
   if (p.size() == 0 || r.bound == 0) return r;
   const Eigen::VectorXd sums = row_sums(p.F);
   r.estimate = r.upper = r.lower = -1;
+  Progress progress("spectral radius (power iteration)", 3 * static_cast<std::size_t>(std::max(max_products, 0)));
   for (int c = 0; c < 3; ++c) {
     // A channel whose rho equals an earlier one has the same radius.
     bool repeated = false;
     for (int d = 0; d < c; ++d) repeated = repeated || (p.rho.col(c) == p.rho.col(d)).all();
-    if (repeated) continue;
+    if (repeated) {
+      progress.advance(static_cast<std::size_t>(std::max(max_products, 0)));
+      continue;
+    }
     const Eigen::VectorXd rho = p.rho.col(c).matrix();
     const double bound = rho.cwiseProduct(sums).maxCoeff();
-    const ChannelRadius cr = power_iteration(p.F, rho, bound, max_products, rel_tol);
+    const ChannelRadius cr = power_iteration(p.F, rho, bound, max_products, rel_tol, progress);
+    progress.advance(static_cast<std::size_t>(std::max(max_products - cr.products, 0)));  // stopped early
     r.products += cr.products;
     if (cr.estimate > r.estimate) {
       r.estimate = cr.estimate;

@@ -26,7 +26,7 @@ struct SpectralRadius {
 SpectralRadius spectral_radius_bound(const RadiosityProblem& p);
 
 // The bound, then the power iteration per distinct rho column until upper - lower <= rel_tol * upper or
-// max_products products per channel.
+// max_products products per channel. Reports progress ("spectral radius (power iteration)", core/progress.h).
 SpectralRadius estimate_spectral_radius(const RadiosityProblem& p, int max_products = 300, double rel_tol = 1e-4);
 
 }  // namespace radwalk

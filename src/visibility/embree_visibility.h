@@ -26,7 +26,7 @@ namespace radwalk {
 
 struct EmbreeOptions {
   // Passed to rtcNewDevice. "isa=avx2" measured a few percent faster than the AVX-512 default on this
-  // machine (DEPENDENCY-NOTES.md); Embree falls back to a lower ISA when the CPU lacks AVX2.
+  // machine (docs/dependencies.md, "Embree"); Embree falls back to a lower ISA when the CPU lacks AVX2.
   std::string device_config = "isa=avx2";
   bool robust = true;  // RTC_SCENE_FLAG_ROBUST
 };

@@ -58,7 +58,7 @@ TEST_CASE("radwalk: bad options and missing files exit 2", "[cli]") {
 
 TEST_CASE("radwalk: bad option values and outputs in missing directories give one prefixed line", "[cli]") {
   const std::string cube = source("meshes/cube.obj");
-  for (const std::string args : {"solve " + cube + " --rays abc", "solve " + cube + " --max-edge inf",
+  for (const std::string& args : {"solve " + cube + " --rays abc", "solve " + cube + " --max-edge inf",
                                  "solve " + cube + " --tol -1", "solve " + cube + " --bogus", std::string(""),
                                  "solve " + cube + " -q -o /nonexistent-dir/b.vtp",
                                  "solve " + cube + " -q --csv /nonexistent-dir/b.csv"}) {
@@ -96,7 +96,17 @@ TEST_CASE("radwalk solve: the furnace gives B = E / (1 - rho) = 2 pi on every pa
   const auto j = nlohmann::json::parse(js);
   CHECK(j["solution"]["status"] == "converged");
   CHECK(j["patches"] == 24);
-  CHECK(j["timings_s"].contains("form factors"));
+  CHECK(j["timings_s"].contains("form_factors"));
+  // Typed values (docs/json-schema.md): counts are integers, the seed has its own field.
+  CHECK(j["schema_version"].is_number_integer());
+  CHECK(j["git_describe"].is_string());
+  CHECK(j["seed"] == 1);
+  CHECK(j["rays"].is_number_integer());
+  CHECK(j["rays"] == 24 * 200);
+  CHECK(j["solution"]["info"]["factorisations"].is_number_integer());
+  CHECK(j["solution"]["info"]["dense"].is_boolean());
+  for (const auto& [key, value] : j.items()) CHECK(key.find(' ') == std::string::npos);
+  for (const auto& [key, value] : j["timings_s"].items()) CHECK(key.find(' ') == std::string::npos);
 }
 
 TEST_CASE("radwalk formfactors writes a Matrix Market file that solve reads back", "[cli]") {

@@ -5,7 +5,7 @@
 //    Rows sum to 1 exactly (with n = 5, F = 0.25 is exact in float), so the closed-scene algebra is exact:
 //    uniform rho and E give B = E / (1 - rho), spectral radius rho, kappa_inf(I - H) = (1 + rho) / (1 - rho),
 //    and with B^0 = E the Jacobi residual after k sweeps is rho^(k+1) ||E|| exactly.
-//  - box(rho, faces, scale): the unit cube of reference_problems.h restricted to `faces` (a face left out is an
+//  - box(rho, faces, scale): the unit cube of reference_problems.h (closed forms of docs/reference-data.md) restricted to `faces` (a face left out is an
 //    opening), F multiplied by `scale`, every face emitting E = 1.
 #include <Eigen/Sparse>
 #include <cmath>

@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -57,6 +58,7 @@ TEST_CASE("run summary JSON parses and records timings, warnings and memory", "[
   RunSummary s("solve", {"radwalk", "solve", "scene.obj"});
   s.json()["patches"] = 42;
   s.add_timing("load", 0.25);
+  s.add_timing("form factors", 1.5);  // written as a key without spaces
   s.add_warning("face 3: something");
   const auto path = (std::filesystem::temp_directory_path() / "radwalk_test.json").string();
   s.write(path);
@@ -65,10 +67,44 @@ TEST_CASE("run summary JSON parses and records timings, warnings and memory", "[
   CHECK(j["command"] == "solve");
   CHECK(j["patches"] == 42);
   CHECK(j["timings_s"]["load"] == 0.25);
+  CHECK(j["timings_s"]["form_factors"] == 1.5);
+  CHECK(!j["timings_s"].contains("form factors"));
+  CHECK(j["schema_version"] == RunSummary::kSchemaVersion);
+  CHECK(j["schema_version"].is_number_integer());
+  CHECK(j["git_describe"].get<std::string>() == git_describe());
+  CHECK(!j["git_describe"].get<std::string>().empty());
   CHECK(j["warnings"][0] == "face 3: something");
   CHECK(j["peak_memory_bytes"].get<long>() > 0);
   CHECK(j["versions"]["embree"].get<std::string>().rfind("3.", 0) == 0);
   std::filesystem::remove(path);
+}
+
+TEST_CASE("solution JSON: counts are integers, flags booleans, non-finite numbers null", "[io][json]") {
+  Solution s;
+  s.method = "direct";
+  s.iterations = 12;
+  s.walks = 1000;
+  s.residual_history = {0.5, std::numeric_limits<double>::infinity()};
+  s.info["factorisations"] = 3;
+  s.info["dense"] = 1;
+  s.info["condition_estimate"] = 4;  // a measurement that happens to be whole stays a number
+  s.info["escapes"] = 2.5;           // not whole: kept as it is
+  s.info["variance_radius"] = std::numeric_limits<double>::quiet_NaN();
+  const nlohmann::json j = solution_json(s);
+  CHECK(j["method"] == "direct");
+  CHECK(j["status"] == "converged");
+  CHECK(j["iterations"].is_number_integer());
+  CHECK(j["walks"] == 1000);
+  CHECK(j["residual"].is_null());  // not computed
+  CHECK(j["residual_history"][0] == 0.5);
+  CHECK(j["residual_history"][1].is_null());
+  CHECK(j["info"]["factorisations"].is_number_integer());
+  CHECK(j["info"]["factorisations"] == 3);
+  CHECK(j["info"]["dense"].is_boolean());
+  CHECK(j["info"]["dense"] == true);
+  CHECK(j["info"]["condition_estimate"].is_number_float());
+  CHECK(j["info"]["escapes"] == 2.5);
+  CHECK(j["info"]["variance_radius"].is_null());
 }
 
 TEST_CASE("write_obj writes faces in patch order with an MTL beside it", "[io][obj]") {

@@ -81,8 +81,8 @@ TEST_CASE("furnace with a depth cap: the biased estimate has the known expectati
 
 TEST_CASE("closed box, uniform rho: area-weighted mean of B = sum(A E) / (A_total (1 - rho))",
           "[pathtrace][statistical]") {
-  // Energy balance (REFERENCE-DATA.md). Patches use independent streams, so se(mean) = sqrt(sum (A_i se_i)^2)
-  // / A_total. 3 integrators x 3 channels; alpha = 1e-3 family-wise.
+  // Energy balance (docs/reference-data.md, "Exact radiosity solutions"). Patches use independent streams, so
+  // se(mean) = sqrt(sum (A_i se_i)^2) / A_total. 3 integrators x 3 channels; alpha = 1e-3 family-wise.
   const Rgb rho(0.6, 0.5, 0.4), Le(5.0, 4.0, 3.0);
   const PatchSet p = test::lit_box(rho, Le);
   const BruteForceVisibility vis(p);

@@ -1,4 +1,4 @@
-// Analytic references (REFERENCE-DATA.md): furnace, unit cube with closed-form F, open parallel plates, energy
+// Analytic references (docs/reference-data.md): furnace, unit cube with closed-form F, open parallel plates, energy
 // balance of open scenes, Cohen's ambient term in the furnace, spectral radius against eigenvalues.
 // Tolerances: a solver stopped at relative residual tol has relative error <= kappa_inf * tol; closed forms are
 // evaluated with the float-rounded form factors the solvers see, plus kappa * 16 double epsilons of rounding.

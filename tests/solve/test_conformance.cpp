@@ -1,4 +1,4 @@
-// One conformance check that every solver passes (ARCHITECTURE.md, convention 9): same scenes, same reference
+// One conformance check that every solver passes (docs/ARCHITECTURE.md, convention 9): same scenes, same reference
 // (dense LU in double, written independently in scenes.h), status reported, input untouched.
 #include <catch2/catch.hpp>
 #include <functional>

@@ -2,7 +2,7 @@
 // Distributions for the hypothesis tests of the test suite (test-only: Boost.Math, which src/ does not use). Every
 // Monte Carlo check states a family-wise significance level alpha, corrects it for the number m of simultaneous
 // tests (Sidak: alpha_each = 1 - (1 - alpha)^(1/m)), and derives its tolerance from an estimated variance
-// (docs/ARCHITECTURE.md, "Tests"). The checks built on these are in stat_checks.h.
+// (docs/ARCHITECTURE.md, convention 7). The checks built on these are in stat_checks.h.
 #include <cstddef>
 #include <vector>
 

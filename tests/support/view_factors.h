@@ -1,7 +1,7 @@
 #pragma once
-// Exact view factors for the form-factor tests: closed forms from Howell's catalogue (rectangles C-11 and C-14,
-// coaxial disks) and the exact value for any two planar polygons that see each other unobstructed, by the
-// contour-integral form
+// Exact view factors for the form-factor tests: closed forms from docs/reference-data.md (Howell's catalogue:
+// rectangles C-11 and C-14, coaxial disks) and the exact value for any two planar polygons that see each other
+// unobstructed, by the contour-integral form
 //   A_1 F_12 = (1 / 2 pi) oint_{C1} oint_{C2} ln r (dr_1 . dr_2)
 // (Stokes' theorem applied twice to the double area integral; each contour runs counter-clockwise about its
 // polygon's normal), evaluated edge pair by edge pair with Gauss-Legendre quadrature. The integrand is smooth when

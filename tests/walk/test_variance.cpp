@@ -1,6 +1,6 @@
 // Exact variances (walk_variance.h) against empirical per-walk variances (variance z-test with the sample fourth
 // moment, support/statistics.h), family-wise alpha = 1e-3 with Sidak; the furnace and non-reflecting-emitter facts of
-// REFERENCE-DATA.md; and the finite-variance check.
+// docs/reference-data.md ("Random-walk estimator facts"); and the finite-variance check.
 #include <catch2/catch.hpp>
 
 #include "core/moments.h"

@@ -1,0 +1,85 @@
+#include "apps/ignored_options.h"
+
+#include <algorithm>
+
+namespace radwalk::app {
+namespace {
+
+// Options that apply only when `applies` holds; `used_only` completes "... is ignored (used only ...)".
+template <class Command>
+struct Rule {
+  std::vector<std::string> options;
+  bool (*applies)(const Command&);
+  const char* used_only;
+};
+
+bool random_walk(const SolveCommand& c) { return c.solver == "random-walk"; }
+
+// Walk options by their command-line names.
+const std::vector<Rule<SolveCommand>> kSolveRules = {
+    {{"--walk", "--estimator", "--kernel", "--walks", "--patches", "--survival", "--survival-constant", "--theory"},
+     random_walk, "with --solver random-walk"},
+    {{"--tol", "--max-iterations"},
+     [](const SolveCommand& c) { return c.solver != "direct" && !random_walk(c); },
+     "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
+    {{"--survival-constant"}, [](const SolveCommand& c) { return c.survival == "constant"; },
+     "with --survival constant"},
+    {{"--patches"}, [](const SolveCommand& c) { return c.walk == "gather"; },
+     "when gathering (--walk gather); shooting estimates every patch"},
+    {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity"},
+     [](const SolveCommand& c) { return !(random_walk(c) && c.kernel == "ray"); },
+     "for form factors, which --kernel ray does not use"},
+    {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
+    {{"--refine-steps", "--max-patches", "--refine-floor", "--refine-noise"},
+     [](const SolveCommand& c) { return c.refine > 0; }, "with --refine"},
+};
+
+const std::vector<Rule<FormFactorsCommand>> kFormFactorsRules = {
+    {{"--min-rays"}, [](const FormFactorsCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
+};
+
+const std::vector<Rule<CompareCommand>> kCompareRules = {
+    {{"--min-rays"}, [](const CompareCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
+};
+
+const std::vector<Rule<PathtraceCommand>> kPathtraceRules = {
+    {{"--width", "--height", "--camera"}, [](const PathtraceCommand& c) { return !c.image.empty(); },
+     "with --image"},
+};
+
+template <class Command>
+std::vector<std::string> apply(const std::vector<Rule<Command>>& rules, const Command& command,
+                               const OptionGiven& given) {
+  std::vector<std::string> reported, warnings;
+  for (const Rule<Command>& rule : rules) {
+    if (rule.applies(command)) continue;
+    std::vector<std::string> ignored;
+    for (const std::string& o : rule.options)
+      if (given(o) && std::find(reported.begin(), reported.end(), o) == reported.end()) ignored.push_back(o);
+    if (ignored.empty()) continue;
+    std::string names;
+    for (std::size_t k = 0; k < ignored.size(); ++k)
+      names += (k == 0 ? "" : k + 1 == ignored.size() ? " and " : ", ") + ignored[k];
+    warnings.push_back(names + (ignored.size() == 1 ? " is" : " are") + " ignored (used only " + rule.used_only +
+                       ")");
+    reported.insert(reported.end(), ignored.begin(), ignored.end());
+  }
+  return warnings;
+}
+
+}  // namespace
+
+std::vector<std::string> ignored_options(const SolveCommand& command, const OptionGiven& given) {
+  return apply(kSolveRules, command, given);
+}
+std::vector<std::string> ignored_options(const FormFactorsCommand& command, const OptionGiven& given) {
+  return apply(kFormFactorsRules, command, given);
+}
+std::vector<std::string> ignored_options(const CompareCommand& command, const OptionGiven& given) {
+  return apply(kCompareRules, command, given);
+}
+std::vector<std::string> ignored_options(const PathtraceCommand& command, const OptionGiven& given) {
+  return apply(kPathtraceRules, command, given);
+}
+
+}  // namespace radwalk::app

@@ -1,0 +1,166 @@
+// End-to-end: the command-line habits. Mistyped commands, options and choices get "did you mean" and point at
+// the command's own help; output names whose extension does not match what is written are refused before
+// anything is read; options the chosen method ignores are warned about; progress lines appear when stderr is a
+// file, and not with -q.
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <catch2/catch.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "radwalk_runner.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Per process: other checkouts may run the same tests on the same machine at the same time.
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_habits_test_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+// The program's one line of output, which must be an error with exit code 2.
+std::string one_error(const std::string& args) {
+  const Run r = run(args);
+  INFO("radwalk " << args << " -> exit " << r.exit_code << ": " << r.out);
+  CHECK(r.exit_code == 2);
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+  return r.out;
+}
+
+std::string read_text(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `ENV radwalk ARGS` without --quiet, stderr to a file, stdout dropped; returns the exit code.
+int run_with_stderr(const std::string& env, const std::string& args, const fs::path& err) {
+  const std::string cmd = env + " " + RADWALK_BINARY + " " + args + " >/dev/null 2>" + err.string();
+  const int status = std::system(cmd.c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace
+
+TEST_CASE("radwalk: a mistyped command or option says what was meant and points at the command's help", "[cli]") {
+  const std::string cube = source("meshes/cube.obj");
+  CHECK(one_error("solv " + cube) ==
+        "radwalk: error: unknown command 'solv' (did you mean 'solve'?); see 'radwalk --help'\n");
+  CHECK(one_error("solve " + cube + " --max-egde 25") ==
+        "radwalk: error: unknown option '--max-egde' (did you mean '--max-edge'?); see 'radwalk solve --help'\n");
+  CHECK(one_error("pathtrace " + cube + " --sp=4") ==
+        "radwalk: error: unknown option '--sp' (did you mean '--spp'?); see 'radwalk pathtrace --help'\n");
+  CHECK(one_error("") ==
+        "radwalk: error: a command is required: check, patch, formfactors, solve, compare or pathtrace; "
+        "see 'radwalk --help'\n");
+  // Nothing near: no suggestion; other parse errors keep their own words and point at the help.
+  CHECK(one_error("solve " + cube + " --zzzzzz") ==
+        "radwalk: error: unknown option '--zzzzzz'; see 'radwalk solve --help'\n");
+  CHECK(one_error("formfactors " + cube + " --rays abc") ==
+        "radwalk: error: --rays: expected a positive number, got 'abc'; see 'radwalk formfactors --help'\n");
+  // Negative numbers are values, not options.
+  CHECK(run("pathtrace " + cube + " --spp 2 --image " + (scratch() / "neg.png").string() +
+            " --width 4 --height 4 --camera 0.5 0.5 -3 0.5 0.5 0.5 0 1 0 40")
+            .exit_code == 0);
+}
+
+TEST_CASE("radwalk: an unknown value of a choice option gets the nearest choice, or the list", "[cli]") {
+  const std::string cube = source("meshes/cube.obj");
+  CHECK(one_error("solve " + cube + " --solver gauss-seidl") ==
+        "radwalk: error: --solver: unknown value 'gauss-seidl' (did you mean 'gauss-seidel'?); "
+        "see 'radwalk solve --help'\n");
+  CHECK(one_error("pathtrace " + cube + " --integrator ne") ==
+        "radwalk: error: --integrator: unknown value 'ne' (did you mean 'nee'?); see 'radwalk pathtrace --help'\n");
+  CHECK(one_error("solve " + cube + " --solver xyz") ==
+        "radwalk: error: --solver: unknown value 'xyz' (expected one of auto, direct, jacobi, gauss-seidel, "
+        "southwell or random-walk); see 'radwalk solve --help'\n");
+}
+
+TEST_CASE("radwalk: an output whose extension does not match what is written is refused before reading the scene",
+          "[cli]") {
+  // The scene does not exist: the refusal of the name comes first, so nothing was loaded or computed.
+  const std::string missing = (scratch() / "no-such-scene.obj").string();
+  struct Case {
+    std::string args, message;
+  };
+  for (const Case& c : std::vector<Case>{
+           {"solve " + missing + " -o out.png", "out.png: the file written is VTK XML PolyData, so its name must end in .vtp"},
+           {"formfactors " + missing + " -o F.csv", "F.csv: the file written is a Matrix Market matrix, so its name must end in .mtx"},
+           {"formfactors " + missing + " --vtp d.csv", "d.csv: the file written is VTK XML PolyData"},
+           {"solve " + missing + " --csv B.txt", "B.txt: the file written is CSV, so its name must end in .csv"},
+           {"check " + missing + " --json S.txt", "S.txt: the file written is a JSON summary, so its name must end in .json"},
+           {"compare " + missing + " -o c.csv", "c.csv: the file written is VTK XML PolyData"},
+           {"pathtrace " + missing + " --image i.jpg", "i.jpg: the file written is a PNG (sRGB) or OpenEXR (linear) image, so its name must end in .png or .exr"},
+           {"patch " + missing + " -o p.stl", "p.stl: the file written is VTK XML PolyData or OBJ (+ .mtl), so its name must end in .vtp or .obj"},
+           {"solve " + missing + " -o /nonexistent-dir/b.vtp", "no directory /nonexistent-dir"},
+       }) {
+    const std::string out = one_error(c.args);
+    INFO(c.args << " -> " << out);
+    CHECK(out.rfind("radwalk: error: ", 0) == 0);
+    CHECK(out.find(c.message) != std::string::npos);
+    CHECK(out.find("no such file") == std::string::npos);
+  }
+  // Matching names pass (the scene's absence is then the error).
+  CHECK(run("solve " + missing + " -o b.vtp --csv b.csv --json b.json").out.find("no such file") != std::string::npos);
+  CHECK(run("patch " + missing + " -o p.obj").out.find("no such file") != std::string::npos);
+}
+
+TEST_CASE("radwalk: options the chosen method ignores are warned about, on stderr and in the JSON summary", "[cli]") {
+  const fs::path json = scratch() / "ignored.json";
+  const Run r = run("solve " + source("meshes/cube.obj") + " --walk shoot --solver direct --tol 1e-3 --refine-steps 2 --json " +
+                    json.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const std::string walk = "--walk is ignored (used only with --solver random-walk)";
+  const std::string tol = "--tol is ignored (used only by the iterative solvers";
+  const std::string refine = "--refine-steps is ignored (used only with --refine)";
+  CHECK(r.out.find("radwalk: warning: " + walk) != std::string::npos);
+  CHECK(r.out.find("radwalk: warning: " + tol) != std::string::npos);
+  CHECK(r.out.find("radwalk: warning: " + refine) != std::string::npos);
+  std::ifstream in(json);
+  const auto j = nlohmann::json::parse(in);
+  int found = 0;
+  for (const auto& w : j["warnings"]) found += w.get<std::string>().rfind(walk, 0) == 0;
+  CHECK(found == 1);
+
+  // Options that apply raise no warning; several ignored options of one kind share a line.
+  CHECK(run("solve " + source("meshes/cube.obj") + " --solver jacobi --tol 1e-6").out.find("warning") ==
+        std::string::npos);
+  const Run pt = run("pathtrace " + source("meshes/cube.obj") + " --spp 2 --width 8 --height 8");
+  CHECK(pt.out.find("radwalk: warning: --width and --height are ignored (used only with --image)") != std::string::npos);
+  const Run ray = run("solve " + source("meshes/cube.obj") + " --solver random-walk --kernel ray --walks 10 --rays 10");
+  CHECK(ray.out.find("radwalk: warning: --rays is ignored (used only for form factors, which --kernel ray does not use)") !=
+        std::string::npos);
+}
+
+TEST_CASE("radwalk: progress lines when stderr is a file, none for quick stages or with -q", "[cli]") {
+  const std::string args = "solve " + source("meshes/cornell_box.obj") + " --max-edge 50 --rays 4000 --threads 1";
+  const fs::path err = scratch() / "progress.txt";
+  // Every 0.05 s instead of every 5 s, so that a short run shows the lines a long one would.
+  REQUIRE(run_with_stderr("RADWALK_PROGRESS_INTERVAL=0.05", args, err) == 0);
+  const std::string text = read_text(err);
+  INFO(text);
+  const std::regex line(R"(radwalk: form factors [0-9]+% \([0-9]+/975\), [0-9.]+ s elapsed, about [0-9.]+ s left\n)");
+  CHECK(std::regex_search(text, line));
+  CHECK(text.find("radwalk: form factors done in ") != std::string::npos);
+  CHECK(text.find('\r') == std::string::npos);
+
+  // The default interval (5 s): this run is shorter, so no progress line at all.
+  REQUIRE(run_with_stderr("", args, err) == 0);
+  CHECK(read_text(err).find("form factors done") == std::string::npos);
+  CHECK(!std::regex_search(read_text(err), line));
+
+  // -q silences progress whatever the interval.
+  REQUIRE(run_with_stderr("RADWALK_PROGRESS_INTERVAL=0.05", args + " -q", err) == 0);
+  CHECK(read_text(err).find("form factors") == std::string::npos);
+}
