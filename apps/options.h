@@ -13,6 +13,7 @@ struct SceneOptions {
   double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
+  bool strict = false;     // --strict: refuse what the readers and validation would repair
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE

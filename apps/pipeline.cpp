@@ -38,12 +38,15 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   for (const std::string& w : options.warnings) summary.add_warning(w);
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
   Timer timer;
-  Mesh mesh = load_scene(options.scene);
+  ReadOptions read;
+  read.strict = options.strict;
+  Mesh mesh = load_scene(options.scene, read);
   summary.add_timing("load", timer.seconds());
   for (const std::string& w : mesh.warnings) warn(summary, w);
   summary.json()["scene"] = options.scene;
   summary.json()["seed"] = options.seed;
   summary.json()["threads"] = options.threads;
+  summary.json()["strict"] = options.strict;
   summary.json()["faces"] = mesh.face_count();
   summary.json()["materials"] = mesh.materials.size();
   return mesh;

@@ -120,6 +120,9 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                     "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
         ->check(kNonNegative)
         ->capture_default_str();
+  cmd->add_flag("--strict", o.strict,
+                "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
+                "non-convex quads) instead of repairing it with a warning");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
       ->check(kNonNegative)
       ->capture_default_str();

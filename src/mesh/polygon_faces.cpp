@@ -85,7 +85,7 @@ void PolygonFaces::report() const {
                                                            more + " (--strict refuses them instead)"));
   };
   line(triangulated_, "polygons with more than 4 vertices triangulated");
-  line(dropped_, "polygons without area dropped (they carry no power)");
+  line(dropped_, "polygon(s) without area dropped (they carry no power)");
 }
 
 }  // namespace radwalk

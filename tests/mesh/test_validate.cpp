@@ -113,7 +113,7 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
       {"zero_area.obj", {"zero_area.obj:10: face 1:", "degenerate face dropped", "area 0", "material 'white'"}},
       {"nonplanar_quad.obj", {"nonplanar_quad.obj:7: face 0:", "non-planar quad split into two triangles"}},
       {"nonconvex_quad.obj", {"nonconvex_quad.obj:7: face 0:", "non-convex quad split", "inner diagonal"}},
-      {"pentagon.obj", {"pentagon.obj:", "1 polygons with more than 4 vertices triangulated", "face 0 (line 8, 5 corners)",
+      {"pentagon.obj", {"pentagon.obj:", "1 polygon(s) with more than 4 vertices triangulated", "face 0 (line 8, 5 corners)",
                         "material 'light'", "into 3 triangles"}},
   };
   for (const Case& c : cases) {
