@@ -6,6 +6,8 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/run_metadata.h"
+#include "apps/scene_camera.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -20,33 +22,6 @@
 
 namespace radwalk::app {
 namespace {
-
-// The camera: --camera if given; the Cornell box's own camera for a scene named cornell_box*; otherwise a view
-// of the bounding box from its -z side (40 degree vertical field of view).
-Camera choose_camera(const PathtraceCommand& c, const PatchSet& patches) {
-  if (c.camera.size() == 10) {
-    Camera cam;
-    cam.position = Vec3(c.camera[0], c.camera[1], c.camera[2]);
-    cam.direction = Vec3(c.camera[3], c.camera[4], c.camera[5]) - cam.position;
-    cam.up = Vec3(c.camera[6], c.camera[7], c.camera[8]);
-    cam.vfov = c.camera[9] * kPi / 180.0;
-    return cam;
-  }
-  if (std::filesystem::path(c.scene.scene).stem().string().rfind("cornell_box", 0) == 0) return Camera::cornell_box();
-  Vec3 lo = patches.points[0], hi = patches.points[0];
-  for (const Vec3& p : patches.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Vec3 center = 0.5 * (lo + hi);
-  const double radius = 0.5 * (hi - lo).norm();
-  Camera cam;
-  cam.vfov = 40.0 * kPi / 180.0;
-  cam.position = center - Vec3(0, 0, radius / std::tan(0.5 * cam.vfov) + 0.5 * (hi - lo).z());
-  cam.direction = Vec3(0, 0, 1);
-  cam.up = Vec3(0, 1, 0);
-  return cam;
-}
 
 void write_image(const std::string& path, const RenderResult& r) {
   const std::string ext = std::filesystem::path(path).extension().string();
@@ -83,7 +58,7 @@ int run_pathtrace(const PathtraceCommand& command) {
   if (!light) integrator.kind = parse_integrator_kind(command.integrator);
 
   if (!command.image.empty()) {
-    const Camera camera = choose_camera(command, patches);
+    const Camera camera = scene_camera(command.scene.scene, patches, command.camera);
     RenderResult r;
     if (light) {
       LightTraceOptions o;
@@ -131,8 +106,11 @@ int run_pathtrace(const PathtraceCommand& command) {
     j["seconds"] = s.seconds;
     for (const auto& [key, value] : s.info) j["info"][key] = value;
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
-    if (s.var.size()) fields.push_back(rgb_field("var", s.var));
-    write_outputs(command.scene, patches, fields, summary);
+    if (s.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", s.var), "var"));  // CSV: var_*
+    VtpMetadata metadata = solution_metadata(s, patches);
+    metadata.set_text("integrator", command.integrator);
+    metadata.set_integer(light ? "particles_per_patch" : "spp", command.spp);
+    write_outputs(command.scene, patches, fields, summary, metadata);
   } else if (!command.scene.json.empty()) {
     summary.write(command.scene.json);
   }

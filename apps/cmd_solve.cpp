@@ -7,11 +7,13 @@
 #include "apps/options.h"
 #include "apps/pipeline.h"
 #include "apps/progressive_series.h"
+#include "apps/run_metadata.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
 #include "solve/problem.h"
+#include "solve/residual.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
 #include "walk/random_walk_solver.h"
@@ -170,7 +172,11 @@ int run_solve(const SolveCommand& command) {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
       if (!command.progressive.empty()) {
-        series.emplace(command.progressive, patches);
+        VtpMetadata m;
+        m.set_text("method", command.solver);
+        m.set_text("scene", command.scene.scene);
+        series.emplace(command.progressive, patches,
+                       [&problem](const PatchRgb& B) { return relative_residual(problem, B); }, m);
         o.on_iterate = [&](long iteration, const PatchRgb& B) { series->add(iteration, B); };
         // Southwell: a frame every tenth of a sweep's worth of shots (the series thins itself to 200 steps).
         o.iterate_every = std::max(1L, static_cast<long>(patches.size()) / 10);
@@ -213,9 +219,23 @@ int run_solve(const SolveCommand& command) {
     j["mean_B"] = {mean[0], mean[1], mean[2]};
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));
-    if (solution.var.size()) fields.push_back(rgb_field("var", solution.var));
-    if (solution.var_theory.size()) fields.push_back(rgb_field("var_theory", solution.var_theory));
-    write_outputs(command.scene, patches, fields, summary);
+    // ParaView names B_var, B_var_theory (`var` is reserved in its Calculator); the CSV keeps var_*, var_theory_*.
+    if (solution.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", solution.var), "var"));
+    if (solution.var_theory.size())
+      fields.push_back(with_csv_name(rgb_field("B_var_theory", solution.var_theory), "var_theory"));
+    VtpMetadata metadata = solution_metadata(solution, patches);
+    metadata.set_text("solver", command.solver);
+    if (command.solver == "random-walk") {
+      metadata.set_text("walk", command.walk);
+      metadata.set_text("estimator", command.estimator);
+      metadata.set_text("kernel", command.kernel);
+      metadata.set_text("survival", command.survival);
+      metadata.set_integer(command.walk == "gather" ? "walks_per_patch" : "particles", command.walks);
+    } else {
+      metadata.set_real("tol", command.tol);
+    }
+    if (command.refine > 0) metadata.set_real("refine_tol", command.refine);
+    write_outputs(command.scene, patches, fields, summary, metadata);
   } else if (!command.scene.json.empty()) {
     summary.write(command.scene.json);
   }

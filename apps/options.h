@@ -16,6 +16,7 @@ struct SceneOptions {
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE
+  std::string paraview_state;  // --paraview-state FILE.py: ParaView state for the .vtp
   std::vector<std::string> argv;  // the command line, for the JSON summary
 };
 

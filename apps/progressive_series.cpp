@@ -21,8 +21,15 @@ std::string step_name(std::size_t k) {
 
 }  // namespace
 
-ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches, std::size_t max_files)
-    : dir_(std::move(dir)), patches_(patches), patch_fields_(patch_fields(patches)), max_files_(std::max<std::size_t>(max_files, 2)) {
+ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
+                                     std::function<double(const PatchRgb&)> residual_of, VtpMetadata metadata,
+                                     std::size_t max_files)
+    : dir_(std::move(dir)),
+      patches_(patches),
+      patch_fields_(patch_fields(patches)),
+      residual_of_(std::move(residual_of)),
+      metadata_(std::move(metadata)),
+      max_files_(std::max<std::size_t>(max_files, 2)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
@@ -33,11 +40,19 @@ ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches, s
 }
 
 void ProgressiveSeries::write(long iteration, const PatchRgb& B) {
+  const double elapsed = clock_.seconds() - writing_seconds_;
+  Timer writing;
   std::vector<CellField> fields = patch_fields_;
   fields.push_back(rgb_field("B", B));
+  VtpMetadata step;
+  step.set_integer("iteration", iteration);
+  if (residual_of_) step.set_real("residual", residual_of_(B));
+  step.set_real("elapsed_seconds", elapsed);
+  step.merge(metadata_);
   const std::string file = (fs::path(dir_) / ("iterate_" + std::to_string(iteration) + ".vtp")).string();
-  write_vtp(file, patches_, fields);
+  write_vtp(file, patches_, fields, step);
   kept_.emplace_back(iteration, file);
+  writing_seconds_ += writing.seconds();
 }
 
 void ProgressiveSeries::add(long iteration, const PatchRgb& B) {

@@ -8,6 +8,7 @@
 #include <exception>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
@@ -54,6 +55,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   if (outputs) {
     cmd->add_option("--csv", o.csv, "Write per-patch results as CSV");
     cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)");
+    cmd->add_option("--paraview-state", o.paraview_state,
+                    "Write a ParaView state FILE.py that opens the .vtp coloured by B_srgb from the scene's camera");
   }
 }
 
@@ -241,6 +244,24 @@ int main(int argc, char** argv) {
   set_quiet(g_quiet);
   for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene})
     o->argv = args;
+  // --paraview-state: a Python state file, and only beside a .vtp.
+  for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
+                               std::pair{&solve.scene, solve.scene.vtp}, std::pair{&compare.scene, compare.scene.vtp},
+                               std::pair{&pt.scene, pt.scene.vtp}}) {
+    if (o->paraview_state.empty()) continue;
+    const bool py = o->paraview_state.size() > 3 && o->paraview_state.rfind(".py") == o->paraview_state.size() - 3;
+    const bool has_vtp = vtp.size() > 4 && vtp.rfind(".vtp") == vtp.size() - 4;
+    std::string problem;
+    if (!py)
+      problem = o->paraview_state + ": radwalk writes ParaView's Python state files: name it FILE.py (File > Load "
+                                    "State opens it)";
+    else if (!has_vtp)
+      problem = "--paraview-state needs a .vtp output (-o FILE.vtp, or --vtp for formfactors)";
+    if (!problem.empty()) {
+      std::fprintf(stderr, "radwalk: error: %s\n", problem.c_str());
+      return 2;
+    }
+  }
 
   try {
     if (*check_cmd) return run_check(check);
