@@ -6,6 +6,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/progressive_series.h"
 #include "apps/run_metadata.h"
 #include "apps/scene_camera.h"
 #include "core/atomic_write.h"
@@ -82,22 +83,35 @@ int run_pathtrace(const PathtraceCommand& command) {
     write_image(command.image, r);
   }
 
-  const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty();
+  const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty() ||
+                        !command.progressive.empty();
   if (averages) {
-    Solution s;
-    if (light) {
-      LightTraceOptions o;
-      o.particles = command.spp * static_cast<long>(patches.size());
-      o.seed = command.scene.seed;
-      s = light_trace_patches(patches, visibility, o);
-    } else {
+    // Patch averages from spp samples per patch (light tracing: spp x N particles).
+    const auto estimate = [&](long spp) {
+      if (light) {
+        LightTraceOptions o;
+        o.particles = spp * static_cast<long>(patches.size());
+        o.seed = command.scene.seed;
+        return light_trace_patches(patches, visibility, o);
+      }
       PatchAverageOptions o;
-      o.spp = command.spp;
+      o.spp = spp;
       o.seed = command.scene.seed;
       o.integrator = integrator;
-      s = estimate_patch_averages(patches, visibility, o);
-    }
+      return estimate_patch_averages(patches, visibility, o);
+    };
+    const Solution s = estimate(command.spp);
     summary.add_timing("patch averages", s.seconds);
+    if (!command.progressive.empty()) {
+      VtpMetadata m;
+      m.set_text("method", s.method);
+      m.set_text("scene", command.scene.scene);
+      const std::size_t steps =
+          write_convergence_series(command.progressive, "pathtrace.pvd", patches, command.spp, s, estimate, m);
+      const std::string pvd = command.progressive + "/pathtrace.pvd";
+      summary.json()["progressive"] = {{"pvd", pvd}, {"steps", steps}};
+      note("wrote " + pvd + " (" + std::to_string(steps) + " steps: the estimate after 1, 2, 4, ... batches)");
+    }
     std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     auto& j = summary.json()["solution"];
     j["method"] = s.method;

@@ -62,8 +62,10 @@ void check_combinations(const SolveCommand& c) {
       throw InputError("--refine estimates form factors for every refined mesh; it cannot use --form-factors");
     if (!c.progressive.empty()) throw InputError("--refine and --progressive cannot be combined");
   }
-  if (!c.progressive.empty() && c.solver != "jacobi" && c.solver != "gauss-seidel" && c.solver != "southwell")
-    throw InputError("--progressive needs --solver jacobi, gauss-seidel or southwell (got " + c.solver + ")");
+  if (!c.progressive.empty() && c.solver != "jacobi" && c.solver != "gauss-seidel" && c.solver != "southwell" &&
+      c.solver != "random-walk")
+    throw InputError("--progressive needs --solver jacobi, gauss-seidel, southwell or random-walk (got " + c.solver +
+                     ")");
 }
 
 // Adaptive patching (solve_adaptive): each step on stderr and in the JSON summary under "refine".
@@ -136,6 +138,28 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   return result;
 }
 
+// The random-walk solve; with --progressive also its convergence series (progressive_series.h).
+Solution run_walks(const SolveCommand& command, const RadiosityProblem& problem, const PatchSet& patches,
+                   const Visibility* visibility, RunSummary& summary) {
+  const auto walks = [&](long count) {
+    WalkOptions w = walk_options(command);
+    w.walks = count;
+    return solve_random_walk(problem, &patches, visibility, w);
+  };
+  Solution solution = walks(command.walks);
+  if (!command.progressive.empty()) {
+    VtpMetadata m;
+    m.set_text("method", solution.method);
+    m.set_text("scene", command.scene.scene);
+    const std::size_t steps =
+        write_convergence_series(command.progressive, "solve.pvd", patches, command.walks, solution, walks, m);
+    const std::string pvd = command.progressive + "/solve.pvd";
+    summary.json()["progressive"] = {{"pvd", pvd}, {"steps", steps}};
+    note("wrote " + pvd + " (" + std::to_string(steps) + " steps: the estimate after 1, 2, 4, ... batches)");
+  }
+  return solution;
+}
+
 }  // namespace
 
 int run_solve(const SolveCommand& command) {
@@ -161,13 +185,13 @@ int run_solve(const SolveCommand& command) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
     const EmbreeVisibility visibility(patches);
-    solution = solve_random_walk(problem, &patches, &visibility, walk_options(command));
+    solution = run_walks(command, problem, patches, &visibility, summary);
   } else {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     if (command.solver == "random-walk") {
-      solution = solve_random_walk(problem, &patches, nullptr, walk_options(command));
+      solution = run_walks(command, problem, patches, nullptr, summary);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;

@@ -187,8 +187,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   solve_cmd->add_option(
       "--progressive", solve.progressive,
-      "Write the iterates as DIR/step_NNNN.vtp and DIR/solve.pvd (time = iteration; at most 200 "
-      "steps) for ParaView; jacobi, gauss-seidel or southwell");
+      "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "
+      "southwell (time = iteration, at most 200 steps), or for random-walk the estimate and B_se after 1, 2, 4, "
+      "... batches of walks (time = walks; costs about one more run)");
 
   CompareCommand compare;
   auto* compare_cmd =
@@ -229,6 +230,9 @@ int main(int argc, char** argv) {
   pt_cmd->add_option("--height", pt.height, "Image height in pixels")
       ->check(kPositive)
       ->capture_default_str();
+  pt_cmd->add_option("--progressive", pt.progressive,
+                     "Write the patch averages after 1, 2, 4, ... batches of samples, with B_se, as "
+                     "DIR/step_NNNN.vtp + DIR/pathtrace.pvd (time = samples per patch) for ParaView");
   pt_cmd
       ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
       ->expected(10);
