@@ -102,16 +102,9 @@ int run_pathtrace(const PathtraceCommand& command) {
     };
     const Solution s = estimate(command.spp);
     summary.add_timing("patch averages", s.seconds);
-    if (!command.progressive.empty()) {
-      VtpMetadata m;
-      m.set_text("method", s.method);
-      m.set_text("scene", command.scene.scene);
-      const std::size_t steps =
-          write_convergence_series(command.progressive, "pathtrace.pvd", patches, command.spp, s, estimate, m);
-      const std::string pvd = command.progressive + "/pathtrace.pvd";
-      summary.json()["progressive"] = {{"pvd", pvd}, {"steps", steps}};
-      note("wrote " + pvd + " (" + std::to_string(steps) + " steps: the estimate after 1, 2, 4, ... batches)");
-    }
+    if (!command.progressive.empty())
+      write_convergence_series(command.progressive, "pathtrace.pvd", command.scene.scene, patches, command.spp, s,
+                               estimate, summary);
     std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     auto& j = summary.json()["solution"];
     j["method"] = s.method;

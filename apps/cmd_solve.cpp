@@ -147,16 +147,9 @@ Solution run_walks(const SolveCommand& command, const RadiosityProblem& problem,
     return solve_random_walk(problem, &patches, visibility, w);
   };
   Solution solution = walks(command.walks);
-  if (!command.progressive.empty()) {
-    VtpMetadata m;
-    m.set_text("method", solution.method);
-    m.set_text("scene", command.scene.scene);
-    const std::size_t steps =
-        write_convergence_series(command.progressive, "solve.pvd", patches, command.walks, solution, walks, m);
-    const std::string pvd = command.progressive + "/solve.pvd";
-    summary.json()["progressive"] = {{"pvd", pvd}, {"steps", steps}};
-    note("wrote " + pvd + " (" + std::to_string(steps) + " steps: the estimate after 1, 2, 4, ... batches)");
-  }
+  if (!command.progressive.empty())
+    write_convergence_series(command.progressive, "solve.pvd", command.scene.scene, patches, command.walks, solution,
+                             walks, summary);
   return solution;
 }
 

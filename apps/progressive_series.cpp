@@ -5,6 +5,7 @@
 #include <regex>
 #include <stdexcept>
 
+#include "apps/pipeline.h"
 #include "apps/run_metadata.h"
 #include "core/error.h"
 #include "io/cell_field.h"
@@ -112,9 +113,12 @@ std::vector<long> doubling_counts(long total, int max_doublings) {
   return counts;
 }
 
-std::size_t write_convergence_series(const std::string& dir, const std::string& pvd_name, const PatchSet& patches,
-                                     long total, const Solution& full,
-                                     const std::function<Solution(long count)>& run, const VtpMetadata& metadata) {
+void write_convergence_series(const std::string& dir, const std::string& pvd_name, const std::string& scene,
+                              const PatchSet& patches, long total, const Solution& full,
+                              const std::function<Solution(long count)>& run, RunSummary& summary) {
+  VtpMetadata metadata;
+  metadata.set_text("method", full.method);
+  metadata.set_text("scene", scene);
   ProgressiveSeries series(dir, patches, nullptr, metadata, 200, pvd_name);
   for (const long count : doubling_counts(total)) {
     const Solution s = count == total ? full : run(count);
@@ -122,7 +126,10 @@ std::size_t write_convergence_series(const std::string& dir, const std::string& 
     step.set_integer("count", count);
     series.add_estimate(count, s.B, s.B_se, step);
   }
-  return series.finish();
+  const std::size_t steps = series.finish();
+  summary.json()["progressive"] = {{"pvd", series.pvd_path()}, {"steps", steps}};
+  note("wrote " + series.pvd_path() + " (" + std::to_string(steps) +
+       " steps: the estimate after 1, 2, 4, ... batches)");
 }
 
 }  // namespace radwalk::app

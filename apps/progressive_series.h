@@ -23,6 +23,7 @@
 #include "core/solution.h"
 #include "core/timer.h"
 #include "io/cell_field.h"
+#include "io/run_summary.h"
 #include "io/vtp_metadata.h"
 #include "patch/patch_set.h"
 
@@ -72,10 +73,11 @@ std::vector<long> doubling_counts(long total, int max_doublings = 10);
 
 // The convergence series of a Monte Carlo run of `total` walks or samples per patch (or particles): one step per
 // doubling_counts(total), each the Solution of run(count) (the last one `full`, the run already made), written
-// with add_estimate and solution_metadata (walks, B_se_relative_rms, solve_seconds, ...) as the step's field data.
-// Costs about as much again as the full run. Returns the number of steps; the collection is DIR/pvd_name.
-std::size_t write_convergence_series(const std::string& dir, const std::string& pvd_name, const PatchSet& patches,
-                                     long total, const Solution& full,
-                                     const std::function<Solution(long count)>& run, const VtpMetadata& metadata);
+// with add_estimate and solution_metadata (walks, B_se_relative_rms, solve_seconds, ...) plus the method and scene
+// as the step's field data, into DIR/pvd_name. Costs about as much again as the full run. Records the series
+// under "progressive" in the summary and says so on stderr.
+void write_convergence_series(const std::string& dir, const std::string& pvd_name, const std::string& scene,
+                              const PatchSet& patches, long total, const Solution& full,
+                              const std::function<Solution(long count)>& run, RunSummary& summary);
 
 }  // namespace radwalk::app

@@ -17,7 +17,8 @@
 # Exit 77 (the test suite's "skipped") when the packages cannot be fetched (no apt, no network, unknown package).
 set -euo pipefail
 
-cache=${RADWALK_PARAVIEW_CACHE:-${XDG_CACHE_HOME:-$HOME/.cache}/radwalk/paraview}
+home=${HOME:-$(getent passwd "$(id -u)" 2>/dev/null | cut -d: -f6)}
+cache=${RADWALK_PARAVIEW_CACHE:-${XDG_CACHE_HOME:-${home:-/tmp}/.cache}/radwalk/paraview}
 root=$cache/root
 packages=(paraview python3-paraview libqt5svg5)
 

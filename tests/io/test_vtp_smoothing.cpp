@@ -30,6 +30,17 @@ void add_grid(PatchBuilder& b, const Vec3& origin, const Vec3& u, const Vec3& v,
     }
 }
 
+// Two unit-high quads side by side on z = 0 sharing the edge x = 1: [0, 1] and [1, 1 + width], welded.
+PatchSet side_by_side(double width) {
+  PatchBuilder b;
+  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, m);
+  b.add_quad({1, 0, 0}, {1 + width, 0, 0}, {1 + width, 1, 0}, {1, 1, 0}, m);
+  PatchSet p = b.build();
+  weld_points(p);
+  return p;
+}
+
 // Per-patch values written as the quantity "x"; returns the file read back.
 vtkSmartPointer<vtkPolyData> write_and_read(const PatchSet& p, const std::vector<double>& x, const std::string& name) {
   const auto path = temp_file(name);
@@ -52,12 +63,7 @@ std::vector<double> cell_point_values(vtkPolyData* poly, vtkIdType i) {
 }  // namespace
 
 TEST_CASE("point fields: a shared point within one plane carries the area-weighted average", "[io][vtp]") {
-  PatchBuilder b;
-  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
-  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, m);
-  b.add_quad({1, 0, 0}, {3, 0, 0}, {3, 1, 0}, {1, 1, 0}, m);
-  PatchSet p = b.build();
-  weld_points(p);
+  const PatchSet p = side_by_side(2);
   const auto poly = write_and_read(p, {1.0, 4.0}, "radwalk_smooth_shared.vtp");
   REQUIRE(poly->GetNumberOfPoints() == 6);  // one plane, one group: nothing split
   const auto v = cell_point_values(poly, 0);  // corners (0,0), (1,0), (1,1), (0,1)
@@ -106,13 +112,7 @@ TEST_CASE("point fields: a light set into a ceiling leaves no halo and keeps its
 }
 
 TEST_CASE("point fields: a T-junction from refinement is conforming, without cracks or spikes", "[io][vtp]") {
-  PatchBuilder b;
-  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
-  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, m);
-  b.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, m);
-  PatchSet coarse = b.build();
-  weld_points(coarse);
-  const PatchSet p = split_patches(coarse, {false, true});  // patch 0 now has the T-junction (1, 0.5) on its edge
+  const PatchSet p = split_patches(side_by_side(1), {false, true});  // patch 0 now has the T-junction (1, 0.5) on its edge
   REQUIRE(p.size() == 5);
   const std::vector<double> x = {1, 2, 3, 5, 8};
   const auto poly = write_and_read(p, x, "radwalk_smooth_t.vtp");
