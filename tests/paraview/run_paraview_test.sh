@@ -16,8 +16,9 @@ src=$2
 work=$3
 skip=77
 
-if ! "$src/scripts/pvpython.sh" --fetch; then
-  status=$?
+status=0
+"$src/scripts/pvpython.sh" --fetch || status=$?
+if [ "$status" -ne 0 ]; then
   [ "$status" -eq "$skip" ] && echo "SKIP: ParaView packages cannot be fetched here (see above)" >&2
   exit "$status"
 fi
