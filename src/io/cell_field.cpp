@@ -39,6 +39,23 @@ CellField with_csv_name(CellField f, const std::string& csv_name) {
   return f;
 }
 
+bool is_calculator_reserved(const std::string& name) {
+  static const char* const kCalculator[] = {
+      "var",   "if",  "else", "for",  "while", "repeat", "until", "switch", "case",  "default", "break", "continue",
+      "return", "and", "or",  "not",  "nand",  "nor",    "xor",   "xnor",   "in",    "like",    "ilike", "true",
+      "false", "null", "swap", "inf", "pi",    "epsilon", "ihat", "jhat",   "khat"};
+  static const char* const kPython[] = {"None",   "True",  "False",  "as",   "assert", "async",  "await", "class",
+                                        "def",    "del",   "elif",   "except", "finally", "from", "global", "import",
+                                        "is",     "lambda", "nonlocal", "pass", "raise",  "try",   "with",  "yield"};
+  std::string lower = name;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* w : kCalculator)
+    if (lower == w) return true;
+  for (const char* w : kPython)
+    if (name == w) return true;
+  return false;
+}
+
 std::string paraview_name(const std::string& name) {
   std::string out = name;
   for (char& ch : out)

@@ -43,7 +43,13 @@ CellField with_csv_name(CellField f, const std::string& csv_name);
 
 // `name` made usable in ParaView's Calculator and Python: every character other than a letter, digit or
 // underscore becomes an underscore ("mean_gather-absorption" -> "mean_gather_absorption"). Reserved words are
-// not renamed here: a field must not be called `var` (the commands call the per-walk variance B_var).
+// not renamed here: a field must not be one (the commands call the per-walk variance B_var, not var).
 std::string paraview_name(const std::string& name);
+
+// A word ParaView's Calculator (ExprTk) or Python reserves, compared without case where the Calculator ignores it:
+// var, if, else, for, while, repeat, until, switch, case, default, break, continue, return, and, or, not, nand,
+// nor, xor, xnor, in, like, ilike, true, false, null, swap, inf, pi, epsilon, iHat, jHat, kHat, and Python's
+// keywords (lambda, def, ...).
+bool is_calculator_reserved(const std::string& name);
 
 }  // namespace radwalk

@@ -26,7 +26,7 @@ namespace radwalk {
 namespace {
 
 void check_name(const std::string& name) {
-  if (name.empty() || paraview_name(name) != name || name == "var" ||
+  if (name.empty() || paraview_name(name) != name || is_calculator_reserved(name) ||
       std::isdigit(static_cast<unsigned char>(name[0])))
     throw std::logic_error("write_vtp: '" + name + "' is not a name ParaView's Calculator accepts");
 }

@@ -112,11 +112,15 @@ TEST_CASE("write_vtp: field data carry the run metadata with their types", "[io]
 
 TEST_CASE("write_vtp refuses names ParaView's Calculator cannot use", "[io][vtp]") {
   const PatchSet p = two_patches();
-  for (const std::string name : {"var", "mean_gather-absorption", "B se", "2B"}) {
+  for (const char* name : {"var", "VAR", "if", "pi", "lambda", "mean_gather-absorption", "B se", "2B"}) {
     INFO(name);
     CHECK_THROWS_AS(write_vtp(temp_file("radwalk_bad.vtp"), p, {scalar_field(name, {1.0, 2.0})}), std::logic_error);
   }
   CHECK(paraview_name("mean_gather-expected-value") == "mean_gather_expected_value");
+  for (const char* name : {"B", "E", "B_var", "rho", "patch", "mean_gather_absorption", "jump"}) {
+    INFO(name);
+    CHECK_FALSE(is_calculator_reserved(name));
+  }
   CHECK(with_csv_name(rgb_field("B_var", PatchRgb::Zero(2, 3)), "var").column_name() == "var");
 }
 
