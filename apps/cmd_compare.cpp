@@ -56,7 +56,9 @@ int run_compare(const CompareCommand& command) {
     note("wrote " + command.scene.csv);
   }
 
-  // VTK: per method, fields mean_<m>, var_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference.
+  // VTK: per method, fields mean_<m>, var_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference;
+  // <m> is the estimator's name with underscores for hyphens (ParaView's Calculator reads '-' as minus), the
+  // original names listed in the field data.
   std::vector<CellField> fields = {rgb_field("B_reference", reference.B)};
   const auto n = static_cast<Eigen::Index>(patches.size());
   std::map<std::string, std::array<PatchRgb, 4>> per_method;
@@ -69,12 +71,22 @@ int run_compare(const CompareCommand& command) {
     it->second[2](r.patch, r.channel) = r.var_theory;
     it->second[3](r.patch, r.channel) = r.z;
   }
+  VtpMetadata metadata;
+  std::string names, arrays;
   for (const auto& [method, a] : per_method) {
-    fields.push_back(rgb_field("mean_" + method, a[0]));
-    fields.push_back(rgb_field("var_" + method, a[1]));
-    fields.push_back(rgb_field("var_theory_" + method, a[2]));
-    fields.push_back(rgb_field("z_" + method, a[3]));
+    const std::string m = paraview_name(method);
+    fields.push_back(rgb_field("mean_" + m, a[0]));
+    fields.push_back(rgb_field("var_" + m, a[1]));
+    fields.push_back(rgb_field("var_theory_" + m, a[2]));
+    fields.push_back(rgb_field("z_" + m, a[3]));
+    names += (names.empty() ? "" : ",") + method;
+    arrays += (arrays.empty() ? "" : ",") + m;
   }
+  metadata.set_text("estimators", names);
+  metadata.set_text("estimator_array_names", arrays);
+  metadata.set_text("kernel", command.kernel);
+  metadata.set_integer("walks_per_patch", command.walks);
+  metadata.set_integer("runs", command.runs);
   for (const auto& s : result.summary) {
     auto& j = summary.json()["estimators"][s.method];
     j["runs"] = s.runs;
@@ -88,7 +100,7 @@ int run_compare(const CompareCommand& command) {
   }
   SceneOptions outputs = command.scene;
   outputs.csv.clear();  // the compare CSV is the long-format table written above
-  write_outputs(outputs, patches, fields, summary);
+  write_outputs(outputs, patches, fields, summary, metadata);
   return 0;
 }
 

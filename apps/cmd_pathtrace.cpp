@@ -6,6 +6,10 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/progressive_series.h"
+#include "apps/run_metadata.h"
+#include "apps/scene_camera.h"
+#include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
@@ -19,33 +23,6 @@
 
 namespace radwalk::app {
 namespace {
-
-// The camera: --camera if given; the Cornell box's own camera for a scene named cornell_box*; otherwise a view
-// of the bounding box from its -z side (40 degree vertical field of view).
-Camera choose_camera(const PathtraceCommand& c, const PatchSet& patches) {
-  if (c.camera.size() == 10) {
-    Camera cam;
-    cam.position = Vec3(c.camera[0], c.camera[1], c.camera[2]);
-    cam.direction = Vec3(c.camera[3], c.camera[4], c.camera[5]) - cam.position;
-    cam.up = Vec3(c.camera[6], c.camera[7], c.camera[8]);
-    cam.vfov = c.camera[9] * kPi / 180.0;
-    return cam;
-  }
-  if (std::filesystem::path(c.scene.scene).stem().string().rfind("cornell_box", 0) == 0) return Camera::cornell_box();
-  Vec3 lo = patches.points[0], hi = patches.points[0];
-  for (const Vec3& p : patches.points) {
-    lo = lo.cwiseMin(p);
-    hi = hi.cwiseMax(p);
-  }
-  const Vec3 center = 0.5 * (lo + hi);
-  const double radius = 0.5 * (hi - lo).norm();
-  Camera cam;
-  cam.vfov = 40.0 * kPi / 180.0;
-  cam.position = center - Vec3(0, 0, radius / std::tan(0.5 * cam.vfov) + 0.5 * (hi - lo).z());
-  cam.direction = Vec3(0, 0, 1);
-  cam.up = Vec3(0, 1, 0);
-  return cam;
-}
 
 // path ends in .png or .exr (checked with the command line: apps/output_files.h).
 void write_image(const std::string& path, const RenderResult& r) {
@@ -77,7 +54,7 @@ int run_pathtrace(const PathtraceCommand& command) {
   if (!light) integrator.kind = parse_integrator_kind(command.integrator);
 
   if (!command.image.empty()) {
-    const Camera camera = choose_camera(command, patches);
+    const Camera camera = scene_camera(command.scene.scene, patches, command.camera);
     RenderResult r;
     if (light) {
       LightTraceOptions o;
@@ -101,27 +78,36 @@ int run_pathtrace(const PathtraceCommand& command) {
     write_image(command.image, r);
   }
 
-  const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty();
+  const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty() ||
+                        !command.progressive.empty();
   if (averages) {
-    Solution s;
-    if (light) {
-      LightTraceOptions o;
-      o.particles = command.spp * static_cast<long>(patches.size());
-      o.seed = command.scene.seed;
-      s = light_trace_patches(patches, visibility, o);
-    } else {
+    // Patch averages from spp samples per patch (light tracing: spp x N particles).
+    const auto estimate = [&](long spp) {
+      if (light) {
+        LightTraceOptions o;
+        o.particles = spp * static_cast<long>(patches.size());
+        o.seed = command.scene.seed;
+        return light_trace_patches(patches, visibility, o);
+      }
       PatchAverageOptions o;
-      o.spp = command.spp;
+      o.spp = spp;
       o.seed = command.scene.seed;
       o.integrator = integrator;
-      s = estimate_patch_averages(patches, visibility, o);
-    }
+      return estimate_patch_averages(patches, visibility, o);
+    };
+    const Solution s = estimate(command.spp);
     summary.add_timing("patch_averages", s.seconds);
+    if (!command.progressive.empty())
+      write_convergence_series(command.progressive, "pathtrace.pvd", command.scene.scene, patches, command.spp, s,
+                               estimate, summary);
     std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     summary.json()["solution"] = solution_json(s);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
-    if (s.var.size()) fields.push_back(rgb_field("var", s.var));
-    write_outputs(command.scene, patches, fields, summary);
+    if (s.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", s.var), "var"));  // CSV: var_*
+    VtpMetadata metadata = solution_metadata(s, patches);
+    metadata.set_text("integrator", command.integrator);
+    metadata.set_integer(light ? "particles_per_patch" : "spp", command.spp);
+    write_outputs(command.scene, patches, fields, summary, metadata);
   } else if (!command.scene.json.empty()) {
     summary.write(command.scene.json);
   }

@@ -7,11 +7,13 @@
 #include "apps/options.h"
 #include "apps/pipeline.h"
 #include "apps/progressive_series.h"
+#include "apps/run_metadata.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
 #include "solve/problem.h"
+#include "solve/residual.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
 #include "walk/random_walk_solver.h"
@@ -60,8 +62,10 @@ void check_combinations(const SolveCommand& c) {
       throw InputError("--refine estimates form factors for every refined mesh; it cannot use --form-factors");
     if (!c.progressive.empty()) throw InputError("--refine and --progressive cannot be combined");
   }
-  if (!c.progressive.empty() && c.solver != "jacobi" && c.solver != "gauss-seidel" && c.solver != "southwell")
-    throw InputError("--progressive needs --solver jacobi, gauss-seidel or southwell (got " + c.solver + ")");
+  if (!c.progressive.empty() && c.solver != "jacobi" && c.solver != "gauss-seidel" && c.solver != "southwell" &&
+      c.solver != "random-walk")
+    throw InputError("--progressive needs --solver jacobi, gauss-seidel, southwell or random-walk (got " + c.solver +
+                     ")");
 }
 
 // Adaptive patching (solve_adaptive): each step on stderr and in the JSON summary under "refine".
@@ -134,6 +138,21 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   return result;
 }
 
+// The random-walk solve; with --progressive also its convergence series (progressive_series.h).
+Solution run_walks(const SolveCommand& command, const RadiosityProblem& problem, const PatchSet& patches,
+                   const Visibility* visibility, RunSummary& summary) {
+  const auto walks = [&](long count) {
+    WalkOptions w = walk_options(command);
+    w.walks = count;
+    return solve_random_walk(problem, &patches, visibility, w);
+  };
+  Solution solution = walks(command.walks);
+  if (!command.progressive.empty())
+    write_convergence_series(command.progressive, "solve.pvd", command.scene.scene, patches, command.walks, solution,
+                             walks, summary);
+  return solution;
+}
+
 }  // namespace
 
 int run_solve(const SolveCommand& command) {
@@ -159,18 +178,22 @@ int run_solve(const SolveCommand& command) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
     const EmbreeVisibility visibility(patches);
-    solution = solve_random_walk(problem, &patches, &visibility, walk_options(command));
+    solution = run_walks(command, problem, patches, &visibility, summary);
   } else {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     if (command.solver == "random-walk") {
-      solution = solve_random_walk(problem, &patches, nullptr, walk_options(command));
+      solution = run_walks(command, problem, patches, nullptr, summary);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
       if (!command.progressive.empty()) {
-        series.emplace(command.progressive, patches);
+        VtpMetadata m;
+        m.set_text("method", command.solver);
+        m.set_text("scene", command.scene.scene);
+        series.emplace(command.progressive, patches,
+                       [&problem](const PatchRgb& B) { return relative_residual(problem, B); }, m);
         o.on_iterate = [&](long iteration, const PatchRgb& B) { series->add(iteration, B); };
         // Southwell: a frame every tenth of a sweep's worth of shots (the series thins itself to 200 steps).
         o.iterate_every = std::max(1L, static_cast<long>(patches.size()) / 10);
@@ -204,9 +227,23 @@ int run_solve(const SolveCommand& command) {
     j["mean_B"] = {mean[0], mean[1], mean[2]};
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));
-    if (solution.var.size()) fields.push_back(rgb_field("var", solution.var));
-    if (solution.var_theory.size()) fields.push_back(rgb_field("var_theory", solution.var_theory));
-    write_outputs(command.scene, patches, fields, summary);
+    // ParaView names B_var, B_var_theory (`var` is reserved in its Calculator); the CSV keeps var_*, var_theory_*.
+    if (solution.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", solution.var), "var"));
+    if (solution.var_theory.size())
+      fields.push_back(with_csv_name(rgb_field("B_var_theory", solution.var_theory), "var_theory"));
+    VtpMetadata metadata = solution_metadata(solution, patches);
+    metadata.set_text("solver", command.solver);
+    if (command.solver == "random-walk") {
+      metadata.set_text("walk", command.walk);
+      metadata.set_text("estimator", command.estimator);
+      metadata.set_text("kernel", command.kernel);
+      metadata.set_text("survival", command.survival);
+      metadata.set_integer(command.walk == "gather" ? "walks_per_patch" : "particles", command.walks);
+    } else {
+      metadata.set_real("tol", command.tol);
+    }
+    if (command.refine > 0) metadata.set_real("refine_tol", command.refine);
+    write_outputs(command.scene, patches, fields, summary, metadata);
   } else if (!command.scene.json.empty()) {
     summary.write(command.scene.json);
   }

@@ -17,6 +17,7 @@ struct SceneOptions {
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE
+  std::string paraview_state;  // --paraview-state FILE.py: ParaView state for the .vtp
   std::vector<std::string> argv;  // the command line, for the JSON summary
   std::vector<std::string> warnings;  // printed while reading the command line (ignored options), for the summary
 };
@@ -63,7 +64,8 @@ struct SolveCommand {
   long max_patches = 20000;
   double refine_floor = 1;  // floor of the relative difference, as a fraction of the mean irradiance
   double refine_noise = 0;  // differences within this many form-factor standard errors do not split (0: off)
-  // --progressive DIR: ParaView series of the iterates (iterative solvers)
+  // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
+  // batches of walks (random-walk)
   std::string progressive;
 };
 
@@ -83,6 +85,7 @@ struct PathtraceCommand {
   std::string image;
   int width = 256, height = 256;
   std::vector<double> camera;  // px py pz tx ty tz ux uy uz fov_deg (empty: the scene's default)
+  std::string progressive;     // --progressive DIR: convergence series of the patch averages
 };
 
 int run_check(const SceneOptions& options);

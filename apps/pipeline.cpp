@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include "apps/run_metadata.h"
+#include "apps/scene_camera.h"
+#include "io/paraview_state.h"
+
 #include <cstdio>
 #include <filesystem>
 
@@ -133,22 +137,31 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
   if (!ff.rays.empty()) {
     std::vector<double> rays(ff.rays.begin(), ff.rays.end()), escaped(ff.escaped.begin(), ff.escaped.end()),
         back(ff.back_hits.begin(), ff.back_hits.end());
-    fields.push_back(scalar_field("rays", rays));
-    fields.push_back(scalar_field("escaped", escaped));
-    fields.push_back(scalar_field("back_hits", back));
+    fields.push_back(scalar_field("rays", rays, FieldKind::count));
+    fields.push_back(scalar_field("escaped", escaped, FieldKind::count));
+    fields.push_back(scalar_field("back_hits", back, FieldKind::count));
     fields.push_back(scalar_field("row_std_error", d.row_std_error));
   }
   return fields;
 }
 
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
-                   RunSummary& summary) {
+                   RunSummary& summary, const VtpMetadata& metadata) {
   Timer timer;
   if (!options.vtp.empty()) {
     std::vector<CellField> all = patch_fields(patches);
     all.insert(all.end(), fields.begin(), fields.end());
-    write_vtp(options.vtp, patches, all);
+    VtpMetadata m = run_metadata(options, summary);
+    m.merge(metadata);
+    write_vtp(options.vtp, patches, all, m);
     note("wrote " + options.vtp);
+    if (!options.paraview_state.empty()) {
+      const Camera camera = scene_camera(options.scene, patches);
+      const ViewPoint view{camera.position, camera_focal_point(camera, patches), camera.up,
+                           camera.vfov * 180.0 / kPi};
+      write_paraview_state(options.paraview_state, options.vtp, view);
+      note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
+    }
   }
   if (!options.csv.empty()) {
     write_patch_csv(options.csv, patches, fields);

@@ -7,6 +7,7 @@
 #include "apps/options.h"
 #include "formfactor/form_factors.h"
 #include "io/cell_field.h"
+#include "io/vtp_metadata.h"
 #include "io/run_summary.h"
 #include "mesh/mesh.h"
 #include "patch/patch_set.h"
@@ -32,9 +33,11 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 
 // Writes -o FILE.vtp, --csv and --json where asked, timing the stage "write". `fields` are the command's own
 // per-patch results; both files also carry the patch description (patch_fields: patch, face, area, normal, rho,
-// E), which the CSV writes as its fixed leading columns.
+// E), which the CSV writes as its fixed leading columns. The .vtp's field data are run_metadata (run_metadata.h)
+// and then `metadata` (the command's own: method, walks, spp, ...); --paraview-state FILE.py writes a ParaView
+// state for the .vtp from the scene's camera (scene_camera.h).
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
-                   RunSummary& summary);
+                   RunSummary& summary, const VtpMetadata& metadata = {});
 
 // Prints "radwalk: warning: ..." and records it in the summary.
 void warn(RunSummary& summary, const std::string& message);

@@ -3,7 +3,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <regex>
+#include <stdexcept>
 
+#include "apps/pipeline.h"
+#include "apps/run_metadata.h"
 #include "core/error.h"
 #include "io/cell_field.h"
 #include "io/vtp_writer.h"
@@ -21,23 +24,51 @@ std::string step_name(std::size_t k) {
 
 }  // namespace
 
-ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches, std::size_t max_files)
-    : dir_(std::move(dir)), patches_(patches), patch_fields_(patch_fields(patches)), max_files_(std::max<std::size_t>(max_files, 2)) {
+ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
+                                     std::function<double(const PatchRgb&)> residual_of, VtpMetadata metadata,
+                                     std::size_t max_files, const std::string& pvd_name)
+    : dir_(std::move(dir)),
+      patches_(patches),
+      patch_fields_(patch_fields(patches)),
+      residual_of_(std::move(residual_of)),
+      metadata_(std::move(metadata)),
+      max_files_(std::max<std::size_t>(max_files, 2)) {
   std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
   const std::regex stale("step_[0-9]{4,}\\.vtp");
   for (const auto& entry : fs::directory_iterator(dir_))
     if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
-  pvd_ = (fs::path(dir_) / "solve.pvd").string();
+  pvd_ = (fs::path(dir_) / pvd_name).string();
 }
 
 void ProgressiveSeries::write(long iteration, const PatchRgb& B) {
-  std::vector<CellField> fields = patch_fields_;
-  fields.push_back(rgb_field("B", B));
-  const std::string file = (fs::path(dir_) / ("iterate_" + std::to_string(iteration) + ".vtp")).string();
-  write_vtp(file, patches_, fields);
-  kept_.emplace_back(iteration, file);
+  const double elapsed = clock_.seconds() - writing_seconds_;
+  Timer writing;
+  VtpMetadata step;
+  step.set_integer("iteration", iteration);
+  if (residual_of_) step.set_real("residual", residual_of_(B));
+  step.set_real("elapsed_seconds", elapsed);
+  writing_seconds_ += writing.seconds();
+  write_file(iteration, {rgb_field("B", B)}, std::move(step));
+}
+
+void ProgressiveSeries::write_file(long time, std::vector<CellField> fields, VtpMetadata step) {
+  Timer writing;
+  std::vector<CellField> all = patch_fields_;
+  all.insert(all.end(), fields.begin(), fields.end());
+  step.merge(metadata_);
+  const std::string file = (fs::path(dir_) / ("iterate_" + std::to_string(time) + ".vtp")).string();
+  write_vtp(file, patches_, all, step);
+  kept_.emplace_back(time, file);
+  writing_seconds_ += writing.seconds();
+}
+
+void ProgressiveSeries::add_estimate(long count, const PatchRgb& B, const PatchRgb& B_se, const VtpMetadata& step) {
+  if (!kept_.empty() && count <= kept_.back().first)
+    throw std::logic_error("ProgressiveSeries::add_estimate: counts must increase");
+  write_file(count, {rgb_field("B", B), rgb_field("B_se", B_se)}, step);
+  last_iteration_ = count;
 }
 
 void ProgressiveSeries::add(long iteration, const PatchRgb& B) {
@@ -59,7 +90,7 @@ void ProgressiveSeries::add(long iteration, const PatchRgb& B) {
 }
 
 std::size_t ProgressiveSeries::finish() {
-  if (last_iteration_ >= 0 && (kept_.empty() || kept_.back().first != last_iteration_))
+  if (last_iteration_ >= 0 && (kept_.empty() || kept_.back().first != last_iteration_) && last_B_.rows() > 0)
     write(last_iteration_, last_B_);
   std::vector<std::pair<double, std::string>> steps;
   for (std::size_t k = 0; k < kept_.size(); ++k) {
@@ -68,6 +99,37 @@ std::size_t ProgressiveSeries::finish() {
   }
   write_pvd(pvd_, steps);
   return steps.size();
+}
+
+std::vector<long> doubling_counts(long total, int max_doublings) {
+  std::vector<long> counts;
+  if (total <= 0) return counts;
+  int K = 0;
+  while (K < max_doublings && (2L << K) <= total) ++K;
+  for (int k = K; k >= 0; --k) {
+    const long n = (total + (1L << k) - 1) >> k;
+    if ((n >= 2 || n == total) && (counts.empty() || n > counts.back())) counts.push_back(n);
+  }
+  return counts;
+}
+
+void write_convergence_series(const std::string& dir, const std::string& pvd_name, const std::string& scene,
+                              const PatchSet& patches, long total, const Solution& full,
+                              const std::function<Solution(long count)>& run, RunSummary& summary) {
+  VtpMetadata metadata;
+  metadata.set_text("method", full.method);
+  metadata.set_text("scene", scene);
+  ProgressiveSeries series(dir, patches, nullptr, metadata, 200, pvd_name);
+  for (const long count : doubling_counts(total)) {
+    const Solution s = count == total ? full : run(count);
+    VtpMetadata step = solution_metadata(s, patches);
+    step.set_integer("count", count);
+    series.add_estimate(count, s.B, s.B_se, step);
+  }
+  const std::size_t steps = series.finish();
+  summary.json()["progressive"] = {{"pvd", series.pvd_path()}, {"steps", steps}};
+  note("wrote " + series.pvd_path() + " (" + std::to_string(steps) +
+       " steps: the estimate after 1, 2, 4, ... batches)");
 }
 
 }  // namespace radwalk::app

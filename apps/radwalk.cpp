@@ -12,6 +12,7 @@
 #include <exception>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "apps/command_line.h"
 #include "apps/ignored_options.h"
@@ -132,6 +133,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
     cmd->add_option("--csv", o.csv, "Write per-patch results as CSV")->check(output_file(OutputFile::csv));
     cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)")
         ->check(output_file(OutputFile::json));
+    cmd->add_option("--paraview-state", o.paraview_state,
+                    "Write a ParaView state FILE.py that opens the .vtp coloured by B_srgb from the scene's camera");
   }
 }
 
@@ -265,8 +268,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   solve_cmd->add_option(
       "--progressive", solve.progressive,
-      "Write the iterates as DIR/step_NNNN.vtp and DIR/solve.pvd (time = iteration; at most 200 "
-      "steps) for ParaView; jacobi, gauss-seidel or southwell");
+      "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "
+      "southwell (time = iteration, at most 200 steps), or for random-walk the estimate and B_se after 1, 2, 4, "
+      "... batches of walks (time = walks; costs about one more run)");
 
   CompareCommand compare;
   auto* compare_cmd =
@@ -310,6 +314,9 @@ int main(int argc, char** argv) {
   pt_cmd->add_option("--height", pt.height, "Image height in pixels")
       ->check(kPositive)
       ->capture_default_str();
+  pt_cmd->add_option("--progressive", pt.progressive,
+                     "Write the patch averages after 1, 2, 4, ... batches of samples, with B_se, as "
+                     "DIR/step_NNNN.vtp + DIR/pathtrace.pvd (time = samples per patch) for ParaView");
   pt_cmd
       ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
       ->expected(10);
@@ -327,6 +334,24 @@ int main(int argc, char** argv) {
   set_quiet(g_quiet);
   for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene})
     o->argv = args;
+  // --paraview-state: a Python state file, and only beside a .vtp.
+  for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
+                               std::pair{&solve.scene, solve.scene.vtp}, std::pair{&compare.scene, compare.scene.vtp},
+                               std::pair{&pt.scene, pt.scene.vtp}}) {
+    if (o->paraview_state.empty()) continue;
+    const bool py = o->paraview_state.size() > 3 && o->paraview_state.rfind(".py") == o->paraview_state.size() - 3;
+    const bool has_vtp = vtp.size() > 4 && vtp.rfind(".vtp") == vtp.size() - 4;
+    std::string problem;
+    if (!py)
+      problem = o->paraview_state + ": radwalk writes ParaView's Python state files: name it FILE.py (File > Load "
+                                    "State opens it)";
+    else if (!has_vtp)
+      problem = "--paraview-state needs a .vtp output (-o FILE.vtp, or --vtp for formfactors)";
+    if (!problem.empty()) {
+      std::fprintf(stderr, "radwalk: error: %s\n", problem.c_str());
+      return 2;
+    }
+  }
 
   try {
     if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);

@@ -1,90 +1,157 @@
 #!/usr/bin/env pvpython
-"""Render a radwalk result (.vtp, cell field B as RGB) to PNG with ParaView, from a fixed viewpoint.
+"""Render a radwalk result (.vtp, or one step of a .pvd series) to PNG with ParaView, in true colours.
 
-How to run it (NOT in the radwalk build environment): Debian 12's ParaView Python (python3-paraview) conflicts
-with VTK's Python (python3-vtk9, which radwalk's scripts/render_vtp.py uses): the two packages cannot be
-installed together. Use a separate machine or container with ParaView, e.g.
+Run it with ParaView's pvpython under an X server; scripts/pvpython.sh fetches Debian 12's ParaView beside the
+system VTK (it never installs it) and runs the unpacked pvpython:
 
-    docker run --rm -it -v "$PWD":/w -w /w debian:12 bash
-    apt-get update && apt-get install -y paraview xvfb
-    xvfb-run -a pvpython scripts/paraview_render.py results/cornell_box.vtp cornell_paraview.png
+    xvfb-run -a -s "-screen 0 1024x768x24" scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
+    xvfb-run -a -s "-screen 0 1024x768x24" scripts/pvpython.sh scripts/paraview_render.py series/solve.pvd s.png --step 3
 
-(or any ParaView 5.x binary release: `pvpython --force-offscreen-rendering scripts/paraview_render.py ...`).
-This script has not been run in radwalk's CI or build environment (no ParaView there);
-scripts/render_vtp.py (VTK only) is the tested alternative and renders the same view.
+(any other pvpython works too). tests/paraview/ runs it in CTest and compares the image with the path tracer's.
 
-What it shows: the cell field B (radiosity, W/m^2) mapped to display colours like render_vtp.py: radiance B/pi,
-scaled by --exposure, clamped to [0, 1] and gamma-encoded (1/2.2, ParaView's Calculator has no sRGB curve; within
-1 % of sRGB above 0.01), shown directly as RGB (no colour map, no lighting). With
---smooth the point field B (area-weighted averages at the corners) is used instead.
+Colours: the display array B_srgb that radwalk writes (sRGB of the radiance B/pi, clamped, exposure 1: the
+mapping of `radwalk pathtrace --image x.png`) shown with Map Scalars off, no lighting. With --exposure other than
+1, or for a file without B_srgb, the same mapping is computed from B by ParaView's Calculator (exact sRGB:
+12.92 c below 0.0031308, 1.055 c^(1/2.4) - 0.055 above). --smooth uses the point fields (per smoothing group,
+see README) instead of the cell fields. A file without the field B is refused with a message.
 
-Viewpoint: the Cornell box's camera (position (278, 273, -800), looking at (278, 273, 0), up +y, 39.3 degree
-field of view) for scenes in millimetres near that box; otherwise looking along +z at the bounding box from the
-front (-z), fitted to the data. --camera px py pz tx ty tz ux uy uz fov overrides it.
+Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the Cornell box's own camera (position
+(278, 273, -800), looking along +z, 39.3 degree vertical field of view) when the file's field data name a scene
+cornell_box* (or, without field data, for data in millimetres the size of that box); otherwise a view of the
+bounding box from its -z side with a 40 degree field of view, as `radwalk pathtrace` chooses. ParaView resets the
+camera on the first render, so the camera is set after it. Background: --background (default black), applied
+with UseColorPaletteForBackground = 0 (ParaView ignores Background otherwise).
 """
 import argparse
 import math
+import os
 import sys
 
 from paraview import simple as pv  # noqa: E402  (pvpython only)
 
+CORNELL = [278, 273, -800, 278, 273, 0, 0, 1, 0, 2 * math.degrees(math.atan(0.0125 / 0.035))]
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("vtp")
-    p.add_argument("png")
-    p.add_argument("--width", type=int, default=800)
-    p.add_argument("--height", type=int, default=800)
-    p.add_argument("--exposure", type=float, default=1.0, help="multiplies the radiance B/pi before sRGB")
-    p.add_argument("--smooth", action="store_true", help="use the point field B (smooth shading)")
-    p.add_argument("--camera", type=float, nargs=10, metavar="V",
-                   help="px py pz tx ty tz ux uy uz fov_deg")
-    a = p.parse_args()
 
-    reader = pv.XMLPolyDataReader(FileName=[a.vtp])
+def srgb_expression(array, component, k):
+    """Calculator expression: exact sRGB of clamp(k * array_component, 0, 1)."""
+    c = f"min(max({k!r}*{array}_{component},0),1)"
+    return f"if({c}<=0.0031308,12.92*{c},1.055*{c}^(1/2.4)-0.055)"
+
+
+def open_data(path, step=None):
+    """(reader, time or None) for a .vtp, or for step `step` (index; default the last) of a .pvd."""
+    if path.endswith(".pvd"):
+        reader = pv.PVDReader(FileName=path)
+        times = list(reader.TimestepValues) if reader.TimestepValues else [0.0]
+        if isinstance(reader.TimestepValues, float):
+            times = [reader.TimestepValues]
+        index = len(times) - 1 if step is None else step
+        if not -len(times) <= index < len(times):
+            sys.exit(f"{path}: has {len(times)} steps; --step {step} is out of range")
+        t = times[index]
+        reader.UpdatePipeline(t)
+        return reader, t
+    reader = pv.XMLPolyDataReader(FileName=[path])
     reader.UpdatePipeline()
-    association = "POINTS" if a.smooth else "CELLS"
-    data = reader.PointData if a.smooth else reader.CellData
-    if "B" not in data.keys():
-        sys.exit(f"{a.vtp}: no {'point' if a.smooth else 'cell'} field B (write it with 'radwalk solve -o')")
+    return reader, None
 
-    # Display colour per cell (or point): sRGB(exposure * B / pi), as a 3-component array shown without a map.
-    calc = pv.Calculator(Input=reader)
-    calc.AttributeType = "Point Data" if a.smooth else "Cell Data"
-    calc.ResultArrayName = "display_rgb"
-    k = a.exposure / math.pi
-    # Calculator has no sRGB; a gamma 1/2.2 curve is within 1 % of it above 0.01 and is applied per component.
-    calc.Function = (f"iHat*(min(max({k}*B_X,0),1)^(1/2.2)) + jHat*(min(max({k}*B_Y,0),1)^(1/2.2)) + "
-                     f"kHat*(min(max({k}*B_Z,0),1)^(1/2.2))")
+
+def field_data_text(reader, name):
+    info = reader.GetFieldDataInformation()
+    if name not in info.keys():
+        return None
+    from paraview import servermanager
+    data = servermanager.Fetch(reader)
+    if data.IsA("vtkMultiBlockDataSet"):
+        data = data.GetBlock(0)
+    a = data.GetFieldData().GetAbstractArray(name)
+    return a.GetVariantValue(0).ToString() if a is not None else None
+
+
+def default_camera(reader):
+    b = reader.GetDataInformation().GetBounds()
+    scene = field_data_text(reader, "scene")
+    if scene is not None:
+        cornell = os.path.basename(scene).startswith("cornell_box")
+    else:
+        cornell = b[1] - b[0] > 400 and b[1] < 700
+    if cornell:
+        return CORNELL
+    lo, hi = [b[0], b[2], b[4]], [b[1], b[3], b[5]]
+    c = [(lo[d] + hi[d]) / 2 for d in range(3)]
+    radius = 0.5 * math.dist(lo, hi)
+    z = c[2] - (radius / math.tan(math.radians(20)) + 0.5 * (hi[2] - lo[2]))
+    return [c[0], c[1], z, c[0], c[1], c[2], 0, 1, 0, 40]
+
+
+def render(path, png, width=512, height=512, exposure=1.0, smooth=False, camera=None, background=(0, 0, 0),
+           step=None):
+    """Renders `path` to `png`; returns the camera used (10 numbers)."""
+    reader, t = open_data(path, step)
+    association = "POINTS" if smooth else "CELLS"
+    data = reader.PointData if smooth else reader.CellData
+    if "B" not in data.keys():
+        sys.exit(f"{path}: no {'point' if smooth else 'cell'} field B to render (arrays: {', '.join(data.keys())}); "
+                 "B is written by 'radwalk solve -o', 'radwalk pathtrace -o' and --progressive series")
+    source, colour = reader, "B_srgb"
+    if exposure != 1.0 or "B_srgb" not in data.keys():
+        calc = pv.Calculator(Input=reader)
+        calc.AttributeType = "Point Data" if smooth else "Cell Data"
+        calc.ResultArrayName = "display_srgb"
+        k = exposure / math.pi
+        # Component variables follow the array's component names (R, G, B in radwalk's files; X, Y, Z in old ones).
+        names = [data["B"].GetComponentName(c) or "XYZ"[c] for c in range(3)]
+        if any(n in ("", None) or not n.isidentifier() for n in names):
+            names = ["X", "Y", "Z"]
+        calc.Function = " + ".join(f"{v}*({srgb_expression('B', n, k)})"
+                                   for v, n in zip(("iHat", "jHat", "kHat"), names))
+        source, colour = calc, "display_srgb"
 
     view = pv.CreateView("RenderView")
-    view.ViewSize = [a.width, a.height]
-    view.Background = [0, 0, 0]
+    view.ViewSize = [width, height]
     view.OrientationAxesVisibility = 0
-    display = pv.Show(calc, view)
-    pv.ColorBy(display, (association, "display_rgb"))
+    view.UseColorPaletteForBackground = 0
+    view.Background = list(background)
+    if t is not None:
+        view.ViewTime = t
+    display = pv.Show(source, view)
+    pv.ColorBy(display, (association, colour))
     display.MapScalars = 0  # the array is the colour itself
     display.Ambient = 1.0
     display.Diffuse = 0.0
+    display.Specular = 0.0
+    display.SetScalarBarVisibility(view, False)
+    if smooth:
+        display.Interpolation = "Gouraud"
 
-    bounds = reader.GetDataInformation().GetBounds()
-    camera = view.GetActiveCamera()
-    if a.camera:
-        c = a.camera
-    elif bounds[1] - bounds[0] > 400 and bounds[1] < 700:  # the Cornell box (mm)
-        c = [278, 273, -800, 278, 273, 0, 0, 1, 0, 39.3]
-    else:
-        cx, cy, cz = ((bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, (bounds[4] + bounds[5]) / 2)
-        size = max(bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4])
-        c = [cx, cy, bounds[4] - 2.0 * size, cx, cy, cz, 0, 1, 0, 40]
-    camera.SetPosition(c[0], c[1], c[2])
-    camera.SetFocalPoint(c[3], c[4], c[5])
-    camera.SetViewUp(c[6], c[7], c[8])
-    camera.SetViewAngle(c[9])
+    c = list(camera) if camera else default_camera(reader)
+    pv.Render(view)  # the first render resets the camera; set ours after it
+    view.CameraPosition = c[0:3]
+    view.CameraFocalPoint = c[3:6]
+    view.CameraViewUp = c[6:9]
+    view.CameraViewAngle = c[9]
     view.CameraParallelProjection = 0
-
     pv.Render(view)
-    pv.SaveScreenshot(a.png, view, ImageResolution=[a.width, a.height])
+    pv.SaveScreenshot(png, view, ImageResolution=[width, height], TransparentBackground=0)
+    pv.Delete(view)
+    return c
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("data", help=".vtp, or .pvd (a series)")
+    p.add_argument("png")
+    p.add_argument("--width", type=int, default=512)
+    p.add_argument("--height", type=int, default=512)
+    p.add_argument("--exposure", type=float, default=1.0, help="multiplies the radiance B/pi before sRGB")
+    p.add_argument("--smooth", action="store_true", help="use the point fields (smooth shading)")
+    p.add_argument("--step", type=int, help=".pvd: step index to render (default: the last; -1 is the last)")
+    p.add_argument("--camera", type=float, nargs=10, metavar="V", help="px py pz tx ty tz ux uy uz fov_deg")
+    p.add_argument("--background", type=float, nargs=3, default=[0, 0, 0], metavar="C", help="RGB in [0, 1]")
+    a = p.parse_args()
+    if not os.path.exists(a.data):
+        sys.exit(f"{a.data}: no such file")
+    render(a.data, a.png, a.width, a.height, a.exposure, a.smooth, a.camera, a.background, a.step)
     print(f"wrote {a.png}")
 
 

@@ -68,9 +68,8 @@ def map_to_cells(polygons, face, B, cell_face, cell_centroid):
         q = cell_centroid[cells]
         for k in patches:
             P = polygons[k]
-            n = np.cross(P[1] - P[0], P[2] - P[0])
-            if len(P) == 4:
-                n = n + np.cross(P[2] - P[0], P[3] - P[0])
+            # Newell's normal: polygons may list T-junction points on their edges (collinear corners).
+            n = sum(np.cross(P[a], P[(a + 1) % len(P)]) for a in range(len(P)))
             size = np.linalg.norm(P - P.mean(axis=0), axis=1).max()
             inside = np.ones(len(q), dtype=bool)
             for a in range(len(P)):

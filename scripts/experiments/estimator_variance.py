@@ -10,8 +10,8 @@ variance) on scenes chosen to show each regime:
   bright_emitters  scenes/cube_bright_emitters.obj (two adjacent emitters with rho = 0.9 see each other):
                    absorption pays for the emitters' reflection, collision wins
   cornell          meshes/cornell_box.obj --max-edge 200 (109 patches; small light)
-Writes OUT/<scene>.csv, OUT/<scene>.vtp (ParaView: per-patch var and var_theory per estimator), OUT/ratios.csv,
-OUT/checks.csv and OUT/variance_scatter.png, OUT/efficiency_ratios.png."""
+Writes OUT/<scene>.csv, OUT/<scene>.vtp (ParaView: per-patch var_<estimator> and var_theory_<estimator>, with
+underscores for hyphens), OUT/ratios.csv, OUT/checks.csv and OUT/variance_scatter.png, OUT/efficiency_ratios.png."""
 
 import math
 import os

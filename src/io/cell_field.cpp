@@ -1,11 +1,14 @@
 #include "io/cell_field.h"
 
+#include <cctype>
+
 namespace radwalk {
 
 std::vector<CellField> patch_fields(const PatchSet& patches) {
   const std::size_t n = patches.size();
-  CellField patch{"patch", 1, {}}, face{"face", 1, {}}, area{"area", 1, {}};
-  CellField normal{"normal", 3, {}}, rho{"rho", 3, {}}, E{"E", 3, {}};
+  CellField patch{"patch", 1, {}, FieldKind::count, {}}, face{"face", 1, {}, FieldKind::count, {}};
+  CellField area{"area", 1, {}, FieldKind::geometry, {}}, normal{"normal", 3, {}, FieldKind::geometry, {}};
+  CellField rho{"rho", 3, {}, FieldKind::quantity, {}}, E{"E", 3, {}, FieldKind::quantity, {}};
   for (std::size_t i = 0; i < n; ++i) {
     patch.values.push_back(static_cast<double>(i));
     face.values.push_back(patches.face[i]);
@@ -19,16 +22,45 @@ std::vector<CellField> patch_fields(const PatchSet& patches) {
   return {patch, face, area, normal, rho, E};
 }
 
-CellField scalar_field(const std::string& name, const std::vector<double>& values) {
-  return CellField{name, 1, values};
+CellField scalar_field(const std::string& name, const std::vector<double>& values, FieldKind kind) {
+  return CellField{name, 1, values, kind, {}};
 }
 
 CellField rgb_field(const std::string& name, const PatchRgb& values) {
-  CellField f{name, 3, {}};
+  CellField f{name, 3, {}, FieldKind::quantity, {}};
   f.values.reserve(static_cast<std::size_t>(values.rows()) * 3);
   for (Eigen::Index i = 0; i < values.rows(); ++i)
     for (int c = 0; c < 3; ++c) f.values.push_back(values(i, c));
   return f;
+}
+
+CellField with_csv_name(CellField f, const std::string& csv_name) {
+  f.csv_name = csv_name;
+  return f;
+}
+
+bool is_calculator_reserved(const std::string& name) {
+  static const char* const kCalculator[] = {
+      "var",   "if",  "else", "for",  "while", "repeat", "until", "switch", "case",  "default", "break", "continue",
+      "return", "and", "or",  "not",  "nand",  "nor",    "xor",   "xnor",   "in",    "like",    "ilike", "true",
+      "false", "null", "swap", "inf", "pi",    "epsilon", "ihat", "jhat",   "khat"};
+  static const char* const kPython[] = {"None",   "True",  "False",  "as",   "assert", "async",  "await", "class",
+                                        "def",    "del",   "elif",   "except", "finally", "from", "global", "import",
+                                        "is",     "lambda", "nonlocal", "pass", "raise",  "try",   "with",  "yield"};
+  std::string lower = name;
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* w : kCalculator)
+    if (lower == w) return true;
+  for (const char* w : kPython)
+    if (name == w) return true;
+  return false;
+}
+
+std::string paraview_name(const std::string& name) {
+  std::string out = name;
+  for (char& ch : out)
+    if (!std::isalnum(static_cast<unsigned char>(ch)) && ch != '_') ch = '_';
+  return out;
 }
 
 }  // namespace radwalk

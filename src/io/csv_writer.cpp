@@ -33,10 +33,10 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
                                      "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b"};
   for (const CellField& f : extra) {
     if (f.components == 1) {
-      header.push_back(f.name);
+      header.push_back(f.column_name());
     } else {
       for (int c = 0; c < f.components; ++c) {
-        std::string column = f.name;
+        std::string column = f.column_name();
         if (f.components == 3) {
           column += kChannel[c];
         } else {

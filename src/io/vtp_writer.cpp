@@ -3,79 +3,128 @@
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
-#include <vtkIdTypeArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkTypeInt64Array.h>
+#include <vtkUnsignedCharArray.h>
 #include <vtkXMLPolyDataWriter.h>
 
+#include <cmath>
 #include <ostream>
+#include <stdexcept>
 
 #include "core/atomic_write.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "core/srgb.h"
+#include "patch/display_mesh.h"
 
 namespace radwalk {
 namespace {
 
-vtkNew<vtkDoubleArray> make_array(const std::string& name, int components, std::size_t tuples) {
+void check_name(const std::string& name) {
+  if (name.empty() || paraview_name(name) != name || is_calculator_reserved(name) ||
+      std::isdigit(static_cast<unsigned char>(name[0])))
+    throw std::logic_error("write_vtp: '" + name + "' is not a name ParaView's Calculator accepts");
+}
+
+void name_rgb(vtkDataArray* a) {
+  a->SetComponentName(0, "R");
+  a->SetComponentName(1, "G");
+  a->SetComponentName(2, "B");
+}
+
+vtkNew<vtkDoubleArray> real_array(const CellField& f, const std::vector<double>& values, std::size_t tuples) {
   vtkNew<vtkDoubleArray> a;
-  a->SetName(name.c_str());
-  a->SetNumberOfComponents(components);
+  a->SetName(f.name.c_str());
+  a->SetNumberOfComponents(f.components);
   a->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
+  for (std::size_t k = 0; k < tuples * f.components; ++k) a->SetValue(static_cast<vtkIdType>(k), values[k]);
+  if (f.kind == FieldKind::quantity && f.components == 3) name_rgb(a);
   return a;
+}
+
+vtkNew<vtkUnsignedCharArray> srgb_array(const std::vector<double>& B, std::size_t tuples) {
+  vtkNew<vtkUnsignedCharArray> a;
+  a->SetName("B_srgb");
+  a->SetNumberOfComponents(3);
+  a->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
+  for (std::size_t k = 0; k < tuples * 3; ++k) a->SetValue(static_cast<vtkIdType>(k), srgb8_from_radiosity(B[k]));
+  name_rgb(a);
+  return a;
+}
+
+void add_field_data(vtkPolyData* poly, const VtpMetadata& metadata) {
+  for (const auto& [key, value] : metadata.entries) {
+    check_name(key);
+    if (const auto* text = std::get_if<std::string>(&value)) {
+      vtkNew<vtkStringArray> a;
+      a->SetName(key.c_str());
+      a->InsertNextValue(*text);
+      poly->GetFieldData()->AddArray(a);
+    } else if (const auto* real = std::get_if<double>(&value)) {
+      vtkNew<vtkDoubleArray> a;
+      a->SetName(key.c_str());
+      a->InsertNextValue(*real);
+      poly->GetFieldData()->AddArray(a);
+    } else {
+      vtkNew<vtkTypeInt64Array> a;
+      a->SetName(key.c_str());
+      a->InsertNextValue(std::get<std::int64_t>(value));
+      poly->GetFieldData()->AddArray(a);
+    }
+  }
 }
 
 }  // namespace
 
-void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields) {
+void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields,
+               const VtpMetadata& metadata) {
   const std::size_t n = patches.size();
+  const DisplayMesh mesh = make_display_mesh(patches);
   vtkNew<vtkPoints> points;
   points->SetDataTypeToDouble();
-  points->SetNumberOfPoints(static_cast<vtkIdType>(patches.points.size()));
-  for (std::size_t p = 0; p < patches.points.size(); ++p)
-    points->SetPoint(static_cast<vtkIdType>(p), patches.points[p].data());
-
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.points.size()));
+  for (std::size_t p = 0; p < mesh.points.size(); ++p)
+    points->SetPoint(static_cast<vtkIdType>(p), mesh.points[p].data());
   vtkNew<vtkCellArray> polys;
   for (std::size_t i = 0; i < n; ++i) {
-    vtkIdType ids[4];
-    const int k = patches.corner_count(i);
-    for (int c = 0; c < k; ++c) ids[c] = patches.corners[i][c];
-    polys->InsertNextCell(k, ids);
+    polys->InsertNextCell(static_cast<vtkIdType>(mesh.offsets[i + 1] - mesh.offsets[i]));
+    for (std::int64_t k = mesh.offsets[i]; k < mesh.offsets[i + 1]; ++k)
+      polys->InsertCellPoint(static_cast<vtkIdType>(mesh.ids[k]));
   }
   vtkNew<vtkPolyData> poly;
   poly->SetPoints(points);
   poly->SetPolys(polys);
 
-  // Area weights of each point: the sum of the areas of the patches that use it.
-  std::vector<double> point_weight(patches.points.size(), 0.0);
-  for (std::size_t i = 0; i < n; ++i)
-    for (int c = 0; c < patches.corner_count(i); ++c) point_weight[patches.corners[i][c]] += patches.area[i];
-
   for (const CellField& f : fields) {
+    check_name(f.name);
     RADWALK_CHECK_EQ(f.values.size(), n * static_cast<std::size_t>(f.components));  // a value per patch, component
-    auto cell = make_array(f.name, f.components, n);
-    auto point = make_array(f.name, f.components, patches.points.size());
-    point->Fill(0.0);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int c = 0; c < f.components; ++c) {
-        const double v = f.values[i * f.components + c];
-        cell->SetComponent(static_cast<vtkIdType>(i), c, v);
-        for (int k = 0; k < patches.corner_count(i); ++k) {
-          const auto p = static_cast<vtkIdType>(patches.corners[i][k]);
-          point->SetComponent(p, c, point->GetComponent(p, c) + patches.area[i] * v);
-        }
-      }
+    if (f.kind == FieldKind::count) {
+      vtkNew<vtkTypeInt64Array> a;
+      a->SetName(f.name.c_str());
+      a->SetNumberOfComponents(f.components);
+      a->SetNumberOfTuples(static_cast<vtkIdType>(n));
+      for (std::size_t k = 0; k < f.values.size(); ++k)
+        a->SetValue(static_cast<vtkIdType>(k), static_cast<std::int64_t>(std::llround(f.values[k])));
+      poly->GetCellData()->AddArray(a);
+      continue;
     }
-    for (std::size_t p = 0; p < patches.points.size(); ++p)
-      if (point_weight[p] > 0)
-        for (int c = 0; c < f.components; ++c)
-          point->SetComponent(static_cast<vtkIdType>(p), c,
-                              point->GetComponent(static_cast<vtkIdType>(p), c) / point_weight[p]);
-    poly->GetCellData()->AddArray(cell);
-    poly->GetPointData()->AddArray(point);
+    poly->GetCellData()->AddArray(real_array(f, f.values, n));
+    if (f.kind != FieldKind::quantity) continue;
+    const std::vector<double> at_points = point_average(mesh, patches, f.values, f.components);
+    poly->GetPointData()->AddArray(real_array(f, at_points, mesh.points.size()));
+    if (f.name == "B" && f.components == 3) {
+      poly->GetCellData()->AddArray(srgb_array(f.values, n));
+      poly->GetPointData()->AddArray(srgb_array(at_points, mesh.points.size()));
+      poly->GetCellData()->SetActiveScalars("B");
+    }
   }
+  add_field_data(poly, metadata);
 
   write_atomically_via_path(path, [&](const std::string& tmp) {
     vtkNew<vtkXMLPolyDataWriter> writer;

@@ -1,16 +1,30 @@
 #pragma once
-// VTK XML PolyData (.vtp) output that ParaView opens: binary, zlib-compressed, written atomically.
-// Geometry: the patch corner points and one polygon per patch (patch i = cell i).
-// Cell data: the given fields. Point data: for each field, the area-weighted average over the patches that share
-// the point (for smooth display; the cell data are the solution).
+// VTK XML PolyData (.vtp) output that ParaView opens ready to look at: binary, zlib-compressed, written atomically.
+//
+// Geometry: the display mesh of the patches (patch/display_mesh.h): one polygon per patch (patch i = cell i),
+// points split per smoothing group (plane, material, emitter status), T-junction points inserted into the
+// polygons' edges.
+// Cell data: every field (FieldKind::count as Int64, the others as Float64); 3-component quantities have the
+// component names R, G, B. When a 3-component quantity B (radiosity) is given, the cell array B is the active
+// scalars (ParaView colours by it on Apply) and a display array B_srgb is added: unsigned char x 3 (R, G, B),
+// srgb8_from_radiosity(B) per channel (core/srgb.h: radiance B / pi, exposure 1, clamped to [0, 1], exact sRGB;
+// the mapping of the path tracer's PNG), so that ParaView shows true colours with "Map Scalars" off.
+// Point data: each FieldKind::quantity field averaged over the patches of one smoothing group at each display
+// point (area-weighted; for smooth display: the cell data are the solution), and B_srgb of the point field B.
+// No point fields for counts and geometry.
+// Field data: the metadata (vtp_metadata.h).
+// Throws std::logic_error for a field of the wrong size or with a name that is not usable in ParaView
+// (paraview_name(name) != name, or the Calculator's reserved word `var`).
 #include <string>
 #include <vector>
 
 #include "io/cell_field.h"
+#include "io/vtp_metadata.h"
 
 namespace radwalk {
 
-void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields);
+void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields,
+               const VtpMetadata& metadata = {});
 
 // A ParaView collection (.pvd) listing (time, file) pairs, e.g. the steps of a progressive solve.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps);

@@ -84,7 +84,7 @@ void PolygonFaces::report() const {
     mesh_.warnings.push_back(locate(mesh_.path, 0, -1, std::to_string(r.count) + " " + what + ": " + r.examples +
                                                            more + " (--strict refuses them instead)"));
   };
-  line(triangulated_, "polygons with more than 4 vertices triangulated");
+  line(triangulated_, "polygon(s) with more than 4 vertices triangulated");
   line(dropped_, "polygon(s) without area dropped (they carry no power)");
 }
 

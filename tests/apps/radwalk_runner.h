@@ -2,6 +2,7 @@
 // Runs the radwalk program for end-to-end tests: run("solve scene.obj ...") returns its exit code and its merged
 // stdout + stderr. RADWALK_BINARY and RADWALK_SOURCE_DIR are compile definitions of the test targets.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <array>
 #include <catch2/catch.hpp>

@@ -1,5 +1,12 @@
 // End-to-end: radwalk solve --refine (adaptive patching) and --progressive (ParaView series of the iterates).
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkXMLPolyDataReader.h>
+
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,7 +21,8 @@ namespace fs = std::filesystem;
 namespace {
 
 fs::path scratch(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / "radwalk_cli_refine_test" / name;
+  // One folder per process: test runs of other checkouts on the same machine must not share it.
+  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_refine_test_" + std::to_string(::getpid())) / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -131,4 +139,88 @@ TEST_CASE("radwalk solve --progressive thins a long run to at most 200 steps, ke
   std::size_t files = 0;
   for (const auto& entry : fs::directory_iterator(dir / "series")) files += entry.path().extension() == ".vtp";
   CHECK(files == steps.size());  // thinned steps were deleted
+}
+
+namespace {
+
+// A field-data value of a .vtp (a number; NaN if absent).
+double field_number(const fs::path& vtp, const std::string& name) {
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName(vtp.string().c_str());
+  reader->Update();
+  vtkDataArray* a = reader->GetOutput()->GetFieldData()->GetArray(name.c_str());
+  return a ? a->GetComponent(0, 0) : std::nan("");
+}
+
+}  // namespace
+
+TEST_CASE("radwalk solve --progressive: every step carries its iteration, residual and elapsed time", "[cli]") {
+  const fs::path dir = scratch("progressive_fields");
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --max-edge 100 --rays 500 --solver jacobi " +
+                    "--progressive " + (dir / "series").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto steps = pvd_steps(dir / "series" / "solve.pvd");
+  REQUIRE(steps.size() > 5);
+  double last_elapsed = -1;
+  for (const auto& [t, file] : steps) {
+    const fs::path vtp = dir / "series" / file;
+    CHECK(field_number(vtp, "iteration") == t);
+    CHECK(field_number(vtp, "elapsed_seconds") >= last_elapsed);
+    last_elapsed = field_number(vtp, "elapsed_seconds");
+  }
+  CHECK(field_number(dir / "series" / steps.front().second, "residual") > 1e-3);
+  CHECK(field_number(dir / "series" / steps.back().second, "residual") <= 1e-10);
+}
+
+TEST_CASE("radwalk solve --solver random-walk --progressive: the estimate after 1, 2, 4, ... batches", "[cli]") {
+  const fs::path dir = scratch("progressive_walks");
+  const Run r = run("solve " + source("meshes/cube.obj") + " --rays 2000 --solver random-walk --walks 100 " +
+                    "--progressive " + (dir / "series").string() + " --csv " + (dir / "b.csv").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto steps = pvd_steps(dir / "series" / "solve.pvd");
+  const std::vector<double> counts = {2, 4, 7, 13, 25, 50, 100};  // ceil(100 / 2^k), k = 6 .. 0
+  REQUIRE(steps.size() == counts.size());
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    CHECK(steps[k].first == counts[k]);
+    CHECK(field_number(dir / "series" / steps[k].second, "count") == counts[k]);
+  }
+  // The relative standard error falls about as 1 / sqrt(walks): 50 times the walks, about 7 times smaller.
+  const double first = field_number(dir / "series" / steps.front().second, "B_se_relative_rms");
+  const double last = field_number(dir / "series" / steps.back().second, "B_se_relative_rms");
+  CHECK(last < first / 3);
+  CHECK(last > first / 20);
+}
+
+TEST_CASE("radwalk pathtrace --progressive writes pathtrace.pvd with B and B_se per step", "[cli]") {
+  const fs::path dir = scratch("progressive_pt");
+  const Run r = run("pathtrace " + source("meshes/cube.obj") + " --spp 32 --progressive " + (dir / "s").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto steps = pvd_steps(dir / "s" / "pathtrace.pvd");
+  REQUIRE(steps.size() == 5);  // 2, 4, 8, 16, 32 samples per patch
+  CHECK(steps.front().first == 2);
+  CHECK(steps.back().first == 32);
+}
+
+TEST_CASE("radwalk --paraview-state: a Python state beside the .vtp, other uses are one-line errors", "[cli]") {
+  const fs::path dir = scratch("state");
+  const std::string cube = source("meshes/cube.obj");
+  const Run ok = run("solve " + cube + " -o " + (dir / "b.vtp").string() + " --paraview-state " +
+                     (dir / "b.py").string());
+  INFO(ok.out);
+  REQUIRE(ok.exit_code == 0);
+  std::ifstream in(dir / "b.py");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  CHECK(text.find("name = 'b.vtp'") != std::string::npos);
+  CHECK(text.find("B_srgb") != std::string::npos);
+  for (const std::string& args : {"solve " + cube + " -o " + (dir / "c.vtp").string() + " --paraview-state s.pvsm",
+                                 "solve " + cube + " --paraview-state s.py"}) {
+    const Run bad = run(args);
+    INFO(args << ": " << bad.out);
+    CHECK(bad.exit_code == 2);
+    CHECK(bad.out.rfind("radwalk: error: ", 0) == 0);
+    CHECK(std::count(bad.out.begin(), bad.out.end(), '\n') == 1);
+  }
 }

@@ -1,16 +1,19 @@
-// The .vtp reads back through VTK's own reader with the same arrays and values.
+// The .vtp reads back through VTK's own reader with the same arrays, types, names, values and field data.
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
-#include <vtkNew.h>
+#include <vtkFieldData.h>
 #include <vtkPointData.h>
-#include <vtkPolyData.h>
-#include <vtkXMLPolyDataReader.h>
+#include <vtkStringArray.h>
 
 #include <catch2/catch.hpp>
-#include <filesystem>
+#include <fstream>
+#include <sstream>
 
+#include "core/srgb.h"
+#include "io/paraview_state.h"
 #include "io/vtp_writer.h"
 #include "patch/patch_builder.h"
+#include "vtp_test_helpers.h"
 
 using namespace radwalk;
 
@@ -23,57 +26,118 @@ static PatchSet two_patches() {
   return b.build();
 }
 
-TEST_CASE("write_vtp: cell arrays read back with VTK's reader", "[io][vtp]") {
+TEST_CASE("write_vtp: cell arrays read back with VTK's reader, with their types and component names", "[io][vtp]") {
   const PatchSet patches = two_patches();
   auto fields = patch_fields(patches);
   PatchRgb B(2, 3);
-  B << 1.5, 2.5, 3.5, 4.5, 5.5, 6.5;
+  B << 1.5, 2.5, 3.5, 4.5, 5.5, 200;
   fields.push_back(rgb_field("B", B));
+  fields.push_back(scalar_field("rays", {1000, 2000}, FieldKind::count));
 
-  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test.vtp").string();
+  const auto path = temp_file("radwalk_test.vtp");
   write_vtp(path, patches, fields);
-
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  vtkPolyData* poly = reader->GetOutput();
+  const auto poly = read_vtp(path);
   REQUIRE(poly->GetNumberOfCells() == 2);
   REQUIRE(poly->GetNumberOfPoints() == 7);
-  for (const char* name : {"patch", "face", "area", "normal", "rho", "E", "B"}) {
+  vtkCellData* cells = poly->GetCellData();
+  vtkPointData* points = poly->GetPointData();
+  for (const char* name : {"patch", "face", "area", "normal", "rho", "E", "B", "B_srgb", "rays"}) {
     INFO(name);
-    REQUIRE(poly->GetCellData()->GetArray(name) != nullptr);
-    REQUIRE(poly->GetPointData()->GetArray(name) != nullptr);
+    REQUIRE(cells->GetArray(name) != nullptr);
   }
-  vtkDataArray* area = poly->GetCellData()->GetArray("area");
+  // Ids and counts are integers, with no point field; geometry has no point field either.
+  for (const char* name : {"patch", "face", "rays"}) {
+    INFO(name);
+    CHECK(cells->GetArray(name)->GetDataType() == VTK_LONG_LONG);
+    CHECK(points->GetArray(name) == nullptr);
+  }
+  CHECK(cells->GetArray("rays")->GetComponent(1, 0) == 2000);
+  CHECK(points->GetArray("area") == nullptr);
+  CHECK(points->GetArray("normal") == nullptr);
+  for (const char* name : {"rho", "E", "B", "B_srgb"}) {
+    INFO(name);
+    REQUIRE(points->GetArray(name) != nullptr);
+    CHECK(std::string(cells->GetArray(name)->GetComponentName(0)) == "R");
+    CHECK(std::string(cells->GetArray(name)->GetComponentName(1)) == "G");
+    CHECK(std::string(cells->GetArray(name)->GetComponentName(2)) == "B");
+    CHECK(std::string(points->GetArray(name)->GetComponentName(2)) == "B");
+  }
+  CHECK(cells->GetArray("normal")->GetComponentName(0) == nullptr);  // X, Y, Z
+  // B is the active scalars, so ParaView colours by it on Apply.
+  REQUIRE(cells->GetScalars() != nullptr);
+  CHECK(std::string(cells->GetScalars()->GetName()) == "B");
+
+  vtkDataArray* area = cells->GetArray("area");
   CHECK(area->GetComponent(0, 0) == Approx(1.0));
   CHECK(area->GetComponent(1, 0) == Approx(0.5));
-  vtkDataArray* rho = poly->GetCellData()->GetArray("rho");
-  CHECK(rho->GetComponent(0, 0) == 0.73);  // exact: doubles are stored as doubles
-  vtkDataArray* E = poly->GetCellData()->GetArray("E");
-  CHECK(E->GetComponent(1, 2) == Approx(3 * kPi));
-  vtkDataArray* b = poly->GetCellData()->GetArray("B");
+  CHECK(cells->GetArray("rho")->GetComponent(0, 0) == 0.73);  // exact: doubles are stored as doubles
+  CHECK(cells->GetArray("E")->GetComponent(1, 2) == Approx(3 * kPi));
+  vtkDataArray* b = cells->GetArray("B");
   CHECK(b->GetNumberOfComponents() == 3);
   CHECK(b->GetComponent(1, 1) == 5.5);
-  vtkDataArray* normal = poly->GetCellData()->GetArray("normal");
-  CHECK(normal->GetComponent(0, 2) == Approx(1.0));
-  CHECK(normal->GetComponent(1, 2) == Approx(-1.0));
+  CHECK(cells->GetArray("normal")->GetComponent(0, 2) == Approx(1.0));
+  CHECK(cells->GetArray("normal")->GetComponent(1, 2) == Approx(-1.0));
+  // B_srgb: 8-bit sRGB of B / pi, clamped (200 / pi > 1 is full white, never wraps).
+  vtkDataArray* srgb = cells->GetArray("B_srgb");
+  CHECK(srgb->GetDataType() == VTK_UNSIGNED_CHAR);
+  CHECK(srgb->GetComponent(0, 0) == srgb8_from_linear(1.5 / kPi));
+  CHECK(srgb->GetComponent(1, 2) == 255);
+  CHECK(int(srgb8_from_linear(1.5 / kPi)) == 184);  // 255 * (1.055 * 0.47746^(1/2.4) - 0.055) = 183.68
   // Point data: no point is shared here, so each point carries its patch's value.
-  CHECK(poly->GetPointData()->GetArray("B")->GetComponent(0, 0) == Approx(1.5));
+  CHECK(points->GetArray("B")->GetComponent(0, 0) == Approx(1.5));
   std::filesystem::remove(path);
 }
 
-TEST_CASE("write_vtp: a shared point carries the area-weighted average", "[io][vtp]") {
-  PatchSet p = two_patches();
-  // Make the triangle share point 0 of the quad.
-  p.corners[1][0] = 0;
-  auto fields = std::vector<CellField>{scalar_field("x", {1.0, 4.0})};
-  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test_shared.vtp").string();
-  write_vtp(path, p, fields);
-  vtkNew<vtkXMLPolyDataReader> reader;
-  reader->SetFileName(path.c_str());
-  reader->Update();
-  const double a0 = p.area[0], a1 = p.area[1];
-  CHECK(reader->GetOutput()->GetPointData()->GetArray("x")->GetComponent(0, 0) ==
-        Approx((a0 * 1.0 + a1 * 4.0) / (a0 + a1)));
+TEST_CASE("write_vtp: field data carry the run metadata with their types", "[io][vtp]") {
+  VtpMetadata m;
+  m.set_text("command_line", "radwalk solve scene.obj --seed 7");
+  m.set_real("residual", 1.5e-11);
+  m.set_integer("seed", 7);
+  m.set_integer("seed", 8);  // replaces
+  const auto path = temp_file("radwalk_test_fd.vtp");
+  write_vtp(path, two_patches(), {}, m);
+  const auto poly = read_vtp(path);
+  vtkFieldData* fd = poly->GetFieldData();
+  REQUIRE(fd->GetNumberOfArrays() == 3);
+  auto* text = vtkStringArray::SafeDownCast(fd->GetAbstractArray("command_line"));
+  REQUIRE(text != nullptr);
+  CHECK(text->GetValue(0) == "radwalk solve scene.obj --seed 7");
+  REQUIRE(fd->GetArray("residual") != nullptr);
+  CHECK(fd->GetArray("residual")->GetDataType() == VTK_DOUBLE);
+  CHECK(fd->GetArray("residual")->GetComponent(0, 0) == 1.5e-11);
+  CHECK(fd->GetArray("seed")->GetDataType() == VTK_LONG_LONG);
+  CHECK(fd->GetArray("seed")->GetComponent(0, 0) == 8);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("write_vtp refuses names ParaView's Calculator cannot use", "[io][vtp]") {
+  const PatchSet p = two_patches();
+  for (const char* name : {"var", "VAR", "if", "pi", "lambda", "mean_gather-absorption", "B se", "2B"}) {
+    INFO(name);
+    CHECK_THROWS_AS(write_vtp(temp_file("radwalk_bad.vtp"), p, {scalar_field(name, {1.0, 2.0})}), std::logic_error);
+  }
+  CHECK(paraview_name("mean_gather-expected-value") == "mean_gather_expected_value");
+  for (const char* name : {"B", "E", "B_var", "rho", "patch", "mean_gather_absorption", "jump"}) {
+    INFO(name);
+    CHECK_FALSE(is_calculator_reserved(name));
+  }
+  CHECK(with_csv_name(rgb_field("B_var", PatchRgb::Zero(2, 3)), "var").column_name() == "var");
+}
+
+TEST_CASE("write_paraview_state: a Python state naming the data, B_srgb and the camera", "[io][vtp]") {
+  const auto path = temp_file("radwalk_state.py");
+  write_paraview_state(path, "results/cb.vtp", {Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 39.3});
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string s = text.str();
+  CHECK(s.find("name = 'cb.vtp'") != std::string::npos);
+  CHECK(s.find("ColorBy(display, ('CELLS', 'B_srgb'))") != std::string::npos);
+  CHECK(s.find("display.MapScalars = 0") != std::string::npos);
+  CHECK(s.find("UseColorPaletteForBackground = 0") != std::string::npos);
+  CHECK(s.find("view.CameraPosition = [278, 273, -800]") != std::string::npos);
+  CHECK(s.find("view.CameraViewAngle = 39.299999999999997") != std::string::npos);
+  // The camera is set after the first render (which resets it).
+  CHECK(s.find("simple.Render(view)") < s.find("view.CameraPosition"));
   std::filesystem::remove(path);
 }

@@ -1,0 +1,81 @@
+#include "apps/run_metadata.h"
+
+#include <cmath>
+
+#include "git_commit.h"
+
+namespace radwalk::app {
+namespace {
+
+std::string command_line(const std::vector<std::string>& argv) {
+  std::string line;
+  for (const std::string& a : argv) {
+    if (!line.empty()) line += ' ';
+    const bool quote = a.empty() || a.find_first_of(" \t'\"$\\") != std::string::npos;
+    if (!quote) {
+      line += a;
+      continue;
+    }
+    line += '\'';
+    for (const char c : a) line += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    line += '\'';
+  }
+  return line;
+}
+
+std::string key_of(std::string stage) {
+  for (char& c : stage)
+    if (c == ' ' || c == '-') c = '_';
+  return stage;
+}
+
+}  // namespace
+
+VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
+  const nlohmann::json& j = summary.json();
+  VtpMetadata m;
+  m.set_text("radwalk_version", j.value("radwalk", std::string("unknown")));
+  m.set_text("git_commit", RADWALK_GIT_COMMIT);
+  m.set_text("command", j.value("command", std::string()));
+  m.set_text("command_line", command_line(options.argv));
+  m.set_text("scene", options.scene);
+  m.set_integer("seed", std::int64_t(options.seed));
+  m.set_real("max_edge", options.max_edge);
+  if (j.contains("patches")) m.set_integer("patches", j["patches"].get<std::int64_t>());
+  m.set_text("length_unit", "the scene file's unit (the bundled Cornell box: mm)");
+  m.set_text("B_unit", "W per square length unit (W/m^2 for a scene in metres); radiance = B / pi");
+  m.set_text("B_srgb", "round(255 sRGB(clamp(B / pi, 0, 1))) per channel, exposure 1 (as the path tracer's PNG)");
+  if (j.contains("rays")) m.set_integer("rays", std::llround(j["rays"].get<double>()));
+  if (j.contains("form_factors_file")) m.set_text("form_factors_file", j["form_factors_file"].get<std::string>());
+  if (j.contains("timings_s"))
+    for (const auto& [stage, seconds] : j["timings_s"].items()) m.set_real("seconds_" + key_of(stage), seconds.get<double>());
+  return m;
+}
+
+VtpMetadata solution_metadata(const Solution& s, const PatchSet& patches) {
+  VtpMetadata m;
+  m.set_text("method", s.method);
+  m.set_text("status", to_string(s.status));
+  if (s.iterations > 0) m.set_integer("iterations", s.iterations);
+  if (std::isfinite(s.residual)) m.set_real("residual", s.residual);
+  if (s.walks > 0) {
+    m.set_integer("walks", s.walks);
+    m.set_integer("steps", s.steps);
+  }
+  m.set_real("solve_seconds", s.seconds);
+  if (s.B_se.rows() == s.B.rows() && s.B.rows() == static_cast<Eigen::Index>(patches.size())) {
+    double max_se = 0, se2 = 0, b2 = 0;
+    for (Eigen::Index i = 0; i < s.B.rows(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        if (!std::isfinite(s.B_se(i, c))) continue;
+        max_se = std::max(max_se, s.B_se(i, c));
+        se2 += patches.area[i] * s.B_se(i, c) * s.B_se(i, c);
+        b2 += patches.area[i] * s.B(i, c) * s.B(i, c);
+      }
+    m.set_real("B_se_max", max_se);
+    if (b2 > 0) m.set_real("B_se_relative_rms", std::sqrt(se2 / b2));
+  }
+  return m;
+}
+
+}  // namespace radwalk::app
