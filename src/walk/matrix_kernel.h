@@ -13,6 +13,7 @@
 // exactly when F is reciprocal (A_i F_ij = A_j F_ji), and a stored F that is not (Monte Carlo form factors)
 // still gives shooting estimates unbiased for the same B the direct solver computes.
 #include "solve/problem.h"
+#include "walk/alias_table.h"
 #include "walk/transition_kernel.h"
 
 namespace radwalk {

@@ -34,9 +34,12 @@
 
 #include "core/rng.h"
 #include "core/types.h"
-#include "walk/alias_table.h"
 
 namespace radwalk {
+
+// Walk stop codes: what sample() returns for a destination that is not a patch. Both end the walk.
+inline constexpr PatchIndex kEscaped = -1;  // the walk left the scene (row deficit, or a ray that hit nothing)
+inline constexpr PatchIndex kBackHit = -2;  // a ray hit the back of a patch (ray kernel)
 
 // A uniform number in [0, 1) from one 32-bit draw, for Russian roulette (u < p_k): the survival probability is
 // then resolved to 2^-32, far below any Monte Carlo error, at half the cost of Rng::uniform().
