@@ -30,12 +30,13 @@ struct RunResult {
 
 // Walks [begin, end) from patch i, K::kLanes of them in lockstep (walk_lockstep.h); the moments add the scores
 // in walk order (with one lane, as the walks finish), so they do not depend on the lane count.
-template <class Walk, TransitionKernel K>
-Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::uint64_t seed,
-                     WalkCounters& counters) {
+template <class Estimator, TransitionKernel K>
+Moments gather_walks(const K& kernel, const typename Estimator::Tables& tables, std::size_t i, long begin, long end,
+                     std::uint64_t seed, WalkCounters& counters) {
+  using Walk = typename Estimator::template Walk<K>;
   const auto count = static_cast<std::size_t>(end - begin);
   const RngFamily streams(seed, i);  // walk w from patch i: Rng(seed, i, w)
-  auto make = [&](std::size_t w) { return Walk(kernel, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
+  auto make = [&](std::size_t w) { return Walk(kernel, tables, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
   ShiftedSums sums;
   if constexpr (K::kLanes == 1) {
@@ -49,23 +50,10 @@ Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::
   return sums.moments();
 }
 
-// The estimator chosen once outside the loop.
-template <TransitionKernel K>
-Moments gather_chunk(GatherEstimator estimator, const K& kernel, std::size_t i, long begin, long end,
-                     std::uint64_t seed, WalkCounters& counters) {
-  switch (estimator) {
-    case GatherEstimator::absorption: return gather_walks<GatherAbsorption<K>>(kernel, i, begin, end, seed, counters);
-    case GatherEstimator::collision: return gather_walks<GatherCollision<K>>(kernel, i, begin, end, seed, counters);
-    case GatherEstimator::expected_value:
-      return gather_walks<GatherExpectedValue<K>>(kernel, i, begin, end, seed, counters);
-  }
-  return Moments();
-}
-
 // Gathering: every target patch gets `walks` walks, cut into fixed chunks whose Moments merge in chunk order.
-template <TransitionKernel K>
-RunResult run_gather(const K& kernel, GatherEstimator estimator, const std::vector<std::size_t>& targets,
-                     long walks, std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, long walks, std::uint64_t seed) {
+  const typename Estimator::Tables tables(kernel.tables());
   const std::size_t m = targets.size();
   // Chunk layout depends only on (m, walks): about 512 chunks in all, at least 64 walks each.
   const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
@@ -80,7 +68,7 @@ RunResult run_gather(const K& kernel, GatherEstimator estimator, const std::vect
         const long begin = static_cast<long>(c % chunks_per_patch) * chunk;
         const long end = std::min(walks, begin + chunk);
         WalkCounters counters;
-        const Moments mom = gather_chunk(estimator, kernel, i, begin, end, seed, counters);
+        const Moments mom = gather_walks<Estimator>(kernel, tables, i, begin, end, seed, counters);
         parts[c] = mom;
         part_counters[c] = counters;
       },
@@ -125,9 +113,10 @@ std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
 // order) and then summed the same way, so the sums do not depend on the lane count.
-template <class Particle, TransitionKernel K>
-ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eigen::VectorXd& area, long begin,
-                          long end, std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+ShootPart shoot_particles(const K& kernel, const typename Estimator::Tables& tables, const ShootSource& source,
+                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+  using Particle = typename Estimator::template Particle<K>;
   const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
   part.sum.setZero(N, 3);
@@ -162,7 +151,7 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
   };
   const RngFamily particles(seed, kShootStream);  // particle w: Rng(seed, kShootStream, w)
   auto make = [&](std::size_t w) {
-    return Particle(kernel, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
+    return Particle(kernel, tables, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.
@@ -189,24 +178,12 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
   return part;
 }
 
-template <TransitionKernel K>
-ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const ShootSource& source,
-                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
-  switch (estimator) {
-    case ShootEstimator::collision: return shoot_particles<ShootCollision<K>>(kernel, source, area, begin, end, seed);
-    case ShootEstimator::absorption:
-      return shoot_particles<ShootAbsorption<K>>(kernel, source, area, begin, end, seed);
-    case ShootEstimator::survival: return shoot_particles<ShootSurvival<K>>(kernel, source, area, begin, end, seed);
-  }
-  return ShootPart();
-}
-
 // Shooting: `particles` particles in fixed chunks, run in parallel, merged in chunk order (ordered_reduce).
-template <TransitionKernel K>
-RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityProblem& problem, long particles,
-                    std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long particles, std::uint64_t seed) {
   const auto N = static_cast<Eigen::Index>(kernel.size());
   const ShootSource source = make_shoot_source(problem.E, problem.area);
+  const typename Estimator::Tables tables(kernel.tables());
   RunResult r;
   PatchRgb sum = PatchRgb::Zero(N, 3), sum2 = PatchRgb::Zero(N, 3);
   if (source.power > 0) {
@@ -218,7 +195,7 @@ RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityPr
         [&](std::size_t c) {
           const long begin = static_cast<long>(c) * chunk;
           const long end = std::min(particles, begin + chunk);
-          return run_shoot_chunk(kernel, estimator, source, problem.area, begin, end, seed);
+          return shoot_particles<Estimator>(kernel, tables, source, problem.area, begin, end, seed);
         },
         [&](const ShootPart& part) {
           sum += part.sum;
@@ -243,9 +220,19 @@ RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOption
       for (std::size_t i = 0; i < problem.size(); ++i) targets.push_back(i);
     else
       for (int i : options.patches) targets.push_back(static_cast<std::size_t>(i));
-    return run_gather(kernel, gather_estimator(options), targets, options.walks, options.seed);
+    switch (gather_estimator(options)) {
+      case GatherEstimator::absorption: return run_gather<GatherAbsorption>(kernel, targets, options.walks, options.seed);
+      case GatherEstimator::collision: return run_gather<GatherCollision>(kernel, targets, options.walks, options.seed);
+      case GatherEstimator::expected_value:
+        return run_gather<GatherExpectedValue>(kernel, targets, options.walks, options.seed);
+    }
   }
-  return run_shoot(kernel, shoot_estimator(options), problem, options.walks, options.seed);
+  switch (shoot_estimator(options)) {
+    case ShootEstimator::collision: return run_shoot<ShootCollision>(kernel, problem, options.walks, options.seed);
+    case ShootEstimator::absorption: return run_shoot<ShootAbsorption>(kernel, problem, options.walks, options.seed);
+    case ShootEstimator::survival: return run_shoot<ShootSurvival>(kernel, problem, options.walks, options.seed);
+  }
+  return RunResult();
 }
 
 // p_k < 1 everywhere (walks end) and p_k > 0 wherever some rho_kc > 0 (no path is left out).

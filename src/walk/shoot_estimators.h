@@ -36,17 +36,25 @@ struct ShootSource {
 // Throws InputError if sizes disagree or an E or an area is negative.
 ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area);
 
-// The three estimators as state machines (the walk concept of walk_lockstep.h, as in gather_estimators.h):
-//   constructed from (kernel, source, rng): born (one uniform from the stream), waiting for its first move;
+// The weight factors every particle uses: rho_k / p_k (0 where p_k = 0), the factor of a particle surviving the
+// roulette at k (its leaving weight is W_in rho_k / p_k).
+std::vector<Rgb> shoot_survivor_weights(const KernelTables& kernel);
+
+// Each estimator is a class with Tables (what its particles read besides the kernel's data, built once per solve
+// from KernelTables) and Particle<K>, a state machine (the walk concept of walk_lockstep.h, as in
+// gather_estimators.h):
+//   constructed from (kernel, tables, source, rng): born (one uniform from the stream), waiting for its first
+//   move;
 //   done(), from(), rng() as for gathering walks;
 //   advance(j, score) consumes the destination sample j of from(), calls score(j, power) for a score at j, and
 //   runs up to the next request (after the roulette at j) or the end.
 // A particle draws from its own stream only: birth, then per step the destination sample and the roulette.
-template <TransitionKernel K>
+template <TransitionKernel K, class Tables>
 class ShootParticle {
  public:
   ShootParticle() = default;
-  ShootParticle(const K& kernel, const ShootSource& source, const Rng& rng) : t_(&kernel.tables()), rng_(rng) {
+  ShootParticle(const K& kernel, const Tables& tables, const ShootSource& source, const Rng& rng)
+      : kt_(&kernel.tables()), t_(&tables), rng_(rng) {
     k_ = source.birth.sample(rng_.uniform());
     W_ = source.W0[k_];
   }
@@ -55,79 +63,102 @@ class ShootParticle {
   Rng& rng() { return rng_; }
 
  protected:
-  const WalkTables* t_ = nullptr;
+  const KernelTables* kt_ = nullptr;
+  const Tables* t_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Zero();
   Rng rng_{0, 0};
   bool done_ = false;
 };
 
-template <TransitionKernel K>
-class ShootCollision : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
+struct ShootCollision {
+  struct Tables {
+    std::vector<Rgb> survivor;  // rho_k / p_k
+    explicit Tables(const KernelTables& kernel) : survivor(shoot_survivor_weights(kernel)) {}
+  };
+
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (j < 0) {
+        this->done_ = true;
+        return;
+      }
+      const KernelTables& kt = *this->kt_;
+      const auto jj = static_cast<std::size_t>(j);
+      const Rgb W_in = this->W_ * kt.n[this->k_];
+      score(jj, Rgb(W_in * kt.rho[jj]));
+      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
+        this->done_ = true;
+        return;
+      }
+      this->W_ = W_in * this->t_->survivor[jj];
+      this->k_ = jj;
     }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = this->W_ * t.n[this->k_];
-    score(jj, Rgb(W_in * t.rho[jj]));
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      this->done_ = true;
-      return;
-    }
-    this->W_ = W_in * t.rho_over_p[jj];
-    this->k_ = jj;
-  }
+  };
 };
 
-template <TransitionKernel K>
-class ShootAbsorption : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
+struct ShootAbsorption {
+  struct Tables {
+    std::vector<Rgb> survivor;  // rho_k / p_k
+    std::vector<Rgb> absorbed;  // rho_k / (1 - p_k) (0 where p_k = 1): the score factor of an absorption at k
+    explicit Tables(const KernelTables& kernel);
+  };
+
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (j < 0) {
+        this->done_ = true;
+        return;
+      }
+      const KernelTables& kt = *this->kt_;
+      const auto jj = static_cast<std::size_t>(j);
+      const Rgb W_in = this->W_ * kt.n[this->k_];
+      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
+        score(jj, Rgb(W_in * this->t_->absorbed[jj]));
+        this->done_ = true;
+        return;
+      }
+      this->W_ = W_in * this->t_->survivor[jj];
+      this->k_ = jj;
     }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = this->W_ * t.n[this->k_];
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      score(jj, Rgb(W_in * t.rho_over_1mp[jj]));
-      this->done_ = true;
-      return;
-    }
-    this->W_ = W_in * t.rho_over_p[jj];
-    this->k_ = jj;
-  }
+  };
 };
 
-template <TransitionKernel K>
-class ShootSurvival : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
+struct ShootSurvival {
+  struct Tables {
+    std::vector<Rgb> survivor;  // rho_k / p_k
+    explicit Tables(const KernelTables& kernel) : survivor(shoot_survivor_weights(kernel)) {}
+  };
+
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (j < 0) {
+        this->done_ = true;
+        return;
+      }
+      const KernelTables& kt = *this->kt_;
+      const auto jj = static_cast<std::size_t>(j);
+      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
+        this->done_ = true;
+        return;
+      }
+      this->W_ = this->W_ * kt.n[this->k_] * this->t_->survivor[jj];
+      score(jj, this->W_);
+      this->k_ = jj;
     }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      this->done_ = true;
-      return;
-    }
-    this->W_ = this->W_ * t.n[this->k_] * t.rho_over_p[jj];
-    score(jj, this->W_);
-    this->k_ = jj;
-  }
+  };
 };
 
 // Runs one particle with stream rng (left advanced past the particle) to its end, one destination sample at a
@@ -135,14 +166,17 @@ class ShootSurvival : public ShootParticle<K> {
 template <TransitionKernel K, class Score>
 void shoot_particle(ShootEstimator estimator, const K& kernel, const ShootSource& source, Rng& rng,
                     WalkCounters& counters, Score&& score) {
-  auto run = [&](auto particle) {
+  auto run = [&](auto tag) {
+    using Est = decltype(tag);
+    const typename Est::Tables tables(kernel.tables());
+    typename Est::template Particle<K> particle(kernel, tables, source, rng);
     while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
     rng = particle.rng();
   };
   switch (estimator) {
-    case ShootEstimator::collision: return run(ShootCollision<K>(kernel, source, rng));
-    case ShootEstimator::absorption: return run(ShootAbsorption<K>(kernel, source, rng));
-    case ShootEstimator::survival: return run(ShootSurvival<K>(kernel, source, rng));
+    case ShootEstimator::collision: return run(ShootCollision{});
+    case ShootEstimator::absorption: return run(ShootAbsorption{});
+    case ShootEstimator::survival: return run(ShootSurvival{});
   }
 }
 

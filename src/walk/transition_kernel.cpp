@@ -6,29 +6,19 @@
 
 namespace radwalk {
 
-WalkTables make_walk_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
-                            std::vector<double> scored_stop) {
+KernelTables make_kernel_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
+                                std::vector<double> s) {
   const auto N = static_cast<std::size_t>(rho.rows());
-  WalkTables t;
+  KernelTables t;
   t.p = std::move(p);
   t.n = std::move(n);
-  t.scored_stop = std::move(scored_stop);
+  t.s = std::move(s);
   t.E.resize(N);
   t.rho.resize(N);
-  t.gather_weight.resize(N);
-  t.absorb_score.resize(N);
-  t.rho_over_p.resize(N);
-  t.rho_over_1mp.resize(N);
   for (std::size_t k = 0; k < N; ++k) {
     const auto r = static_cast<Eigen::Index>(k);
     t.E[k] = E.row(r).transpose();
     t.rho[k] = rho.row(r).transpose();
-    const double pk = t.p[k];
-    t.gather_weight[k] = pk > 0 ? Rgb(t.rho[k] * (t.n[k] / pk)) : Rgb::Zero();
-    t.rho_over_p[k] = pk > 0 ? Rgb(t.rho[k] / pk) : Rgb::Zero();
-    t.rho_over_1mp[k] = pk < 1 ? Rgb(t.rho[k] / (1.0 - pk)) : Rgb::Zero();
-    for (int c = 0; c < 3; ++c)
-      t.absorb_score[k](c) = t.E[k](c) != 0 && t.scored_stop[k] > 0 ? t.E[k](c) / t.scored_stop[k] : 0.0;
   }
   return t;
 }

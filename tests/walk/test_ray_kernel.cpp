@@ -92,15 +92,21 @@ std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, st
         [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
   };
   switch (est) {
-    case GatherEstimator::absorption:
-      run([&](std::size_t w) { return GatherAbsorption<K>(kernel, i, Rng(seed, i, w)); });
+    case GatherEstimator::absorption: {
+      const GatherAbsorption::Tables tables(kernel.tables());
+      run([&](std::size_t w) { return GatherAbsorption::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
       break;
-    case GatherEstimator::collision:
-      run([&](std::size_t w) { return GatherCollision<K>(kernel, i, Rng(seed, i, w)); });
+    }
+    case GatherEstimator::collision: {
+      const GatherCollision::Tables tables(kernel.tables());
+      run([&](std::size_t w) { return GatherCollision::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
       break;
-    case GatherEstimator::expected_value:
-      run([&](std::size_t w) { return GatherExpectedValue<K>(kernel, i, Rng(seed, i, w)); });
+    }
+    case GatherEstimator::expected_value: {
+      const GatherExpectedValue::Tables tables(kernel.tables());
+      run([&](std::size_t w) { return GatherExpectedValue::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
       break;
+    }
   }
   return X;
 }
@@ -131,17 +137,19 @@ void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, c
     }
   // Shooting: each particle's list of (patch, power) scores.
   const ShootSource source = make_shoot_source(p.E, p.area);
+  const ShootCollision::Tables tables(kernel.tables());
+  using Particle = ShootCollision::Particle<K>;
   using Scores = std::vector<std::pair<std::size_t, Rgb>>;
   auto particle_scores = [&](std::size_t lanes) {
     std::vector<Scores> scores(walks);
     WalkCounters counters;
     run_lockstep(
         kernel, walks, lanes,
-        [&](std::size_t w) { return ShootCollision<K>(kernel, source, Rng(seed, kShootStream, w)); },
-        [&](ShootCollision<K>& particle, std::size_t w, PatchIndex j) {
+        [&](std::size_t w) { return Particle(kernel, tables, source, Rng(seed, kShootStream, w)); },
+        [&](Particle& particle, std::size_t w, PatchIndex j) {
           particle.advance(j, [&](std::size_t jj, const Rgb& power) { scores[w].push_back({jj, power}); });
         },
-        [](std::size_t, const ShootCollision<K>&) {}, counters);
+        [](std::size_t, const Particle&) {}, counters);
     return scores;
   };
   const std::vector<Scores> batched = particle_scores(kMaxLanes), single = particle_scores(1);
