@@ -27,10 +27,13 @@ int run_compare(const CompareCommand& command) {
   summary.add_timing("reference solve", reference.seconds);
 
   CompareOptions options;
-  if (!command.estimators.empty()) options.methods = command.estimators;
+  if (!command.estimators.empty()) {
+    options.methods.clear();
+    for (const std::string& name : command.estimators) options.methods.push_back(parse_walk_method(name));
+  }
   options.runs = command.runs;
-  options.walk.kernel = command.kernel;
-  options.walk.walks = command.walks;
+  options.walk.kernel = parse_walk_kernel(command.kernel);
+  options.walk.walks_per_patch = command.walks;
   options.walk.seed = command.scene.seed;
   std::unique_ptr<EmbreeVisibility> visibility;
   if (command.kernel == "ray") visibility = std::make_unique<EmbreeVisibility>(patches);
@@ -46,7 +49,7 @@ int run_compare(const CompareCommand& command) {
     std::vector<std::vector<std::string>> rows;
     rows.reserve(result.rows.size());
     for (const CompareRow& r : result.rows)
-      rows.push_back({std::to_string(r.patch), r.method, kChannel[r.channel], csv_number(r.mean), csv_number(r.var),
+      rows.push_back({std::to_string(r.patch), std::string(method_name(r.method)), kChannel[r.channel], csv_number(r.mean), csv_number(r.var),
                       csv_number(r.var_theory), csv_number(r.z), std::to_string(r.walks), std::to_string(r.steps),
                       csv_number(r.seconds), csv_number(r.efficiency)});
     write_csv_table(command.scene.csv,
@@ -61,7 +64,7 @@ int run_compare(const CompareCommand& command) {
   const auto n = static_cast<Eigen::Index>(patches.size());
   std::map<std::string, std::array<PatchRgb, 4>> per_method;
   for (const CompareRow& r : result.rows) {
-    auto [it, fresh] = per_method.try_emplace(r.method);
+    auto [it, fresh] = per_method.try_emplace(std::string(method_name(r.method)));
     if (fresh)
       for (auto& a : it->second) a = PatchRgb::Constant(n, 3, std::numeric_limits<double>::quiet_NaN());
     it->second[0](r.patch, r.channel) = r.mean;
@@ -76,7 +79,7 @@ int run_compare(const CompareCommand& command) {
     fields.push_back(rgb_field("z_" + method, a[3]));
   }
   for (const auto& s : result.summary) {
-    auto& j = summary.json()["estimators"][s.method];
+    auto& j = summary.json()["estimators"][std::string(method_name(s.method))];
     j["runs"] = s.runs;
     j["walks"] = s.walks;
     j["steps"] = s.steps;

@@ -29,14 +29,12 @@ void warn_non_diffuse(const PatchSet& patches, RunSummary& summary) {
 
 WalkOptions walk_options(const SolveCommand& c) {
   WalkOptions w;
-  w.walk = c.walk;
-  w.estimator = c.estimator;
-  w.kernel = c.kernel;
-  w.walks = c.walks;
+  w.method = walk_method(parse_walk_direction(c.walk), c.estimator);
+  w.kernel = parse_walk_kernel(c.kernel);
+  w.walks_per_patch = w.particles = c.walks;
   w.seed = c.scene.seed;
   w.patches = c.patches;
-  w.survival = c.survival;
-  w.survival_constant = c.survival_constant;
+  w.survival = {parse_survival_rule(c.survival), c.survival_constant};
   w.theory = c.theory;
   return w;
 }

@@ -19,6 +19,7 @@
 // Each estimator is a class with
 //   Tables        what its walks read besides the kernel's own data, built once per solve from the kernel's
 //                 KernelTables (the weight factors w_k, absorption's scores E_k / q_k);
+//   moment_source its second-moment source term c_k for the exact variance (moment_terms.h, walk_variance.h);
 //   Walk<K>       a small state machine (the walk of walk_lockstep.h), so that one code serves a walk run on its
 //                 own (run_walk) and walks advanced in lockstep, many destination samples per kernel call:
 //   constructed from (kernel, tables, i, rng): runs up to its first destination request or its end;
@@ -30,11 +31,11 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "walk/moment_terms.h"
 #include "walk/transition_kernel.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
-
-enum class GatherEstimator { absorption, collision, expected_value };
 
 // The gathering weight factors w_k = rho_k n_k / p_k (0 where p_k = 0), per channel.
 std::vector<Rgb> gather_weights(const KernelTables& kernel);
@@ -87,6 +88,17 @@ struct GatherAbsorption {
     Rng rng_{0, 0};
     bool done_ = false;
   };
+
+  // c_k = E_k^2 / q_k (0 where E_k = 0); var = s - B^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    Eigen::VectorXd c(t.E.size());
+    for (Eigen::Index k = 0; k < c.size(); ++k) c(k) = t.E(k) != 0 ? t.E(k) * t.E(k) / t.q(k) : 0.0;
+    return {c, t.B};
+  }
+};
+template <>
+struct EstimatorOf<WalkMethod::gather_absorption> {
+  using type = GatherAbsorption;
 };
 
 struct GatherCollision {
@@ -131,6 +143,13 @@ struct GatherCollision {
     Rng rng_{0, 0};
     bool done_ = false;
   };
+
+  // c_k = E_k (2 B_k - E_k); var = s - B^2.
+  static MomentSource moment_source(const MomentTerms& t) { return {t.E.cwiseProduct(2.0 * t.B - t.E), t.B}; }
+};
+template <>
+struct EstimatorOf<WalkMethod::gather_collision> {
+  using type = GatherCollision;
 };
 
 struct GatherExpectedValue {
@@ -190,31 +209,22 @@ struct GatherExpectedValue {
     bool awaiting_HE_ = false;
     bool done_ = false;
   };
+
+  // s is the second moment of Y = X - E_i = sum_m W_m g_{k_m}: c_k = g_k (2 (B_k - E_k) - g_k), g = H E;
+  // var = s - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {t.HE.cwiseProduct(2.0 * (t.B - t.E) - t.HE), t.B - t.E};
+  }
+};
+template <>
+struct EstimatorOf<WalkMethod::gather_expected_value> {
+  using type = GatherExpectedValue;
 };
 
 // Runs one walk to its end, one destination sample at a time.
 template <TransitionKernel K, class Walk>
 void run_walk(const K& kernel, Walk& walk, WalkCounters& counters) {
   while (!walk.done()) walk.advance(kernel.sample(walk.from(), walk.rng(), counters));
-}
-
-// The score of one walk from patch i with stream rng (left advanced past the walk).
-template <TransitionKernel K>
-Rgb gather_walk(GatherEstimator estimator, const K& kernel, std::size_t i, Rng& rng, WalkCounters& counters) {
-  auto run = [&](auto tag) {
-    using Est = decltype(tag);
-    const typename Est::Tables tables(kernel.tables());
-    typename Est::template Walk<K> walk(kernel, tables, i, rng);
-    run_walk(kernel, walk, counters);
-    rng = walk.rng();
-    return Rgb(walk.score());
-  };
-  switch (estimator) {
-    case GatherEstimator::absorption: return run(GatherAbsorption{});
-    case GatherEstimator::collision: return run(GatherCollision{});
-    case GatherEstimator::expected_value: return run(GatherExpectedValue{});
-  }
-  return Rgb::Zero();
 }
 
 }  // namespace radwalk

@@ -14,10 +14,9 @@
 #include "solve/problem.h"
 #include "walk/alias_table.h"
 #include "walk/transition_kernel.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
-
-enum class WalkDirection { gather, shoot };
 
 // T = A^-1 F^T A (see above). Throws InputError if an area is not positive.
 SparseF shooting_transfer(const RadiosityProblem& problem);

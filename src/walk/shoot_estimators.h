@@ -20,11 +20,11 @@
 
 #include "core/rng.h"
 #include "walk/alias_table.h"
+#include "walk/moment_terms.h"
 #include "walk/transition_kernel.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
-
-enum class ShootEstimator { collision, absorption, survival };
 
 // Where particles are born and with what weight.
 struct ShootSource {
@@ -41,7 +41,8 @@ ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area);
 std::vector<Rgb> shoot_survivor_weights(const KernelTables& kernel);
 
 // Each estimator is a class with Tables (what its particles read besides the kernel's data, built once per solve
-// from KernelTables) and Particle<K>, a state machine (the walk concept of walk_lockstep.h, as in
+// from KernelTables), moment_source (its second-moment source term c_j for the exact variance: moment_terms.h,
+// walk_variance.h; m = t.m()) and Particle<K>, a state machine (the walk concept of walk_lockstep.h, as in
 // gather_estimators.h):
 //   constructed from (kernel, tables, source, rng): born (one uniform from the stream), waiting for its first
 //   move;
@@ -99,6 +100,15 @@ struct ShootCollision {
       this->k_ = jj;
     }
   };
+
+  // c_j = rho_j^2 (1 + 2 m_j); var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array())).matrix(), t.B - t.E};
+  }
+};
+template <>
+struct EstimatorOf<WalkMethod::shoot_collision> {
+  using type = ShootCollision;
 };
 
 struct ShootAbsorption {
@@ -130,6 +140,15 @@ struct ShootAbsorption {
       this->k_ = jj;
     }
   };
+
+  // c_j = rho_j^2 / (1 - p_j); var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() / (1.0 - t.p.array())).matrix(), t.B - t.E};
+  }
+};
+template <>
+struct EstimatorOf<WalkMethod::shoot_absorption> {
+  using type = ShootAbsorption;
 };
 
 struct ShootSurvival {
@@ -159,25 +178,21 @@ struct ShootSurvival {
       this->k_ = jj;
     }
   };
+
+  // c_j = rho_j^2 (1 + 2 m_j) / p_j; var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array()) / t.p.array()).matrix(), t.B - t.E};
+  }
+};
+template <>
+struct EstimatorOf<WalkMethod::shoot_survival> {
+  using type = ShootSurvival;
 };
 
-// Runs one particle with stream rng (left advanced past the particle) to its end, one destination sample at a
-// time.
-template <TransitionKernel K, class Score>
-void shoot_particle(ShootEstimator estimator, const K& kernel, const ShootSource& source, Rng& rng,
-                    WalkCounters& counters, Score&& score) {
-  auto run = [&](auto tag) {
-    using Est = decltype(tag);
-    const typename Est::Tables tables(kernel.tables());
-    typename Est::template Particle<K> particle(kernel, tables, source, rng);
-    while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
-    rng = particle.rng();
-  };
-  switch (estimator) {
-    case ShootEstimator::collision: return run(ShootCollision{});
-    case ShootEstimator::absorption: return run(ShootAbsorption{});
-    case ShootEstimator::survival: return run(ShootSurvival{});
-  }
+// Runs one particle to its end, one destination sample at a time, handing its scores to score(j, power).
+template <TransitionKernel K, class Particle, class Score>
+void run_particle(const K& kernel, Particle& particle, WalkCounters& counters, Score&& score) {
+  while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
 }
 
 }  // namespace radwalk

@@ -33,7 +33,6 @@
 #include <concepts>
 #include <cstddef>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -78,11 +77,6 @@ struct KernelTables {
 // E and rho as rows per patch, with p, n and s (empty: unknown) as given.
 KernelTables make_kernel_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
                                 std::vector<double> s);
-
-// Survival probabilities p_k from a mode: "analog" (mean of rho_k over channels; rho_k for one channel),
-// "max" (max over channels), "constant" (the value `constant` everywhere). Throws InputError on an unknown mode or
-// a constant outside (0, 1].
-std::vector<double> survival_probabilities(const PatchRgb& rho, const std::string& mode, double constant);
 
 // One destination-sample request of a batch: a sample from patch k, drawn from the walk's own stream.
 struct SampleRequest {

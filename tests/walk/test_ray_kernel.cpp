@@ -18,11 +18,10 @@
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_offset.h"
-#include "walk/gather_estimators.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
 #include "walk/ray_kernel.h"
-#include "walk/shoot_estimators.h"
+#include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
 #include "walk_test_checks.h"
@@ -32,7 +31,7 @@ using namespace radwalk;
 
 TEST_CASE("ray kernel agrees with the exact solution of the cube", "[walk][ray]") {
   const std::vector<std::vector<int>> face_sets = {{0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4}};
-  const double z_crit = z_critical(sidak(1e-3, 2 * walk_methods().size() * 6 * 3));
+  const double z_crit = z_critical(sidak(1e-3, 2 * kWalkMethods.size() * 6 * 3));
   int rejected = 0;
   for (const auto& faces : face_sets) {
     const RadiosityProblem p = test::mixed_cube(faces);
@@ -42,14 +41,16 @@ TEST_CASE("ray kernel agrees with the exact solution of the cube", "[walk][ray]"
     const PatchRgb B = dense_radiosity(p);
     RadiosityProblem no_F = p;
     no_F.F = SparseF();  // the ray kernel must not need F
-    for (const std::string& method : walk_methods()) {
+    for (const WalkMethod method : all_walk_methods()) {
       WalkOptions o;
-      set_method(o, method);
-      o.kernel = "ray";
-      o.walks = o.walk == "gather" ? 20000 : 120000;
+      o.method = method;
+      o.kernel = WalkKernel::ray;
+      o.walks_per_patch = 20000;
+      o.particles = 120000;
       o.seed = 3;
       const Solution s = solve_random_walk(no_F, &patches, &visibility, o);
-      rejected += test::count_rejections(s, B, z_crit, std::to_string(faces.size()) + " faces, ray " + method);
+      rejected += test::count_rejections(s, B, z_crit,
+                                         std::to_string(faces.size()) + " faces, ray " + std::string(method_name(method)));
       CHECK(s.info.at("back_hits") == 0);
       if (faces.size() == 6) CHECK(s.info.at("escapes") == 0);  // watertight: no ray leaks
       if (faces.size() == 5) CHECK(s.info.at("escapes") > 0);
@@ -68,9 +69,9 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
   compute_patch_geometry(patches);
   const BruteForceVisibility visibility(patches);
   WalkOptions o;
-  o.kernel = "ray";
-  o.estimator = "collision";
-  o.walks = 2000;
+  o.kernel = WalkKernel::ray;
+  o.method = WalkMethod::gather_collision;
+  o.walks_per_patch = 2000;
   o.patches = {0, 1, 2, 3, 4};  // walks from face 5 itself would leave through its (outward) front
   const Solution s = solve_random_walk(p, &patches, &visibility, o);
   CHECK(s.info.at("back_hits") > 0);
@@ -79,35 +80,23 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
 
 namespace {
 
-// Per-walk gathering scores of patch i, walks 0..walks-1 from the streams Rng(seed, i, w): one at a time
-// (gather_walk) or `lanes` at a time in lockstep (run_lockstep, as the solver runs them).
+// Per-walk gathering scores of patch i, walks 0..walks-1 from the streams Rng(seed, i, w), `lanes` at a time in
+// lockstep (run_lockstep, as the solver runs them).
 template <class K>
-std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, std::size_t i, std::size_t walks,
+std::vector<Rgb> lockstep_gather_scores(WalkMethod method, const K& kernel, std::size_t i, std::size_t walks,
                                         std::uint64_t seed, std::size_t lanes, WalkCounters& counters) {
   std::vector<Rgb> X(walks, Rgb::Constant(-1.0));
-  auto run = [&](auto make) {
-    using Walk = decltype(make(std::size_t{0}));
-    run_lockstep(
-        kernel, walks, lanes, make, [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },
-        [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
-  };
-  switch (est) {
-    case GatherEstimator::absorption: {
-      const GatherAbsorption::Tables tables(kernel.tables());
-      run([&](std::size_t w) { return GatherAbsorption::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
-      break;
+  with_estimator(method, [&](auto m) {
+    using Method = decltype(m);
+    if constexpr (Method::kDirection == WalkDirection::gather) {
+      using Walk = typename Method::Estimator::template Walk<K>;
+      const typename Method::Estimator::Tables tables(kernel.tables());
+      run_lockstep(
+          kernel, walks, lanes, [&](std::size_t w) { return Walk(kernel, tables, i, Rng(seed, i, w)); },
+          [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },
+          [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
     }
-    case GatherEstimator::collision: {
-      const GatherCollision::Tables tables(kernel.tables());
-      run([&](std::size_t w) { return GatherCollision::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
-      break;
-    }
-    case GatherEstimator::expected_value: {
-      const GatherExpectedValue::Tables tables(kernel.tables());
-      run([&](std::size_t w) { return GatherExpectedValue::Walk<K>(kernel, tables, i, Rng(seed, i, w)); });
-      break;
-    }
-  }
+  });
   return X;
 }
 
@@ -116,25 +105,26 @@ template <class K>
 void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, const std::string& name) {
   const std::uint64_t seed = 11;
   const std::size_t walks = 300;  // not a multiple of 16: partial batches
-  for (GatherEstimator est :
-       {GatherEstimator::absorption, GatherEstimator::collision, GatherEstimator::expected_value})
+  for (const WalkMethod method : all_walk_methods()) {
+    if (!is_gathering(method)) continue;
     for (std::size_t i = 0; i < kernel.size(); ++i) {
       WalkCounters batched_counters, single_counters;
       const std::vector<Rgb> batched =
-          lockstep_gather_scores(est, kernel, i, walks, seed, kMaxLanes, batched_counters);
-      const std::vector<Rgb> single = lockstep_gather_scores(est, kernel, i, walks, seed, 1, single_counters);
+          lockstep_gather_scores(method, kernel, i, walks, seed, kMaxLanes, batched_counters);
+      const std::vector<Rgb> single = lockstep_gather_scores(method, kernel, i, walks, seed, 1, single_counters);
+      // Each walk alone, one destination sample at a time (run_walk).
+      const auto alone = test::gather_scores(method, kernel, i, static_cast<long>(walks), seed);
       int mismatches = 0;
       for (std::size_t w = 0; w < walks; ++w) {
-        Rng rng(seed, i, w);
-        WalkCounters counters;
-        const Rgb alone = gather_walk(est, kernel, i, rng, counters);
-        mismatches += !(alone == batched[w]).all() || !(alone == single[w]).all();
+        const Rgb x(alone[0][w], alone[1][w], alone[2][w]);
+        mismatches += !(x == batched[w]).all() || !(x == single[w]).all();
       }
-      INFO(name << ", gathering estimator " << int(est) << ", patch " << i);
+      INFO(name << ", " << method_name(method) << ", patch " << i);
       CHECK(mismatches == 0);
       CHECK(batched_counters.steps == single_counters.steps);
       CHECK(batched_counters.escapes == single_counters.escapes);
     }
+  }
   // Shooting: each particle's list of (patch, power) scores.
   const ShootSource source = make_shoot_source(p.E, p.area);
   const ShootCollision::Tables tables(kernel.tables());
@@ -169,7 +159,7 @@ TEST_CASE("walks in lockstep batches score exactly as walks run one at a time", 
   const std::vector<int> open = {0, 1, 2, 3, 4};  // escapes too
   const RadiosityProblem p = test::mixed_cube(open);
   const PatchSet patches = test::cube_patches(p, open);
-  const std::vector<double> survival = survival_probabilities(p.rho, "analog", 0);
+  const std::vector<double> survival = survival_probabilities(p.rho, {});
   const BruteForceVisibility brute(patches);
   check_lockstep_matches_single(RayKernel(p, patches, brute, survival), p, "ray kernel, brute-force visibility");
   // Embree traces a batch as one packet of 16 and a lone ray as a packet of one.
