@@ -2,17 +2,15 @@
 
 namespace radwalk {
 
-std::vector<Rgb> gather_weights(const KernelTables& kernel) {
-  std::vector<Rgb> w(kernel.p.size());
+GatherWeights::GatherWeights(const KernelTables& kernel) : w(kernel.p.size()) {
   for (std::size_t k = 0; k < w.size(); ++k) {
     const double pk = kernel.p[k];
     w[k] = pk > 0 ? Rgb(kernel.rho[k] * (kernel.n[k] / pk)) : Rgb::Zero();
   }
-  return w;
 }
 
 GatherAbsorption::Tables::Tables(const KernelTables& kernel)
-    : w(gather_weights(kernel)), score(kernel.p.size()), escape_scores(kernel.row_sums_known()) {
+    : GatherWeights(kernel), score(kernel.p.size()), escape_scores(kernel.row_sums_known()) {
   for (std::size_t k = 0; k < score.size(); ++k) {
     // Probability of a scored stop at k: every stop (q_k = 1 - p_k s_k / n_k) or only the roulette (1 - p_k).
     const double q = escape_scores ? 1.0 - kernel.p[k] * kernel.s[k] / kernel.n[k] : 1.0 - kernel.p[k];

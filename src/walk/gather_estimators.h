@@ -18,7 +18,7 @@
 //
 // Each estimator is a class with
 //   Tables        what its walks read besides the kernel's own data, built once per solve from the kernel's
-//                 KernelTables (the weight factors w_k, absorption's scores E_k / q_k);
+//                 KernelTables (the weight factors w_k of GatherWeights, absorption's scores E_k / q_k);
 //   moment_source its second-moment source term c_k for the exact variance (moment_terms.h, walk_variance.h);
 //   Walk<K>       a small state machine (the walk of walk_lockstep.h), so that one code serves a walk run on its
 //                 own (run_walk) and walks advanced in lockstep, many destination samples per kernel call:
@@ -37,56 +37,75 @@
 
 namespace radwalk {
 
-// The gathering weight factors w_k = rho_k n_k / p_k (0 where p_k = 0), per channel.
-std::vector<Rgb> gather_weights(const KernelTables& kernel);
+// The table every gathering walk reads: its weight factors w_k = rho_k n_k / p_k (0 where p_k = 0), per channel.
+struct GatherWeights {
+  std::vector<Rgb> w;
+  explicit GatherWeights(const KernelTables& kernel);
+};
+
+// What every gathering walk keeps and does, under the walk interface above: it is at patch k with weight W and
+// score X; the roulette at k ends it with probability 1 - p_k; a destination sample j moves it on to j with
+// weight W w_k, or ends it at a stop (j < 0).
+template <TransitionKernel K, class Tables>
+class GatherWalk {
+ public:
+  GatherWalk() = default;
+  GatherWalk(const K& kernel, const Tables& tables, std::size_t i, const Rng& rng)
+      : kernel_(&kernel), t_(&tables), k_(i), rng_(rng) {}
+  bool done() const { return done_; }
+  const Rgb& score() const { return X_; }
+  std::size_t from() const { return k_; }
+  Rng& rng() { return rng_; }
+
+ protected:
+  // True if the roulette at k ends the walk.
+  bool stopped_by_roulette() {
+    done_ = roulette_uniform(rng_) >= kernel_->tables().p[k_];
+    return done_;
+  }
+  // True if the walk moved on to j; false (and done) at a stop.
+  bool moved(PatchIndex j) {
+    done_ = j < 0;
+    if (done_) return false;
+    W_ *= t_->w[k_];
+    k_ = static_cast<std::size_t>(j);
+    return true;
+  }
+
+  const K* kernel_ = nullptr;
+  const Tables* t_ = nullptr;
+  std::size_t k_ = 0;
+  Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
+  Rng rng_{0, 0};
+  bool done_ = false;
+};
 
 struct GatherAbsorption {
-  struct Tables {
-    std::vector<Rgb> w;       // w_k
-    std::vector<Rgb> score;   // E_k / q_k (0 where E_k = 0): what a scored stop at k scores, times the weight
+  struct Tables : GatherWeights {
+    std::vector<Rgb> score;      // E_k / q_k (0 where E_k = 0): what a scored stop at k scores, times the weight
     bool escape_scores = false;  // an escape is a scored stop (the kernel knows s_k)
     explicit Tables(const KernelTables& kernel);
   };
 
   template <TransitionKernel K>
-  class Walk {
+  class Walk : public GatherWalk<K, Tables> {
    public:
     Walk() = default;
     Walk(const K& kernel, const Tables& tables, std::size_t i, const Rng& rng)
-        : kt_(&kernel.tables()), t_(&tables), k_(i), rng_(rng) {
+        : GatherWalk<K, Tables>(kernel, tables, i, rng) {
       roulette();
     }
-    bool done() const { return done_; }
-    const Rgb& score() const { return X_; }
-    std::size_t from() const { return k_; }
-    Rng& rng() { return rng_; }
-
     void advance(PatchIndex j) {
       // Escape: scored where it is a scored stop (matrix kernel), else 0.
-      if (j < 0) {
-        if (t_->escape_scores) X_ = W_ * t_->score[k_];
-        done_ = true;
-        return;
-      }
-      W_ *= t_->w[k_];
-      k_ = static_cast<std::size_t>(j);
-      roulette();
+      if (j < 0 && this->t_->escape_scores) this->X_ = this->W_ * this->t_->score[this->k_];
+      if (this->moved(j)) roulette();
     }
 
    private:
     // Roulette stop at k: scored.
     void roulette() {
-      if (roulette_uniform(rng_) >= kt_->p[k_]) {
-        X_ = W_ * t_->score[k_];
-        done_ = true;
-      }
+      if (this->stopped_by_roulette()) this->X_ = this->W_ * this->t_->score[this->k_];
     }
-    const KernelTables* kt_ = nullptr;
-    const Tables* t_ = nullptr;
-    std::size_t k_ = 0;
-    Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-    Rng rng_{0, 0};
-    bool done_ = false;
   };
 
   // c_k = E_k^2 / q_k (0 where E_k = 0); var = s - B^2.
@@ -96,95 +115,56 @@ struct GatherAbsorption {
     return {c, t.B};
   }
 };
-template <>
-struct EstimatorOf<WalkMethod::gather_absorption> {
-  using type = GatherAbsorption;
-};
+template <> struct EstimatorOf<WalkMethod::gather_absorption> { using type = GatherAbsorption; };
 
 struct GatherCollision {
-  struct Tables {
-    std::vector<Rgb> w;  // w_k
-    explicit Tables(const KernelTables& kernel) : w(gather_weights(kernel)) {}
-  };
+  using Tables = GatherWeights;
 
   template <TransitionKernel K>
-  class Walk {
+  class Walk : public GatherWalk<K, Tables> {
    public:
     Walk() = default;
     Walk(const K& kernel, const Tables& tables, std::size_t i, const Rng& rng)
-        : kt_(&kernel.tables()), t_(&tables), k_(i), rng_(rng) {
+        : GatherWalk<K, Tables>(kernel, tables, i, rng) {
       visit();
     }
-    bool done() const { return done_; }
-    const Rgb& score() const { return X_; }
-    std::size_t from() const { return k_; }
-    Rng& rng() { return rng_; }
-
     void advance(PatchIndex j) {
-      if (j < 0) {
-        done_ = true;
-        return;
-      }
-      W_ *= t_->w[k_];
-      k_ = static_cast<std::size_t>(j);
-      visit();
+      if (this->moved(j)) visit();
     }
 
    private:
     // Score the state visited, then roulette.
     void visit() {
-      X_ += W_ * kt_->E[k_];
-      if (roulette_uniform(rng_) >= kt_->p[k_]) done_ = true;
+      this->X_ += this->W_ * this->kernel_->tables().E[this->k_];
+      this->stopped_by_roulette();
     }
-    const KernelTables* kt_ = nullptr;
-    const Tables* t_ = nullptr;
-    std::size_t k_ = 0;
-    Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-    Rng rng_{0, 0};
-    bool done_ = false;
   };
 
   // c_k = E_k (2 B_k - E_k); var = s - B^2.
   static MomentSource moment_source(const MomentTerms& t) { return {t.E.cwiseProduct(2.0 * t.B - t.E), t.B}; }
 };
-template <>
-struct EstimatorOf<WalkMethod::gather_collision> {
-  using type = GatherCollision;
-};
+template <> struct EstimatorOf<WalkMethod::gather_collision> { using type = GatherCollision; };
 
 struct GatherExpectedValue {
-  struct Tables {
-    std::vector<Rgb> w;  // w_k
-    explicit Tables(const KernelTables& kernel) : w(gather_weights(kernel)) {}
-  };
+  using Tables = GatherWeights;
 
   template <TransitionKernel K>
-  class Walk {
+  class Walk : public GatherWalk<K, Tables> {
    public:
     Walk() = default;
     Walk(const K& kernel, const Tables& tables, std::size_t i, const Rng& rng)
-        : kernel_(&kernel), t_(&tables), k_(i), X_(kernel.tables().E[i]), rng_(rng) {
+        : GatherWalk<K, Tables>(kernel, tables, i, rng) {
+      this->X_ = kernel.tables().E[i];
       visit();
     }
-    bool done() const { return done_; }
-    const Rgb& score() const { return X_; }
-    std::size_t from() const { return k_; }
-    Rng& rng() { return rng_; }
-
     void advance(PatchIndex j) {
       if (awaiting_HE_) {
         awaiting_HE_ = false;
-        X_ += W_ * kernel_->HE(k_, j);
-        roulette();
+        this->X_ += this->W_ * this->kernel_->HE(this->k_, j);
+        this->stopped_by_roulette();
         return;
       }
-      if (j < 0) {
-        done_ = true;
-        return;
-      }
-      W_ *= t_->w[k_];
-      k_ = static_cast<std::size_t>(j);
-      visit();
+      if (this->moved(j)) visit();
     }
 
    private:
@@ -194,20 +174,11 @@ struct GatherExpectedValue {
       if constexpr (K::kHESampled) {
         awaiting_HE_ = true;
       } else {
-        X_ += W_ * kernel_->HE(k_, kNoSample);
-        roulette();
+        this->X_ += this->W_ * this->kernel_->HE(this->k_, kNoSample);
+        this->stopped_by_roulette();
       }
     }
-    void roulette() {
-      if (roulette_uniform(rng_) >= kernel_->tables().p[k_]) done_ = true;
-    }
-    const K* kernel_ = nullptr;
-    const Tables* t_ = nullptr;
-    std::size_t k_ = 0;
-    Rgb W_ = Rgb::Ones(), X_ = Rgb::Zero();
-    Rng rng_{0, 0};
     bool awaiting_HE_ = false;
-    bool done_ = false;
   };
 
   // s is the second moment of Y = X - E_i = sum_m W_m g_{k_m}: c_k = g_k (2 (B_k - E_k) - g_k), g = H E;
@@ -216,10 +187,7 @@ struct GatherExpectedValue {
     return {t.HE.cwiseProduct(2.0 * (t.B - t.E) - t.HE), t.B - t.E};
   }
 };
-template <>
-struct EstimatorOf<WalkMethod::gather_expected_value> {
-  using type = GatherExpectedValue;
-};
+template <> struct EstimatorOf<WalkMethod::gather_expected_value> { using type = GatherExpectedValue; };
 
 // Runs one walk to its end, one destination sample at a time.
 template <TransitionKernel K, class Walk>

@@ -4,6 +4,7 @@
 // as lists for help texts.
 //
 // A table is a std::array of rows, each with a `name` (std::string_view); the names of one table are distinct.
+// NamedChoice is the row of a plain enum table (kernels, survival rules, walk directions), listed in enum order.
 #include <array>
 #include <cstddef>
 #include <string>
@@ -11,6 +12,26 @@
 #include <vector>
 
 namespace radwalk {
+
+template <class Enum>
+struct NamedChoice {
+  Enum value;
+  std::string_view name;
+  std::string_view help;  // for help texts
+};
+
+// True if row i of the table holds the enum value i (so that the table can be indexed by the enum).
+template <class Enum, std::size_t N>
+constexpr bool in_enum_order(const std::array<NamedChoice<Enum>, N>& rows) {
+  for (std::size_t i = 0; i < N; ++i)
+    if (static_cast<std::size_t>(rows[i].value) != i) return false;
+  return true;
+}
+
+template <class Enum, std::size_t N>
+constexpr std::string_view choice_name(const std::array<NamedChoice<Enum>, N>& rows, Enum value) {
+  return rows[static_cast<std::size_t>(value)].name;
+}
 
 // "a, b, c": the names in table order.
 std::string join_names(const std::vector<std::string>& names);

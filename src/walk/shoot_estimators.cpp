@@ -30,17 +30,14 @@ ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area) {
   return s;
 }
 
-std::vector<Rgb> shoot_survivor_weights(const KernelTables& kernel) {
-  std::vector<Rgb> w(kernel.p.size());
-  for (std::size_t k = 0; k < w.size(); ++k) {
+ShootWeights::ShootWeights(const KernelTables& kernel) : survivor(kernel.p.size()) {
+  for (std::size_t k = 0; k < survivor.size(); ++k) {
     const double pk = kernel.p[k];
-    w[k] = pk > 0 ? Rgb(kernel.rho[k] / pk) : Rgb::Zero();
+    survivor[k] = pk > 0 ? Rgb(kernel.rho[k] / pk) : Rgb::Zero();
   }
-  return w;
 }
 
-ShootAbsorption::Tables::Tables(const KernelTables& kernel)
-    : survivor(shoot_survivor_weights(kernel)), absorbed(kernel.p.size()) {
+ShootAbsorption::Tables::Tables(const KernelTables& kernel) : ShootWeights(kernel), absorbed(kernel.p.size()) {
   for (std::size_t k = 0; k < absorbed.size(); ++k) {
     const double pk = kernel.p[k];
     absorbed[k] = pk < 1 ? Rgb(kernel.rho[k] / (1.0 - pk)) : Rgb::Zero();

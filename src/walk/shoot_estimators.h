@@ -36,9 +36,12 @@ struct ShootSource {
 // Throws InputError if sizes disagree or an E or an area is negative.
 ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area);
 
-// The weight factors every particle uses: rho_k / p_k (0 where p_k = 0), the factor of a particle surviving the
-// roulette at k (its leaving weight is W_in rho_k / p_k).
-std::vector<Rgb> shoot_survivor_weights(const KernelTables& kernel);
+// The table every particle reads: rho_k / p_k (0 where p_k = 0), the weight factor of a particle surviving the
+// roulette at k (it leaves k with weight W_in rho_k / p_k).
+struct ShootWeights {
+  std::vector<Rgb> survivor;
+  explicit ShootWeights(const KernelTables& kernel);
+};
 
 // Each estimator is a class with Tables (what its particles read besides the kernel's data, built once per solve
 // from KernelTables), moment_source (its second-moment source term c_j for the exact variance: moment_terms.h,
@@ -50,6 +53,9 @@ std::vector<Rgb> shoot_survivor_weights(const KernelTables& kernel);
 //   advance(j, score) consumes the destination sample j of from(), calls score(j, power) for a score at j, and
 //   runs up to the next request (after the roulette at j) or the end.
 // A particle draws from its own stream only: birth, then per step the destination sample and the roulette.
+// ShootParticle is what every particle keeps and does: it leaves patch k with weight W; a destination sample j
+// ends it at a stop (j < 0) or it arrives at j with weight W n_k; the roulette at j absorbs it with probability
+// 1 - p_j, else it leaves j.
 template <TransitionKernel K, class Tables>
 class ShootParticle {
  public:
@@ -64,6 +70,22 @@ class ShootParticle {
   Rng& rng() { return rng_; }
 
  protected:
+  // True if the particle arrives at j; false (and done) at a stop.
+  bool arrives(PatchIndex j) {
+    done_ = j < 0;
+    return !done_;
+  }
+  Rgb arriving_weight() const { return W_ * kt_->n[k_]; }
+  // True (and done) if the roulette at j absorbs the particle.
+  bool absorbed_at(std::size_t j) {
+    done_ = roulette_uniform(rng_) >= kt_->p[j];
+    return done_;
+  }
+  void leave(std::size_t j, const Rgb& W) {
+    W_ = W;
+    k_ = j;
+  }
+
   const KernelTables* kt_ = nullptr;
   const Tables* t_ = nullptr;
   std::size_t k_ = 0;
@@ -73,10 +95,7 @@ class ShootParticle {
 };
 
 struct ShootCollision {
-  struct Tables {
-    std::vector<Rgb> survivor;  // rho_k / p_k
-    explicit Tables(const KernelTables& kernel) : survivor(shoot_survivor_weights(kernel)) {}
-  };
+  using Tables = ShootWeights;
 
   template <TransitionKernel K>
   class Particle : public ShootParticle<K, Tables> {
@@ -84,20 +103,11 @@ struct ShootCollision {
     using ShootParticle<K, Tables>::ShootParticle;
     template <class Score>
     void advance(PatchIndex j, Score&& score) {
-      if (j < 0) {
-        this->done_ = true;
-        return;
-      }
-      const KernelTables& kt = *this->kt_;
+      if (!this->arrives(j)) return;
       const auto jj = static_cast<std::size_t>(j);
-      const Rgb W_in = this->W_ * kt.n[this->k_];
-      score(jj, Rgb(W_in * kt.rho[jj]));
-      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
-        this->done_ = true;
-        return;
-      }
-      this->W_ = W_in * this->t_->survivor[jj];
-      this->k_ = jj;
+      const Rgb W_in = this->arriving_weight();
+      score(jj, Rgb(W_in * this->kt_->rho[jj]));
+      if (!this->absorbed_at(jj)) this->leave(jj, W_in * this->t_->survivor[jj]);
     }
   };
 
@@ -106,14 +116,10 @@ struct ShootCollision {
     return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array())).matrix(), t.B - t.E};
   }
 };
-template <>
-struct EstimatorOf<WalkMethod::shoot_collision> {
-  using type = ShootCollision;
-};
+template <> struct EstimatorOf<WalkMethod::shoot_collision> { using type = ShootCollision; };
 
 struct ShootAbsorption {
-  struct Tables {
-    std::vector<Rgb> survivor;  // rho_k / p_k
+  struct Tables : ShootWeights {
     std::vector<Rgb> absorbed;  // rho_k / (1 - p_k) (0 where p_k = 1): the score factor of an absorption at k
     explicit Tables(const KernelTables& kernel);
   };
@@ -124,20 +130,13 @@ struct ShootAbsorption {
     using ShootParticle<K, Tables>::ShootParticle;
     template <class Score>
     void advance(PatchIndex j, Score&& score) {
-      if (j < 0) {
-        this->done_ = true;
-        return;
-      }
-      const KernelTables& kt = *this->kt_;
+      if (!this->arrives(j)) return;
       const auto jj = static_cast<std::size_t>(j);
-      const Rgb W_in = this->W_ * kt.n[this->k_];
-      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
+      const Rgb W_in = this->arriving_weight();
+      if (this->absorbed_at(jj))
         score(jj, Rgb(W_in * this->t_->absorbed[jj]));
-        this->done_ = true;
-        return;
-      }
-      this->W_ = W_in * this->t_->survivor[jj];
-      this->k_ = jj;
+      else
+        this->leave(jj, W_in * this->t_->survivor[jj]);
     }
   };
 
@@ -146,16 +145,10 @@ struct ShootAbsorption {
     return {(t.rho.array().square() / (1.0 - t.p.array())).matrix(), t.B - t.E};
   }
 };
-template <>
-struct EstimatorOf<WalkMethod::shoot_absorption> {
-  using type = ShootAbsorption;
-};
+template <> struct EstimatorOf<WalkMethod::shoot_absorption> { using type = ShootAbsorption; };
 
 struct ShootSurvival {
-  struct Tables {
-    std::vector<Rgb> survivor;  // rho_k / p_k
-    explicit Tables(const KernelTables& kernel) : survivor(shoot_survivor_weights(kernel)) {}
-  };
+  using Tables = ShootWeights;
 
   template <TransitionKernel K>
   class Particle : public ShootParticle<K, Tables> {
@@ -163,19 +156,11 @@ struct ShootSurvival {
     using ShootParticle<K, Tables>::ShootParticle;
     template <class Score>
     void advance(PatchIndex j, Score&& score) {
-      if (j < 0) {
-        this->done_ = true;
-        return;
-      }
-      const KernelTables& kt = *this->kt_;
+      if (!this->arrives(j)) return;
       const auto jj = static_cast<std::size_t>(j);
-      if (roulette_uniform(this->rng_) >= kt.p[jj]) {
-        this->done_ = true;
-        return;
-      }
-      this->W_ = this->W_ * kt.n[this->k_] * this->t_->survivor[jj];
+      if (this->absorbed_at(jj)) return;
+      this->leave(jj, this->arriving_weight() * this->t_->survivor[jj]);
       score(jj, this->W_);
-      this->k_ = jj;
     }
   };
 
@@ -184,10 +169,7 @@ struct ShootSurvival {
     return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array()) / t.p.array()).matrix(), t.B - t.E};
   }
 };
-template <>
-struct EstimatorOf<WalkMethod::shoot_survival> {
-  using type = ShootSurvival;
-};
+template <> struct EstimatorOf<WalkMethod::shoot_survival> { using type = ShootSurvival; };
 
 // Runs one particle to its end, one destination sample at a time, handing its scores to score(j, power).
 template <TransitionKernel K, class Particle, class Score>

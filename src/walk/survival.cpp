@@ -9,7 +9,7 @@
 namespace radwalk {
 
 SurvivalRule parse_survival_rule(std::string_view name) {
-  return find_choice(kSurvivalRules, name, "survival mode").rule;
+  return find_choice(kSurvivalRules, name, "survival mode").value;
 }
 
 void check_survival(const Survival& survival) {

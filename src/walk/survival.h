@@ -15,31 +15,21 @@
 #include <vector>
 
 #include "core/types.h"
+#include "walk/named_choice.h"
 
 namespace radwalk {
 
 enum class SurvivalRule { analog, max, constant };
 
-struct SurvivalRuleRow {
-  SurvivalRule rule;
-  std::string_view name;
-  std::string_view help;
-};
-
-inline constexpr std::array<SurvivalRuleRow, 3> kSurvivalRules = {{
+inline constexpr std::array<NamedChoice<SurvivalRule>, 3> kSurvivalRules = {{
     {SurvivalRule::analog, "analog", "mean rho_k over channels"},
     {SurvivalRule::max, "max", "max rho_k over channels"},
-    {SurvivalRule::constant, "constant", "the survival constant everywhere"},
+    {SurvivalRule::constant, "constant", "--survival-constant everywhere"},
 }};
 
-static_assert(static_cast<std::size_t>(kSurvivalRules[0].rule) == 0 &&
-                  static_cast<std::size_t>(kSurvivalRules[1].rule) == 1 &&
-                  static_cast<std::size_t>(kSurvivalRules[2].rule) == 2,
-              "kSurvivalRules lists SurvivalRule in order");
+static_assert(in_enum_order(kSurvivalRules));
 
-constexpr std::string_view survival_name(SurvivalRule rule) {
-  return kSurvivalRules[static_cast<std::size_t>(rule)].name;
-}
+constexpr std::string_view survival_name(SurvivalRule rule) { return choice_name(kSurvivalRules, rule); }
 
 // "analog" | "max" | "constant"; InputError naming the valid rules otherwise.
 SurvivalRule parse_survival_rule(std::string_view name);

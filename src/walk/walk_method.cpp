@@ -24,7 +24,7 @@ std::vector<std::string> estimator_names(WalkDirection direction) {
 WalkMethod parse_walk_method(std::string_view name) { return find_choice(kWalkMethods, name, "method").method; }
 
 WalkDirection parse_walk_direction(std::string_view name) {
-  return find_choice(kWalkDirections, name, "walk direction").direction;
+  return find_choice(kWalkDirections, name, "walk direction").value;
 }
 
 WalkMethod walk_method(WalkDirection direction, std::string_view estimator) {

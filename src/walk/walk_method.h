@@ -18,6 +18,8 @@
 #include <string_view>
 #include <vector>
 
+#include "walk/named_choice.h"
+
 namespace radwalk {
 
 enum class WalkDirection { gather, shoot };
@@ -54,33 +56,23 @@ inline constexpr std::array<WalkMethodRow, 6> kWalkMethods = {{
      "the arrivals where the particle survives, over the survival probability"},
 }};
 
-struct WalkDirectionRow {
-  WalkDirection direction;
-  std::string_view name;  // "gather"
-  std::string_view help;
-};
-
-inline constexpr std::array<WalkDirectionRow, 2> kWalkDirections = {{
-    {WalkDirection::gather, "gather", "adjoint walks from each estimated patch (--walks-per-patch)"},
-    {WalkDirection::shoot, "shoot", "forward particles from the emitters, all patches at once (--particles)"},
+inline constexpr std::array<NamedChoice<WalkDirection>, 2> kWalkDirections = {{
+    {WalkDirection::gather, "gather", "adjoint walks from each estimated patch, --walks-per-patch of them"},
+    {WalkDirection::shoot, "shoot", "forward particles from the emitters for all patches at once, --particles"},
 }};
 
-constexpr bool rows_in_enum_order() {
+constexpr bool methods_in_enum_order() {
   for (std::size_t i = 0; i < kWalkMethods.size(); ++i)
     if (static_cast<std::size_t>(kWalkMethods[i].method) != i) return false;
-  for (std::size_t i = 0; i < kWalkDirections.size(); ++i)
-    if (static_cast<std::size_t>(kWalkDirections[i].direction) != i) return false;
   return true;
 }
-static_assert(rows_in_enum_order(), "kWalkMethods and kWalkDirections list their enums in order");
+static_assert(methods_in_enum_order() && in_enum_order(kWalkDirections));
 
 constexpr const WalkMethodRow& method_row(WalkMethod method) { return kWalkMethods[static_cast<std::size_t>(method)]; }
 constexpr WalkDirection direction_of(WalkMethod method) { return method_row(method).direction; }
 constexpr bool is_gathering(WalkMethod method) { return direction_of(method) == WalkDirection::gather; }
 constexpr std::string_view method_name(WalkMethod method) { return method_row(method).name; }
-constexpr std::string_view direction_name(WalkDirection direction) {
-  return kWalkDirections[static_cast<std::size_t>(direction)].name;
-}
+constexpr std::string_view direction_name(WalkDirection direction) { return choice_name(kWalkDirections, direction); }
 
 // Every method, in table order.
 std::vector<WalkMethod> all_walk_methods();

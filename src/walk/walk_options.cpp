@@ -7,7 +7,7 @@
 
 namespace radwalk {
 
-WalkKernel parse_walk_kernel(std::string_view name) { return find_choice(kWalkKernels, name, "kernel").kernel; }
+WalkKernel parse_walk_kernel(std::string_view name) { return find_choice(kWalkKernels, name, "kernel").value; }
 
 void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
   const bool gather = is_gathering(options.method);

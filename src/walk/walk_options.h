@@ -14,6 +14,7 @@
 #include <string_view>
 #include <vector>
 
+#include "walk/named_choice.h"
 #include "walk/survival.h"
 #include "walk/walk_method.h"
 
@@ -23,21 +24,13 @@ inline constexpr std::uint64_t kShootStream = ~std::uint64_t{0};
 
 enum class WalkKernel { matrix, ray };
 
-struct WalkKernelRow {
-  WalkKernel kernel;
-  std::string_view name;
-  std::string_view help;
-};
-
-inline constexpr std::array<WalkKernelRow, 2> kWalkKernels = {{
+inline constexpr std::array<NamedChoice<WalkKernel>, 2> kWalkKernels = {{
     {WalkKernel::matrix, "matrix", "stored F, an alias table per row"},
     {WalkKernel::ray, "ray", "Embree traces every step, no F stored"},
 }};
-static_assert(static_cast<std::size_t>(kWalkKernels[0].kernel) == 0 &&
-                  static_cast<std::size_t>(kWalkKernels[1].kernel) == 1,
-              "kWalkKernels lists WalkKernel in order");
+static_assert(in_enum_order(kWalkKernels));
 
-constexpr std::string_view kernel_name(WalkKernel kernel) { return kWalkKernels[static_cast<std::size_t>(kernel)].name; }
+constexpr std::string_view kernel_name(WalkKernel kernel) { return choice_name(kWalkKernels, kernel); }
 
 // "matrix" | "ray"; InputError naming the valid kernels otherwise.
 WalkKernel parse_walk_kernel(std::string_view name);

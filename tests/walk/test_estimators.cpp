@@ -84,7 +84,7 @@ TEST_CASE("the z-test rejects a deliberately biased estimator", "[walk][unbiased
   biased.B.setZero(6, 3);
   biased.B_se.setZero(6, 3);
   const KernelTables& t = kernel.tables();
-  const std::vector<Rgb> weight = gather_weights(t);
+  const std::vector<Rgb> weight = GatherWeights(t).w;
   for (std::size_t i = 0; i < 6; ++i) {
     Moments m;
     WalkCounters counters;
