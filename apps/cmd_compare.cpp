@@ -1,4 +1,5 @@
-// radwalk compare SCENE --estimators LIST --walks N --runs R --csv out.csv -o out.vtp: estimator variance study.
+// radwalk compare SCENE --estimators LIST --walks-per-patch N --runs R --csv out.csv -o out.vtp: estimator variance
+// study.
 #include <cstdio>
 #include <map>
 
@@ -16,6 +17,11 @@ namespace radwalk::app {
 int run_compare(const CompareCommand& command) {
   RunSummary summary("compare", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
+  // The options are checked here, once, before any form factor is traced.
+  CompareOptions options = command.compare;
+  options.walk.seed = command.scene.seed;
+  options.progress = true;
+  check_compare_options(options, patches.size());
   ThreadLimit limit(command.scene.threads);
   FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
   const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
@@ -26,17 +32,8 @@ int run_compare(const CompareCommand& command) {
   const Solution reference = solve_radiosity(problem, direct);
   summary.add_timing("reference solve", reference.seconds);
 
-  CompareOptions options;
-  if (!command.estimators.empty()) {
-    options.methods.clear();
-    for (const std::string& name : command.estimators) options.methods.push_back(parse_walk_method(name));
-  }
-  options.runs = command.runs;
-  options.walk.kernel = parse_walk_kernel(command.kernel);
-  options.walk.walks_per_patch = command.walks;
-  options.walk.seed = command.scene.seed;
   std::unique_ptr<EmbreeVisibility> visibility;
-  if (command.kernel == "ray") visibility = std::make_unique<EmbreeVisibility>(patches);
+  if (options.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(patches);
   const CompareResult result = compare_random_walks(problem, &patches, visibility.get(), options, reference.B);
   double total = 0;
   for (const auto& s : result.summary) total += s.seconds;

@@ -27,18 +27,6 @@ void warn_non_diffuse(const PatchSet& patches, RunSummary& summary) {
     }
 }
 
-WalkOptions walk_options(const SolveCommand& c) {
-  WalkOptions w;
-  w.method = walk_method(parse_walk_direction(c.walk), c.estimator);
-  w.kernel = parse_walk_kernel(c.kernel);
-  w.walks_per_patch = w.particles = c.walks;
-  w.seed = c.scene.seed;
-  w.patches = c.patches;
-  w.survival = {parse_survival_rule(c.survival), c.survival_constant};
-  w.theory = c.theory;
-  return w;
-}
-
 SolveOptions solve_options(const SolveCommand& c, std::size_t patches) {
   SolveOptions o;
   o.solver = c.solver;
@@ -138,10 +126,16 @@ int run_solve(const SolveCommand& command) {
   RunSummary summary("solve", command.scene.argv);
   check_combinations(command);
   PatchSet patches = load_patches(command.scene, summary);
+  // The walk options are checked here, once, before any form factor is traced.
+  const bool walks = command.solver == "random-walk";
+  WalkOptions walk = command.walk;
+  walk.seed = command.scene.seed;
+  walk.progress = true;
+  if (walks) check_walk_options(walk, patches.size());
   warn_non_diffuse(patches, summary);
   ThreadLimit limit(command.scene.threads);
 
-  const bool ray_walk = command.solver == "random-walk" && command.kernel == "ray";
+  const bool ray_walk = walks && walk.kernel == WalkKernel::ray;
   std::vector<CellField> fields;
   // The form-factor diagnostics (a transpose of F and a pass over it) only when a per-patch file is written.
   const bool per_patch_output = !command.scene.vtp.empty() || !command.scene.csv.empty();
@@ -157,13 +151,13 @@ int run_solve(const SolveCommand& command) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
     const EmbreeVisibility visibility(patches);
-    solution = solve_random_walk(problem, &patches, &visibility, walk_options(command));
+    solution = solve_random_walk(problem, &patches, &visibility, walk);
   } else {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
-    if (command.solver == "random-walk") {
-      solution = solve_random_walk(problem, &patches, nullptr, walk_options(command));
+    if (walks) {
+      solution = solve_random_walk(problem, &patches, nullptr, walk);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
@@ -182,6 +176,11 @@ int run_solve(const SolveCommand& command) {
     }
   }
   summary.add_timing("solve", solution.seconds);
+  if (walks && too_few_particles(solution))
+    warn(summary, solution.method + ": " + std::to_string(static_cast<long>(solution.info.at("unreached_patches"))) +
+                      " of the " + std::to_string(static_cast<long>(solution.info.at("reflecting_patches"))) +
+                      " non-emitting reflecting patches got no particle's score, so their B = 0 is an artefact of " +
+                      std::to_string(walk.particles) + " particles: use more --particles");
 
   // Report: method, status, cost, accuracy.
   std::printf("%s: %s (%s)", solution.method.c_str(), to_string(solution.status), solution.message.c_str());
