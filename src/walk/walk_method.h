@@ -41,7 +41,7 @@ struct WalkMethodRow {
   std::string_view scores;     // what one walk or particle scores (help texts)
 };
 
-inline constexpr std::array<WalkMethodRow, 6> kWalkMethods = {{
+inline constexpr auto kWalkMethods = std::to_array<WalkMethodRow>({
     {WalkMethod::gather_absorption, "gather-absorption", WalkDirection::gather, "absorption",
      "W E_k / q_k at the patch k where the walk stops (von Neumann-Ulam)"},
     {WalkMethod::gather_collision, "gather-collision", WalkDirection::gather, "collision",
@@ -54,7 +54,7 @@ inline constexpr std::array<WalkMethodRow, 6> kWalkMethods = {{
      "the arrival where the particle is absorbed, over the absorption probability"},
     {WalkMethod::shoot_survival, "shoot-survival", WalkDirection::shoot, "survival",
      "the arrivals where the particle survives, over the survival probability"},
-}};
+});
 
 inline constexpr std::array<NamedChoice<WalkDirection>, 2> kWalkDirections = {{
     {WalkDirection::gather, "gather", "adjoint walks from each estimated patch, --walks-per-patch of them"},

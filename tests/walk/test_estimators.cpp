@@ -38,7 +38,7 @@ std::vector<Scene> scenes() {
 
 }  // namespace
 
-TEST_CASE("all six estimators are unbiased on the matrix kernel", "[walk][unbiased]") {
+TEST_CASE("every estimator is unbiased on the matrix kernel", "[walk][unbiased]") {
   const std::vector<Scene> all = scenes();
   std::size_t checks = 0;
   for (const Scene& s : all) checks += kWalkMethods.size() * s.problem.size() * 3;
