@@ -28,6 +28,8 @@
 //   advance(j)    consumes that sample and runs up to the next request or the end.
 // A walk draws from its own stream only, in the same order however it is driven: per state the roulette, then
 // the destination sample (expected value with kHESampled: HE sample, roulette, destination sample).
+// Each class is registered as EstimatorOf<its method> right after it, and its method is a row of kWalkMethods
+// (walk_method.h); with_estimator (walk_estimators.h) dispatches to it.
 #include <vector>
 
 #include "core/rng.h"

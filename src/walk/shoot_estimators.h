@@ -53,6 +53,7 @@ struct ShootWeights {
 //   advance(j, score) consumes the destination sample j of from(), calls score(j, power) for a score at j, and
 //   runs up to the next request (after the roulette at j) or the end.
 // A particle draws from its own stream only: birth, then per step the destination sample and the roulette.
+// Each class is registered as EstimatorOf<its method> right after it, as in gather_estimators.h.
 // ShootParticle is what every particle keeps and does: it leaves patch k with weight W; a destination sample j
 // ends it at a stop (j < 0) or it arrives at j with weight W n_k; the roulette at j absorbs it with probability
 // 1 - p_j, else it leaves j.

@@ -3,7 +3,7 @@
 // accuracy, variance and efficiency, for `radwalk compare`.
 //
 // Budget: options.walk.walks_per_patch walks per estimated patch for gathering; the same total,
-// walks_per_patch x (patches estimated), as particles for shooting. Run r uses seed options.seed + r. Per patch,
+// walks_per_patch x (patches estimated), as particles for shooting. Run r uses seed options.walk.seed + r. Per patch,
 // method and channel (long format):
 //   mean        average of the R estimates of B
 //   var         per-walk (per-particle) variance, averaged over the runs

@@ -7,6 +7,8 @@
 //     shooting estimators (shoot_estimators.h):   Tables, Particle<K>, moment_source;
 //   so f branches on the direction with `if constexpr` and otherwise treats every estimator alike. Every row of
 //   kWalkMethods must have its EstimatorOf specialisation (a compile error otherwise).
+//   with_estimator_tables(method, kernel, f) also builds the estimator's Tables from kernel.tables() and calls
+//   f(MethodTag<M>{}, tables).
 #include <cstddef>
 #include <utility>
 
@@ -33,6 +35,15 @@ decltype(auto) with_estimator(WalkMethod method, F&& f) {
     RADWALK_CHECK_EQ(static_cast<std::size_t>(method), I);
   }
   return std::forward<F>(f)(MethodTag<M>{});
+}
+
+// with_estimator with the estimator's tables built once from the kernel's data: f(MethodTag<M>{}, tables).
+template <TransitionKernel K, class F>
+decltype(auto) with_estimator_tables(WalkMethod method, const K& kernel, F&& f) {
+  return with_estimator(method, [&](auto m) -> decltype(auto) {
+    const typename decltype(m)::Estimator::Tables tables(kernel.tables());
+    return f(m, tables);
+  });
 }
 
 }  // namespace radwalk

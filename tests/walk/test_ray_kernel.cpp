@@ -86,11 +86,9 @@ template <class K>
 std::vector<Rgb> lockstep_gather_scores(WalkMethod method, const K& kernel, std::size_t i, std::size_t walks,
                                         std::uint64_t seed, std::size_t lanes, WalkCounters& counters) {
   std::vector<Rgb> X(walks, Rgb::Constant(-1.0));
-  with_estimator(method, [&](auto m) {
-    using Method = decltype(m);
-    if constexpr (Method::kDirection == WalkDirection::gather) {
-      using Walk = typename Method::Estimator::template Walk<K>;
-      const typename Method::Estimator::Tables tables(kernel.tables());
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::gather) {
+      using Walk = typename decltype(m)::Estimator::template Walk<K>;
       run_lockstep(
           kernel, walks, lanes, [&](std::size_t w) { return Walk(kernel, tables, i, Rng(seed, i, w)); },
           [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },

@@ -110,14 +110,12 @@ std::vector<std::vector<double>> gather_scores(WalkMethod method, const K& kerne
                                                std::uint64_t seed) {
   RADWALK_CHECK(is_gathering(method));
   std::vector<std::vector<double>> x(3, std::vector<double>(static_cast<std::size_t>(walks)));
-  with_estimator(method, [&](auto m) {
-    using Method = decltype(m);
-    if constexpr (Method::kDirection == WalkDirection::gather) {
-      const typename Method::Estimator::Tables tables(kernel.tables());
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::gather) {
       WalkCounters counters;
       for (long w = 0; w < walks; ++w) {
         Rng rng(seed, i, static_cast<std::uint64_t>(w));
-        typename Method::Estimator::template Walk<K> walk(kernel, tables, i, rng);
+        typename decltype(m)::Estimator::template Walk<K> walk(kernel, tables, i, rng);
         run_walk(kernel, walk, counters);
         for (int c = 0; c < 3; ++c) x[c][static_cast<std::size_t>(w)] = walk.score()(c);
       }
@@ -135,14 +133,12 @@ std::vector<std::vector<double>> shoot_scores(WalkMethod method, const K& kernel
   const std::size_t N = problem.size();
   const ShootSource source = make_shoot_source(problem.E, problem.area);
   std::vector<std::vector<double>> y(3 * N, std::vector<double>(static_cast<std::size_t>(particles), 0.0));
-  with_estimator(method, [&](auto m) {
-    using Method = decltype(m);
-    if constexpr (Method::kDirection == WalkDirection::shoot) {
-      const typename Method::Estimator::Tables tables(kernel.tables());
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::shoot) {
       WalkCounters counters;
       for (long w = 0; w < particles; ++w) {
         Rng rng(seed, kShootStream, static_cast<std::uint64_t>(w));
-        typename Method::Estimator::template Particle<K> particle(kernel, tables, source, rng);
+        typename decltype(m)::Estimator::template Particle<K> particle(kernel, tables, source, rng);
         run_particle(kernel, particle, counters, [&](std::size_t j, const Rgb& power) {
           for (int c = 0; c < 3; ++c)
             y[j * 3 + static_cast<std::size_t>(c)][static_cast<std::size_t>(w)] +=
