@@ -1,4 +1,5 @@
-// radwalk compare SCENE --estimators LIST --walks N --runs R --csv out.csv -o out.vtp: estimator variance study.
+// radwalk compare SCENE --estimators LIST --walks-per-patch N --runs R --csv out.csv -o out.vtp: estimator variance
+// study.
 #include <cstdio>
 #include <map>
 
@@ -16,6 +17,11 @@ namespace radwalk::app {
 int run_compare(const CompareCommand& command) {
   RunSummary summary("compare", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
+  // The options are checked here, once, before any form factor is traced.
+  CompareOptions options = command.compare;
+  options.walk.seed = command.scene.seed;
+  options.progress = true;
+  check_compare_options(options, patches.size());
   ThreadLimit limit(command.scene.threads);
   FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
   const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
@@ -26,14 +32,8 @@ int run_compare(const CompareCommand& command) {
   const Solution reference = solve_radiosity(problem, direct);
   summary.add_timing("reference solve", reference.seconds);
 
-  CompareOptions options;
-  if (!command.estimators.empty()) options.methods = command.estimators;
-  options.runs = command.runs;
-  options.walk.kernel = command.kernel;
-  options.walk.walks = command.walks;
-  options.walk.seed = command.scene.seed;
   std::unique_ptr<EmbreeVisibility> visibility;
-  if (command.kernel == "ray") visibility = std::make_unique<EmbreeVisibility>(patches);
+  if (options.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(patches);
   const CompareResult result = compare_random_walks(problem, &patches, visibility.get(), options, reference.B);
   double total = 0;
   for (const auto& s : result.summary) total += s.seconds;
@@ -46,7 +46,7 @@ int run_compare(const CompareCommand& command) {
     std::vector<std::vector<std::string>> rows;
     rows.reserve(result.rows.size());
     for (const CompareRow& r : result.rows)
-      rows.push_back({std::to_string(r.patch), r.method, kChannel[r.channel], csv_number(r.mean), csv_number(r.var),
+      rows.push_back({std::to_string(r.patch), std::string(method_name(r.method)), kChannel[r.channel], csv_number(r.mean), csv_number(r.var),
                       csv_number(r.var_theory), csv_number(r.z), std::to_string(r.walks), std::to_string(r.steps),
                       csv_number(r.seconds), csv_number(r.efficiency)});
     write_csv_table(command.scene.csv,
@@ -63,7 +63,7 @@ int run_compare(const CompareCommand& command) {
   const auto n = static_cast<Eigen::Index>(patches.size());
   std::map<std::string, std::array<PatchRgb, 4>> per_method;
   for (const CompareRow& r : result.rows) {
-    auto [it, fresh] = per_method.try_emplace(r.method);
+    auto [it, fresh] = per_method.try_emplace(std::string(method_name(r.method)));
     if (fresh)
       for (auto& a : it->second) a = PatchRgb::Constant(n, 3, std::numeric_limits<double>::quiet_NaN());
     it->second[0](r.patch, r.channel) = r.mean;
@@ -84,11 +84,11 @@ int run_compare(const CompareCommand& command) {
   }
   metadata.set_text("estimators", names);
   metadata.set_text("estimator_array_names", arrays);
-  metadata.set_text("kernel", command.kernel);
-  metadata.set_integer("walks_per_patch", command.walks);
-  metadata.set_integer("runs", command.runs);
+  metadata.set_text("kernel", std::string(kernel_name(command.compare.walk.kernel)));
+  metadata.set_integer("walks_per_patch", command.compare.walk.walks_per_patch);
+  metadata.set_integer("runs", command.compare.runs);
   for (const auto& s : result.summary) {
-    auto& j = summary.json()["estimators"][s.method];
+    auto& j = summary.json()["estimators"][std::string(method_name(s.method))];
     j["runs"] = s.runs;
     j["walks"] = s.walks;
     j["steps"] = s.steps;

@@ -29,20 +29,6 @@ void warn_non_diffuse(const PatchSet& patches, RunSummary& summary) {
     }
 }
 
-WalkOptions walk_options(const SolveCommand& c) {
-  WalkOptions w;
-  w.walk = c.walk;
-  w.estimator = c.estimator;
-  w.kernel = c.kernel;
-  w.walks = c.walks;
-  w.seed = c.scene.seed;
-  w.patches = c.patches;
-  w.survival = c.survival;
-  w.survival_constant = c.survival_constant;
-  w.theory = c.theory;
-  return w;
-}
-
 SolveOptions solve_options(const SolveCommand& c, std::size_t patches) {
   SolveOptions o;
   o.solver = c.solver;
@@ -138,18 +124,21 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   return result;
 }
 
-// The random-walk solve; with --progressive also its convergence series (progressive_series.h).
-Solution run_walks(const SolveCommand& command, const RadiosityProblem& problem, const PatchSet& patches,
-                   const Visibility* visibility, RunSummary& summary) {
-  const auto walks = [&](long count) {
-    WalkOptions w = walk_options(command);
-    w.walks = count;
+// The random-walk solve; with --progressive also its convergence series (progressive_series.h) over the walk count
+// of the method's direction (walks per patch, or particles).
+Solution run_walks(const SolveCommand& command, const WalkOptions& walk, const RadiosityProblem& problem,
+                   const PatchSet& patches, const Visibility* visibility, RunSummary& summary) {
+  const bool gathering = is_gathering(walk.method);
+  const long count = gathering ? walk.walks_per_patch : walk.particles;
+  const auto walks = [&](long n) {
+    WalkOptions w = walk;
+    (gathering ? w.walks_per_patch : w.particles) = n;
     return solve_random_walk(problem, &patches, visibility, w);
   };
-  Solution solution = walks(command.walks);
+  Solution solution = walks(count);
   if (!command.progressive.empty())
-    write_convergence_series(command.progressive, "solve.pvd", command.scene.scene, patches, command.walks, solution,
-                             walks, summary);
+    write_convergence_series(command.progressive, "solve.pvd", command.scene.scene, patches, count, solution, walks,
+                             summary);
   return solution;
 }
 
@@ -159,10 +148,16 @@ int run_solve(const SolveCommand& command) {
   RunSummary summary("solve", command.scene.argv);
   check_combinations(command);
   PatchSet patches = load_patches(command.scene, summary);
+  // The walk options are checked here, once, before any form factor is traced.
+  const bool walks = command.solver == "random-walk";
+  WalkOptions walk = command.walk;
+  walk.seed = command.scene.seed;
+  walk.progress = true;
+  if (walks) check_walk_options(walk, patches.size());
   warn_non_diffuse(patches, summary);
   ThreadLimit limit(command.scene.threads);
 
-  const bool ray_walk = command.solver == "random-walk" && command.kernel == "ray";
+  const bool ray_walk = walks && walk.kernel == WalkKernel::ray;
   std::vector<CellField> fields;
   // The form-factor diagnostics (a transpose of F and a pass over it) only when a per-patch file is written.
   const bool per_patch_output = !command.scene.vtp.empty() || !command.scene.csv.empty();
@@ -178,13 +173,13 @@ int run_solve(const SolveCommand& command) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
     const EmbreeVisibility visibility(patches);
-    solution = run_walks(command, problem, patches, &visibility, summary);
+    solution = run_walks(command, walk, problem, patches, &visibility, summary);
   } else {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
-    if (command.solver == "random-walk") {
-      solution = run_walks(command, problem, patches, nullptr, summary);
+    if (walks) {
+      solution = run_walks(command, walk, problem, patches, nullptr, summary);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
@@ -207,6 +202,11 @@ int run_solve(const SolveCommand& command) {
     }
   }
   summary.add_timing("solve", solution.seconds);
+  if (walks && too_few_particles(solution))
+    warn(summary, solution.method + ": " + std::to_string(static_cast<long>(solution.info.at("unreached_patches"))) +
+                      " of the " + std::to_string(static_cast<long>(solution.info.at("reflecting_patches"))) +
+                      " non-emitting reflecting patches got no particle's score, so their B = 0 is an artefact of " +
+                      std::to_string(walk.particles) + " particles: use more --particles");
 
   // Report: method, status, cost, accuracy.
   std::printf("%s: %s (%s)", solution.method.c_str(), to_string(solution.status), solution.message.c_str());
@@ -234,11 +234,15 @@ int run_solve(const SolveCommand& command) {
     VtpMetadata metadata = solution_metadata(solution, patches);
     metadata.set_text("solver", command.solver);
     if (command.solver == "random-walk") {
-      metadata.set_text("walk", command.walk);
-      metadata.set_text("estimator", command.estimator);
-      metadata.set_text("kernel", command.kernel);
-      metadata.set_text("survival", command.survival);
-      metadata.set_integer(command.walk == "gather" ? "walks_per_patch" : "particles", command.walks);
+      const WalkMethodRow& row = method_row(walk.method);
+      metadata.set_text("walk", std::string(direction_name(row.direction)));
+      metadata.set_text("estimator", std::string(row.estimator));
+      metadata.set_text("kernel", std::string(kernel_name(walk.kernel)));
+      metadata.set_text("survival", std::string(survival_name(walk.survival.rule)));
+      if (is_gathering(walk.method))
+        metadata.set_integer("walks_per_patch", walk.walks_per_patch);
+      else
+        metadata.set_integer("particles", walk.particles);
     } else {
       metadata.set_real("tol", command.tol);
     }

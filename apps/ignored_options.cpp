@@ -17,17 +17,18 @@ bool random_walk(const SolveCommand& c) { return c.solver == "random-walk"; }
 
 // Walk options by their command-line names.
 const std::vector<Rule<SolveCommand>> kSolveRules = {
-    {{"--walk", "--estimator", "--kernel", "--walks", "--patches", "--survival", "--survival-constant", "--theory"},
+    {{"--walk", "--estimator", "--kernel", "--walks-per-patch", "--particles", "--patches", "--survival",
+      "--survival-constant", "--theory"},
      random_walk, "with --solver random-walk"},
     {{"--tol", "--max-iterations"},
      [](const SolveCommand& c) { return c.solver != "direct" && !random_walk(c); },
      "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
-    {{"--survival-constant"}, [](const SolveCommand& c) { return c.survival == "constant"; },
+    {{"--survival-constant"}, [](const SolveCommand& c) { return c.walk.survival.rule == SurvivalRule::constant; },
      "with --survival constant"},
-    {{"--patches"}, [](const SolveCommand& c) { return c.walk == "gather"; },
+    {{"--patches"}, [](const SolveCommand& c) { return is_gathering(c.walk.method); },
      "when gathering (--walk gather); shooting estimates every patch"},
     {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity"},
-     [](const SolveCommand& c) { return !(random_walk(c) && c.kernel == "ray"); },
+     [](const SolveCommand& c) { return !(random_walk(c) && c.walk.kernel == WalkKernel::ray); },
      "for form factors, which --kernel ray does not use"},
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
     {{"--refine-steps", "--max-patches", "--refine-floor", "--refine-noise"},

@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include "walk/walk_compare.h"
+#include "walk/walk_options.h"
+
 namespace radwalk::app {
 
 // Every command that reads a scene.
@@ -49,15 +52,10 @@ struct SolveCommand {
   std::string solver = "auto";
   double tol = 1e-10;
   long max_iterations = 0;  // 0: 10000 sweeps, or 1000 x N shots for southwell
-  // random walks
-  std::string walk = "gather";
-  std::string estimator = "collision";
-  std::string kernel = "matrix";
-  long walks = 1000;
-  std::vector<int> patches;
-  std::string survival = "analog";
-  double survival_constant = 0.5;
-  bool theory = false;
+  // --solver random-walk: typed by the parser (walk/walk_method.h and walk_options.h name every choice) and
+  // checked once the scene is loaded (check_walk_options), before any form factor is traced; the seed is
+  // scene.seed.
+  WalkOptions walk;
   // adaptive patching (solve_adaptive): --refine TOL > 0 turns it on
   double refine = 0;
   int refine_steps = 4;
@@ -72,10 +70,9 @@ struct SolveCommand {
 struct CompareCommand {
   SceneOptions scene;
   FormFactorCliOptions ff;
-  std::vector<std::string> estimators;
-  std::string kernel = "matrix";
-  long walks = 1000;
-  int runs = 5;
+  // Methods, runs, kernel and budget (walk.walks_per_patch), typed by the parser and checked once the scene is
+  // loaded (check_compare_options); the seed is scene.seed.
+  CompareOptions compare;
 };
 
 struct PathtraceCommand {

@@ -21,6 +21,7 @@
 #include "apps/pipeline.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "walk/named_choice.h"
 
 using namespace radwalk;
 using namespace radwalk::app;
@@ -158,6 +159,43 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
 }
 
+// Runs f, which converts a name with one of the walk layer's parsers, turning its InputError (the valid names and
+// the nearest) into a parse error of `flag`.
+template <class F>
+void walk_choice(const std::string& flag, F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    throw CLI::ValidationError(flag, e.what());
+  }
+}
+
+// "a (help of a), b (help of b)" for a table of named choices.
+template <class Rows>
+std::string walk_choices_help(const Rows& rows) {
+  std::string s;
+  for (const auto& row : rows)
+    s += (s.empty() ? "" : ", ") + std::string(row.name) + " (" + std::string(row.help) + ")";
+  return s;
+}
+
+// An option whose value is a name from one of the walk layer's tables, converted by that table's parser.
+template <class T, class Parse>
+void add_walk_choice(CLI::App* cmd, const std::string& flag, T& target, Parse parse, std::string_view current,
+                     const std::string& help) {
+  cmd->add_option_function<std::string>(
+         flag, [&target, parse, flag](const std::string& name) { walk_choice(flag, [&] { target = parse(name); }); },
+         help)
+      ->default_str(std::string(current));
+}
+
+// A former option: refused with a one-line pointer to what replaced it (not in --help).
+void add_replaced_option(CLI::App* cmd, const std::string& flag, const std::string& instead) {
+  cmd->add_option_function<std::string>(
+         flag, [flag, instead](const std::string&) { throw CLI::ValidationError(flag, "no longer exists: " + instead); })
+      ->group("");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -215,35 +253,51 @@ int main(int argc, char** argv) {
           "Iteration budget: sweeps for jacobi and gauss-seidel (default 10000), shots for southwell "
           "(default 1000 x the patch count)")
       ->check(kPositive);
-  solve_cmd->add_option("--walk", solve.walk, "Random walk direction: gather (adjoint) or shoot (forward)")
-      ->check(CLI::IsMember({"gather", "shoot"}))
+  // Random walks: the choices and their help come from the walk layer's tables and go through its parsers; counts
+  // and ranges are checked by check_walk_options once the scene is loaded.
+  std::string walk_direction(direction_name(direction_of(solve.walk.method)));
+  std::string walk_estimator(method_row(solve.walk.method).estimator);
+  solve_cmd->add_option("--walk", walk_direction, "Random walk direction: " + walk_choices_help(kWalkDirections))
       ->capture_default_str();
   solve_cmd
-      ->add_option("--estimator", solve.estimator,
-                   "Random-walk estimator: absorption, collision, expected-value (gather), survival (shoot)")
-      ->check(CLI::IsMember({"absorption", "collision", "expected-value", "survival"}))
+      ->add_option("--estimator", walk_estimator,
+                   "Random-walk estimator: gather: " + join_names(estimator_names(WalkDirection::gather)) +
+                       "; shoot: " + join_names(estimator_names(WalkDirection::shoot)))
       ->capture_default_str();
+  add_walk_choice(solve_cmd, "--kernel", solve.walk.kernel, parse_walk_kernel, kernel_name(solve.walk.kernel),
+                  "Transition kernel: " + walk_choices_help(kWalkKernels));
+  auto* walks_per_patch = solve_cmd
+                              ->add_option("--walks-per-patch", solve.walk.walks_per_patch,
+                                           "Gathering (--walk gather): walks from each estimated patch")
+                              ->capture_default_str();
+  auto* particles = solve_cmd
+                        ->add_option("--particles", solve.walk.particles,
+                                     "Shooting (--walk shoot): particles in total, for all patches at once")
+                        ->capture_default_str();
+  add_replaced_option(solve_cmd, "--walks",
+                      "use --walks-per-patch for gathering walks or --particles for shooting walks");
+  solve_cmd->add_option("--patches", solve.walk.patches, "Gathering: estimate only these patches (0-based)");
+  add_walk_choice(solve_cmd, "--survival", solve.walk.survival.rule, parse_survival_rule,
+                  survival_name(solve.walk.survival.rule),
+                  "Random-walk survival probability p_k: " + walk_choices_help(kSurvivalRules));
   solve_cmd
-      ->add_option("--kernel", solve.kernel, "Transition kernel: matrix (stored F) or ray (Embree, no F)")
-      ->check(CLI::IsMember({"matrix", "ray"}))
+      ->add_option("--survival-constant", solve.walk.survival.constant, "p for --survival constant, in (0, 1)")
       ->capture_default_str();
-  solve_cmd->add_option("--walks", solve.walks, "Walks per patch (gather) or particles in total (shoot)")
-      ->check(kPositive)
-      ->capture_default_str();
-  solve_cmd->add_option("--patches", solve.patches, "Gathering: estimate only these patches (0-based)");
-  solve_cmd
-      ->add_option(
-          "--survival", solve.survival,
-          "Random-walk survival probability p_k: analog (mean rho_k over channels), max (max rho_k), "
-          "constant (--survival-constant)")
-      ->check(CLI::IsMember({"analog", "max", "constant"}))
-      ->capture_default_str();
-  solve_cmd
-      ->add_option("--survival-constant", solve.survival_constant, "p for --survival constant, in (0, 1)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  solve_cmd->add_flag("--theory", solve.theory,
+  solve_cmd->add_flag("--theory", solve.walk.theory,
                       "Also compute the exact per-walk variance (dense; small scenes)");
+  // The method from --walk and --estimator; the walk count that the method does not read is refused.
+  solve_cmd->callback([&solve, &walk_direction, &walk_estimator, walks_per_patch, particles] {
+    WalkDirection direction = WalkDirection::gather;
+    walk_choice("--walk", [&] { direction = parse_walk_direction(walk_direction); });
+    walk_choice("--estimator", [&] { solve.walk.method = walk_method(direction, walk_estimator); });
+    if (solve.solver != "random-walk") return;
+    if (is_gathering(solve.walk.method) && particles->count() > 0)
+      throw CLI::ValidationError("--particles", "counts shooting particles; gathering walks (--walk gather) take "
+                                                "--walks-per-patch");
+    if (!is_gathering(solve.walk.method) && walks_per_patch->count() > 0)
+      throw CLI::ValidationError("--walks-per-patch", "counts gathering walks; shooting walks (--walk shoot) take "
+                                                      "--particles");
+  });
   solve_cmd
       ->add_option(
           "--refine", solve.refine,
@@ -280,20 +334,26 @@ int main(int argc, char** argv) {
   compare_cmd->add_option("-o,--output", compare.scene.vtp, "Write per-patch variances as .vtp")
       ->check(output_file(OutputFile::vtp));
   compare_cmd
-      ->add_option("--estimators", compare.estimators,
-                   "Comma-separated list from gather-absorption, gather-collision, gather-expected-value, "
-                   "shoot-collision, shoot-absorption, shoot-survival")
+      ->add_option_function<std::vector<std::string>>(
+          "--estimators",
+          [&compare](const std::vector<std::string>& names) {
+            walk_choice("--estimators", [&] {
+              compare.compare.methods.clear();
+              for (const std::string& name : names) compare.compare.methods.push_back(parse_walk_method(name));
+            });
+          },
+          "Comma-separated list from " + join_names(walk_method_names()))
       ->delimiter(',')
-      ->default_str("all six");
-  compare_cmd->add_option("--kernel", compare.kernel, "matrix or ray")
-      ->check(CLI::IsMember({"matrix", "ray"}))
+      ->default_str("all");
+  add_walk_choice(compare_cmd, "--kernel", compare.compare.walk.kernel, parse_walk_kernel,
+                  kernel_name(compare.compare.walk.kernel), "Transition kernel: " + walk_choices_help(kWalkKernels));
+  compare_cmd
+      ->add_option("--walks-per-patch", compare.compare.walk.walks_per_patch,
+                   "Budget per run: walks from each patch for gathering methods; shooting methods get the same "
+                   "total, walks-per-patch x patches, as particles")
       ->capture_default_str();
-  compare_cmd->add_option("--walks", compare.walks, "Walks per patch (gather) / per patch of budget (shoot)")
-      ->check(kPositive)
-      ->capture_default_str();
-  compare_cmd->add_option("--runs", compare.runs, "Independent runs per estimator")
-      ->check(kPositive)
-      ->capture_default_str();
+  add_replaced_option(compare_cmd, "--walks", "use --walks-per-patch (the budget per patch of every method)");
+  compare_cmd->add_option("--runs", compare.compare.runs, "Independent runs per estimator")->capture_default_str();
 
   PathtraceCommand pt;
   auto* pt_cmd = app.add_subcommand("pathtrace", "Continuous path tracer: patch averages and images");

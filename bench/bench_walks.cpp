@@ -99,9 +99,9 @@ Rate matrix_chain(const MatrixKernel& kernel, long steps) {
 Rate walks_rate(const RadiosityProblem& problem, const PatchSet& patches, const Visibility& vis,
                 const std::string& method, const std::string& kernel, long walks) {
   WalkOptions o;
-  set_method(o, method);
-  o.kernel = kernel;
-  o.walks = walks;
+  o.method = parse_walk_method(method);
+  o.kernel = parse_walk_kernel(kernel);
+  o.walks_per_patch = o.particles = walks;
   const Timer wall;
   const double c0 = cpu_seconds();
   const Solution s = solve_random_walk(problem, &patches, &vis, o);
@@ -162,7 +162,7 @@ int main(int argc, char** argv) {
   ffo.rays_per_patch = quick || ray_only ? 2000 : 20000;  // the ray rows do not use F
   const FormFactors ff = estimate_form_factors(patches, vis, ffo);
   const RadiosityProblem problem = make_problem(patches, ff.F);
-  const MatrixKernel kernel(problem, survival_probabilities(problem.rho, "analog", 0));
+  const MatrixKernel kernel(problem, survival_probabilities(problem.rho, {}));
   std::printf("scene %s: %zu patches, F has %ld non-zeros (%.1f per row), alias tables %.2f MB\n", scene.c_str(),
               patches.size(), long(ff.F.nonZeros()), double(ff.F.nonZeros()) / double(patches.size()),
               double(kernel.rows().memory_bytes()) / 1e6);
@@ -237,9 +237,9 @@ int main(int argc, char** argv) {
 
   CompareOptions co;
   co.runs = 4;
-  co.walk.walks = quick ? 50 : 200;
+  co.walk.walks_per_patch = quick ? 50 : 200;
   const CompareResult cr = compare_random_walks(problem, &patches, &vis, co);
   std::printf("\nestimators on the same budget (%d runs x %ld walks per patch; shooting: the same total)\n%s",
-              co.runs, co.walk.walks, format_compare_summary(cr.summary).c_str());
+              co.runs, co.walk.walks_per_patch, format_compare_summary(cr.summary).c_str());
   return 0;
 }

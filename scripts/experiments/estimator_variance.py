@@ -53,7 +53,7 @@ def main():
     for name, path, extra, walks in scenes(a.scale):
         walks *= a.scale
         csvp = rw.path(f"{name}.csv")
-        r = rw.run(["compare", path] + extra + ["--rays", a.rays, "--walks", walks, "--runs", a.runs,
+        r = rw.run(["compare", path] + extra + ["--rays", a.rays, "--walks-per-patch", walks, "--runs", a.runs,
                                                  "--seed", a.seed, "--kernel", "matrix", "--csv", csvp,
                                                  "-o", rw.path(f"{name}.vtp")], rw.path(f"{name}.json"))
         rows = rwexp.read_csv(csvp)

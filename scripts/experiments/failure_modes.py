@@ -7,7 +7,7 @@ above 1, sliver patches.
             direct (condition number kappa_inf), Jacobi / Gauss-Seidel / Southwell at tol 1e-8 with the default
             budget (10000 iterations; the status and message say why a method stops), the iteration count they need
             (a second run with an unlimited budget), gathering collision and absorption walks (matrix kernel,
-            --walks per patch, exact variance): mean walk length (steps per walk; theory rho / (1 - rho) in the
+            --walks-per-patch, exact variance): mean walk length (steps per walk; theory rho / (1 - rho) in the
             closed box) and per-walk relative variance var / B^2.
   rows > 1  the closed box's F with every entry multiplied by s (row sums s): what radwalk does with it.
   slivers   a unit emitter (rho 0) facing a receiver of width w at distance 1 (x in [0, 1], y in
@@ -103,7 +103,7 @@ def sweep(rw, a, rows):
                     out["status_unlimited"] = out["status"]
             for est in ("collision", "absorption"):
                 r, js, data = solve(["--solver", "random-walk", "--walk", "gather", "--estimator", est,
-                                     "--walks", a.walks, "--theory"], est)
+                                     "--walks-per-patch", a.walks, "--theory"], est)
                 sol = js["solution"]
                 Bw = np.array([x["B_r"] for x in data])
                 var = np.array([x["var_r"] for x in data])
@@ -131,7 +131,7 @@ def rows_above_one(rw, a):
         rwexp.write_mtx(path, header, n, [(i, j, v * s) for i, j, v in entries])
         for solver in ("direct", "gauss-seidel", "random-walk"):
             r = rw.run(["solve", scene, "--max-edge", a.max_edge, "--form-factors", path, "--solver", solver,
-                        "--walks", 100], rw.path("tmp_rows.json"), ok_codes=(0, 1, 2, 3))
+                        "--walks-per-patch", 100], rw.path("tmp_rows.json"), ok_codes=(0, 1, 2, 3))
             js = r["json"]
             msg = (js["solution"]["message"] if js else r["stderr"]).replace("\n", " ")
             out.append(dict(row_scale=f"{s:.7g}", solver=solver, exit_code=r["rc"],

@@ -28,6 +28,11 @@ SHOOT = ["collision", "absorption", "survival"]
 DETERMINISTIC = ["direct", "jacobi", "gauss-seidel", "southwell"]
 
 
+
+def walk_count_option(walk):
+    """radwalk's count option for a walk direction: walks from each patch, or particles in total."""
+    return "--walks-per-patch" if walk == "gather" else "--particles"
+
 def main():
     p = rwexp.parser("speed_accuracy", __doc__.splitlines()[0])
     p.add_argument("--max-edge", type=float, nargs="+", default=[100, 50], help="patch levels (mm)")
@@ -103,7 +108,7 @@ def main():
                     n = w if walk == "gather" else w * N
                     solve("A", f"{walk}-{est}", "matrix", w, "walks/patch", shared + [
                         "--solver", "random-walk", "--walk", walk, "--estimator", est, "--kernel", "matrix",
-                        "--walks", n], 0.0, f"A_{walk}_{est}_{w}")
+                        walk_count_option(walk), n], 0.0, f"A_{walk}_{est}_{w}")
 
         # Panel B: from scratch.
         for rays in ray_budgets:
@@ -120,7 +125,7 @@ def main():
                             n = w if walk == "gather" else w * N
                             solve("B", f"{walk}-{est}", "matrix", w, "walks/patch", [
                                 "--form-factors", F, "--solver", "random-walk", "--walk", walk, "--estimator", est,
-                                "--kernel", "matrix", "--walks", n], ff_s, f"B_{walk}_{est}_m{w}")
+                                "--kernel", "matrix", walk_count_option(walk), n], ff_s, f"B_{walk}_{est}_m{w}")
             if rays != ray_budgets[-1]:
                 os.remove(F)
         for walk, ests in (("gather", GATHER), ("shoot", SHOOT)):
@@ -129,7 +134,7 @@ def main():
                     n = w if walk == "gather" else w * N
                     solve("B", f"{walk}-{est}", "ray", w, "walks/patch", [
                         "--solver", "random-walk", "--walk", walk, "--estimator", est, "--kernel", "ray",
-                        "--walks", n], 0.0, f"B_{walk}_{est}_r{w}")
+                        walk_count_option(walk), n], 0.0, f"B_{walk}_{est}_r{w}")
         # The continuous path tracer's patch averages (MIS, no F): its error against the discrete reference also
         # holds the discretisation error (about 1e-3 at these patch sizes, see discretisation_error.py).
         for w in walk_budgets:

@@ -1,6 +1,6 @@
 #pragma once
 // Row alias tables: one alias table (core/discrete_distribution.h) per row k of a sparse row-major F (the form
-// factors), over the columns j of row k plus an escape outcome (kEscaped):
+// factors), over the columns j of row k plus an escape outcome (the walk stop code kEscaped of transition_kernel.h):
 //   P(j) = F_kj / n_k,  P(escape) = 1 - s_k / n_k,  s_k = sum_j F_kj,  n_k = max(s_k, 1) (the row scale).
 // A row that sums below 1 (open scene) escapes with the deficit; a row that sums above 1 (rounding of a closed
 // scene, or a biased F) is sampled in proportion and the caller multiplies its weight by n_k, which keeps
@@ -12,12 +12,10 @@
 #include "core/discrete_distribution.h"
 #include "core/types.h"
 #include "formfactor/sparse_f.h"
+#include "walk/transition_kernel.h"
 
 namespace radwalk {
 
-// Outcome of sampling a destination that is not a patch.
-inline constexpr PatchIndex kEscaped = -1;  // the walk left the scene (row deficit, or a ray that hit nothing)
-inline constexpr PatchIndex kBackHit = -2;  // a ray hit the back of a patch (ray kernel)
 
 class RowAliasTables {
  public:

@@ -26,13 +26,13 @@ MatrixKernel::MatrixKernel(const RadiosityProblem& problem, std::vector<double> 
     throw InputError("matrix kernel: F has " + std::to_string(rows_.rows()) + " rows, rho " +
                      std::to_string(problem.rho.rows()) + ", E " + std::to_string(problem.E.rows()) + ", p " +
                      std::to_string(p.size()) + ", area " + std::to_string(N) + ": sizes must agree");
-  // Row scales n_k and the scored-stop probability q_k = 1 - p_k s_k / n_k of every stop.
-  std::vector<double> n(N), q(N);
+  // Row scales n_k and row sums s_k (known: a destination sample is a stop with probability 1 - s_k / n_k).
+  std::vector<double> n(N), s(N);
   for (std::size_t k = 0; k < N; ++k) {
     n[k] = rows_.row_scale(k);
-    q[k] = 1.0 - p[k] * rows_.row_sum(k) / n[k];
+    s[k] = rows_.row_sum(k);
   }
-  tables_ = make_walk_tables(problem.rho, problem.E, std::move(p), std::move(n), std::move(q));
+  tables_ = make_kernel_tables(problem.rho, problem.E, std::move(p), std::move(n), std::move(s));
   // (H E)_k for the expected-value estimator.
   HE_.assign(N, Rgb::Zero());
   for (std::size_t k = 0; k < N; ++k) {

@@ -2,8 +2,7 @@
 // MatrixKernel: the transition kernel over a stored sparse F (transition_kernel.h), one alias table per row.
 //
 // sample(k) draws column j of row k with probability F_kj / n_k or kEscaped with the row deficit
-// 1 - s_k / n_k, in O(1) (RowAliasTables). Every stop is a scored stop for gathering absorption:
-//   q_k = 1 - p_k s_k / n_k.
+// 1 - s_k / n_k, in O(1) (RowAliasTables); the row sums s_k are known (tables().s).
 // HE(k, .) is exact: (H E)_k = rho_k sum_j F_kj E_j, precomputed (no sample drawn). Memory: 16 bytes per non-zero
 // of F plus O(N). Walks run one at a time (kLanes = 1): an alias draw gains nothing from batching.
 //
@@ -13,18 +12,17 @@
 // exactly when F is reciprocal (A_i F_ij = A_j F_ji), and a stored F that is not (Monte Carlo form factors)
 // still gives shooting estimates unbiased for the same B the direct solver computes.
 #include "solve/problem.h"
+#include "walk/alias_table.h"
 #include "walk/transition_kernel.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
-
-enum class WalkDirection { gather, shoot };
 
 // T = A^-1 F^T A (see above). Throws InputError if an area is not positive.
 SparseF shooting_transfer(const RadiosityProblem& problem);
 
 class MatrixKernel {
  public:
-  static constexpr bool kEscapeScores = true;
   static constexpr bool kHESampled = false;
   static constexpr std::size_t kLanes = 1;
   // p: survival probability per patch (survival_probabilities). Throws InputError on sizes that disagree.
@@ -32,7 +30,7 @@ class MatrixKernel {
                WalkDirection direction = WalkDirection::gather);
 
   std::size_t size() const { return rows_.rows(); }
-  const WalkTables& tables() const { return tables_; }
+  const KernelTables& tables() const { return tables_; }
   const RowAliasTables& rows() const { return rows_; }
 
   PatchIndex sample(std::size_t k, Rng& rng, WalkCounters& counters) const {
@@ -48,7 +46,7 @@ class MatrixKernel {
 
  private:
   RowAliasTables rows_;
-  WalkTables tables_;
+  KernelTables tables_;
   std::vector<Rgb> HE_;
 };
 

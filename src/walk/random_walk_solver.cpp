@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
@@ -10,10 +11,12 @@
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/timer.h"
 #include "solve/spectral_radius.h"
 #include "walk/matrix_kernel.h"
 #include "walk/ray_kernel.h"
+#include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
 
@@ -22,6 +25,21 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// Gathering chunk layout, a function of (m target patches, walks per patch) only: about 512 chunks in all, at
+// least 64 walks each.
+struct GatherLayout {
+  long chunk = 0;             // walks per chunk
+  std::size_t per_patch = 0;  // chunks per target patch
+};
+GatherLayout gather_layout(std::size_t m, long walks) {
+  const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
+  const long chunk = std::max<long>(64, (walks + per_patch_target - 1) / per_patch_target);
+  return {chunk, static_cast<std::size_t>((walks + chunk - 1) / chunk)};
+}
+
+// Shooting chunk size: at least 1024 particles, about 256 chunks in all.
+long shoot_chunk(long particles) { return std::max<long>(1024, (particles + 255) / 256); }
+
 struct RunResult {
   PatchRgb B, var, se;
   WalkCounters counters;
@@ -29,12 +47,13 @@ struct RunResult {
 
 // Walks [begin, end) from patch i, K::kLanes of them in lockstep (walk_lockstep.h); the moments add the scores
 // in walk order (with one lane, as the walks finish), so they do not depend on the lane count.
-template <class Walk, TransitionKernel K>
-Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::uint64_t seed,
-                     WalkCounters& counters) {
+template <class Estimator, TransitionKernel K>
+Moments gather_walks(const K& kernel, const typename Estimator::Tables& tables, std::size_t i, long begin, long end,
+                     std::uint64_t seed, WalkCounters& counters) {
+  using Walk = typename Estimator::template Walk<K>;
   const auto count = static_cast<std::size_t>(end - begin);
   const RngFamily streams(seed, StreamDomain::gather_walk, i);  // walk w from patch i
-  auto make = [&](std::size_t w) { return Walk(kernel, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
+  auto make = [&](std::size_t w) { return Walk(kernel, tables, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
   ShiftedSums sums;
   if constexpr (K::kLanes == 1) {
@@ -48,28 +67,15 @@ Moments gather_walks(const K& kernel, std::size_t i, long begin, long end, std::
   return sums.moments();
 }
 
-// The estimator chosen once outside the loop.
-template <TransitionKernel K>
-Moments gather_chunk(GatherEstimator estimator, const K& kernel, std::size_t i, long begin, long end,
-                     std::uint64_t seed, WalkCounters& counters) {
-  switch (estimator) {
-    case GatherEstimator::absorption: return gather_walks<GatherAbsorption<K>>(kernel, i, begin, end, seed, counters);
-    case GatherEstimator::collision: return gather_walks<GatherCollision<K>>(kernel, i, begin, end, seed, counters);
-    case GatherEstimator::expected_value:
-      return gather_walks<GatherExpectedValue<K>>(kernel, i, begin, end, seed, counters);
-  }
-  return Moments();
-}
-
 // Gathering: every target patch gets `walks` walks, cut into fixed chunks whose Moments merge in chunk order.
-template <TransitionKernel K>
-RunResult run_gather(const K& kernel, GatherEstimator estimator, const std::vector<std::size_t>& targets,
-                     long walks, std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, long walks, std::uint64_t seed,
+                     Progress* progress) {
+  const typename Estimator::Tables tables(kernel.tables());
   const std::size_t m = targets.size();
-  // Chunk layout depends only on (m, walks): about 512 chunks in all, at least 64 walks each.
-  const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
-  const long chunk = std::max<long>(64, (walks + per_patch_target - 1) / per_patch_target);
-  const auto chunks_per_patch = static_cast<std::size_t>((walks + chunk - 1) / chunk);
+  const GatherLayout layout = gather_layout(m, walks);
+  const long chunk = layout.chunk;
+  const std::size_t chunks_per_patch = layout.per_patch;
   std::vector<Moments> parts(m * chunks_per_patch);
   std::vector<WalkCounters> part_counters(parts.size());
   parallel_for(
@@ -79,9 +85,10 @@ RunResult run_gather(const K& kernel, GatherEstimator estimator, const std::vect
         const long begin = static_cast<long>(c % chunks_per_patch) * chunk;
         const long end = std::min(walks, begin + chunk);
         WalkCounters counters;
-        const Moments mom = gather_chunk(estimator, kernel, i, begin, end, seed, counters);
+        const Moments mom = gather_walks<Estimator>(kernel, tables, i, begin, end, seed, counters);
         parts[c] = mom;
         part_counters[c] = counters;
+        if (progress) progress->advance(1);
       },
       1);
   // Merge per patch in chunk order.
@@ -124,9 +131,10 @@ std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
 // order) and then summed the same way, so the sums do not depend on the lane count.
-template <class Particle, TransitionKernel K>
-ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eigen::VectorXd& area, long begin,
-                          long end, std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+ShootPart shoot_particles(const K& kernel, const typename Estimator::Tables& tables, const ShootSource& source,
+                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+  using Particle = typename Estimator::template Particle<K>;
   const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
   part.sum.setZero(N, 3);
@@ -161,7 +169,7 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
   };
   const RngFamily particles(seed, StreamDomain::shoot_particle, 0);  // particle w: stream w
   auto make = [&](std::size_t w) {
-    return Particle(kernel, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
+    return Particle(kernel, tables, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.
@@ -188,28 +196,17 @@ ShootPart shoot_particles(const K& kernel, const ShootSource& source, const Eige
   return part;
 }
 
-template <TransitionKernel K>
-ShootPart run_shoot_chunk(const K& kernel, ShootEstimator estimator, const ShootSource& source,
-                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
-  switch (estimator) {
-    case ShootEstimator::collision: return shoot_particles<ShootCollision<K>>(kernel, source, area, begin, end, seed);
-    case ShootEstimator::absorption:
-      return shoot_particles<ShootAbsorption<K>>(kernel, source, area, begin, end, seed);
-    case ShootEstimator::survival: return shoot_particles<ShootSurvival<K>>(kernel, source, area, begin, end, seed);
-  }
-  return ShootPart();
-}
-
 // Shooting: `particles` particles in fixed chunks, run in parallel, merged in chunk order (ordered_reduce).
-template <TransitionKernel K>
-RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityProblem& problem, long particles,
-                    std::uint64_t seed) {
+template <class Estimator, TransitionKernel K>
+RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long particles, std::uint64_t seed,
+                    Progress* progress) {
   const auto N = static_cast<Eigen::Index>(kernel.size());
   const ShootSource source = make_shoot_source(problem.E, problem.area);
+  const typename Estimator::Tables tables(kernel.tables());
   RunResult r;
   PatchRgb sum = PatchRgb::Zero(N, 3), sum2 = PatchRgb::Zero(N, 3);
   if (source.power > 0) {
-    const long chunk = std::max<long>(1024, (particles + 255) / 256);
+    const long chunk = shoot_chunk(particles);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
     // At most two chunks' sums per thread in memory (each is N x 3 twice).
     ordered_reduce(
@@ -217,7 +214,9 @@ RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityPr
         [&](std::size_t c) {
           const long begin = static_cast<long>(c) * chunk;
           const long end = std::min(particles, begin + chunk);
-          return run_shoot_chunk(kernel, estimator, source, problem.area, begin, end, seed);
+          ShootPart part = shoot_particles<Estimator>(kernel, tables, source, problem.area, begin, end, seed);
+          if (progress) progress->advance(1);
+          return part;
         },
         [&](const ShootPart& part) {
           sum += part.sum;
@@ -234,57 +233,64 @@ RunResult run_shoot(const K& kernel, ShootEstimator estimator, const RadiosityPr
   return r;
 }
 
+// The one dispatch from the method to its estimator (walk_estimators.h).
 template <TransitionKernel K>
-RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options) {
-  if (options.walk == "gather") {
-    std::vector<std::size_t> targets;
-    if (options.patches.empty())
-      for (std::size_t i = 0; i < problem.size(); ++i) targets.push_back(i);
-    else
-      for (int i : options.patches) targets.push_back(static_cast<std::size_t>(i));
-    return run_gather(kernel, gather_estimator(options), targets, options.walks, options.seed);
-  }
-  return run_shoot(kernel, shoot_estimator(options), problem, options.walks, options.seed);
+RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options, Progress* progress) {
+  return with_estimator(options.method, [&](auto method) {
+    using Method = decltype(method);
+    using Estimator = typename Method::Estimator;
+    if constexpr (Method::kDirection == WalkDirection::gather) {
+      std::vector<std::size_t> targets;
+      if (options.patches.empty())
+        for (std::size_t i = 0; i < problem.size(); ++i) targets.push_back(i);
+      else
+        for (int i : options.patches) targets.push_back(static_cast<std::size_t>(i));
+      return run_gather<Estimator>(kernel, targets, options.walks_per_patch, options.seed, progress);
+    } else {
+      return run_shoot<Estimator>(kernel, problem, options.particles, options.seed, progress);
+    }
+  });
 }
 
-// p_k < 1 everywhere (walks end) and p_k > 0 wherever some rho_kc > 0 (no path is left out).
-void check_survival(const std::vector<double>& p, const PatchRgb& rho, const std::string& mode) {
-  for (std::size_t k = 0; k < p.size(); ++k) {
-    const auto r = static_cast<Eigen::Index>(k);
-    if (!(p[k] < 1))
-      throw InputError("random walk: survival probability p = " + std::to_string(p[k]) + " at patch " +
-                       std::to_string(k) + " (survival '" + mode + "') is not below 1: walks might never end");
-    if (!(p[k] > 0) && rho.row(r).maxCoeff() > 0)
-      throw InputError("random walk: survival probability 0 at patch " + std::to_string(k) +
-                       " whose reflectance is positive (survival '" + mode + "') would bias the estimate");
+// Shooting: of the non-emitting patches that reflect (rho > 0 in some channel), how many got no score at all
+// (B = E in every channel), and how many there are.
+struct Reach {
+  std::size_t unreached = 0, reflecting = 0;
+};
+Reach shooting_reach(const RadiosityProblem& problem, const PatchRgb& B) {
+  Reach r;
+  for (Eigen::Index k = 0; k < B.rows(); ++k) {
+    if (problem.E.row(k).maxCoeff() > 0 || !(problem.rho.row(k).maxCoeff() > 0)) continue;
+    ++r.reflecting;
+    r.unreached += (B.row(k) == problem.E.row(k)).all();
   }
+  return r;
 }
 
-}  // namespace
-
-Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
-                           const WalkOptions& options) {
+Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+               const WalkOptions& options, Progress* progress) {
   const std::size_t N = problem.size();
   check_walk_options(options, N);
+  const bool gather = is_gathering(options.method);
   if (static_cast<std::size_t>(problem.rho.rows()) != N || static_cast<std::size_t>(problem.E.rows()) != N)
     throw InputError("random walk: rho has " + std::to_string(problem.rho.rows()) + " rows and E " +
                      std::to_string(problem.E.rows()) + " for " + std::to_string(N) + " patches");
   const bool F_stored = problem.F.rows() == static_cast<Eigen::Index>(N) && problem.F.cols() == problem.F.rows();
-  if (options.kernel == "matrix" && !F_stored)
+  if (options.kernel == WalkKernel::matrix && !F_stored)
     throw InputError("random walk: the matrix kernel needs the N x N form factors F (" + std::to_string(N) +
                      " patches, F is " + std::to_string(problem.F.rows()) + " x " +
                      std::to_string(problem.F.cols()) + ")");
-  if (options.kernel == "ray" && (!patches || !visibility))
+  if (options.kernel == WalkKernel::ray && (!patches || !visibility))
     throw InputError("random walk: the ray kernel needs the patches and a visibility structure");
-  if (options.kernel == "ray" && patches->size() != N)
+  if (options.kernel == WalkKernel::ray && patches->size() != N)
     throw InputError("random walk: the ray kernel got " + std::to_string(patches->size()) + " patches for a " +
                      std::to_string(N) + "-patch problem");
 
-  std::vector<double> p = survival_probabilities(problem.rho, options.survival, options.survival_constant);
-  check_survival(p, problem.rho, options.survival);
+  std::vector<double> p = survival_probabilities(problem.rho, options.survival);
+  check_survival_probabilities(p, problem.rho, options.survival.rule);
 
   Solution sol;
-  sol.method = method_name(options);
+  sol.method = std::string(method_name(options.method));
 
   // The walks estimate the Neumann series sum_m H^m E; with F stored, refuse a system for which it diverges
   // (spectral radius of some diag(rho_c) F >= 1: rho = 1 in a closed scene, rows of F above 1). The walks would
@@ -304,39 +310,49 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
     }
   }
 
+  std::optional<Progress> own_progress;
+  if (!progress && options.progress)
+    progress = &own_progress.emplace("random walks (" + sol.method + ")", walk_work_items(options, N));
   const Timer timer;
   RunResult r;
-  if (options.kernel == "matrix") {
-    const MatrixKernel kernel(problem, std::move(p),
-                              options.walk == "gather" ? WalkDirection::gather : WalkDirection::shoot);
-    r = run(kernel, problem, options);
+  if (options.kernel == WalkKernel::matrix) {
+    const MatrixKernel kernel(problem, std::move(p), direction_of(options.method));
+    r = run(kernel, problem, options, progress);
   } else {
     const RayKernel kernel(problem, *patches, *visibility, std::move(p));
-    r = run(kernel, problem, options);
+    r = run(kernel, problem, options, progress);
   }
   sol.seconds = timer.seconds();
+  if (own_progress) own_progress->finish();
   sol.B = std::move(r.B);
   sol.var = std::move(r.var);
   sol.B_se = std::move(r.se);
-  const long estimated = options.walk == "gather"
-                             ? static_cast<long>(options.patches.empty() ? N : options.patches.size())
-                             : 1;
-  sol.walks = options.walks * estimated;
+  sol.walks = total_walks(options, N);
   sol.steps = r.counters.steps;
   sol.info["escapes"] = static_cast<double>(r.counters.escapes);
   sol.info["back_hits"] = static_cast<double>(r.counters.back_hits);
-  if (options.walk == "gather")
-    sol.info["walks_per_patch"] = static_cast<double>(options.walks);
+  if (gather)
+    sol.info["walks_per_patch"] = static_cast<double>(options.walks_per_patch);
   else
-    sol.info["particles"] = static_cast<double>(options.walks);
+    sol.info["particles"] = static_cast<double>(options.particles);
   double power = 0;
   for (Eigen::Index i = 0; i < problem.area.size(); ++i) power += problem.area(i) * problem.E.row(i).sum();
   sol.info["emitted_power"] = power;
 
   // Finite-variance check, and the exact variance where asked for.
   std::ostringstream msg;
-  msg << sol.method << " (" << options.kernel << " kernel, survival " << options.survival << "): "
-      << options.walks << (options.walk == "gather" ? " walks per patch" : " particles");
+  msg << sol.method << " (" << kernel_name(options.kernel) << " kernel, survival "
+      << survival_name(options.survival.rule) << "): "
+      << (gather ? options.walks_per_patch : options.particles) << (gather ? " walks per patch" : " particles");
+  if (!gather) {
+    const Reach reach = shooting_reach(problem, sol.B);
+    sol.info["unreached_patches"] = static_cast<double>(reach.unreached);
+    sol.info["reflecting_patches"] = static_cast<double>(reach.reflecting);
+    if (too_few_particles(sol))
+      msg << "; WARNING: " << reach.unreached << " of the " << reach.reflecting
+          << " non-emitting reflecting patches got no particle's score, so their B = 0 only says that too few "
+             "particles were shot (use more particles)";
+  }
   if (F_stored) {
     const VarianceCheck check = check_finite_variance(problem, options);
     sol.info["variance_radius"] = check.radius;
@@ -348,7 +364,7 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
     sol.info["variance_radius"] = kNaN;
   }
   if (options.theory) {
-    if (options.kernel != "matrix")
+    if (options.kernel != WalkKernel::matrix)
       msg << "; no exact variance for the ray kernel (its F is not stored)";
     else if (N > kMaxTheoryPatches)
       msg << "; exact variance skipped (" << N << " patches > " << kMaxTheoryPatches << ")";
@@ -358,6 +374,33 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
   sol.message = msg.str();
   sol.status = SolveStatus::converged;
   return sol;
+}
+
+}  // namespace
+
+std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count) {
+  if (is_gathering(options.method)) {
+    const std::size_t m = options.patches.empty() ? patch_count : options.patches.size();
+    return m * gather_layout(m, options.walks_per_patch).per_patch;
+  }
+  const long chunk = shoot_chunk(options.particles);
+  return static_cast<std::size_t>((options.particles + chunk - 1) / chunk);
+}
+
+bool too_few_particles(const Solution& solution) {
+  const auto unreached = solution.info.find("unreached_patches"), reflecting = solution.info.find("reflecting_patches");
+  return unreached != solution.info.end() && reflecting != solution.info.end() &&
+         2 * unreached->second > reflecting->second;
+}
+
+Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                           const WalkOptions& options) {
+  return solve(problem, patches, visibility, options, nullptr);
+}
+
+Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                           const WalkOptions& options, Progress& progress) {
+  return solve(problem, patches, visibility, options, &progress);
 }
 
 }  // namespace radwalk

@@ -1,18 +1,23 @@
 #pragma once
 // solve_random_walk: the discrete random-walk solvers of B = E + diag(rho) F B behind one call.
 //
-// Gathering methods estimate B_i for the chosen patches (options.patches, empty = all) from options.walks
-// independent walks per patch; shooting methods estimate every patch from options.walks particles
-// (gather_estimators.h, shoot_estimators.h). Per patch and channel the Solution holds
+// Gathering methods estimate B_i for the chosen patches (options.patches, empty = all) from
+// options.walks_per_patch independent walks per patch; shooting methods estimate every patch from
+// options.particles particles (gather_estimators.h, shoot_estimators.h; the method is dispatched to its estimator
+// once, walk_estimators.h). Per patch and channel the Solution holds
 //   B     the estimate (gathering: the mean walk score; shooting: E_j + mean reflected-power score / A_j),
 //   var   the per-walk (per-particle) sample variance, B_se = sqrt(var / walks),
 //   var_theory  with options.theory and the matrix kernel: walk_variance.h (empty otherwise).
 // Patches a gathering run did not estimate are NaN. walks, steps (destination samples: alias draws or rays),
 // seconds (walks only, without the optional theory) are filled; info holds "variance_radius" (spectral radius of
 // K, finite variance iff < 1; NaN when F is not stored), "escapes", "back_hits", "walks_per_patch" or
-// "particles", "emitted_power". A radius >= 1 keeps the (unbiased) estimate but says in `message` that its
-// variance is infinite and its error bars are meaningless.
+// "particles", "emitted_power", and for shooting "reflecting_patches" (non-emitting, rho > 0) and
+// "unreached_patches" (those of them no particle scored, so B = 0 there). A radius >= 1 keeps the (unbiased)
+// estimate but says in `message` that its variance is infinite and its error bars are meaningless; so does a
+// shooting run that left more than half of the reflecting patches unreached (too_few_particles).
 // Threads: whatever TBB allows (core/parallel.h ThreadLimit); the output does not depend on it.
+// Progress: with options.progress a line "random walks (METHOD)" on stderr (core/progress.h); or the caller's
+// Progress, advanced by walk_work_items(options, N) in all (compare shows one line over several solves).
 #include "patch/patch_set.h"
 #include "solve/problem.h"
 #include "core/solution.h"
@@ -21,10 +26,21 @@
 
 namespace radwalk {
 
-// kernel "matrix" needs problem.F (N x N); kernel "ray" needs `patches` (the same N patches) and `visibility`,
-// and ignores F except for the variance radius. Throws InputError on invalid options or input, including a
-// survival probability p_k >= 1 (a walk might never end) or p_k = 0 where rho_k > 0 (biased).
+class Progress;
+
+// The matrix kernel needs problem.F (N x N); the ray kernel needs `patches` (the same N patches) and
+// `visibility`, and ignores F except for the variance radius. Throws InputError on invalid options
+// (check_walk_options) or input, including a survival probability p_k >= 1 (a walk might never end) or p_k = 0
+// where rho_k > 0 (biased).
 Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                            const WalkOptions& options);
+Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                           const WalkOptions& options, Progress& progress);
+
+// The work items (chunks of walks) a solve with these options advances its Progress by, for N patches.
+std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count);
+
+// A shooting solution whose particles left more than half of the non-emitting reflecting patches at B = 0.
+bool too_few_particles(const Solution& solution);
 
 }  // namespace radwalk

@@ -64,10 +64,8 @@ RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, c
     s.tangent[3] = -s.tangent[1];
     s.normal = frame.n.cast<float>();
   }
-  // Scored stops are the roulette stops: a_k = 1 - p_k.
-  std::vector<double> n(N, 1.0), a(N);
-  for (std::size_t k = 0; k < N; ++k) a[k] = 1.0 - p[k];
-  tables_ = make_walk_tables(problem.rho, problem.E, std::move(p), std::move(n), std::move(a));
+  // n_k = 1; the row sums are not known.
+  tables_ = make_kernel_tables(problem.rho, problem.E, std::move(p), std::vector<double>(N, 1.0), {});
 }
 
 void RayKernel::make_rays(const SampleRequest* requests, std::size_t count, RayPacket& rays) const {

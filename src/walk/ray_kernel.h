@@ -26,8 +26,7 @@
 // depend on the patch (sqrt, cos, sin) vectorised over the lanes, and traced as one packet through the
 // Visibility. The single sample is a batch of one, so a walk's rays and hits do not depend on how walks are
 // batched.
-// Scored stops for gathering absorption are the roulette stops only (a_k = 1 - p_k): the escape probability
-// 1 - s_k is unknown without F, so an escape scores 0 (still unbiased).
+// The row sums s_k, and so the escape probability 1 - s_k of a ray, are unknown without F (tables().s is empty).
 // HE(k, j) = rho_k E_j for one extra, independent sample j (kHESampled): E[.] = (H E)_k.
 #include <span>
 #include <vector>
@@ -67,7 +66,6 @@ inline QuarterTurns unit_circle(const LaneFloats& u) {
 
 class RayKernel {
  public:
-  static constexpr bool kEscapeScores = false;
   static constexpr bool kHESampled = true;
   static constexpr std::size_t kLanes = kMaxLanes;
   static_assert(kLanes == kPacketSize, "one lockstep batch is one ray packet");
@@ -77,7 +75,7 @@ class RayKernel {
             std::vector<double> p);
 
   std::size_t size() const { return samplers_.size(); }
-  const WalkTables& tables() const { return tables_; }
+  const KernelTables& tables() const { return tables_; }
 
   PatchIndex sample(std::size_t k, Rng& rng, WalkCounters& counters) const {
     const SampleRequest request{k, &rng};
@@ -112,7 +110,7 @@ class RayKernel {
 
   const Visibility& visibility_;
   std::vector<PatchSampler> samplers_;
-  WalkTables tables_;
+  KernelTables tables_;
 };
 
 }  // namespace radwalk

@@ -30,4 +30,18 @@ ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area) {
   return s;
 }
 
+ShootWeights::ShootWeights(const KernelTables& kernel) : survivor(kernel.p.size()) {
+  for (std::size_t k = 0; k < survivor.size(); ++k) {
+    const double pk = kernel.p[k];
+    survivor[k] = pk > 0 ? Rgb(kernel.rho[k] / pk) : Rgb::Zero();
+  }
+}
+
+ShootAbsorption::Tables::Tables(const KernelTables& kernel) : ShootWeights(kernel), absorbed(kernel.p.size()) {
+  for (std::size_t k = 0; k < absorbed.size(); ++k) {
+    const double pk = kernel.p[k];
+    absorbed[k] = pk < 1 ? Rgb(kernel.rho[k] / (1.0 - pk)) : Rgb::Zero();
+  }
+}
+
 }  // namespace radwalk

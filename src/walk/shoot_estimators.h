@@ -20,11 +20,11 @@
 
 #include "core/rng.h"
 #include "walk/alias_table.h"
+#include "walk/moment_terms.h"
 #include "walk/transition_kernel.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
-
-enum class ShootEstimator { collision, absorption, survival };
 
 // Where particles are born and with what weight.
 struct ShootSource {
@@ -36,17 +36,33 @@ struct ShootSource {
 // Throws InputError if sizes disagree or an E or an area is negative.
 ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area);
 
-// The three estimators as state machines (the walk concept of walk_lockstep.h, as in gather_estimators.h):
-//   constructed from (kernel, source, rng): born (one uniform from the stream), waiting for its first move;
+// The table every particle reads: rho_k / p_k (0 where p_k = 0), the weight factor of a particle surviving the
+// roulette at k (it leaves k with weight W_in rho_k / p_k).
+struct ShootWeights {
+  std::vector<Rgb> survivor;
+  explicit ShootWeights(const KernelTables& kernel);
+};
+
+// Each estimator is a class with Tables (what its particles read besides the kernel's data, built once per solve
+// from KernelTables), moment_source (its second-moment source term c_j for the exact variance: moment_terms.h,
+// walk_variance.h; m = t.m()) and Particle<K>, a state machine (the walk concept of walk_lockstep.h, as in
+// gather_estimators.h):
+//   constructed from (kernel, tables, source, rng): born (one uniform from the stream), waiting for its first
+//   move;
 //   done(), from(), rng() as for gathering walks;
 //   advance(j, score) consumes the destination sample j of from(), calls score(j, power) for a score at j, and
 //   runs up to the next request (after the roulette at j) or the end.
 // A particle draws from its own stream only: birth, then per step the destination sample and the roulette.
-template <TransitionKernel K>
+// Each class is registered as EstimatorOf<its method> right after it, as in gather_estimators.h.
+// ShootParticle is what every particle keeps and does: it leaves patch k with weight W; a destination sample j
+// ends it at a stop (j < 0) or it arrives at j with weight W n_k; the roulette at j absorbs it with probability
+// 1 - p_j, else it leaves j.
+template <TransitionKernel K, class Tables>
 class ShootParticle {
  public:
   ShootParticle() = default;
-  ShootParticle(const K& kernel, const ShootSource& source, const Rng& rng) : t_(&kernel.tables()), rng_(rng) {
+  ShootParticle(const K& kernel, const Tables& tables, const ShootSource& source, const Rng& rng)
+      : kt_(&kernel.tables()), t_(&tables), rng_(rng) {
     k_ = source.birth.sample(rng_.uniform());
     W_ = source.W0[k_];
   }
@@ -55,95 +71,111 @@ class ShootParticle {
   Rng& rng() { return rng_; }
 
  protected:
-  const WalkTables* t_ = nullptr;
+  // True if the particle arrives at j; false (and done) at a stop.
+  bool arrives(PatchIndex j) {
+    done_ = j < 0;
+    return !done_;
+  }
+  Rgb arriving_weight() const { return W_ * kt_->n[k_]; }
+  // True (and done) if the roulette at j absorbs the particle.
+  bool absorbed_at(std::size_t j) {
+    done_ = roulette_uniform(rng_) >= kt_->p[j];
+    return done_;
+  }
+  void leave(std::size_t j, const Rgb& W) {
+    W_ = W;
+    k_ = j;
+  }
+
+  const KernelTables* kt_ = nullptr;
+  const Tables* t_ = nullptr;
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Zero();
   Rng rng_;
   bool done_ = false;
 };
 
-template <TransitionKernel K>
-class ShootCollision : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
-    }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = this->W_ * t.n[this->k_];
-    score(jj, Rgb(W_in * t.rho[jj]));
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      this->done_ = true;
-      return;
-    }
-    this->W_ = W_in * t.rho_over_p[jj];
-    this->k_ = jj;
-  }
-};
+struct ShootCollision {
+  using Tables = ShootWeights;
 
-template <TransitionKernel K>
-class ShootAbsorption : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (!this->arrives(j)) return;
+      const auto jj = static_cast<std::size_t>(j);
+      const Rgb W_in = this->arriving_weight();
+      score(jj, Rgb(W_in * this->kt_->rho[jj]));
+      if (!this->absorbed_at(jj)) this->leave(jj, W_in * this->t_->survivor[jj]);
     }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    const Rgb W_in = this->W_ * t.n[this->k_];
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      score(jj, Rgb(W_in * t.rho_over_1mp[jj]));
-      this->done_ = true;
-      return;
-    }
-    this->W_ = W_in * t.rho_over_p[jj];
-    this->k_ = jj;
-  }
-};
-
-template <TransitionKernel K>
-class ShootSurvival : public ShootParticle<K> {
- public:
-  using ShootParticle<K>::ShootParticle;
-  template <class Score>
-  void advance(PatchIndex j, Score&& score) {
-    if (j < 0) {
-      this->done_ = true;
-      return;
-    }
-    const WalkTables& t = *this->t_;
-    const auto jj = static_cast<std::size_t>(j);
-    if (roulette_uniform(this->rng_) >= t.p[jj]) {
-      this->done_ = true;
-      return;
-    }
-    this->W_ = this->W_ * t.n[this->k_] * t.rho_over_p[jj];
-    score(jj, this->W_);
-    this->k_ = jj;
-  }
-};
-
-// Runs one particle with stream rng (left advanced past the particle) to its end, one destination sample at a
-// time.
-template <TransitionKernel K, class Score>
-void shoot_particle(ShootEstimator estimator, const K& kernel, const ShootSource& source, Rng& rng,
-                    WalkCounters& counters, Score&& score) {
-  auto run = [&](auto particle) {
-    while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
-    rng = particle.rng();
   };
-  switch (estimator) {
-    case ShootEstimator::collision: return run(ShootCollision<K>(kernel, source, rng));
-    case ShootEstimator::absorption: return run(ShootAbsorption<K>(kernel, source, rng));
-    case ShootEstimator::survival: return run(ShootSurvival<K>(kernel, source, rng));
+
+  // c_j = rho_j^2 (1 + 2 m_j); var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array())).matrix(), t.B - t.E};
   }
+};
+template <> struct EstimatorOf<WalkMethod::shoot_collision> { using type = ShootCollision; };
+
+struct ShootAbsorption {
+  struct Tables : ShootWeights {
+    std::vector<Rgb> absorbed;  // rho_k / (1 - p_k) (0 where p_k = 1): the score factor of an absorption at k
+    explicit Tables(const KernelTables& kernel);
+  };
+
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (!this->arrives(j)) return;
+      const auto jj = static_cast<std::size_t>(j);
+      const Rgb W_in = this->arriving_weight();
+      if (this->absorbed_at(jj))
+        score(jj, Rgb(W_in * this->t_->absorbed[jj]));
+      else
+        this->leave(jj, W_in * this->t_->survivor[jj]);
+    }
+  };
+
+  // c_j = rho_j^2 / (1 - p_j); var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() / (1.0 - t.p.array())).matrix(), t.B - t.E};
+  }
+};
+template <> struct EstimatorOf<WalkMethod::shoot_absorption> { using type = ShootAbsorption; };
+
+struct ShootSurvival {
+  using Tables = ShootWeights;
+
+  template <TransitionKernel K>
+  class Particle : public ShootParticle<K, Tables> {
+   public:
+    using ShootParticle<K, Tables>::ShootParticle;
+    template <class Score>
+    void advance(PatchIndex j, Score&& score) {
+      if (!this->arrives(j)) return;
+      const auto jj = static_cast<std::size_t>(j);
+      if (this->absorbed_at(jj)) return;
+      this->leave(jj, this->arriving_weight() * this->t_->survivor[jj]);
+      score(jj, this->W_);
+    }
+  };
+
+  // c_j = rho_j^2 (1 + 2 m_j) / p_j; var = E[Y^2] - (B - E)^2.
+  static MomentSource moment_source(const MomentTerms& t) {
+    return {(t.rho.array().square() * (1.0 + 2.0 * t.m().array()) / t.p.array()).matrix(), t.B - t.E};
+  }
+};
+template <> struct EstimatorOf<WalkMethod::shoot_survival> { using type = ShootSurvival; };
+
+// Runs one particle to its end, one destination sample at a time, handing its scores to score(j, power).
+template <TransitionKernel K, class Particle, class Score>
+void run_particle(const K& kernel, Particle& particle, WalkCounters& counters, Score&& score) {
+  while (!particle.done()) particle.advance(kernel.sample(particle.from(), particle.rng(), counters), score);
 }
 
 }  // namespace radwalk

@@ -1,19 +1,23 @@
 #pragma once
-// The transition-kernel interface every random-walk estimator runs on, and the per-patch tables it carries.
+// The transition-kernel interface every random-walk estimator runs on, and the per-patch data a kernel gives
+// about its chain. A kernel knows nothing of the estimators that run on it (gather_estimators.h,
+// shoot_estimators.h build their own weight tables from this data).
 //
 // Per channel c the system is B_c = E_c + H_c B_c with H_c = diag(rho_c) F. A kernel is a Markov chain on
 // patches built from two pieces:
 //   - a survival probability p_k (Russian roulette, one scalar for all channels), and
 //   - a destination sampler: from patch k, patch j with probability F_kj / n_k, else a stop (kEscaped: the walk
 //     left an open scene; kBackHit: a ray hit the back of a patch). n_k >= 1 is the row scale (alias_table.h;
-//     1 for the ray kernel).
+//     1 for the ray kernel). A destination sample from k is a stop with probability 1 - s_k / n_k, s_k the row
+//     sum of F.
 // Gathering walks use P_kj = p_k F_kj / n_k (roulette at k, then move) and weight factor
 //   w_k = H_kj / P_kj = rho_k n_k / p_k   (per channel; = rho_k / p_k for the analog walk, 1 if p_k = rho_k),
-// shooting particles move first and roulette at the patch they reach (tables below).
+// shooting particles move first and roulette at the patch they reach (shoot_estimators.h).
 // A kernel K provides (all const, thread-safe, O(1) except the ray tracing):
-//   size(), tables() (WalkTables: p_k, n_k and the weight factors),
-//   static constexpr bool kEscapeScores: an escape is a scored stop for gathering absorption,
+//   size(), tables() (KernelTables below: E_k, rho_k, p_k, n_k and, where the kernel knows them, the row sums
+//     s_k),
 //   static constexpr bool kHESampled: (H E)_k is estimated from one extra destination sample j of k (see HE),
+//     rather than known exactly,
 //   static constexpr std::size_t kLanes (1..kMaxLanes): how many walks the drivers advance in lockstep
 //     (walk_lockstep.h), i.e. the batch size the kernel prefers,
 //   sample(k, rng, counters)   -> PatchIndex: j >= 0 with probability F_kj / n_k, else kEscaped / kBackHit,
@@ -23,20 +27,22 @@
 //   HE(k, j)                   -> Rgb: with kHESampled, rho_k E_j (0 for a stop j < 0) for a destination sample
 //     j of k, whose expectation is (H E)_k; without, (H E)_k = rho_k sum_j F_kj E_j exactly (j is ignored: no
 //     sample is drawn, the estimators pass kNoSample).
-// The gathering absorption estimator scores at the "scored stops" of a kernel: the matrix kernel scores every
-// stop (roulette or escape, probability q_k = 1 - p_k s_k / n_k); the ray kernel, which does not know s_k, scores
-// only the roulette stop (probability a_k = 1 - p_k) and lets escapes score 0 (tables().absorb_score).
+// The two kernels differ for an estimator in two facts only, both data here: whether the row sums s_k, and so the
+// stop probability 1 - s_k / n_k of a destination sample, are known (matrix kernel: the row deficit; ray kernel:
+// unknown without F), and whether (H E)_k is exact or sampled (kHESampled).
 #include <concepts>
 #include <cstddef>
 #include <span>
-#include <string>
 #include <vector>
 
 #include "core/rng.h"
 #include "core/types.h"
-#include "walk/alias_table.h"
 
 namespace radwalk {
+
+// Walk stop codes: what sample() returns for a destination that is not a patch. Both end the walk.
+inline constexpr PatchIndex kEscaped = -1;  // the walk left the scene (row deficit, or a ray that hit nothing)
+inline constexpr PatchIndex kBackHit = -2;  // a ray hit the back of a patch (ray kernel)
 
 // A uniform number in [0, 1) from one 32-bit draw, for Russian roulette (u < p_k): the survival probability is
 // then resolved to 2^-32, far below any Monte Carlo error, at half the cost of Rng::uniform().
@@ -55,27 +61,22 @@ struct WalkCounters {
   }
 };
 
-// Per-patch factors the estimators read; all rows are Rgb (channels), indices are patches.
-struct WalkTables {
-  std::vector<Rgb> E;              // emitted radiosity E_k
-  std::vector<Rgb> rho;            // reflectance rho_k
-  std::vector<double> p;           // survival probability p_k
-  std::vector<double> n;           // row scale n_k
-  std::vector<double> scored_stop; // probability of a scored stop at k (q_k or a_k, see above)
-  std::vector<Rgb> gather_weight;  // rho_k n_k / p_k (0 where p_k = 0)
-  std::vector<Rgb> absorb_score;   // E_k / scored_stop_k (0 where E_k = 0)
-  std::vector<Rgb> rho_over_p;     // rho_k / p_k (0 where p_k = 0): shooting weight after surviving at k
-  std::vector<Rgb> rho_over_1mp;   // rho_k / (1 - p_k) (0 where p_k = 1): shooting absorption score factor
+// What a kernel tells the estimators about its chain, per patch k (Rgb rows are per channel).
+struct KernelTables {
+  std::vector<Rgb> E;      // emitted radiosity E_k
+  std::vector<Rgb> rho;    // reflectance rho_k
+  std::vector<double> p;   // survival probability p_k
+  std::vector<double> n;   // row scale n_k
+  // Row sum s_k of F where the kernel knows it (matrix kernel), so that a destination sample from k is known to
+  // be a stop with probability 1 - s_k / n_k; empty where it does not (ray kernel: the escape probability of a
+  // ray is not known without F).
+  std::vector<double> s;
+  bool row_sums_known() const { return !s.empty(); }
 };
 
-// Fills every table from rho, E, p, n and the scored-stop probabilities.
-WalkTables make_walk_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
-                            std::vector<double> scored_stop);
-
-// Survival probabilities p_k from a mode: "analog" (mean of rho_k over channels; rho_k for one channel),
-// "max" (max over channels), "constant" (the value `constant` everywhere). Throws InputError on an unknown mode or
-// a constant outside (0, 1].
-std::vector<double> survival_probabilities(const PatchRgb& rho, const std::string& mode, double constant);
+// E and rho as rows per patch, with p, n and s (empty: unknown) as given.
+KernelTables make_kernel_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
+                                std::vector<double> s);
 
 // One destination-sample request of a batch: a sample from patch k, drawn from the walk's own stream.
 struct SampleRequest {
@@ -93,11 +94,10 @@ template <class K>
 concept TransitionKernel = requires(const K& kernel, std::size_t k, PatchIndex j, Rng& rng, WalkCounters& counters,
                                     std::span<const SampleRequest> requests, std::span<PatchIndex> out) {
   { kernel.size() } -> std::convertible_to<std::size_t>;
-  { kernel.tables() } -> std::convertible_to<const WalkTables&>;
+  { kernel.tables() } -> std::convertible_to<const KernelTables&>;
   { kernel.sample(k, rng, counters) } -> std::convertible_to<PatchIndex>;
   kernel.sample(requests, out, counters);
   { kernel.HE(k, j) } -> std::convertible_to<Rgb>;
-  { K::kEscapeScores } -> std::convertible_to<bool>;
   { K::kHESampled } -> std::convertible_to<bool>;
   { K::kLanes } -> std::convertible_to<std::size_t>;
 };

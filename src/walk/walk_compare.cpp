@@ -3,23 +3,44 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <sstream>
+#include <string>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_variance.h"
 
 namespace radwalk {
 namespace {
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// The options of one method's runs: the budget as its count, walks_per_patch x (patches estimated) particles
+// for shooting.
+WalkOptions method_options(const CompareOptions& options, WalkMethod method, std::size_t patch_count) {
+  WalkOptions wo = options.walk;
+  wo.method = method;
+  wo.particles = options.walk.walks_per_patch *
+                 static_cast<long>(options.walk.patches.empty() ? patch_count : options.walk.patches.size());
+  wo.progress = false;
+  return wo;
+}
+
+}  // namespace
+
+void check_compare_options(const CompareOptions& options, std::size_t patch_count) {
+  if (options.runs < 1) throw InputError("compare: runs = " + std::to_string(options.runs) + " (need >= 1)");
+  if (options.methods.empty()) throw InputError("compare: no methods given");
+  for (WalkMethod method : options.methods) check_walk_options(method_options(options, method, patch_count), patch_count);
 }
 
 CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
                                    const Visibility* visibility, const CompareOptions& options,
                                    const PatchRgb& B_reference) {
-  if (options.runs < 1) throw InputError("compare: runs = " + std::to_string(options.runs) + " (need >= 1)");
-  if (options.methods.empty()) throw InputError("compare: no methods given");
   const std::size_t N = problem.size();
+  check_compare_options(options, N);
   const auto n_rows = static_cast<Eigen::Index>(N);
   // Reference solution.
   PatchRgb B_ref = B_reference;
@@ -33,12 +54,14 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
     for (std::size_t i = 0; i < N; ++i) targets.push_back(static_cast<int>(i));
 
   CompareResult result;
-  for (const std::string& method : options.methods) {
-    WalkOptions wo = options.walk;
-    set_method(wo, method);
-    check_walk_options(wo, N);
-    const bool gather = wo.walk == "gather";
-    if (!gather) wo.walks = options.walk.walks * static_cast<long>(targets.size());
+  for (const WalkMethod method : options.methods) {
+    WalkOptions wo = method_options(options, method, N);
+    const bool gather = is_gathering(method);
+    const long count = gather ? wo.walks_per_patch : wo.particles;  // walks of one run per estimate
+    std::optional<Progress> progress;
+    if (options.progress)
+      progress.emplace("compare " + std::string(method_name(method)),
+                       static_cast<std::size_t>(options.runs) * walk_work_items(wo, N));
     // R runs: pooled estimates, variances and the run-to-run spread.
     PatchRgb sum_B = PatchRgb::Zero(n_rows, 3), sum_B2 = PatchRgb::Zero(n_rows, 3);
     PatchRgb sum_var = PatchRgb::Zero(n_rows, 3), sum_se = PatchRgb::Zero(n_rows, 3);
@@ -46,7 +69,8 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
     double seconds = 0;
     for (int r = 0; r < options.runs; ++r) {
       wo.seed = options.walk.seed + static_cast<std::uint64_t>(r);
-      const Solution s = solve_random_walk(problem, patches, visibility, wo);
+      const Solution s = progress ? solve_random_walk(problem, patches, visibility, wo, *progress)
+                                  : solve_random_walk(problem, patches, visibility, wo);
       sum_B += s.B;
       sum_B2 += s.B * s.B;
       sum_var += s.var;
@@ -54,20 +78,21 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
       steps += s.steps;
       seconds += s.seconds;
     }
+    if (progress) progress->finish();
     const double R = options.runs;
     PatchRgb var_theory;
-    if (options.theory && wo.kernel == "matrix" && dense_ok && B_ref.rows() == n_rows)
+    if (options.theory && wo.kernel == WalkKernel::matrix && dense_ok && B_ref.rows() == n_rows)
       var_theory = theoretical_variance(problem, wo, B_ref);
     // Rows and the summary.
     CompareSummary sum;
     sum.method = method;
     sum.runs = options.runs;
-    sum.walks = wo.walks * options.runs * (gather ? static_cast<long>(targets.size()) : 1);
+    sum.walks = count * options.runs * (gather ? static_cast<long>(targets.size()) : 1);
     sum.steps = steps;
     sum.seconds = seconds;
     double z_abs = 0, ratio = 0, spread = 0, var_total = 0;
     long n_z = 0, n_ratio = 0, n_spread = 0, n_rows_m = 0;
-    const long walks = wo.walks * options.runs;
+    const long walks = count * options.runs;
     for (int i : targets)
       for (int c = 0; c < 3; ++c) {
         CompareRow row;
@@ -131,7 +156,7 @@ std::string format_compare_summary(const std::vector<CompareSummary>& summary) {
   out << line;
   for (const CompareSummary& s : summary) {
     std::snprintf(line, sizeof line, "%-22s %5d %12ld %13ld %9.3f %9.3f %9.3f %9.3f %9.3f %12.4g %12.4g\n",
-                  s.method.c_str(), s.runs, s.walks, s.steps, s.seconds, s.mean_abs_z, s.max_abs_z, s.var_ratio,
+                  std::string(method_name(s.method)).c_str(), s.runs, s.walks, s.steps, s.seconds, s.mean_abs_z, s.max_abs_z, s.var_ratio,
                   s.spread_ratio, s.mean_var, s.efficiency);
     out << line;
   }

@@ -2,8 +2,9 @@
 // compare_random_walks: runs each random-walk method R times (independent seeds) on one budget and tabulates
 // accuracy, variance and efficiency, for `radwalk compare`.
 //
-// Budget: options.walks walks per estimated patch for gathering; the same total, walks x (patches estimated),
-// as particles for shooting. Run r uses seed options.seed + r. Per patch, method and channel (long format):
+// Budget: options.walk.walks_per_patch walks per estimated patch for gathering; the same total,
+// walks_per_patch x (patches estimated), as particles for shooting. Run r uses seed options.walk.seed + r. Per patch,
+// method and channel (long format):
 //   mean        average of the R estimates of B
 //   var         per-walk (per-particle) variance, averaged over the runs
 //   var_theory  walk_variance.h (matrix kernel, N <= kMaxTheoryPatches), NaN otherwise
@@ -27,15 +28,21 @@
 namespace radwalk {
 
 struct CompareOptions {
-  std::vector<std::string> methods = walk_methods();
-  int runs = 10;        // R >= 1
-  WalkOptions walk;     // kernel, walks (per patch), seed, patches (gathering), survival; walk/estimator ignored
+  std::vector<WalkMethod> methods = all_walk_methods();
+  int runs = 5;         // R >= 1
+  WalkOptions walk;     // kernel, walks_per_patch (the budget), seed, patches (gathering), survival; method,
+                        // particles and progress ignored
   bool theory = true;   // var_theory where computable
+  bool progress = false;  // a progress line per method on stderr (core/progress.h)
 };
+
+// The one check of CompareOptions: InputError unless runs >= 1, some method is given, and the walk options are
+// valid for every method (check_walk_options).
+void check_compare_options(const CompareOptions& options, std::size_t patch_count);
 
 struct CompareRow {
   int patch = 0;
-  std::string method;
+  WalkMethod method = WalkMethod::gather_collision;
   int channel = 0;
   double mean = 0, var = 0, var_theory = 0, z = 0;
   long walks = 0, steps = 0;
@@ -43,7 +50,7 @@ struct CompareRow {
 };
 
 struct CompareSummary {
-  std::string method;
+  WalkMethod method = WalkMethod::gather_collision;
   int runs = 0;
   long walks = 0, steps = 0;
   double seconds = 0;
@@ -60,7 +67,8 @@ struct CompareResult {
 };
 
 // B_reference: the exact solution for the same F (e.g. the direct solver); empty = dense_radiosity when
-// N <= kMaxTheoryPatches (and the kernel is "matrix"), else z is NaN. Throws InputError on invalid options.
+// N <= kMaxTheoryPatches (and the kernel is the matrix kernel), else z is NaN. Throws InputError on invalid
+// options (check_compare_options).
 CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
                                    const Visibility* visibility, const CompareOptions& options,
                                    const PatchRgb& B_reference = PatchRgb());

@@ -1,46 +1,55 @@
 #pragma once
-// Options of the discrete random-walk solvers and the names of their methods.
+// Options of the discrete random-walk solvers, typed, and their one check.
 //
-// Methods ("walk-estimator"): gather-absorption, gather-collision, gather-expected-value (estimate chosen patches,
-// `walks` walks per patch) and shoot-collision, shoot-absorption, shoot-survival (estimate all patches, `walks`
-// particles in total). Kernels: "matrix" (stored F, alias tables) or "ray" (trace each step, needs a PatchSet and
-// a Visibility). Survival p_k: "analog" (mean rho_k over channels), "max", "constant" (survival_constant).
+// method     the direction and estimator (walk_method.h: the list of methods, their names and parser);
+// kernel     matrix (stored F, alias tables) or ray (trace each step; needs a PatchSet and a Visibility);
+// counts     gathering methods estimate the chosen patches with walks_per_patch walks each; shooting methods
+//            estimate all patches from `particles` particles in total (each count is read only by its direction);
+// survival   the roulette rule (survival.h).
 // Random streams (core/rng.h): gathering walk w from patch i is (seed, gather_walk, i, w); shooting particle w is
 // (seed, shoot_particle, 0, w). Results are bit-identical for any thread count.
+#include <array>
+#include <cstddef>
 #include <cstdint>
-#include <string>
+#include <string_view>
 #include <vector>
 
-#include "walk/gather_estimators.h"
-#include "walk/shoot_estimators.h"
+#include "walk/named_choice.h"
+#include "walk/survival.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
 
+enum class WalkKernel { matrix, ray };
+
+inline constexpr std::array<NamedChoice<WalkKernel>, 2> kWalkKernels = {{
+    {WalkKernel::matrix, "matrix", "stored F, an alias table per row"},
+    {WalkKernel::ray, "ray", "Embree traces every step, no F stored"},
+}};
+static_assert(in_enum_order(kWalkKernels));
+
+constexpr std::string_view kernel_name(WalkKernel kernel) { return choice_name(kWalkKernels, kernel); }
+
+// "matrix" | "ray"; InputError naming the valid kernels otherwise.
+WalkKernel parse_walk_kernel(std::string_view name);
+
 struct WalkOptions {
-  std::string walk = "gather";           // "gather" | "shoot"
-  std::string estimator = "absorption";  // gather: absorption | collision | expected-value;
-                                         // shoot: collision | absorption | survival
-  std::string kernel = "matrix";         // "matrix" | "ray"
-  long walks = 1000;                     // per patch (gather) or particles in total (shoot), >= 2
+  WalkMethod method = WalkMethod::gather_collision;
+  WalkKernel kernel = WalkKernel::matrix;
+  long walks_per_patch = 1000;  // gathering: walks from each estimated patch, >= 2
+  long particles = 1000;        // shooting: particles in total, >= 2
   std::uint64_t seed = 1;
-  std::vector<int> patches;              // gather: patches to estimate (empty = all); shoot: ignored
-  std::string survival = "analog";       // "analog" | "max" | "constant"
-  double survival_constant = 0.5;        // p for survival = "constant", in (0, 1)
-  bool theory = false;                   // also fill Solution::var_theory (matrix kernel, N <= kMaxTheoryPatches)
+  std::vector<int> patches;     // gathering: patches to estimate (empty = all); shooting: ignored
+  Survival survival;
+  bool theory = false;          // also fill Solution::var_theory (matrix kernel, N <= kMaxTheoryPatches)
+  bool progress = false;        // a progress line on stderr over the walks (core/progress.h)
 };
 
-// The six method names, in a fixed order.
-const std::vector<std::string>& walk_methods();
-// "gather-absorption" etc. for the options' walk and estimator.
-std::string method_name(const WalkOptions& options);
-// Sets walk and estimator from a method name; InputError listing the valid names otherwise.
-void set_method(WalkOptions& options, const std::string& method);
-
-// Throws InputError with a clear message on an unknown or invalid combination (e.g. shoot + expected-value),
-// walks < 2, or a patch index outside [0, patch_count).
+// The one check of WalkOptions: InputError with a one-line message on a count below 2 (of the method's
+// direction), a survival choice check_survival refuses, or a patch index outside [0, patch_count).
 void check_walk_options(const WalkOptions& options, std::size_t patch_count);
 
-GatherEstimator gather_estimator(const WalkOptions& options);
-ShootEstimator shoot_estimator(const WalkOptions& options);
+// Walks the method runs: walks_per_patch x (patches estimated) for gathering, particles for shooting.
+long total_walks(const WalkOptions& options, std::size_t patch_count);
 
 }  // namespace radwalk

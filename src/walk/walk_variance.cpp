@@ -8,7 +8,8 @@
 #include "core/error.h"
 #include "solve/spectral_radius.h"
 #include "walk/matrix_kernel.h"
-#include "walk/transition_kernel.h"
+#include "walk/moment_terms.h"
+#include "walk/walk_estimators.h"
 
 namespace radwalk {
 namespace {
@@ -28,7 +29,7 @@ void row_sums(const SparseF& F, Eigen::VectorXd& s, Eigen::VectorXd& n) {
 }
 
 Eigen::VectorXd survival_vector(const RadiosityProblem& problem, const WalkOptions& options) {
-  const std::vector<double> p = survival_probabilities(problem.rho, options.survival, options.survival_constant);
+  const std::vector<double> p = survival_probabilities(problem.rho, options.survival);
   return Eigen::Map<const Eigen::VectorXd>(p.data(), static_cast<Eigen::Index>(p.size()));
 }
 
@@ -64,41 +65,40 @@ PatchRgb theoretical_variance(const RadiosityProblem& problem, const WalkOptions
     return var;
   }
   // Gathering walks rows of F, shooting rows of T = A^-1 F^T A (matrix_kernel.h): call either F below.
-  const bool gather = options.walk == "gather";
+  const bool gather = is_gathering(options.method);
   const SparseF F_walk = gather ? problem.F : shooting_transfer(problem);
   const Eigen::MatrixXd F = Eigen::MatrixXd(F_walk.cast<double>());
   const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(n_rows, n_rows);
   const Eigen::VectorXd p = survival_vector(problem, options);
   Eigen::VectorXd s, n;
   row_sums(F_walk, s, n);
+  // The estimator's source term c and mean (next to each estimator: moment_source), per channel.
+  auto moment_source = [&](int c) {
+    MomentTerms t;
+    t.E = problem.E.col(c).matrix();
+    t.B = B_exact.col(c).matrix();
+    t.rho = problem.rho.col(c).matrix();
+    t.p = p;
+    t.q = (1.0 - (p.array() * s.array() / n.array())).matrix();
+    t.HE = t.rho.cwiseProduct(F * t.E);
+    t.F = &F;
+    return with_estimator(options.method,
+                          [&](auto method) { return decltype(method)::Estimator::moment_source(t); });
+  };
 
   if (gather) {
-    const GatherEstimator est = gather_estimator(options);
-    const Eigen::VectorXd q = (1.0 - (p.array() * s.array() / n.array())).matrix();
     for (int c = 0; c < 3; ++c) {
-      const Eigen::VectorXd rho = problem.rho.col(c).matrix(), E = problem.E.col(c).matrix();
-      const Eigen::VectorXd B = B_exact.col(c).matrix();
+      const Eigen::VectorXd rho = problem.rho.col(c).matrix();
       // K = diag(rho^2 n / p) F; second moments s = (I - K)^-1 c.
       const Eigen::MatrixXd K = rho2_over_p(rho, p).cwiseProduct(n).asDiagonal() * F;
-      Eigen::VectorXd cvec(n_rows);
-      Eigen::VectorXd mean = B;
-      if (est == GatherEstimator::absorption) {
-        for (Eigen::Index k = 0; k < n_rows; ++k) cvec(k) = E(k) != 0 ? E(k) * E(k) / q(k) : 0.0;
-      } else if (est == GatherEstimator::collision) {
-        cvec = E.cwiseProduct(2.0 * B - E);
-      } else {
-        const Eigen::VectorXd g = rho.cwiseProduct(F * E);
-        cvec = g.cwiseProduct(2.0 * (B - E) - g);
-        mean = B - E;
-      }
-      const Eigen::VectorXd second = (I - K).partialPivLu().solve(cvec);
-      var.col(c) = (second - mean.cwiseProduct(mean)).array();
+      const MomentSource source = moment_source(c);
+      const Eigen::VectorXd second = (I - K).partialPivLu().solve(source.c);
+      var.col(c) = (second - source.mean.cwiseProduct(source.mean)).array();
     }
     return var;
   }
 
   // Shooting.
-  const ShootEstimator est = shoot_estimator(options);
   Eigen::VectorXd Phi(n_rows);
   for (Eigen::Index i = 0; i < n_rows; ++i) Phi(i) = problem.area(i) * problem.E.row(i).sum();
   const double power = Phi.sum();
@@ -117,22 +117,11 @@ PatchRgb theoretical_variance(const RadiosityProblem& problem, const WalkOptions
     const Eigen::MatrixXd NF = n.asDiagonal() * F;
     const Eigen::VectorXd x = (I - NF * D.asDiagonal()).transpose().partialPivLu().solve(v);
     const Eigen::VectorXd r = NF.transpose() * x;
-    // m_j = rho_j [(I - F diag(rho))^-1 F]_jj.
-    Eigen::VectorXd m = Eigen::VectorXd::Zero(n_rows);
-    if (est != ShootEstimator::absorption) {
-      const Eigen::MatrixXd M = (I - F * rho.asDiagonal()).partialPivLu().solve(F);
-      m = rho.cwiseProduct(M.diagonal());
-    }
+    const MomentSource source = moment_source(c);
     for (Eigen::Index j = 0; j < n_rows; ++j) {
-      double cj = 0;
-      if (rho(j) > 0) {
-        if (est == ShootEstimator::collision) cj = rho(j) * rho(j) * (1 + 2 * m(j));
-        if (est == ShootEstimator::absorption) cj = rho(j) * rho(j) / (1 - p(j));
-        if (est == ShootEstimator::survival) cj = rho(j) * rho(j) * (1 + 2 * m(j)) / p(j);
-      }
+      const double cj = rho(j) > 0 ? source.c(j) : 0.0;  // every score at j carries rho_j (moment_terms.h)
       const double second = cj * r(j) / (problem.area(j) * problem.area(j));
-      const double mean = B_exact(j, c) - E(j);
-      var(j, c) = second - mean * mean;
+      var(j, c) = second - source.mean(j) * source.mean(j);
     }
   }
   return var;
@@ -144,10 +133,10 @@ VarianceCheck check_finite_variance(const RadiosityProblem& problem, const WalkO
   const Eigen::VectorXd p = survival_vector(problem, options);
   // Rows walked: F (gathering, or the ray kernel's exact F) or T = A^-1 F^T A (matrix shooting).
   RadiosityProblem K;
-  K.F = options.walk == "shoot" && options.kernel == "matrix" ? shooting_transfer(problem) : problem.F;
+  K.F = !is_gathering(options.method) && options.kernel == WalkKernel::matrix ? shooting_transfer(problem) : problem.F;
   Eigen::VectorXd s, n;
   row_sums(K.F, s, n);
-  if (options.kernel == "ray") n.setOnes();
+  if (options.kernel == WalkKernel::ray) n.setOnes();
   // K_c = diag(rho_c^2 n / p) F is diag(rho') F with rho' = rho^2 n / p: reuse the radius of H.
   K.area = problem.area;
   K.E = problem.E;

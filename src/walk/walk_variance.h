@@ -5,6 +5,8 @@
 //
 // Gathering: the second moment s_i = E[X_i^2] of a walk from i obeys s = c + K s with
 //   K_kl = H_kl^2 / P_kl = (rho_k^2 n_k / p_k) F_kl,   so s = G c, G = (I - K)^-1, finite iff radius(K) < 1;
+// with c the estimator's own source term (its static moment_source, next to the estimator class; the
+// terms it is made of are moment_terms.h):
 //   absorption      c_k = E_k^2 / q_k,  q_k = 1 - p_k s_k / n_k          var_i = s_i - B_i^2
 //   collision       c_k = E_k (2 B_k - E_k)                              var_i = s_i - B_i^2
 //   expected value  c_k = g_k (2 (B_k - E_k) - g_k),  g = H E          var_i = s_i - (B_i - E_i)^2
@@ -15,6 +17,7 @@
 //   E[Y_j^2] = c_j / A_j^2 * sum_i (S_i^2 / pi_i) [(I - N F D)^-1 N F]_ij,  S = A.*E, D = diag(rho^2 / p),
 //   N = diag(n), pi = birth probabilities; with m_j = rho_j [(I - F diag(rho))^-1 F]_jj (expected later score at
 //   j of a unit weight leaving j):
+// (c_j again each estimator's moment_source)
 //   collision   c_j = rho_j^2 (1 + 2 m_j),   absorption  c_j = rho_j^2 / (1 - p_j),
 //   survival    c_j = rho_j^2 (1 + 2 m_j) / p_j;               var_j = E[Y_j^2] - (B_j - E_j)^2.
 //   N F D has the spectrum of diag(rho^2 n / p) F, so the radius of that K (over T) decides finiteness.

@@ -138,9 +138,10 @@ TEST_CASE("radwalk: options the chosen method ignores are warned about, on stder
         std::string::npos);
   const Run pt = run("pathtrace " + source("meshes/cube.obj") + " --spp 2 --width 8 --height 8");
   CHECK(pt.out.find("radwalk: warning: --width and --height are ignored (used only with --image)") != std::string::npos);
-  const Run ray = run("solve " + source("meshes/cube.obj") + " --solver random-walk --kernel ray --walks 10 --rays 10");
-  CHECK(ray.out.find("radwalk: warning: --rays is ignored (used only for form factors, which --kernel ray does not use)") !=
-        std::string::npos);
+  const Run ray =
+      run("solve " + source("meshes/cube.obj") + " --solver random-walk --kernel ray --walks-per-patch 10 --rays 10");
+  CHECK(ray.out.find("radwalk: warning: --rays is ignored (used only for form factors, which --kernel ray does not "
+                     "use)") != std::string::npos);
 }
 
 TEST_CASE("radwalk: progress lines when stderr is a file, none for quick stages or with -q", "[cli]") {

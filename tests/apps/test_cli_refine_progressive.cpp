@@ -175,7 +175,7 @@ TEST_CASE("radwalk solve --progressive: every step carries its iteration, residu
 
 TEST_CASE("radwalk solve --solver random-walk --progressive: the estimate after 1, 2, 4, ... batches", "[cli]") {
   const fs::path dir = scratch("progressive_walks");
-  const Run r = run("solve " + source("meshes/cube.obj") + " --rays 2000 --solver random-walk --walks 100 " +
+  const Run r = run("solve " + source("meshes/cube.obj") + " --rays 2000 --solver random-walk --walks-per-patch 100 " +
                     "--progressive " + (dir / "series").string() + " --csv " + (dir / "b.csv").string());
   INFO(r.out);
   REQUIRE(r.exit_code == 0);

@@ -34,14 +34,14 @@ Solution run(const std::string& solver, const RadiosityProblem& p) {
 
 TEST_CASE("rho = 1 in a closed scene: every walk method is refused, a walk would never end", "[failure][walk]") {
   const RadiosityProblem p = box(Rgb::Ones());
-  for (const auto& method : walk_methods()) {
-    for (const std::string survival : {"analog", "max"}) {
+  for (const WalkMethod method : all_walk_methods()) {
+    for (const SurvivalRule survival : {SurvivalRule::analog, SurvivalRule::max}) {
       WalkOptions o;
-      set_method(o, method);
-      o.survival = survival;
-      o.walks = 10;
+      o.method = method;
+      o.survival.rule = survival;
+      o.walks_per_patch = o.particles = 10;
       const std::string what = input_error(p, o);
-      INFO(method << ", survival " << survival << ": '" << what << "'");
+      INFO(method_name(method) << ", survival " << survival_name(survival) << ": '" << what << "'");
       CHECK_THAT(what, Contains("survival probability p = 1") && Contains("might never end"));
     }
   }
@@ -63,12 +63,12 @@ TEST_CASE("rho = 1 in one channel only: every solver, walks included, refuses an
     CHECK(s.status == SolveStatus::diverged);
     CHECK_THAT(s.message, Contains("channel 0"));
   }
-  for (const auto& method : walk_methods()) {
+  for (const WalkMethod method : all_walk_methods()) {
     WalkOptions o;
-    set_method(o, method);
-    o.walks = 50;
+    o.method = method;
+    o.walks_per_patch = o.particles = 50;
     const Solution s = solve_random_walk(p, nullptr, nullptr, o);
-    INFO(method << ": " << s.message);
+    INFO(method_name(method) << ": " << s.message);
     CHECK(s.status == SolveStatus::diverged);
     CHECK(s.B.size() == 0);  // no estimate is returned for a system with no solution
     CHECK_THAT(s.message, Contains("channel 0"));
@@ -80,12 +80,12 @@ TEST_CASE("form-factor rows above 1: the walks refuse a system with no solution"
   // Rows scaled to 1.25 with rho 0.9: radius(diag(rho) F) = 1.125 (no solution; the deterministic solvers'
   // refusals are in test_stability.cpp). The walks refuse it too, naming the row sum.
   const RadiosityProblem p = box(Rgb::Constant(0.9), {0, 1, 2, 3, 4, 5}, 1.25);
-  for (const auto& method : walk_methods()) {
+  for (const WalkMethod method : all_walk_methods()) {
     WalkOptions o;
-    set_method(o, method);
-    o.walks = 50;
+    o.method = method;
+    o.walks_per_patch = o.particles = 50;
     const Solution s = solve_random_walk(p, nullptr, nullptr, o);
-    INFO(method << ": " << s.message);
+    INFO(method_name(method) << ": " << s.message);
     CHECK(s.status == SolveStatus::diverged);
     CHECK(s.info.at("spectral_radius") == Approx(0.9 * 1.25).epsilon(1e-4));
     CHECK_THAT(s.message, Contains("max row sum of F 1.25"));
@@ -94,6 +94,7 @@ TEST_CASE("form-factor rows above 1: the walks refuse a system with no solution"
   // with finite variance: nothing in the library flags it (the CLI refuses such a Matrix Market file on reading).
   const RadiosityProblem q = box(Rgb::Constant(0.5), {0, 1, 2, 3, 4, 5}, 1.25);
   WalkOptions o;
-  o.walks = 50;
+  o.method = WalkMethod::gather_absorption;
+  o.walks_per_patch = 50;
   CHECK(solve_random_walk(q, nullptr, nullptr, o).info.at("variance_radius") < 1);
 }

@@ -124,8 +124,8 @@ TEST_CASE("open against closed box at rho = 0.999: the opening bounds the iterat
 
   // Random walks: in the open box walks escape, so they end even though rho is almost 1.
   WalkOptions w;
-  w.estimator = "collision";
-  w.walks = 2000;
+  w.method = WalkMethod::gather_collision;
+  w.walks_per_patch = 2000;
   const Solution wo = solve_random_walk(open, nullptr, nullptr, w);
   CHECK(wo.info.at("escapes") > 0);
   const Solution wc = solve_random_walk(closed, nullptr, nullptr, w);
@@ -141,8 +141,8 @@ TEST_CASE("reflectance sweep: analog walks take rho / (1 - rho) steps, collision
   for (double rho : kSweep) {
     const RadiosityProblem p = complete(5, rho, 2.0);
     WalkOptions w;
-    w.estimator = "collision";
-    w.walks = 2000;
+    w.method = WalkMethod::gather_collision;
+    w.walks_per_patch = 2000;
     w.seed = 7;
     const Solution s = solve_random_walk(p, nullptr, nullptr, w);
     const double mean = rho / (1 - rho), var = rho / ((1 - rho) * (1 - rho));
@@ -157,7 +157,7 @@ TEST_CASE("reflectance sweep: analog walks take rho / (1 - rho) steps, collision
     const PatchRgb vc = theoretical_variance(p, w, B);
     CHECK(vc(0, 0) / (B(0, 0) * B(0, 0)) == Approx(rho).epsilon(1e-4));
     WalkOptions a = w;
-    a.estimator = "absorption";
+    a.method = WalkMethod::gather_absorption;
     const PatchRgb va = theoretical_variance(p, a, B);
     CHECK(std::abs(va(0, 0)) <= 1e-9 * B(0, 0) * B(0, 0));
   }
@@ -169,10 +169,9 @@ TEST_CASE("constant survival across the sweep: variance finite iff rho^2 / p < 1
   for (double rho : {0.3, 0.5, 0.7, 0.72, 0.9, 0.99}) {
     const RadiosityProblem p = complete(5, rho);
     WalkOptions w;
-    w.estimator = "collision";
-    w.survival = "constant";
-    w.survival_constant = 0.5;
-    w.walks = 200;
+    w.method = WalkMethod::gather_collision;
+    w.survival = {SurvivalRule::constant, 0.5};
+    w.walks_per_patch = 200;
     const VarianceCheck check = check_finite_variance(p, w);
     INFO("rho " << rho << ": radius " << check.radius);
     CHECK(check.radius == Approx(rho * rho / 0.5).epsilon(1e-5));

@@ -43,8 +43,8 @@ run() { echo "+ radwalk $*" >&2; "$radwalk" -q "$@" >/dev/null; }
 run solve "$cb" --max-edge 50 --rays 2000 -o solve.vtp --paraview-state solve.py --json solve.json
 run solve "$cb" --max-edge 100 --rays 500 --solver gauss-seidel --progressive progressive
 run solve "$cb" --max-edge 100 --rays 500 --solver random-walk --walk gather --estimator expected-value \
-  --walks 200 --theory -o random_walk.vtp --progressive random_walk_series
-run compare "$src/meshes/cube.obj" --rays 2000 --walks 200 --runs 2 \
+  --walks-per-patch 200 --theory -o random_walk.vtp --progressive random_walk_series
+run compare "$src/meshes/cube.obj" --rays 2000 --walks-per-patch 200 --runs 2 \
   --estimators gather-absorption,gather-expected-value,shoot-collision -o compare.vtp
 run pathtrace "$cb" --max-edge 100 --spp 16 -o pathtrace.vtp --progressive pathtrace_series
 run pathtrace "$cb" --image pathtrace_128.png --width 128 --height 128 --spp 256

@@ -5,6 +5,7 @@
 
 #include "core/moments.h"
 #include "support/stat_checks.h"
+#include "walk/gather_estimators.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_variance.h"
@@ -17,19 +18,18 @@ namespace {
 struct Scene {
   std::string name;
   RadiosityProblem problem;
-  std::string survival;
-  double constant = 0.5;
+  Survival survival;
 };
 
 std::vector<Scene> scenes() {
   std::vector<Scene> s;
-  s.push_back({"closed cube, analog", test::mixed_cube(), "analog"});
-  s.push_back({"open cube (5 faces), analog", test::mixed_cube({0, 1, 2, 3, 4}), "analog"});
-  Scene over{"closed cube, row 0 sums to 1.05, survival max", test::mixed_cube(), "max"};
+  s.push_back({"closed cube, analog", test::mixed_cube(), {SurvivalRule::analog}});
+  s.push_back({"open cube (5 faces), analog", test::mixed_cube({0, 1, 2, 3, 4}), {SurvivalRule::analog}});
+  Scene over{"closed cube, row 0 sums to 1.05, survival max", test::mixed_cube(), {SurvivalRule::max}};
   for (SparseF::InnerIterator it(over.problem.F, 0); it; ++it) it.valueRef() *= 1.05f;
   s.push_back(over);
-  s.push_back({"closed cube, survival constant 0.7", test::mixed_cube(), "constant", 0.7});
-  Scene areas{"closed cube, areas 1..6 (F not reciprocal), analog", test::mixed_cube(), "analog"};
+  s.push_back({"closed cube, survival constant 0.7", test::mixed_cube(), {SurvivalRule::constant, 0.7}});
+  Scene areas{"closed cube, areas 1..6 (F not reciprocal), analog", test::mixed_cube(), {SurvivalRule::analog}};
   areas.problem.area << 1, 2, 3, 4, 5, 6;
   s.push_back(areas);
   return s;
@@ -37,25 +37,26 @@ std::vector<Scene> scenes() {
 
 }  // namespace
 
-TEST_CASE("all six estimators are unbiased on the matrix kernel", "[walk][unbiased]") {
+TEST_CASE("every estimator is unbiased on the matrix kernel", "[walk][unbiased]") {
   const std::vector<Scene> all = scenes();
   std::size_t checks = 0;
-  for (const Scene& s : all) checks += walk_methods().size() * s.problem.size() * 3;
+  for (const Scene& s : all) checks += kWalkMethods.size() * s.problem.size() * 3;
   const double z_crit = z_critical(sidak(1e-3, checks));
   int rejected = 0;
   for (const Scene& s : all) {
     const PatchRgb B = dense_radiosity(s.problem);
-    for (const std::string& method : walk_methods()) {
+    for (const WalkMethod method : all_walk_methods()) {
+      const std::string name(method_name(method));
       WalkOptions o;
-      set_method(o, method);
-      o.walks = o.walk == "gather" ? 100000 : 600000;
+      o.method = method;
+      o.walks_per_patch = 100000;
+      o.particles = 600000;
       o.seed = 42;
       o.survival = s.survival;
-      o.survival_constant = s.constant;
       const Solution sol = solve_random_walk(s.problem, nullptr, nullptr, o);
-      CHECK(sol.method == method);
+      CHECK(sol.method == name);
       CHECK(sol.info.at("variance_radius") < 1);
-      rejected += test::count_rejections(sol, B, z_crit, s.name + ", " + method);
+      rejected += test::count_rejections(sol, B, z_crit, s.name + ", " + name);
     }
   }
   CHECK(rejected == 0);
@@ -64,9 +65,9 @@ TEST_CASE("all six estimators are unbiased on the matrix kernel", "[walk][unbias
 TEST_CASE("gathering on a subset estimates only the chosen patches", "[walk][unbiased]") {
   const RadiosityProblem p = test::mixed_cube();
   WalkOptions o;
-  o.estimator = "collision";
+  o.method = WalkMethod::gather_collision;
   o.patches = {2, 4};
-  o.walks = 5000;
+  o.walks_per_patch = 5000;
   const Solution sol = solve_random_walk(p, nullptr, nullptr, o);
   CHECK(sol.walks == 10000);
   for (Eigen::Index i = 0; i < 6; ++i) CHECK(std::isnan(sol.B(i, 0)) == (i != 2 && i != 4));
@@ -76,17 +77,18 @@ TEST_CASE("gathering on a subset estimates only the chosen patches", "[walk][unb
 TEST_CASE("the z-test rejects a deliberately biased estimator", "[walk][unbiased]") {
   // Absorption that forgets to divide by the stop probability q: E[X] = sum_m (H^m diag(q) E) != B.
   const RadiosityProblem p = test::mixed_cube();
-  const MatrixKernel kernel(p, survival_probabilities(p.rho, "analog", 0));
+  const MatrixKernel kernel(p, survival_probabilities(p.rho, {}));
   const long walks = 20000;
   Solution biased;
   biased.B.setZero(6, 3);
   biased.B_se.setZero(6, 3);
+  const KernelTables& t = kernel.tables();
+  const std::vector<Rgb> weight = GatherWeights(t).w;
   for (std::size_t i = 0; i < 6; ++i) {
     Moments m;
     WalkCounters counters;
     for (long w = 0; w < walks; ++w) {
       Rng rng = stream(42, StreamDomain::test, i, static_cast<std::uint64_t>(w));
-      const WalkTables& t = kernel.tables();
       std::size_t k = i;
       Rgb W = Rgb::Ones(), X = Rgb::Zero();
       for (;;) {
@@ -96,7 +98,7 @@ TEST_CASE("the z-test rejects a deliberately biased estimator", "[walk][unbiased
         }
         const PatchIndex j = kernel.sample(k, rng, counters);
         if (j < 0) break;
-        W *= t.gather_weight[k];
+        W *= weight[k];
         k = static_cast<std::size_t>(j);
       }
       m.add(X);

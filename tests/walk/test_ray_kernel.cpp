@@ -18,11 +18,10 @@
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_offset.h"
-#include "walk/gather_estimators.h"
 #include "walk/matrix_kernel.h"
 #include "walk/random_walk_solver.h"
 #include "walk/ray_kernel.h"
-#include "walk/shoot_estimators.h"
+#include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
 #include "walk_test_scenes.h"
@@ -31,7 +30,7 @@ using namespace radwalk;
 
 TEST_CASE("ray kernel agrees with the exact solution of the cube", "[walk][ray]") {
   const std::vector<std::vector<int>> face_sets = {{0, 1, 2, 3, 4, 5}, {0, 1, 2, 3, 4}};
-  const double z_crit = z_critical(sidak(1e-3, 2 * walk_methods().size() * 6 * 3));
+  const double z_crit = z_critical(sidak(1e-3, 2 * kWalkMethods.size() * 6 * 3));
   int rejected = 0;
   for (const auto& faces : face_sets) {
     const RadiosityProblem p = test::mixed_cube(faces);
@@ -41,15 +40,17 @@ TEST_CASE("ray kernel agrees with the exact solution of the cube", "[walk][ray]"
     const PatchRgb B = dense_radiosity(p);
     RadiosityProblem no_F = p;
     no_F.F = SparseF();  // the ray kernel must not need F
-    for (const std::string& method : walk_methods()) {
+    for (const WalkMethod method : all_walk_methods()) {
       WalkOptions o;
-      set_method(o, method);
-      o.kernel = "ray";
-      o.walks = o.walk == "gather" ? 20000 : 120000;
+      o.method = method;
+      o.kernel = WalkKernel::ray;
+      o.walks_per_patch = 20000;
+      o.particles = 120000;
       o.seed = 3;
       const Solution s = solve_random_walk(no_F, &patches, &visibility, o);
-      rejected +=
-          test::count_rejections(s, B, z_crit, std::to_string(faces.size()) + " faces, ray " + method, true, &patches);
+      rejected += test::count_rejections(
+          s, B, z_crit, std::to_string(faces.size()) + " faces, ray " + std::string(method_name(method)), true,
+          &patches);
       CHECK(s.info.at("back_hits") == 0);
       if (faces.size() == 6) CHECK(s.info.at("escapes") == 0);  // watertight: no ray leaks
       if (faces.size() == 5) CHECK(s.info.at("escapes") > 0);
@@ -68,9 +69,9 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
   compute_patch_geometry(patches);
   const BruteForceVisibility visibility(patches);
   WalkOptions o;
-  o.kernel = "ray";
-  o.estimator = "collision";
-  o.walks = 2000;
+  o.kernel = WalkKernel::ray;
+  o.method = WalkMethod::gather_collision;
+  o.walks_per_patch = 2000;
   o.patches = {0, 1, 2, 3, 4};  // walks from face 5 itself would leave through its (outward) front
   const Solution s = solve_random_walk(p, &patches, &visibility, o);
   CHECK(s.info.at("back_hits") > 0);
@@ -79,29 +80,21 @@ TEST_CASE("ray kernel counts back-face hits and ends the walk there", "[walk][ra
 
 namespace {
 
-// Per-walk gathering scores of patch i, walks 0..walks-1 from the solver's streams (seed, gather_walk, i, w): one at a time
-// (gather_walk) or `lanes` at a time in lockstep (run_lockstep, as the solver runs them).
+// Per-walk gathering scores of patch i, walks 0..walks-1 from the streams stream(seed, StreamDomain::gather_walk, i, w), `lanes` at a time in
+// lockstep (run_lockstep, as the solver runs them).
 template <class K>
-std::vector<Rgb> lockstep_gather_scores(GatherEstimator est, const K& kernel, std::size_t i, std::size_t walks,
+std::vector<Rgb> lockstep_gather_scores(WalkMethod method, const K& kernel, std::size_t i, std::size_t walks,
                                         std::uint64_t seed, std::size_t lanes, WalkCounters& counters) {
   std::vector<Rgb> X(walks, Rgb::Constant(-1.0));
-  auto run = [&](auto make) {
-    using Walk = decltype(make(std::size_t{0}));
-    run_lockstep(
-        kernel, walks, lanes, make, [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },
-        [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
-  };
-  switch (est) {
-    case GatherEstimator::absorption:
-      run([&](std::size_t w) { return GatherAbsorption<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
-      break;
-    case GatherEstimator::collision:
-      run([&](std::size_t w) { return GatherCollision<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
-      break;
-    case GatherEstimator::expected_value:
-      run([&](std::size_t w) { return GatherExpectedValue<K>(kernel, i, stream(seed, StreamDomain::gather_walk, i, w)); });
-      break;
-  }
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::gather) {
+      using Walk = typename decltype(m)::Estimator::template Walk<K>;
+      run_lockstep(
+          kernel, walks, lanes, [&](std::size_t w) { return Walk(kernel, tables, i, stream(seed, StreamDomain::gather_walk, i, w)); },
+          [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); },
+          [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); }, counters);
+    }
+  });
   return X;
 }
 
@@ -110,38 +103,41 @@ template <class K>
 void check_lockstep_matches_single(const K& kernel, const RadiosityProblem& p, const std::string& name) {
   const std::uint64_t seed = 11;
   const std::size_t walks = 300;  // not a multiple of 16: partial batches
-  for (GatherEstimator est :
-       {GatherEstimator::absorption, GatherEstimator::collision, GatherEstimator::expected_value})
+  for (const WalkMethod method : all_walk_methods()) {
+    if (!is_gathering(method)) continue;
     for (std::size_t i = 0; i < kernel.size(); ++i) {
       WalkCounters batched_counters, single_counters;
       const std::vector<Rgb> batched =
-          lockstep_gather_scores(est, kernel, i, walks, seed, kMaxLanes, batched_counters);
-      const std::vector<Rgb> single = lockstep_gather_scores(est, kernel, i, walks, seed, 1, single_counters);
+          lockstep_gather_scores(method, kernel, i, walks, seed, kMaxLanes, batched_counters);
+      const std::vector<Rgb> single = lockstep_gather_scores(method, kernel, i, walks, seed, 1, single_counters);
+      // Each walk alone, one destination sample at a time (run_walk).
+      const auto alone = test::gather_scores(method, kernel, i, static_cast<long>(walks), seed);
       int mismatches = 0;
       for (std::size_t w = 0; w < walks; ++w) {
-        Rng rng = stream(seed, StreamDomain::gather_walk, i, w);
-        WalkCounters counters;
-        const Rgb alone = gather_walk(est, kernel, i, rng, counters);
-        mismatches += !(alone == batched[w]).all() || !(alone == single[w]).all();
+        const Rgb x(alone[0][w], alone[1][w], alone[2][w]);
+        mismatches += !(x == batched[w]).all() || !(x == single[w]).all();
       }
-      INFO(name << ", gathering estimator " << int(est) << ", patch " << i);
+      INFO(name << ", " << method_name(method) << ", patch " << i);
       CHECK(mismatches == 0);
       CHECK(batched_counters.steps == single_counters.steps);
       CHECK(batched_counters.escapes == single_counters.escapes);
     }
+  }
   // Shooting: each particle's list of (patch, power) scores.
   const ShootSource source = make_shoot_source(p.E, p.area);
+  const ShootCollision::Tables tables(kernel.tables());
+  using Particle = ShootCollision::Particle<K>;
   using Scores = std::vector<std::pair<std::size_t, Rgb>>;
   auto particle_scores = [&](std::size_t lanes) {
     std::vector<Scores> scores(walks);
     WalkCounters counters;
     run_lockstep(
         kernel, walks, lanes,
-        [&](std::size_t w) { return ShootCollision<K>(kernel, source, stream(seed, StreamDomain::shoot_particle, 0, w)); },
-        [&](ShootCollision<K>& particle, std::size_t w, PatchIndex j) {
+        [&](std::size_t w) { return Particle(kernel, tables, source, stream(seed, StreamDomain::shoot_particle, 0, w)); },
+        [&](Particle& particle, std::size_t w, PatchIndex j) {
           particle.advance(j, [&](std::size_t jj, const Rgb& power) { scores[w].push_back({jj, power}); });
         },
-        [](std::size_t, const ShootCollision<K>&) {}, counters);
+        [](std::size_t, const Particle&) {}, counters);
     return scores;
   };
   const std::vector<Scores> batched = particle_scores(kMaxLanes), single = particle_scores(1);
@@ -161,7 +157,7 @@ TEST_CASE("walks in lockstep batches score exactly as walks run one at a time", 
   const std::vector<int> open = {0, 1, 2, 3, 4};  // escapes too
   const RadiosityProblem p = test::mixed_cube(open);
   const PatchSet patches = test::cube_patches(p, open);
-  const std::vector<double> survival = survival_probabilities(p.rho, "analog", 0);
+  const std::vector<double> survival = survival_probabilities(p.rho, {});
   const BruteForceVisibility brute(patches);
   check_lockstep_matches_single(RayKernel(p, patches, brute, survival), p, "ray kernel, brute-force visibility");
   // Embree traces a batch as one packet of 16 and a lone ray as a packet of one.

@@ -33,36 +33,37 @@ bool variance_matches(const std::vector<double>& x, double var_true, double scal
 struct Case {
   std::string name;
   RadiosityProblem problem;
-  std::string survival;
+  Survival survival;
 };
 
 }  // namespace
 
 TEST_CASE("empirical per-walk variances match the exact ones", "[walk][variance]") {
-  std::vector<Case> cases = {{"closed cube, analog", test::mixed_cube(), "analog"},
-                             {"open cube, analog", test::mixed_cube({0, 1, 2, 3, 4}), "analog"},
-                             {"closed cube, survival max", test::mixed_cube(), "max"},
-                             {"closed cube, unequal areas, row 0 x 1.05 (not reciprocal)", test::mixed_cube(), "analog"}};
+  std::vector<Case> cases = {
+      {"closed cube, analog", test::mixed_cube(), {SurvivalRule::analog}},
+      {"open cube, analog", test::mixed_cube({0, 1, 2, 3, 4}), {SurvivalRule::analog}},
+      {"closed cube, survival max", test::mixed_cube(), {SurvivalRule::max}},
+      {"closed cube, unequal areas, row 0 x 1.05 (not reciprocal)", test::mixed_cube(), {SurvivalRule::analog}}};
   cases.back().problem.area << 1, 1.1, 0.9, 1.05, 0.95, 1.0;  // mild: T rows sum to 1 +- 0.1, finite 4th moments
   for (SparseF::InnerIterator it(cases.back().problem.F, 0); it; ++it) it.valueRef() *= 1.05f;
   std::size_t checks = 0;
-  for (const Case& c : cases) checks += walk_methods().size() * c.problem.size() * 3;
+  for (const Case& c : cases) checks += kWalkMethods.size() * c.problem.size() * 3;
   const double z_crit = z_critical(sidak(1e-3, checks));
   int failed = 0;
   for (const Case& c : cases) {
     const RadiosityProblem& p = c.problem;
     const PatchRgb B = dense_radiosity(p);
-    const MatrixKernel kernel(p, survival_probabilities(p.rho, c.survival, 0));
-    const MatrixKernel shoot_kernel(p, survival_probabilities(p.rho, c.survival, 0), WalkDirection::shoot);
-    for (const std::string& method : walk_methods()) {
+    const MatrixKernel kernel(p, survival_probabilities(p.rho, c.survival));
+    const MatrixKernel shoot_kernel(p, survival_probabilities(p.rho, c.survival), WalkDirection::shoot);
+    for (const WalkMethod method : all_walk_methods()) {
       WalkOptions o;
-      set_method(o, method);
+      o.method = method;
       o.survival = c.survival;
       const PatchRgb theory = theoretical_variance(p, o, B);
-      const std::string label = c.name + ", " + method;
-      if (o.walk == "gather") {
+      const std::string label = c.name + ", " + std::string(method_name(method));
+      if (is_gathering(method)) {
         for (std::size_t i = 0; i < p.size(); ++i) {
-          const auto x = test::gather_scores(gather_estimator(o), kernel, i, 100000, 5);
+          const auto x = test::gather_scores(method, kernel, i, 100000, 5);
           for (int ch = 0; ch < 3; ++ch) {
             const double b = B(static_cast<Eigen::Index>(i), ch);
             failed += !variance_matches(x[ch], theory(static_cast<Eigen::Index>(i), ch), b * b, z_crit,
@@ -70,7 +71,7 @@ TEST_CASE("empirical per-walk variances match the exact ones", "[walk][variance]
           }
         }
       } else {
-        const auto y = test::shoot_scores(shoot_estimator(o), shoot_kernel, p, 200000, 5);
+        const auto y = test::shoot_scores(method, shoot_kernel, p, 200000, 5);
         for (std::size_t j = 0; j < p.size(); ++j)
           for (int ch = 0; ch < 3; ++ch) {
             const double b = B(static_cast<Eigen::Index>(j), ch);
@@ -87,11 +88,11 @@ TEST_CASE("the variance test rejects a wrong variance", "[walk][variance]") {
   // Collision samples tested against the absorption theory (different by a factor of several here).
   const RadiosityProblem p = test::mixed_cube();
   const PatchRgb B = dense_radiosity(p);
-  const MatrixKernel kernel(p, survival_probabilities(p.rho, "analog", 0));
+  const MatrixKernel kernel(p, survival_probabilities(p.rho, {}));
   WalkOptions o;
-  o.estimator = "absorption";
+  o.method = WalkMethod::gather_absorption;
   const PatchRgb wrong = theoretical_variance(p, o, B);
-  const auto x = test::gather_scores(GatherEstimator::collision, kernel, 1, 100000, 5);
+  const auto x = test::gather_scores(WalkMethod::gather_collision, kernel, 1, 100000, 5);
   const SampleMoments m = sample_moments(x[0]);
   INFO("collision sample variance " << m.var << " vs absorption theory " << wrong(1, 0));
   CHECK(std::abs(variance_z_score(m.var, wrong(1, 0), m.mu4, m.n)) > z_critical(1e-3));
@@ -117,7 +118,8 @@ TEST_CASE("furnace: absorption has zero variance, collision E^2 rho / (1 - rho)^
   }
   const PatchRgb B = dense_radiosity(p);
   WalkOptions o;
-  o.walks = 50000;
+  o.method = WalkMethod::gather_absorption;
+  o.walks_per_patch = 50000;
   o.theory = true;
   // Absorption: every walk scores E / q exactly (float F rows sum to 1 up to 1e-7).
   const Solution a = solve_random_walk(p, nullptr, nullptr, o);
@@ -128,12 +130,12 @@ TEST_CASE("furnace: absorption has zero variance, collision E^2 rho / (1 - rho)^
       CHECK(std::abs(a.var_theory(i, c)) <= 1e-9 * B(i, c) * B(i, c));
     }
   // Collision: theory equals the closed form; the sample variance passes the variance z-test (Sidak over 18).
-  o.estimator = "collision";
+  o.method = WalkMethod::gather_collision;
   const PatchRgb theory = theoretical_variance(p, o, B);
-  const MatrixKernel kernel(p, survival_probabilities(p.rho, "analog", 0));
+  const MatrixKernel kernel(p, survival_probabilities(p.rho, {}));
   const double z_crit = z_critical(sidak(1e-3, 18));
   for (std::size_t i = 0; i < 6; ++i) {
-    const auto x = test::gather_scores(GatherEstimator::collision, kernel, i, 50000, 3);
+    const auto x = test::gather_scores(WalkMethod::gather_collision, kernel, i, 50000, 3);
     for (int c = 0; c < 3; ++c) {
       const double closed_form = E(0, c) * E(0, c) * rho / ((1 - rho) * (1 - rho));
       CHECK(theory(static_cast<Eigen::Index>(i), c) == Approx(closed_form).epsilon(1e-6));
@@ -153,20 +155,21 @@ TEST_CASE("non-reflecting emitters: absorption and collision have identical vari
   const RadiosityProblem p = test::cube_problem(R, E);
   const PatchRgb B = dense_radiosity(p);
   WalkOptions a, c;
-  c.estimator = "collision";
+  a.method = WalkMethod::gather_absorption;
+  c.method = WalkMethod::gather_collision;
   const PatchRgb va = theoretical_variance(p, a, B), vc = theoretical_variance(p, c, B);
   for (Eigen::Index i = 0; i < 6; ++i)
     for (int ch = 0; ch < 3; ++ch) CHECK(va(i, ch) == Approx(vc(i, ch)).epsilon(1e-10).margin(1e-12));
   // Empirically: with the same streams every walk scores the same under both; each matches the theory.
-  a.walks = c.walks = 50000;
+  a.walks_per_patch = c.walks_per_patch = 50000;
   const Solution sa = solve_random_walk(p, nullptr, nullptr, a), sc = solve_random_walk(p, nullptr, nullptr, c);
   CHECK((sa.var == sc.var).all());
   CHECK((sa.B == sc.B).all());
-  const MatrixKernel kernel(p, survival_probabilities(p.rho, "analog", 0));
+  const MatrixKernel kernel(p, survival_probabilities(p.rho, {}));
   const double z_crit = z_critical(sidak(1e-3, 18));
   int failed = 0;
   for (std::size_t i = 0; i < 6; ++i) {
-    const auto x = test::gather_scores(GatherEstimator::absorption, kernel, i, 50000, 9);
+    const auto x = test::gather_scores(WalkMethod::gather_absorption, kernel, i, 50000, 9);
     for (int ch = 0; ch < 3; ++ch) {
       const double b = B(static_cast<Eigen::Index>(i), ch);
       failed += !variance_matches(x[ch], va(static_cast<Eigen::Index>(i), ch), b * b, z_crit,
@@ -179,15 +182,14 @@ TEST_CASE("non-reflecting emitters: absorption and collision have identical vari
 TEST_CASE("finite-variance check reports radius >= 1 for a bad survival choice", "[walk][variance]") {
   const RadiosityProblem p = test::cube_problem(PatchRgb::Constant(6, 3, 0.9), PatchRgb::Constant(6, 3, 1.0));
   WalkOptions good, bad;
-  bad.survival = "constant";
-  bad.survival_constant = 0.1;
+  bad.survival = {SurvivalRule::constant, 0.1};
   // K = (rho^2 / p) F with rows of F summing to 1: radius = rho^2 / p.
   CHECK(check_finite_variance(p, good).radius == Approx(0.9).epsilon(1e-5));
   CHECK(check_finite_variance(p, good).finite());
   const VarianceCheck b = check_finite_variance(p, bad);
   CHECK(b.radius == Approx(8.1).epsilon(1e-5));
   CHECK_FALSE(b.finite());
-  bad.walks = 100;
+  bad.walks_per_patch = 100;
   const Solution s = solve_random_walk(p, nullptr, nullptr, bad);
   CHECK(s.info.at("variance_radius") >= 1);
   CHECK(s.message.find("infinite") != std::string::npos);

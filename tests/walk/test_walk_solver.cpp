@@ -1,6 +1,8 @@
 // Options, reproducibility (1 and 2 threads bit-identical), and the comparison table.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -15,55 +17,71 @@ using namespace radwalk;
 
 TEST_CASE("invalid options are InputErrors with a clear message", "[walk][options]") {
   const RadiosityProblem p = test::mixed_cube();
-  auto fails = [&](WalkOptions o, const std::string& words) {
+  auto fails = [&](auto&& f, const std::string& words) {
     try {
-      solve_random_walk(p, nullptr, nullptr, o);
+      f();
     } catch (const InputError& e) {
       INFO(e.what());
       CHECK(std::string(e.what()).find(words) != std::string::npos);
       return;
     }
-    FAIL("no InputError for " << method_name(o) << " (expected '" << words << "')");
+    FAIL("no InputError (expected '" << words << "')");
   };
+  auto solve = [&](const WalkOptions& o) { return [&p, o] { solve_random_walk(p, nullptr, nullptr, o); }; };
+  // Names: parsed in one place each, with the valid choices and the nearest.
+  fails([] { walk_method(WalkDirection::shoot, "expected-value"); }, "not available for shooting");
+  fails([] { walk_method(WalkDirection::gather, "survival"); }, "not available for gathering");
+  fails([] { parse_walk_kernel("bvh"); }, "kernel 'bvh'");
+  fails([] { parse_survival_rule("sometimes"); }, "unknown survival mode");
+  fails([] { parse_walk_method("gather-colision"); }, "did you mean 'gather-collision'?");
+  fails([] { walk_method(WalkDirection::gather, "colision"); }, "did you mean 'collision'?");
+  CHECK_THROWS_AS(parse_walk_method("gather-telepathy"), InputError);
+  // Values.
   WalkOptions o;
-  o.walk = "shoot";
-  o.estimator = "expected-value";
-  fails(o, "not available for shooting");
-  o = WalkOptions();
-  o.estimator = "survival";
-  fails(o, "not available for gathering");
-  o = WalkOptions();
-  o.kernel = "bvh";
-  fails(o, "kernel 'bvh'");
-  o = WalkOptions();
-  o.kernel = "ray";
-  fails(o, "needs the patches");
+  o.kernel = WalkKernel::ray;
+  fails(solve(o), "needs the patches");
   o = WalkOptions();
   o.patches = {6};
-  fails(o, "patch 6 is out of range");
+  fails(solve(o), "patch 6 is out of range");
   o = WalkOptions();
-  o.walks = 1;
-  fails(o, "at least 2");
+  o.walks_per_patch = 1;
+  fails(solve(o), "at least 2");
   o = WalkOptions();
-  o.survival = "constant";
-  o.survival_constant = 1.0;
-  fails(o, "not in (0, 1)");
+  o.method = WalkMethod::shoot_collision;
+  o.particles = 1;
+  fails(solve(o), "at least 2");
   o = WalkOptions();
-  o.survival = "sometimes";
-  fails(o, "unknown survival mode");
-  CHECK_THROWS_AS(set_method(o, "gather-telepathy"), InputError);
+  o.survival = {SurvivalRule::constant, 1.0};
+  fails(solve(o), "not in (0, 1)");
+}
+
+TEST_CASE("the method table names every method once and parses its own names", "[walk][options]") {
+  std::vector<std::string> names;
+  for (const WalkMethodRow& row : kWalkMethods) {
+    INFO(row.name);
+    CHECK(parse_walk_method(row.name) == row.method);
+    CHECK(walk_method(row.direction, row.estimator) == row.method);
+    CHECK(method_name(row.method) == row.name);
+    CHECK(row.name == std::string(direction_name(row.direction)) + "-" + std::string(row.estimator));
+    names.emplace_back(row.name);
+  }
+  CHECK(names == walk_method_names());
+  std::sort(names.begin(), names.end());
+  CHECK(std::adjacent_find(names.begin(), names.end()) == names.end());
+  // The CLI's default and the library's agree on gathering collision.
+  CHECK(WalkOptions().method == WalkMethod::gather_collision);
 }
 
 TEST_CASE("1 and 2 threads give bit-identical results", "[walk][threads]") {
   const RadiosityProblem p = test::mixed_cube();
   const PatchSet patches = test::cube_patches(p);
   const BruteForceVisibility visibility(patches);
-  for (const std::string kernel : {"matrix", "ray"})
-    for (const std::string method : {"gather-expected-value", "shoot-collision"}) {
+  for (const WalkKernel kernel : {WalkKernel::matrix, WalkKernel::ray})
+    for (const WalkMethod method : {WalkMethod::gather_expected_value, WalkMethod::shoot_collision}) {
       WalkOptions o;
-      set_method(o, method);
+      o.method = method;
       o.kernel = kernel;
-      o.walks = kernel == std::string("ray") ? 3000 : 30000;
+      o.walks_per_patch = o.particles = kernel == WalkKernel::ray ? 3000 : 30000;
       Solution one, two;
       {
         ThreadLimit limit(1);
@@ -73,7 +91,7 @@ TEST_CASE("1 and 2 threads give bit-identical results", "[walk][threads]") {
         ThreadLimit limit(2);
         two = solve_random_walk(p, &patches, &visibility, o);
       }
-      INFO(kernel << " " << method);
+      INFO(kernel_name(kernel) << " " << method_name(method));
       CHECK((one.B == two.B).all());
       CHECK((one.var == two.var).all());
       CHECK(one.steps == two.steps);
@@ -84,13 +102,13 @@ TEST_CASE("walk w from patch i uses the stream (seed, gather_walk, i, w)", "[wal
   // The solver's estimate equals the mean of walks replayed one by one from their streams.
   const RadiosityProblem p = test::mixed_cube();
   WalkOptions o;
-  o.estimator = "expected-value";
-  o.walks = 3000;
+  o.method = WalkMethod::gather_expected_value;
+  o.walks_per_patch = 3000;
   o.seed = 17;
   const Solution s = solve_random_walk(p, nullptr, nullptr, o);
-  const MatrixKernel kernel(p, survival_probabilities(p.rho, "analog", 0));
+  const MatrixKernel kernel(p, survival_probabilities(p.rho, {}));
   for (std::size_t i = 0; i < 6; ++i) {
-    const auto x = test::gather_scores(GatherEstimator::expected_value, kernel, i, o.walks, o.seed);
+    const auto x = test::gather_scores(WalkMethod::gather_expected_value, kernel, i, o.walks_per_patch, o.seed);
     for (int c = 0; c < 3; ++c) {
       const SampleMoments m = sample_moments(x[c]);
       CHECK(s.B(static_cast<Eigen::Index>(i), c) == Approx(m.mean).epsilon(1e-12));
@@ -103,12 +121,12 @@ TEST_CASE("compare tabulates every method against the reference", "[walk][compar
   const RadiosityProblem p = test::mixed_cube();
   CompareOptions o;
   o.runs = 3;
-  o.walk.walks = 2000;
+  o.walk.walks_per_patch = 2000;
   const CompareResult r = compare_random_walks(p, nullptr, nullptr, o);
-  CHECK(r.rows.size() == 6 * 6 * 3);
-  REQUIRE(r.summary.size() == 6);
+  CHECK(r.rows.size() == kWalkMethods.size() * 6 * 3);
+  REQUIRE(r.summary.size() == kWalkMethods.size());
   for (const CompareSummary& s : r.summary) {
-    INFO(s.method);
+    INFO(method_name(s.method));
     CHECK(std::isfinite(s.mean_abs_z));
     CHECK(std::isfinite(s.var_ratio));
     CHECK(s.seconds > 0);
@@ -116,5 +134,5 @@ TEST_CASE("compare tabulates every method against the reference", "[walk][compar
   }
   CHECK(r.rows[0].walks == 6000);
   const std::string table = format_compare_summary(r.summary);
-  for (const std::string& m : walk_methods()) CHECK(table.find(m) != std::string::npos);
+  for (const std::string& m : walk_method_names()) CHECK(table.find(m) != std::string::npos);
 }

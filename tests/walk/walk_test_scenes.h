@@ -6,9 +6,9 @@
 #include "core/rng.h"
 #include "patch/patch_builder.h"
 #include "solve/problem.h"
+#include "core/check.h"
 #include "support/reference_problems.h"
-#include "walk/gather_estimators.h"
-#include "walk/shoot_estimators.h"
+#include "walk/walk_estimators.h"
 #include "walk/walk_options.h"
 
 namespace radwalk::test {
@@ -53,36 +53,50 @@ inline PatchSet cube_patches(const RadiosityProblem& problem, const std::vector<
   return b.build();
 }
 
-// Per-walk scores of patch i, channel by channel: x[c][w], from the solver's streams (seed, gather_walk, i, w).
+// Per-walk scores of patch i, channel by channel: x[c][w], from the streams stream(seed, StreamDomain::gather_walk, i, w), for a gathering
+// method.
 template <class K>
-std::vector<std::vector<double>> gather_scores(GatherEstimator est, const K& kernel, std::size_t i, long walks,
+std::vector<std::vector<double>> gather_scores(WalkMethod method, const K& kernel, std::size_t i, long walks,
                                                std::uint64_t seed) {
+  RADWALK_CHECK(is_gathering(method));
   std::vector<std::vector<double>> x(3, std::vector<double>(static_cast<std::size_t>(walks)));
-  WalkCounters counters;
-  for (long w = 0; w < walks; ++w) {
-    Rng rng = stream(seed, StreamDomain::gather_walk, i, static_cast<std::uint64_t>(w));
-    const Rgb s = gather_walk(est, kernel, i, rng, counters);
-    for (int c = 0; c < 3; ++c) x[c][static_cast<std::size_t>(w)] = s(c);
-  }
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::gather) {
+      WalkCounters counters;
+      for (long w = 0; w < walks; ++w) {
+        Rng rng = stream(seed, StreamDomain::gather_walk, i, static_cast<std::uint64_t>(w));
+        typename decltype(m)::Estimator::template Walk<K> walk(kernel, tables, i, rng);
+        run_walk(kernel, walk, counters);
+        for (int c = 0; c < 3; ++c) x[c][static_cast<std::size_t>(w)] = walk.score()(c);
+      }
+    }
+  });
   return x;
 }
 
-// Per-particle scores Y_j (radiosity units, emission excluded): y[j * 3 + c][w], the solver's streams (seed, shoot_particle, 0, w).
+// Per-particle scores Y_j (radiosity units, emission excluded): y[j * 3 + c][w], streams stream(seed, StreamDomain::shoot_particle, 0, w),
+// for a shooting method.
 template <class K>
-std::vector<std::vector<double>> shoot_scores(ShootEstimator est, const K& kernel, const RadiosityProblem& problem,
+std::vector<std::vector<double>> shoot_scores(WalkMethod method, const K& kernel, const RadiosityProblem& problem,
                                               long particles, std::uint64_t seed) {
+  RADWALK_CHECK(!is_gathering(method));
   const std::size_t N = problem.size();
   const ShootSource source = make_shoot_source(problem.E, problem.area);
   std::vector<std::vector<double>> y(3 * N, std::vector<double>(static_cast<std::size_t>(particles), 0.0));
-  WalkCounters counters;
-  for (long w = 0; w < particles; ++w) {
-    Rng rng = stream(seed, StreamDomain::shoot_particle, 0, static_cast<std::uint64_t>(w));
-    shoot_particle(est, kernel, source, rng, counters, [&](std::size_t j, const Rgb& power) {
-      for (int c = 0; c < 3; ++c)
-        y[j * 3 + static_cast<std::size_t>(c)][static_cast<std::size_t>(w)] +=
-            power(c) / problem.area(static_cast<Eigen::Index>(j));
-    });
-  }
+  with_estimator_tables(method, kernel, [&](auto m, const auto& tables) {
+    if constexpr (decltype(m)::kDirection == WalkDirection::shoot) {
+      WalkCounters counters;
+      for (long w = 0; w < particles; ++w) {
+        Rng rng = stream(seed, StreamDomain::shoot_particle, 0, static_cast<std::uint64_t>(w));
+        typename decltype(m)::Estimator::template Particle<K> particle(kernel, tables, source, rng);
+        run_particle(kernel, particle, counters, [&](std::size_t j, const Rgb& power) {
+          for (int c = 0; c < 3; ++c)
+            y[j * 3 + static_cast<std::size_t>(c)][static_cast<std::size_t>(w)] +=
+                power(c) / problem.area(static_cast<Eigen::Index>(j));
+        });
+      }
+    }
+  });
   return y;
 }
 
