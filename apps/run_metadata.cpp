@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "git_commit.h"
+#include "io/run_summary.h"
 
 namespace radwalk::app {
 namespace {
@@ -35,7 +35,7 @@ VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
   const nlohmann::json& j = summary.json();
   VtpMetadata m;
   m.set_text("radwalk_version", j.value("radwalk", std::string("unknown")));
-  m.set_text("git_commit", RADWALK_GIT_COMMIT);
+  m.set_text("git_commit", git_describe());  // the JSON summary's git_describe (io/run_summary.h)
   m.set_text("command", j.value("command", std::string()));
   m.set_text("command_line", command_line(options.argv));
   m.set_text("scene", options.scene);

@@ -9,20 +9,15 @@
 
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/srgb.h"
 
 namespace radwalk {
-
-double srgb_encode(double c) {
-  if (!(c > 0)) return 0.0;  // also maps NaN to black
-  if (c >= 1) return 1.0;
-  return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
-}
 
 std::vector<std::uint8_t> to_srgb8(const RgbImage& image, double exposure) {
   std::vector<std::uint8_t> bytes(image.pixels.size() * 3);
   for (std::size_t k = 0; k < image.pixels.size(); ++k)
     for (int c = 0; c < 3; ++c)
-      bytes[3 * k + c] = static_cast<std::uint8_t>(std::lround(255.0 * srgb_encode(exposure * image.pixels[k][c])));
+      bytes[3 * k + c] = srgb8_from_linear(exposure * image.pixels[k][c]);  // the one sRGB mapping (core/srgb.h)
   return bytes;
 }
 

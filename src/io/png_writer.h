@@ -10,9 +10,6 @@
 
 namespace radwalk {
 
-// The sRGB transfer function on linear c in [0, 1] (clamped).
-double srgb_encode(double c);
-
 // 8-bit sRGB bytes, row-major RGB, row 0 at the top (what write_png stores).
 std::vector<std::uint8_t> to_srgb8(const RgbImage& image, double exposure = 1.0);
 

@@ -3,14 +3,13 @@
 #include <cmath>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 RowAliasTables::RowAliasTables(const SparseF& F) {
-  if (F.rows() != F.cols())
-    throw InputError("row alias tables: F is " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) +
-                     ", not square");
+  RADWALK_CHECK_EQ(F.rows(), F.cols());  // F is square (the reader and the estimator guarantee it)
   const auto N = static_cast<std::size_t>(F.rows());
   row_sum_.assign(N, 0.0);
   begin_.assign(N + 1, 0);

@@ -2,15 +2,15 @@
 
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 SparseF shooting_transfer(const RadiosityProblem& problem) {
   const Eigen::VectorXd& A = problem.area;
-  if (A.size() != problem.F.rows() || !(A.minCoeff() > 0))
-    throw InputError("shooting: needs one positive area per row of F (" + std::to_string(A.size()) + " areas, " +
-                     std::to_string(problem.F.rows()) + " rows)");
+  RADWALK_CHECK_EQ(A.size(), problem.F.rows());  // one area per row of F
+  RADWALK_CHECK_GT(A.minCoeff(), 0.0);           // validation refuses faces without area
   SparseF T = problem.F.transpose();
   for (Eigen::Index k = 0; k < T.rows(); ++k)
     for (SparseF::InnerIterator it(T, k); it; ++it)
@@ -21,11 +21,10 @@ SparseF shooting_transfer(const RadiosityProblem& problem) {
 MatrixKernel::MatrixKernel(const RadiosityProblem& problem, std::vector<double> p, WalkDirection direction)
     : rows_(direction == WalkDirection::gather ? problem.F : shooting_transfer(problem)) {
   const std::size_t N = problem.size();
-  if (rows_.rows() != N || static_cast<std::size_t>(problem.rho.rows()) != N ||
-      static_cast<std::size_t>(problem.E.rows()) != N || p.size() != N)
-    throw InputError("matrix kernel: F has " + std::to_string(rows_.rows()) + " rows, rho " +
-                     std::to_string(problem.rho.rows()) + ", E " + std::to_string(problem.E.rows()) + ", p " +
-                     std::to_string(p.size()) + ", area " + std::to_string(N) + ": sizes must agree");
+  RADWALK_CHECK_EQ(rows_.rows(), N);  // F, rho, E, p and the areas agree in size
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.rho.rows()), N);
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK_EQ(p.size(), N);
   // Row scales n_k and row sums s_k (known: a destination sample is a stop with probability 1 - s_k / n_k).
   std::vector<double> n(N), s(N);
   for (std::size_t k = 0; k < N; ++k) {

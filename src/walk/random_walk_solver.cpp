@@ -8,6 +8,7 @@
 #include <string>
 #include <tuple>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -272,19 +273,15 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   const std::size_t N = problem.size();
   check_walk_options(options, N);
   const bool gather = is_gathering(options.method);
-  if (static_cast<std::size_t>(problem.rho.rows()) != N || static_cast<std::size_t>(problem.E.rows()) != N)
-    throw InputError("random walk: rho has " + std::to_string(problem.rho.rows()) + " rows and E " +
-                     std::to_string(problem.E.rows()) + " for " + std::to_string(N) + " patches");
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.rho.rows()), N);  // the problem's arrays agree in size
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
   const bool F_stored = problem.F.rows() == static_cast<Eigen::Index>(N) && problem.F.cols() == problem.F.rows();
-  if (options.kernel == WalkKernel::matrix && !F_stored)
-    throw InputError("random walk: the matrix kernel needs the N x N form factors F (" + std::to_string(N) +
-                     " patches, F is " + std::to_string(problem.F.rows()) + " x " +
-                     std::to_string(problem.F.cols()) + ")");
-  if (options.kernel == WalkKernel::ray && (!patches || !visibility))
-    throw InputError("random walk: the ray kernel needs the patches and a visibility structure");
-  if (options.kernel == WalkKernel::ray && patches->size() != N)
-    throw InputError("random walk: the ray kernel got " + std::to_string(patches->size()) + " patches for a " +
-                     std::to_string(N) + "-patch problem");
+  // What each kernel needs from its caller (a caller's bug otherwise, not the user's).
+  if (options.kernel == WalkKernel::matrix) RADWALK_CHECK(F_stored);  // the matrix kernel walks over an N x N F
+  if (options.kernel == WalkKernel::ray) {
+    RADWALK_CHECK(patches != nullptr && visibility != nullptr);  // the ray kernel traces the patches
+    RADWALK_CHECK_EQ(patches->size(), N);
+  }
 
   std::vector<double> p = survival_probabilities(problem.rho, options.survival);
   check_survival_probabilities(p, problem.rho, options.survival.rule);

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/sampling.h"
 #include "visibility/ray_offset.h"
@@ -31,11 +32,9 @@ RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, c
                      std::vector<double> p)
     : visibility_(visibility) {
   const std::size_t N = patches.size();
-  if (static_cast<std::size_t>(problem.rho.rows()) != N || static_cast<std::size_t>(problem.E.rows()) != N ||
-      p.size() != N)
-    throw InputError("ray kernel: " + std::to_string(N) + " patches but rho has " +
-                     std::to_string(problem.rho.rows()) + " rows, E " + std::to_string(problem.E.rows()) +
-                     ", p " + std::to_string(p.size()) + ": sizes must agree");
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.rho.rows()), N);  // patches, rho, E and p agree in size
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK_EQ(p.size(), N);
   // Per-patch sampling records, in double and then rounded: the quad split as in sample_patch_point, the
   // corner and edges shrunk about the centroid by (1 - pull) and lifted by eps n as spawn_ray moves a point.
   const double eps = ray_epsilon(patches);

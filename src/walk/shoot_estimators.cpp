@@ -2,14 +2,13 @@
 
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
 
 namespace radwalk {
 
 ShootSource make_shoot_source(const PatchRgb& E, const Eigen::VectorXd& area) {
-  if (E.rows() != area.size())
-    throw InputError("shooting: E has " + std::to_string(E.rows()) + " rows but there are " +
-                     std::to_string(area.size()) + " areas");
+  RADWALK_CHECK_EQ(E.rows(), area.size());  // one emission row per area
   const auto N = static_cast<std::size_t>(area.size());
   // Phi_i = A_i sum_c E_ic.
   std::vector<double> Phi(N);

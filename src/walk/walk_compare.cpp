@@ -7,7 +7,9 @@
 #include <sstream>
 #include <string>
 
+#include "core/check.h"
 #include "core/error.h"
+#include "core/moments.h"
 #include "core/progress.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_variance.h"
@@ -46,9 +48,7 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
   PatchRgb B_ref = B_reference;
   const bool dense_ok = N <= kMaxTheoryPatches && problem.F.rows() == n_rows;
   if (B_ref.rows() == 0 && dense_ok) B_ref = dense_radiosity(problem);
-  if (B_ref.rows() != 0 && B_ref.rows() != n_rows)
-    throw InputError("compare: the reference has " + std::to_string(B_ref.rows()) + " rows for " +
-                     std::to_string(N) + " patches");
+  if (B_ref.rows() != 0) RADWALK_CHECK_EQ(B_ref.rows(), n_rows);  // the reference solves the same system
   std::vector<int> targets = options.walk.patches;
   if (targets.empty())
     for (std::size_t i = 0; i < N; ++i) targets.push_back(static_cast<int>(i));
@@ -130,8 +130,7 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
           ++n_ratio;
         }
         if (options.runs >= 2 && sum_se(i, c) > 0) {
-          const double mean = sum_B(i, c) / R;
-          const double sd = std::sqrt(std::max(0.0, (sum_B2(i, c) - R * mean * mean) / (R - 1)));
+          const double sd = std::sqrt(mean_and_variance(sum_B(i, c), sum_B2(i, c), R).second);  // core/moments.h
           spread += sd / (sum_se(i, c) / R);
           ++n_spread;
         }

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "io/exr_writer.h"
+#include "core/srgb.h"
 #include "io/png_writer.h"
 
 using namespace radwalk;
@@ -28,11 +29,11 @@ fs::path temp_dir() {
 }  // namespace
 
 TEST_CASE("sRGB transfer function", "[image]") {
-  CHECK(srgb_encode(0.0) == 0.0);
-  CHECK(srgb_encode(1.0) == 1.0);
-  CHECK(srgb_encode(2.0) == 1.0);
-  CHECK(srgb_encode(-1.0) == 0.0);
-  CHECK(srgb_encode(0.5) == Approx(0.735356983).epsilon(1e-8));
+  CHECK(srgb_from_linear(0.0) == 0.0);
+  CHECK(srgb_from_linear(1.0) == 1.0);
+  CHECK(srgb_from_linear(2.0) == 1.0);
+  CHECK(srgb_from_linear(-1.0) == 0.0);
+  CHECK(srgb_from_linear(0.5) == Approx(0.735356983).epsilon(1e-8));
   // The two pieces meet at the threshold.
   CHECK(12.92 * 0.0031308 == Approx(1.055 * std::pow(0.0031308, 1 / 2.4) - 0.055).epsilon(1e-4));
   const auto bytes = to_srgb8(gradient(4, 3));
