@@ -105,9 +105,8 @@ void check_indices_and_coordinates(const Mesh& mesh) {
                                                     " has a non-finite coordinate (NaN or inf)"));
 }
 
-// Step: the scene's size suits single-precision ray tracing (before any area is computed: with coordinates of
-// 1e77 a squared length overflows to inf). The diagonal is a scaled norm, exact at 1e-100 and at 1e300.
-void check_extent(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+// The bounding box (lowest and highest corner) of the points the faces use.
+std::pair<Vec3, Vec3> corner_bounds(const Mesh& mesh) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t f = 0; f < mesh.face_count(); ++f)
     for (int k = 0; k < mesh.corner_count(f); ++k) {
@@ -115,6 +114,13 @@ void check_extent(const Mesh& mesh, const ValidationTolerances& tol, WarningLog&
       lo = lo.cwiseMin(p);
       hi = hi.cwiseMax(p);
     }
+  return {lo, hi};
+}
+
+// Step: the scene's size suits single-precision ray tracing (before any area is computed: with coordinates of
+// 1e77 a squared length overflows to inf). The diagonal is a scaled norm, exact at 1e-100 and at 1e300.
+void check_extent(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+  const auto [lo, hi] = corner_bounds(mesh);
   const Vec3 span = hi - lo;
   const double extent = span.allFinite() ? span.stableNorm() : std::numeric_limits<double>::infinity();
   const double reach = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
@@ -176,13 +182,7 @@ void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
 
 // The bounding-box diagonal of the faces' corners (a scaled norm).
 double scene_diagonal(const Mesh& mesh) {
-  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (std::size_t f = 0; f < mesh.face_count(); ++f)
-    for (int k = 0; k < mesh.corner_count(f); ++k) {
-      const Vec3& p = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
+  const auto [lo, hi] = corner_bounds(mesh);
   return (hi - lo).stableNorm();
 }
 

@@ -7,6 +7,7 @@
 #include <array>
 #include <catch2/catch.hpp>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 
 struct Run {
@@ -27,4 +28,12 @@ inline Run run(const std::string& args) {
 }
 
 // Path of a file in the source tree, e.g. source("meshes/cube.obj").
+// A scratch folder for one test file, one per process: test runs of other checkouts on the same machine must not
+// share it.
+inline std::filesystem::path scratch_dir(const std::string& name) {
+  const auto dir = std::filesystem::temp_directory_path() / ("radwalk_" + name + "_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
 inline std::string source(const std::string& rel) { return std::string(RADWALK_SOURCE_DIR) + "/" + rel; }

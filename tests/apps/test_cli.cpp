@@ -14,12 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-fs::path scratch() {
-  // One folder per process: test runs of other checkouts on the same machine must not share it.
-  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return scratch_dir("cli_test"); }
 
 }  // namespace
 

@@ -20,12 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Per process: other checkouts may run the same tests on the same machine at the same time.
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_habits_test_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
+fs::path scratch() { return scratch_dir("cli_habits_test"); }
 
 // The program's one line of output, which must be an error with exit code 2.
 std::string one_error(const std::string& args) {

@@ -20,9 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// A fresh folder `name` in this file's scratch folder.
 fs::path scratch(const std::string& name) {
-  // One folder per process: test runs of other checkouts on the same machine must not share it.
-  const fs::path dir = fs::temp_directory_path() / ("radwalk_cli_refine_test_" + std::to_string(::getpid())) / name;
+  const fs::path dir = scratch_dir("cli_refine_test") / name;
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -37,6 +37,20 @@ std::string warning_with(const Mesh& mesh, const std::vector<std::string>& parts
   return "";
 }
 
+// A unit square in the xy plane with an emitting material, named `path` in messages.
+Mesh lit_square(const std::string& path) {
+  Mesh mesh;
+  mesh.path = path;
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 2, 3}};
+  Material light;
+  light.name = "light";
+  light.Ke = Rgb::Ones();
+  mesh.materials = {light};
+  mesh.face_material = {0};
+  return mesh;
+}
+
 }  // namespace
 
 TEST_CASE("each malformed input is refused with its own one-line message", "[mesh][validate]") {
@@ -152,15 +166,7 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
 }
 
 TEST_CASE("validation of programmatic meshes: NaN, index range, warning cap", "[mesh][validate]") {
-  Mesh mesh;
-  mesh.path = "generated";
-  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  mesh.faces = {{0, 1, 2, 3}};
-  Material light;
-  light.name = "light";
-  light.Ke = Rgb::Ones();
-  mesh.materials = {light};
-  mesh.face_material = {0};
+  const Mesh mesh = lit_square("generated");
 
   Mesh ok = mesh;
   REQUIRE_NOTHROW(validate_mesh(ok));
@@ -202,15 +208,8 @@ TEST_CASE("scenes too large, too small or far from the origin for single precisi
   // W1, W2, P4: a closed furnace at 1e19 "converged" to a wrong B; coordinates of 1e77 overflowed areas to inf
   // and passed; a scene at 1e-100 was refused as degenerate with a diagonal of 0.
   auto square = [](double scale, double offset) {
-    Mesh mesh;
-    mesh.path = "scaled";
+    Mesh mesh = lit_square("scaled");
     mesh.vertices = {{offset, 0, 0}, {offset + scale, 0, 0}, {offset + scale, scale, 0}, {offset, scale, 0}};
-    mesh.faces = {{0, 1, 2, 3}};
-    Material light;
-    light.name = "light";
-    light.Ke = Rgb::Ones();
-    mesh.materials = {light};
-    mesh.face_material = {0};
     return mesh;
   };
   for (double scale : {1e-6, 1.0, 1e6, 1e12}) {
