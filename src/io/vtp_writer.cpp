@@ -126,14 +126,17 @@ void write_vtp(const std::string& path, const PatchSet& patches, const std::vect
   }
   add_field_data(poly, metadata);
 
-  write_atomically_via_path(path, [&](const std::string& tmp) {
-    vtkNew<vtkXMLPolyDataWriter> writer;
-    writer->SetFileName(tmp.c_str());
-    writer->SetInputData(poly);
-    writer->SetDataModeToBinary();
-    writer->SetCompressorTypeToZLib();
-    if (writer->Write() != 1) throw InputError(path + ": VTK could not write the file");
-  });
+  // VTK writes into memory, never to the disk: on a (nearly) full disk VTK 9.1's file writer crashed or reported
+  // success for an empty file. The bytes then go through the atomic writer, which checks every byte on disk.
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  writer->WriteToOutputStringOn();
+  writer->SetInputData(poly);
+  writer->SetDataModeToBinary();
+  writer->SetCompressorTypeToZLib();
+  if (writer->Write() != 1) throw InputError(path + ": VTK could not encode the file");
+  const std::string bytes = writer->GetOutputString();
+  if (bytes.empty()) throw InputError(path + ": VTK produced no output");
+  write_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {

@@ -6,8 +6,13 @@
 #include <vtkStringArray.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include <unistd.h>
 
 #include "core/srgb.h"
 #include "io/paraview_state.h"
@@ -140,4 +145,35 @@ TEST_CASE("write_paraview_state: a Python state naming the data, B_srgb and the 
   // The camera is set after the first render (which resets it).
   CHECK(s.find("simple.Render(view)") < s.find("view.CameraPosition"));
   std::filesystem::remove(path);
+}
+
+TEST_CASE("write_vtp on a full disk fails in one line and keeps the old file", "[io][vtp][fault]") {
+  // C1: VTK 9.1's file writer segfaulted on a nearly full disk; D1: on a full disk it published an empty file over
+  // the old one and exit 0. A real full disk: a 256 KiB tmpfs (skipped with a message where mounting is not
+  // permitted).
+  const auto mnt = std::filesystem::temp_directory_path() / ("radwalk_vtp_full_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(mnt);
+  if (std::system(("mount -t tmpfs -o size=256k tmpfs " + mnt.string() + " 2>/dev/null").c_str()) != 0) {
+    WARN("skipped: cannot mount a tmpfs here (needs root and mount permission)");
+    return;
+  }
+  PatchBuilder small, big;
+  const int m = small.add_material("wall", Rgb::Constant(0.5)), mb = big.add_material("wall", Rgb::Constant(0.5));
+  small.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, m);
+  // Enough patches that the compressed file cannot fit in what is left (random values do not compress).
+  for (int i = 0; i < 40000; ++i) {
+    const double x = i % 200, y = i / 200;
+    big.add_quad({x, y, 0}, {x + 1, y, 0}, {x + 1, y + 1, 0}, {x, y + 1, 0}, mb);
+  }
+  const PatchSet a = small.build(), b = big.build();
+  std::vector<double> noise(b.size());
+  for (std::size_t i = 0; i < noise.size(); ++i) noise[i] = std::sin(1e4 * static_cast<double>(i));
+  const std::string path = (mnt / "out.vtp").string();
+  write_vtp(path, a, {});
+  const auto before = std::filesystem::file_size(path);
+  CHECK_THROWS_WITH(write_vtp(path, b, {scalar_field("noise", noise)}),
+                    Catch::Contains("out.vtp") && Catch::Contains("disk full"));
+  CHECK(std::filesystem::file_size(path) == before);
+  CHECK(std::distance(std::filesystem::directory_iterator(mnt), std::filesystem::directory_iterator()) == 1);
+  std::system(("umount " + mnt.string()).c_str());
 }
