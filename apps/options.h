@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/distinct_files.h"
 #include "walk/walk_compare.h"
 #include "walk/walk_options.h"
 
@@ -23,6 +24,7 @@ struct SceneOptions {
   std::string paraview_state;  // --paraview-state FILE.py: ParaView state for the .vtp
   std::vector<std::string> argv;  // the command line, for the JSON summary
   std::vector<std::string> warnings;  // printed while reading the command line (ignored options), for the summary
+  std::vector<NamedFile> outputs;     // every file the command writes (distinct_files.h), checked against inputs
 };
 
 // Commands that need form factors: estimate them, or read them from a Matrix Market file.

@@ -46,6 +46,11 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   read.strict = options.strict;
   Mesh mesh = load_scene(options.scene, read);
   summary.add_timing("load", timer.seconds());
+  std::vector<NamedFile> libraries;
+  for (const Material& m : mesh.materials)
+    if (!m.file.empty()) libraries.push_back({"the scene's material library", m.file});
+  const std::string clash = check_distinct_files(options.outputs, libraries);
+  if (!clash.empty()) throw InputError(clash);
   for (const std::string& w : mesh.warnings) warn(summary, w);
   summary.json()["scene"] = options.scene;
   summary.json()["seed"] = options.seed;

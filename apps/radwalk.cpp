@@ -413,6 +413,36 @@ int main(int argc, char** argv) {
     }
   }
 
+  // Every file the command writes; none may be an input or another output (distinct_files.h). The scene's
+  // material libraries are known only once it is read: load_validated_mesh checks them.
+  {
+    auto outputs = [](std::initializer_list<std::pair<const char*, std::string>> named) {
+      std::vector<NamedFile> files;
+      for (const auto& [role, path] : named)
+        for (NamedFile& f : output_files_of(role, path)) files.push_back(std::move(f));
+      return files;
+    };
+    check.outputs = outputs({{"--json", check.json}});
+    patch.scene.outputs = outputs({{"-o", patch.output}, {"--csv", patch.scene.csv}, {"--json", patch.scene.json},
+                                   {"--paraview-state", patch.scene.paraview_state}});
+    ff.scene.outputs = outputs({{"-o", ff.mtx}, {"--vtp", ff.diagnostics_vtp}, {"--csv", ff.scene.csv},
+                                {"--json", ff.scene.json}, {"--paraview-state", ff.scene.paraview_state}});
+    for (SceneOptions* o : {&solve.scene, &compare.scene, &pt.scene})
+      o->outputs = outputs({{"-o", o->vtp}, {"--csv", o->csv}, {"--json", o->json},
+                            {"--paraview-state", o->paraview_state}});
+    for (NamedFile& f : outputs({{"--image", pt.image}})) pt.scene.outputs.push_back(std::move(f));
+    const std::vector<std::pair<SceneOptions*, std::string>> commands = {
+        {&check, ""}, {&patch.scene, ""}, {&ff.scene, ff.ff.form_factors}, {&solve.scene, solve.ff.form_factors},
+        {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}};
+    for (const auto& [o, form_factors] : commands) {
+      const std::string clash =
+          check_distinct_files(o->outputs, {{"the scene", o->scene}, {"--form-factors", form_factors}});
+      if (clash.empty()) continue;
+      std::fprintf(stderr, "radwalk: error: %s\n", clash.c_str());
+      return 2;
+    }
+  }
+
   try {
     if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);
     if (*solve_cmd) warn_ignored(solve_cmd, solve, solve.scene);

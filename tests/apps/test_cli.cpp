@@ -153,3 +153,36 @@ TEST_CASE("radwalk patch -o .obj writes a scene that loads back as the same patc
   }
   CHECK(rows == 328);
 }
+
+TEST_CASE("radwalk: no output overwrites an input or another output", "[cli]") {
+  // D3: --csv cube.obj, -o same.vtp --csv same.vtp, and patch a.obj -o shared.obj rewriting the shared.mtl that
+  // a.obj reads were all accepted (the extension check now also refuses the first two; the rest are refused by
+  // comparing files). Every refusal: exit 2, one line naming the file and both roles, nothing written.
+  const fs::path dir = scratch() / "distinct";
+  fs::create_directories(dir);
+  for (const char* f : {"cube.obj", "cube.mtl"}) fs::copy_file(source(std::string("meshes/") + f), dir / f,
+                                                             fs::copy_options::overwrite_existing);
+  fs::copy_file(dir / "cube.obj", dir / "other.obj", fs::copy_options::overwrite_existing);  // also uses cube.mtl
+  const std::string cube = (dir / "cube.obj").string();
+  fs::remove(dir / "link.obj");
+  fs::create_symlink("cube.obj", dir / "link.obj");
+  struct Case {
+    std::string args, expected;
+  };
+  for (const Case& c : {Case{"patch " + cube + " -o " + cube, "-o would overwrite the scene"},
+                        Case{"patch " + cube + " -o " + (dir / "link.obj").string(), "-o would overwrite the scene"},
+                        Case{"patch " + (dir / "other.obj").string() + " -o " + cube,
+                             "cube.mtl: -o (its .mtl) would overwrite the scene's material library"}}) {
+    INFO(c.args);
+    const auto before = fs::last_write_time(dir / "cube.mtl");
+    const Run r = run(c.args);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find(c.expected) != std::string::npos);
+    CHECK(r.out.find("radwalk never writes over an input") != std::string::npos);
+    CHECK(fs::last_write_time(dir / "cube.mtl") == before);
+  }
+  // Distinct outputs beside the scene are fine.
+  const Run same = run("solve " + cube + " -o " + (dir / "s.vtp").string() + " --paraview-state " +
+                       (dir / "s.py").string() + " --csv " + (dir / "s.csv").string());
+  CHECK(same.exit_code == 0);
+}
