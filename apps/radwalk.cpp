@@ -6,6 +6,7 @@
 // output file names are checked against what is written (apps/output_files.h); options the chosen method ignores
 // are warned about (apps/ignored_options.h).
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -46,6 +47,27 @@ CLI::Validator finite_number(bool strictly_positive) {
       strictly_positive ? "POSITIVE" : "NONNEGATIVE");
 }
 const CLI::Validator kPositive = finite_number(true), kNonNegative = finite_number(false);
+
+// A whole number in [lo, hi] written as digits (no sign, exponent or fraction): CLI11 itself saturates
+// `--seed -1` to 2^64 - 1 and lets 2^63 - 1 samples overflow what multiplies them. One line naming the range.
+CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
+  return CLI::Validator(
+      [=](std::string& text) -> std::string {
+        std::uint64_t v = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+        const bool ok = !text.empty() && text[0] != '-' && text[0] != '+' && ec == std::errc() &&
+                        end == text.data() + text.size() && v >= lo && v <= hi;
+        return ok ? std::string()
+                  : "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got '" +
+                        text + "'";
+      },
+      "INT");
+}
+// Threads: at most 1024 (more only costs memory: every TBB thread has its own stack).
+const CLI::Validator kThreads = whole_number(0, 1024);
+const CLI::Validator kSeed = whole_number(0, ~std::uint64_t{0});
+// Samples per patch or pixel: from 2 (a standard error needs two) to 2^32, beyond any run's time and far from overflowing what they multiply.
+const CLI::Validator kSamples = whole_number(2, std::uint64_t{1} << 32);  // 2: a variance needs two
 
 // The value of a choice option: one of `choices`, else "unknown value 'x' (did you mean 'y'?)".
 CLI::Validator one_of(const std::vector<std::string>& choices) {
@@ -126,9 +148,10 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");
   cmd->add_option("--threads", o.threads, "Worker threads (0 = all cores)")
-      ->check(kNonNegative)
+      ->check(kThreads)
       ->capture_default_str();
   cmd->add_option("--seed", o.seed, "Random seed; same seed, same output, whatever the thread count")
+      ->check(kSeed)
       ->capture_default_str();
   if (outputs) {
     cmd->add_option("--csv", o.csv, "Write per-patch results as CSV")->check(output_file(OutputFile::csv));
@@ -361,7 +384,7 @@ int main(int argc, char** argv) {
   pt_cmd->add_option("-o,--output", pt.scene.vtp, "Write patch-average radiosity as .vtp")
       ->check(output_file(OutputFile::vtp));
   pt_cmd->add_option("--spp", pt.spp, "Samples per patch (patch averages) or per pixel (images)")
-      ->check(kPositive)
+      ->check(kSamples)
       ->capture_default_str();
   pt_cmd
       ->add_option("--integrator", pt.integrator,

@@ -52,7 +52,9 @@ void RunSummary::add_warning(const std::string& warning) { warnings_.push_back(w
 void RunSummary::write(const std::string& path) {
   json_["peak_memory_bytes"] = peak_memory_bytes();
   json_["warnings"] = warnings_;
-  const std::string text = json_.dump(2);
+  // Paths and names come from the user and may hold bytes that are not UTF-8 (I4): replaced by U+FFFD, never an
+  // internal error.
+  const std::string text = json_.dump(2, ' ', false, nlohmann::json::error_handler_t::replace);
   write_atomically(path, [&](std::ostream& out) { out << text << '\n'; });
 }
 

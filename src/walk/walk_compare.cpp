@@ -35,6 +35,13 @@ WalkOptions method_options(const CompareOptions& options, WalkMethod method, std
 void check_compare_options(const CompareOptions& options, std::size_t patch_count) {
   if (options.runs < 1) throw InputError("compare: runs = " + std::to_string(options.runs) + " (need >= 1)");
   if (options.methods.empty()) throw InputError("compare: no methods given");
+  // The budget in walks (walks per patch x patches, over all runs) must be countable before anything multiplies it.
+  const double budget = static_cast<double>(options.walk.walks_per_patch) * static_cast<double>(patch_count) *
+                        static_cast<double>(options.runs);
+  if (!(budget <= static_cast<double>(kMaxWalkCount)))
+    throw InputError("compare: " + std::to_string(options.walk.walks_per_patch) + " walks per patch x " +
+                     std::to_string(patch_count) + " patches x " + std::to_string(options.runs) +
+                     " runs is more than the " + std::to_string(kMaxWalkCount) + " walks radwalk counts");
   for (WalkMethod method : options.methods) check_walk_options(method_options(options, method, patch_count), patch_count);
 }
 

@@ -15,6 +15,11 @@ void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
   if (count < 2)
     throw InputError("random walk: " + std::string(gather ? "walks per patch" : "particles") + " = " +
                      std::to_string(count) + " (need at least 2 for a variance estimate)");
+  if (count > kMaxWalkCount || (gather && static_cast<double>(count) * static_cast<double>(patch_count) >
+                                               static_cast<double>(kMaxWalkCount)))
+    throw InputError("random walk: " + std::string(gather ? "walks per patch" : "particles") + " = " +
+                     std::to_string(count) + (gather ? " x " + std::to_string(patch_count) + " patches" : "") +
+                     " is more than the " + std::to_string(kMaxWalkCount) + " walks radwalk counts in one run");
   check_survival(options.survival);
   for (int i : options.patches)
     if (i < 0 || static_cast<std::size_t>(i) >= patch_count)

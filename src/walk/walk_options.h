@@ -52,4 +52,8 @@ void check_walk_options(const WalkOptions& options, std::size_t patch_count);
 // Walks the method runs: walks_per_patch x (patches estimated) for gathering, particles for shooting.
 long total_walks(const WalkOptions& options, std::size_t patch_count);
 
+// The most walks (or particles) one run counts: 2^48, far beyond any run's time, and far below where the counts
+// (walks x patches, x runs in compare) would overflow.
+inline constexpr long kMaxWalkCount = long{1} << 48;
+
 }  // namespace radwalk

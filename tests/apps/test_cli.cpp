@@ -57,7 +57,12 @@ TEST_CASE("radwalk: bad option values and outputs in missing directories give on
   for (const std::string& args : {"solve " + cube + " --rays abc", "solve " + cube + " --max-edge inf",
                                  "solve " + cube + " --tol -1", "solve " + cube + " --bogus", std::string(""),
                                  "solve " + cube + " -q -o /nonexistent-dir/b.vtp",
-                                 "solve " + cube + " -q --csv /nonexistent-dir/b.csv"}) {
+                                 "solve " + cube + " -q --csv /nonexistent-dir/b.csv",
+                                 // P3, I6, O5: saturated, overflowing and absurd counts.
+                                 "solve " + cube + " --seed -1", "solve " + cube + " --threads 2147483647",
+                                 "pathtrace " + cube + " --spp 9223372036854775807",
+                                 "compare " + cube + " --rays 100 --walks-per-patch 9223372036854775807",
+                                 "solve " + cube + " --rays 100 --solver random-walk --walks-per-patch 100000000000000"}) {
     const Run r = run(args);
     INFO("radwalk " << args << " -> exit " << r.exit_code << ": " << r.out);
     CHECK(r.exit_code == 2);

@@ -54,6 +54,17 @@ TEST_CASE("patch CSV has the documented columns and values", "[io][csv]") {
   std::filesystem::remove(path);
 }
 
+TEST_CASE("run summary JSON is valid UTF-8 whatever bytes a path or name holds", "[io][json]") {
+  // I4: a non-UTF-8 byte in a scene path (recorded in the arguments) was an internal error (exit 4).
+  RunSummary s("solve", {"radwalk", "solve", "bad\xff.obj"});
+  s.add_warning("material '\xfe' is odd");
+  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test_utf8.json").string();
+  REQUIRE_NOTHROW(s.write(path));
+  std::ifstream in(path);
+  const nlohmann::json j = nlohmann::json::parse(in);
+  CHECK(j["arguments"][2] == "bad\xef\xbf\xbd.obj");  // U+FFFD
+}
+
 TEST_CASE("run summary JSON parses and records timings, warnings and memory", "[io][json]") {
   RunSummary s("solve", {"radwalk", "solve", "scene.obj"});
   s.json()["patches"] = 42;
