@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <string>
+
+#include "core/error.h"
 
 namespace radwalk::app {
 namespace {
@@ -22,6 +25,9 @@ Camera scene_camera(const std::string& scene, const PatchSet& patches, const std
     cam.position = Vec3(c[0], c[1], c[2]);
     cam.direction = Vec3(c[3], c[4], c[5]) - cam.position;
     cam.up = Vec3(c[6], c[7], c[8]);
+    // The option is in degrees, so is its refusal (P13: it was reported in radians).
+    if (!(c[9] > 0 && c[9] < 180))
+      throw InputError("--camera: the vertical field of view must be in (0, 180) degrees, got " + number_text(c[9]));
     cam.vfov = c[9] * kPi / 180.0;
     return cam;
   }

@@ -1,5 +1,6 @@
 #include "core/error.h"
 
+#include <charconv>
 #include <sstream>
 
 #include "core/check.h"
@@ -47,6 +48,12 @@ std::string printable(std::string_view text) {
     i += n;
   }
   return out;
+}
+
+std::string number_text(double x) {
+  char buffer[64];
+  const auto [end, ec] = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return ec == std::errc() ? std::string(buffer, end) : std::string("?");
 }
 
 std::string locate(const std::string& file, long line, long face, const std::string& what) {

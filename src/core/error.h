@@ -29,6 +29,10 @@ class InternalError : public std::logic_error {
 // not valid UTF-8 become \xNN escapes; everything else (valid UTF-8 included) is kept.
 std::string printable(std::string_view text);
 
+// A number for a message: the shortest text that reads back to the same double ("200", "1e-50", "0.73"), never
+// "0.000000" for a small value or "200.000000" for a whole one.
+std::string number_text(double x);
+
 // "FILE:LINE: face F: WHAT" with the parts that are known (line <= 0 or face < 0 are left out).
 std::string locate(const std::string& file, long line, long face, const std::string& what);
 

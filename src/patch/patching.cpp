@@ -108,7 +108,7 @@ std::vector<std::int32_t> edge_divisions(const Mesh& mesh, const EdgeTable& t, d
     const double parts = std::ceil(longest[static_cast<std::size_t>(classes.root(static_cast<std::int32_t>(e)))] /
                                    max_edge);
     if (!(parts <= static_cast<double>(kMaxPatchCount)))
-      throw InputError(locate(mesh.path, 0, -1, "max edge " + std::to_string(max_edge) +
+      throw InputError(locate(mesh.path, 0, -1, "max edge " + number_text(max_edge) +
                                                     " would cut an edge into more than " +
                                                     std::to_string(kMaxPatchCount) + " parts"));
     n[e] = std::max<std::int32_t>(1, static_cast<std::int32_t>(parts));
@@ -150,7 +150,7 @@ PatchSet make_patches(const Mesh& mesh, double max_edge) {
     total += mesh.is_quad(f) ? static_cast<std::size_t>(parts(f, 0)) * static_cast<std::size_t>(parts(f, 1))
                              : static_cast<std::size_t>(parts(f, 0)) * static_cast<std::size_t>(parts(f, 0));
     if (total > kMaxPatchCount)
-      throw InputError(locate(mesh.path, 0, -1, "max edge " + std::to_string(max_edge) + " would make more than " +
+      throw InputError(locate(mesh.path, 0, -1, "max edge " + number_text(max_edge) + " would make more than " +
                                                     std::to_string(kMaxPatchCount) +
                                                     " patches; use a larger max edge"));
   }

@@ -36,7 +36,7 @@ PatchRgb irradiance_standard_error(const SparseF& F, const PatchRgb& B, const st
 RefinedSolution solve_adaptive(PatchSet patches, const FormFactorStage& form_factors, const SolveOptions& solve,
                                const RefineOptions& refine, const std::function<void(const RefineStep&)>& on_step) {
   if (!std::isfinite(refine.tol) || !(refine.tol > 0))
-    throw InputError("refine tolerance " + std::to_string(refine.tol) + " must be finite and > 0");
+    throw InputError("refine tolerance " + number_text(refine.tol) + " must be finite and > 0");
   if (refine.max_steps < 0) throw InputError("refine steps " + std::to_string(refine.max_steps) + " must be >= 0");
   if (refine.max_patches < 1) throw InputError("refine max patches must be >= 1");
   RADWALK_CHECK(form_factors);  // the caller's form-factor stage

@@ -8,7 +8,7 @@ namespace radwalk {
 
 void check_options(const SolveOptions& options) {
   if (!std::isfinite(options.tol) || !(options.tol > 0))
-    throw InputError("solver tolerance " + std::to_string(options.tol) + " must be finite and > 0");
+    throw InputError("solver tolerance " + number_text(options.tol) + " must be finite and > 0");
   if (options.max_iterations < 0)
     throw InputError("max-iterations " + std::to_string(options.max_iterations) + " must be >= 0");
 }

@@ -14,7 +14,7 @@ SurvivalRule parse_survival_rule(std::string_view name) {
 
 void check_survival(const Survival& survival) {
   if (survival.rule == SurvivalRule::constant && !(survival.constant > 0 && survival.constant < 1))
-    throw InputError("random walk: survival constant " + std::to_string(survival.constant) + " is not in (0, 1)");
+    throw InputError("random walk: survival constant " + number_text(survival.constant) + " is not in (0, 1)");
 }
 
 std::vector<double> survival_probabilities(const PatchRgb& rho, const Survival& survival) {
@@ -45,7 +45,7 @@ void check_survival_probabilities(const std::vector<double>& p, const PatchRgb& 
   for (std::size_t k = 0; k < p.size(); ++k) {
     const auto r = static_cast<Eigen::Index>(k);
     if (!(p[k] < 1))
-      throw InputError("random walk: survival probability p = " + std::to_string(p[k]) + " at patch " +
+      throw InputError("random walk: survival probability p = " + number_text(p[k]) + " at patch " +
                        std::to_string(k) + " (survival '" + mode + "') is not below 1: walks might never end");
     if (!(p[k] > 0) && rho.row(r).maxCoeff() > 0)
       throw InputError("random walk: survival probability 0 at patch " + std::to_string(k) +

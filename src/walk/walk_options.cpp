@@ -1,5 +1,7 @@
 #include "walk/walk_options.h"
 
+#include <algorithm>
+
 #include <string>
 
 #include "core/error.h"
@@ -21,6 +23,12 @@ void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
                      std::to_string(count) + (gather ? " x " + std::to_string(patch_count) + " patches" : "") +
                      " is more than the " + std::to_string(kMaxWalkCount) + " walks radwalk counts in one run");
   check_survival(options.survival);
+  // P12: a patch listed twice would be estimated twice and reported once.
+  std::vector<int> sorted = options.patches;
+  std::sort(sorted.begin(), sorted.end());
+  const auto repeat = std::adjacent_find(sorted.begin(), sorted.end());
+  if (repeat != sorted.end())
+    throw InputError("random walk: patch " + std::to_string(*repeat) + " is listed more than once in --patches");
   for (int i : options.patches)
     if (i < 0 || static_cast<std::size_t>(i) >= patch_count)
       throw InputError("random walk: patch " + std::to_string(i) + " is out of range (there are " +

@@ -62,7 +62,11 @@ TEST_CASE("radwalk: bad option values and outputs in missing directories give on
                                  "solve " + cube + " --seed -1", "solve " + cube + " --threads 2147483647",
                                  "pathtrace " + cube + " --spp 9223372036854775807",
                                  "compare " + cube + " --rays 100 --walks-per-patch 9223372036854775807",
-                                 "solve " + cube + " --rays 100 --solver random-walk --walks-per-patch 100000000000000"}) {
+                                 "solve " + cube + " --rays 100 --solver random-walk --walks-per-patch 100000000000000",
+                                 // P12, P13: a patch listed twice; a field of view out of range, in degrees.
+                                 "solve " + cube + " --rays 100 --solver random-walk --patches 1 1 1",
+                                 "pathtrace " + cube + " --image " + (scratch() / "x.png").string() +
+                                     " --camera 0 0 0 0 0 1 0 1 0 200"}) {
     const Run r = run(args);
     INFO("radwalk " << args << " -> exit " << r.exit_code << ": " << r.out);
     CHECK(r.exit_code == 2);
