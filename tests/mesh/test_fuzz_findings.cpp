@@ -7,10 +7,25 @@
 
 #include "core/error.h"
 #include "mesh/face_geometry.h"
+#include "mesh/mtl.h"
+#include "mesh/read_obj.h"
+#include "mesh/text_scan.h"
 #include "mesh/validate.h"
 #include "patch/patching.h"
 
 using namespace radwalk;
+
+namespace {
+
+// An OBJ read from bytes, its one library `mtl` (any name).
+Mesh obj_from_text(const std::string& obj, const std::string& mtl) {
+  MtlSource libraries{[](const std::string&) { return true; }, [mtl](const std::string&) { return mtl; }};
+  return read_obj_text("test.obj", obj, libraries);
+}
+
+const std::string kSquare = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
+
+}  // namespace
 
 TEST_CASE("fuzz finding: a thin quad folded along its length is non-planar", "[mesh][validate][fuzz]") {
   // fuzz_validate_patch (patch areas add up to the face's area): the quad (0,0,0) (1,0,255) (1,1,0) (0,1,0), two
@@ -40,4 +55,36 @@ TEST_CASE("fuzz finding: a thin quad folded along its length is non-planar", "[m
   REQUIRE_NOTHROW(validate_mesh(flat));
   const PatchSet patches = make_patches(flat, 255.0 / 7);
   CHECK_THAT(patches.total_area(), Catch::Matchers::WithinRel(face_area(flat, 0), 1e-9));
+}
+TEST_CASE("fuzz finding: '+' followed by another sign is not a number", "[mesh][read][fuzz]") {
+  // fuzz_mtl (number rule vs strtod): "Kd +-.5 .25 5." was read as Kd -0.5: the '+' was removed and from_chars
+  // read the rest, sign and all. Likewise "f +-1 ..." was the relative index -1. Reproducer:
+  // tests/fuzz/corpus/mtl/regression-plus-minus.mtl.
+  CHECK(parse_number("+-.5").status == NumberStatus::not_a_number);
+  CHECK(parse_number("++5").status == NumberStatus::not_a_number);
+  CHECK(!parse_long("+-3"));
+  CHECK(parse_number("+.5").value == 0.5);
+  CHECK(parse_long("+3") == 3);
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl a\nKd +-.5 .25 5.\n"),
+                    Catch::StartsWith("test.mtl:2: Kd: '+-.5' is not a number"));
+  CHECK_THROWS_WITH(obj_from_text("v +-1 0 0\n", ""), Catch::Contains("'+-1' is not a number"));
+  CHECK_THROWS_WITH(obj_from_text(kSquare + "f 1 2 +-1\n", ""), Catch::Contains("'+-1' is not a vertex index"));
+}
+
+TEST_CASE("fuzz finding: underflow and overflow are told apart by the value, not by the sign of the exponent",
+          "[mesh][read][fuzz]") {
+  // Found reading parse_number while writing fuzz_mtl's number oracle, confirmed by it (the fuzzer itself did not
+  // reach 400-digit numbers in a few minutes): a 1 with 400 zeros and "e-10" (1e390) was read as 0, and 1e-401
+  // written without an exponent was "out of range". Reproducers: tests/fuzz/corpus/mtl/regression-*-digits.mtl.
+  const std::string zeros(400, '0');
+  // (written with append: GCC 12 warns falsely (-Wrestrict) about "literal" + std::string)
+  auto number = [](std::string a, const std::string& b, const std::string& c) { return a.append(b).append(c); };
+  CHECK(parse_number(number("1", zeros, "e-10")).status == NumberStatus::out_of_range);
+  CHECK(parse_number(number("-1", zeros, ".5e-10")).status == NumberStatus::out_of_range);
+  const ParsedNumber tiny = parse_number(number("0.", zeros, "1"));
+  CHECK(tiny.status == NumberStatus::ok);
+  CHECK(tiny.value == 0.0);
+  CHECK(parse_number(number("0.", zeros, "1e100")).value == 1e-301);
+  CHECK(parse_number("0.0001e-400").value == 0.0);
+  CHECK(parse_number(number("1", zeros.substr(0, 300), "e-10")).value == 1e290);
 }
