@@ -88,3 +88,20 @@ TEST_CASE("fuzz finding: underflow and overflow are told apart by the value, not
   CHECK(parse_number("0.0001e-400").value == 0.0);
   CHECK(parse_number(number("1", zeros.substr(0, 300), "e-10")).value == 1e290);
 }
+
+TEST_CASE("fuzz finding: MTL numbers must be finite, Pr in [0, 1]", "[mesh][read][mtl][fuzz]") {
+  // fuzz_mtl: "Ks 0.5 inf 0.5" and "Ni nan" were accepted (validation checks only Kd and Ke, and only of used
+  // materials), and "Pr 0.51e308" gave the roughness Pr^2 = inf. Reproducers:
+  // tests/fuzz/corpus/mtl/regression-inf-accepted.mtl, regression-pr-overflow.mtl.
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nKs 0.5 inf 0.5\n"),
+                    Catch::StartsWith("test.mtl:2: Ks: 'inf' is not a finite number"));
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nNi nan\n"), Catch::Contains("'nan' is not a finite number"));
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nKd -inf\n"), Catch::Contains("not a finite number"));
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nKe 1e999 0 0\n"), Catch::Contains("'1e999' is out of range"));
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nPr 0.51e308\n"),
+                    Catch::StartsWith("test.mtl:2: Pr (roughness) must be in [0, 1]"));
+  CHECK_THROWS_WITH(scan_mtl_text("test.mtl", "newmtl m\nPr -0.5\n"), Catch::Contains("must be in [0, 1]"));
+  const auto entries = scan_mtl_text("test.mtl", "newmtl m\nPr 1\nillum 3\n");
+  REQUIRE(entries.size() == 1);
+  CHECK(material_from_mtl(entries[0]).roughness == 1.0);
+}
