@@ -9,6 +9,7 @@
 #include "mesh/face_geometry.h"
 #include "mesh/mtl.h"
 #include "mesh/read_obj.h"
+#include "mesh/read_ply.h"
 #include "mesh/text_scan.h"
 #include "mesh/validate.h"
 #include "patch/patching.h"
@@ -104,4 +105,18 @@ TEST_CASE("fuzz finding: MTL numbers must be finite, Pr in [0, 1]", "[mesh][read
   const auto entries = scan_mtl_text("test.mtl", "newmtl m\nPr 1\nillum 3\n");
   REQUIRE(entries.size() == 1);
   CHECK(material_from_mtl(entries[0]).roughness == 1.0);
+}
+
+TEST_CASE("fuzz finding: an ascii PLY index or list length of 1e30 is reported, not cast", "[mesh][ply][fuzz]") {
+  // fuzz_ply (UBSan): the message for an out-of-range vertex index cast the double 7.8e27 to long long
+  // (undefined behaviour), as did the one for a list length past the end of the file. Reproducer:
+  // tests/fuzz/corpus/ply/regression-huge-index.ply.
+  const std::string head =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n";
+  CHECK_THROWS_WITH(read_ply_bytes("test.ply", head + "3 0 1 7.8e27\n"),
+                    Catch::StartsWith("test.ply:13: face 0: vertex index 7.8e+27 is out of range (3 vertices)"));
+  CHECK_THROWS_WITH(read_ply_bytes("test.ply", head + "1e30 0 1 2\n"),
+                    Catch::Contains("list length 1e+30 runs past the end of the file"));
+  CHECK_THROWS_WITH(read_ply_bytes("test.ply", head + "3 0 1 -2\n"), Catch::Contains("vertex index -2 is out of range"));
 }
