@@ -6,6 +6,13 @@ if(RADWALK_SANITIZE)
                                                    -fno-sanitize-recover=undefined)
   target_link_options(radwalk_options INTERFACE -fsanitize=address,undefined)
 endif()
+# The fuzz tree: libFuzzer's coverage instrumentation in every library (the harness executables of tests/fuzz add
+# -fsanitize=fuzzer, libFuzzer's main), ASan + UBSan, -O1 with debug information and assertions (Eigen's too).
+if(RADWALK_FUZZ)
+  target_compile_options(radwalk_options INTERFACE -fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                                                   -fno-sanitize-recover=undefined -O1 -g)
+  target_link_options(radwalk_options INTERFACE -fsanitize=address,undefined)
+endif()
 
 # radwalk_add_layer(NAME SOURCES... DEPS ...): one static library per layer, src/ as include root.
 function(radwalk_add_layer name)

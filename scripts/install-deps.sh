@@ -5,6 +5,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libembree-dev libopenmesh-dev libvtk9-dev catch2 libtbb-dev libcli11-dev
   nlohmann-json3-dev libtinyobjloader-dev libpng-dev libboost-dev libopenexr-dev python3-matplotlib
+  clang libclang-rt-14-dev llvm-14  # the fuzz harnesses (tests/fuzz): libFuzzer, sanitizer runtimes, symbolizer
 )
 missing=()
 for p in "${packages[@]}"; do

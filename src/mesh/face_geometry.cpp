@@ -42,7 +42,10 @@ double quad_nonplanarity(const Mesh& mesh, std::size_t f) {
   mean /= 4.0;
   double deviation = 0;
   for (int k = 0; k < 4; ++k) deviation = std::max(deviation, std::abs((corner(mesh, f, k) - mean).dot(n)));
-  return deviation / diagonal;
+  // The width across the longer diagonal, 2 |vector area| / diagonal: the longer diagonal itself for a
+  // square, much less for a thin quad, whose fold across its short direction the diagonal alone would hide.
+  const double width = 2 * len / diagonal;
+  return deviation / width;
 }
 
 double quad_min_turn_sine(const Mesh& mesh, std::size_t f) {

@@ -15,7 +15,10 @@ double face_area(const Mesh& mesh, std::size_t f);
 Vec3 face_vector_area(const Mesh& mesh, std::size_t f);
 
 // Relative non-planarity of a quad: the largest distance of a corner from the plane through the corners' mean
-// with the Newell normal, divided by the longer diagonal. 0 for a triangle.
+// with the Newell normal, divided by the quad's width across its longer diagonal, w = 2 |vector area| /
+// (longer diagonal). For a square (and nearly for any fat quad) w is the diagonal; for a thin quad it is its
+// short extent, so a thin quad folded along its length (two halves at 90 degrees, 255 x 1 units) measures its
+// fold, not the 1e-3 its diagonal would make of it. 0 for a triangle.
 double quad_nonplanarity(const Mesh& mesh, std::size_t f);
 
 // Smallest signed sine of the turning angle at a quad's corners, measured about the Newell normal:

@@ -9,6 +9,19 @@ namespace radwalk {
 
 namespace {
 
+// One number of statement `key`: NaN and infinity are refused here, for every statement (no later check sees
+// Ks, Ni, Ns, Pr or Pm).
+double finite_number(std::string_view token, const std::string& key, const std::string& path, long line) {
+  const ParsedNumber n = parse_number(token);
+  if (n.status == NumberStatus::ok && std::isfinite(n.value)) return n.value;
+  const char* what = n.status == NumberStatus::out_of_range ? "out of range"
+                     : n.status == NumberStatus::ok         ? "not a finite number"
+                                                            : "not a number";
+  std::string message = key;
+  message.append(": '").append(token).append("' is ").append(what);
+  throw InputError(locate(path, line, -1, message));
+}
+
 // "Kd r g b" or "Kd v": the colour after the keyword.
 Rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string& path, long line) {
   const std::string key(tokens[0]);
@@ -19,9 +32,7 @@ Rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string&
                                                 std::to_string(tokens.size() - 1)));
   Rgb c;
   for (std::size_t k = 1; k < tokens.size(); ++k) {
-    const auto v = parse_double(tokens[k]);
-    if (!v) throw InputError(locate(path, line, -1, key + ": '" + std::string(tokens[k]) + "' is not a number"));
-    c[static_cast<int>(k - 1)] = *v;
+    c[static_cast<int>(k - 1)] = finite_number(tokens[k], key, path, line);
   }
   if (tokens.size() == 2) c = Rgb::Constant(c[0]);
   return c;
@@ -31,9 +42,7 @@ double parse_scalar(const std::vector<std::string_view>& tokens, const std::stri
   const std::string key(tokens[0]);
   if (tokens.size() != 2)
     throw InputError(locate(path, line, -1, key + " needs 1 number, found " + std::to_string(tokens.size() - 1)));
-  const auto v = parse_double(tokens[1]);
-  if (!v) throw InputError(locate(path, line, -1, key + ": '" + std::string(tokens[1]) + "' is not a number"));
-  return *v;
+  return finite_number(tokens[1], key, path, line);
 }
 
 }  // namespace
@@ -66,8 +75,13 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
     else if (key == "Ks") e.Ks = parse_colour(tokens, path, line);
     else if (key == "Ni") e.Ni = parse_scalar(tokens, path, line);
     else if (key == "Ns") e.Ns = parse_scalar(tokens, path, line);
-    else if (key == "Pr") e.Pr = parse_scalar(tokens, path, line);
-    else if (key == "Pm") e.Pm = parse_scalar(tokens, path, line);
+    else if (key == "Pr") {
+      e.Pr = parse_scalar(tokens, path, line);
+      if (!(*e.Pr >= 0 && *e.Pr <= 1))  // the roughness Pr^2 is a GGX alpha (and 1e300^2 is no number)
+        throw InputError(
+            locate(path, line, -1, "Pr (roughness) must be in [0, 1], found " + std::string(tokens[1])));
+    } else if (key == "Pm")
+      e.Pm = parse_scalar(tokens, path, line);
     else {
       const auto v = tokens.size() == 2 ? parse_integral(tokens[1]) : std::nullopt;  // "2" or "2.0"
       if (!v || *v < 0 || *v > 10) throw InputError(locate(path, line, -1, "illum needs one integer in 0..10"));

@@ -1,18 +1,19 @@
 #pragma once
 // MTL material libraries: the statements radwalk reads, and their mapping to a Material.
 //
-// Statements read (others are ignored): newmtl NAME (the rest of the statement, spaces included: the name rule of
-// text_scan.h); Kd, Ke, Ks as "r g b" or a single "v" (g = b = v); illum N (an integer, "2.0" allowed); Ni, Ns,
-// Pr, Pm as one number. Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the
-// emitted radiosity is E = pi * Ke). Numbers are read exactly (correctly rounded, see text_scan.h).
+// Statements read (others are ignored): newmtl NAME (the rest of the statement, spaces included: the name
+// rule of text_scan.h); Kd, Ke, Ks as "r g b" or a single "v" (g = b = v); illum N (an integer, "2.0"
+// allowed); Ni, Ns, Pr, Pm as one number (Pr, perceptual roughness, in [0, 1]). Every number must be finite.
+// Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the emitted radiosity is E = pi * Ke).
+// Numbers are read exactly (correctly rounded, see text_scan.h).
 //
 // BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
 //   illum 4, 6 or 7 (refraction)              -> dielectric (Ni = index of refraction)
 //   Pm > 0                                    -> conductor  (Ks = F0 tint)
 //   illum 3 or 5 (ray-traced reflection)      -> microfacet if Pr > 0, else mirror (Ks = tint)
 //   anything else                             -> diffuse
-// Roughness (GGX alpha): Pr^2 when Pr is given (Pr is perceptual roughness); otherwise, for a conductor with Ns,
-// the Blinn-Phong equivalent sqrt(2 / (Ns + 2)) (Walter et al. 2007); otherwise 0.
+// Roughness (GGX alpha): Pr^2 when Pr is given (Pr is perceptual roughness); otherwise, for a conductor with
+// Ns, the Blinn-Phong equivalent sqrt(2 / (Ns + 2)) (Walter et al. 2007); otherwise 0.
 #include <optional>
 #include <string>
 #include <string_view>
@@ -33,8 +34,9 @@ struct MtlEntry {
   std::optional<double> Ni, Ns, Pr, Pm;
 };
 
-// All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement radwalk
-// cannot read (a number that does not parse, a spectral or xyz colour, a statement before the first newmtl).
+// All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement
+// radwalk cannot read (a number that does not parse, is out of range or not finite, a spectral or xyz colour,
+// a statement before the first newmtl).
 std::vector<MtlEntry> scan_mtl(const std::string& path);
 // The same for the bytes of an MTL file already read (path names it in messages).
 std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view text);

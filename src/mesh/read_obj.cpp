@@ -38,7 +38,7 @@ struct ObjScan {
 };
 
 // The parser: one pass over the statements, exact coordinates and strict checks (see read_obj.h).
-ObjScan scan_obj(const std::string& path, const std::string& text) {
+ObjScan scan_obj(const std::string& path, std::string_view text) {
   ObjScan s;
   std::string object, group_name;  // the current o and g names
   std::int32_t group = -1;
@@ -140,16 +140,17 @@ bool is_regular_file(const std::string& path) {
 // The files an mtllib statement names, resolved against the OBJ's directory (absolute paths as given). The
 // whole rest of the statement is one file name if such a file exists (names with spaces, as some exporters write
 // them); otherwise it is a list of file names separated by spaces or tabs, every one of which must exist.
-std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine& lib, const std::string& dir) {
+std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine& lib, const std::string& dir,
+                                        const MtlSource& source) {
   auto resolved = [&](const std::string& name) { return !name.empty() && name[0] == '/' ? name : dir + name; };
   const std::string whole = resolved(unescape_spaces(lib.name));
-  if (is_regular_file(whole)) return {whole};
+  if (source.exists(whole)) return {whole};
   std::vector<std::string> files;
   std::string name;
   auto add = [&] {
     if (name.empty()) return;
     const std::string file = resolved(name);
-    if (!is_regular_file(file))
+    if (!source.exists(file))
       throw InputError(locate(path, lib.line, -1, "material library '" + printable(name) + "' not found (looked for " +
                                                       printable(file) + ")"));
     files.push_back(file);
@@ -171,8 +172,16 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
 
 }  // namespace
 
+MtlSource mtl_files_on_disk() {
+  return {is_regular_file, [](const std::string& file) { return read_input_file(file); }};
+}
+
 Mesh read_obj(const std::string& path, const ReadOptions& options) {
-  const std::string text = read_input_file(path);
+  return read_obj_text(path, read_input_file(path), mtl_files_on_disk(), options);
+}
+
+Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSource& source,
+                   const ReadOptions& options) {
   const ObjScan scan = scan_obj(path, text);
   const std::string dir = directory_of(path);
 
@@ -180,12 +189,12 @@ Mesh read_obj(const std::string& path, const ReadOptions& options) {
   std::vector<MtlEntry> entries;
   std::vector<std::string> libraries;
   for (const auto& lib : scan.mtllib)
-    for (const std::string& file : resolve_mtllib(path, lib, dir)) {
+    for (const std::string& file : resolve_mtllib(path, lib, dir, source)) {
       bool seen = false;
       for (const auto& l : libraries) seen = seen || l == file;
       if (seen) continue;
       libraries.push_back(file);
-      auto more = scan_mtl(file);
+      auto more = scan_mtl_text(file, source.read(file));
       entries.insert(entries.end(), more.begin(), more.end());
     }
 

@@ -20,12 +20,31 @@
 // tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
 // reader here.
 // Out-of-range vertex indices are kept and reported by validate_mesh.
+#include <functional>
 #include <string>
+#include <string_view>
 
 #include "mesh/mesh.h"
 
 namespace radwalk {
 
+// Where the material libraries of an OBJ come from. exists(path) says whether a library of that (resolved)
+// path can be read: it decides how an mtllib statement is split (see above) and whether a library is "not
+// found"; read(path) gives a library's bytes, once per library, after exists(path) said yes.
+struct MtlSource {
+  std::function<bool(const std::string& path)> exists;
+  std::function<std::string(const std::string& path)> read;
+};
+
+// Libraries as regular files on disk, each read once with read_input_file (what read_obj uses).
+MtlSource mtl_files_on_disk();
+
+// read_obj_text(path, read_input_file(path), mtl_files_on_disk(), options).
 Mesh read_obj(const std::string& path, const ReadOptions& options = {});
+
+// The bytes of an OBJ file already read: `path` names it in messages and is the base of relative mtllib
+// names; the libraries come from `libraries`. Gives exactly what read_obj gives for a file with these bytes.
+Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSource& libraries,
+                   const ReadOptions& options = {});
 
 }  // namespace radwalk

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -50,6 +51,13 @@ std::size_t type_size(PlyType t) {
 }
 
 bool is_float(PlyType t) { return t == PlyType::float32 || t == PlyType::float64; }
+
+// A value read from the file, for a message: the shortest text that reads back to it (an ascii index or
+// length may be 1e30, which no integer type holds; to_string would print a colour of -1e-7 as "-0.000000").
+std::string value_text(double v) {
+  char buf[32];
+  return std::string(buf, std::to_chars(buf, buf + sizeof buf, v).ptr);
+}
 
 struct PlyProperty {
   std::string name;
@@ -321,8 +329,9 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
           if (is_face && coloured && (static_cast<int>(k) == pr || static_cast<int>(k) == pg || static_cast<int>(k) == pb)) {
             const double top = is_float(p.type) ? 1.0 : 255.0;
             if (!(v >= 0 && v <= top))
-              throw InputError(locate(path, line, face, "colour " + p.name + " = " + std::to_string(v) +
-                                                            " is outside 0.." + (is_float(p.type) ? "1" : "255")));
+              throw InputError(locate(path, line, face,
+                                      "colour " + p.name + " = " + value_text(v) + " is outside 0.." +
+                                          (is_float(p.type) ? "1" : "255")));
             colour[static_cast<int>(k) == pr ? 0 : static_cast<int>(k) == pg ? 1 : 2] = v / top;
           }
           continue;
@@ -330,8 +339,8 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
         const double n = in.value(p.count_type, value_name + " count");
         if (n < 0) throw InputError(locate(path, line, face, "negative list length"));
         if (n > static_cast<double>(in.remaining()))
-          throw InputError(locate(path, line, face, "list length " + std::to_string(static_cast<long>(n)) +
-                                                        " runs past the end of the file"));
+          throw InputError(
+              locate(path, line, face, "list length " + value_text(n) + " runs past the end of the file"));
         const auto count = static_cast<std::size_t>(n);
         const bool indices = is_face && static_cast<int>(k) == pv;
         if (indices && count < 3)
@@ -344,9 +353,9 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
           const double v = in.value(p.type, value_name + " entry " + std::to_string(c));
           if (!indices) continue;
           if (!(v >= 0 && v < static_cast<double>(vertex_element->count)))
-            throw InputError(locate(path, line, face, "vertex index " + std::to_string(static_cast<long long>(v)) +
-                                                          " is out of range (" +
-                                                          std::to_string(vertex_element->count) + " vertices)"));
+            throw InputError(locate(path, line, face,
+                                    "vertex index " + value_text(v) + " is out of range (" +
+                                        std::to_string(vertex_element->count) + " vertices)"));
           corners.push_back(static_cast<std::int32_t>(v));
         }
       }

@@ -266,13 +266,13 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Warn
                         fmt(area) + " (a bow-tie); split it into two triangles");
     const double bend = quad_nonplanarity(mesh, f);
     if (bend > tol.planar_error)
-      fail(mesh, f, "non-planar quad: a corner is " + fmt(100 * bend) + "% of the diagonal off its plane (limit " +
-                        fmt(100 * tol.planar_error) + "%); split it into two triangles (refused with --strict; "
-                        "otherwise split)");
+      fail(mesh, f,
+           "non-planar quad: a corner is " + fmt(100 * bend) + "% of the quad's width off its plane (limit " +
+               fmt(100 * tol.planar_error) + "%); split it into two triangles (refused with --strict; otherwise split)");
     if (bend > tol.planar_clean)
       log.add("slightly non-planar quad", f,
               "slightly non-planar quad: a corner is " + fmt(100 * bend) +
-                  "% of the diagonal off its plane; patches treat it as flat");
+                  "% of the quad's width off its plane; patches treat it as flat");
     const double turn = quad_min_turn_sine(mesh, f);
     if (turn < -tol.convex_sine)
       fail(mesh, f, "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +

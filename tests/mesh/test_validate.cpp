@@ -246,7 +246,7 @@ TEST_CASE("a self-intersecting (bow-tie) quad is refused", "[mesh][validate]") {
 
 TEST_CASE("the planarity and degeneracy limits separate the cases they are meant to", "[mesh][validate]") {
   // A unit square with one corner lifted by h: non-planarity grows linearly with h. The limits of
-  // ValidationTolerances refuse a lift of 2 % of the diagonal and accept a lift of 0.1 %.
+  // ValidationTolerances refuse a lift of 2 % of the diagonal (the width of a square) and accept a lift of 0.1 %.
   const ValidationTolerances tol;
   auto lifted = [](double h) {
     Mesh m;
