@@ -316,6 +316,11 @@ void check_materials(Mesh& mesh, WarningLog& log) {
     if (!m.Ke.allFinite() || (m.Ke < 0).any())
       fail(mesh, f, "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
                         ", emitted radiance must be finite and >= 0");
+    // E = pi Ke must be finite too, and leave room for the radiosity it drives (found by fuzz_validate_patch:
+    // Ke 1e308 passed and made E infinite).
+    if (!(m.Ke.maxCoeff() <= 1e300))
+      fail(mesh, f, "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
+                        ", above the 1e300 radwalk computes with (E = pi Ke would overflow)");
     if (m.kind != BsdfKind::diffuse)
       log.add("non-diffuse material", f,
               material_name(m) + " is " + kind_name(m.kind) +

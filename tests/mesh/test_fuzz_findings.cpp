@@ -129,3 +129,20 @@ TEST_CASE("fuzz finding: an ascii PLY index or list length of 1e30 is reported, 
                     Catch::Contains("list length 1e+30 runs past the end of the file"));
   CHECK_THROWS_WITH(read_ply_bytes("test.ply", head + "3 0 1 -2\n"), Catch::Contains("vertex index -2 is out of range"));
 }
+
+TEST_CASE("fuzz finding: an emission whose E = pi Ke overflows is refused", "[mesh][validate][fuzz]") {
+  // fuzz_validate_patch (materials physical and finite after validation): Ke 1e308 is finite, E = pi Ke is not.
+  // Reproducer: tests/fuzz/corpus/validate_patch/regression-huge-emission.obj.
+  Mesh mesh;
+  mesh.path = "huge";
+  mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  mesh.faces = {{0, 1, 2, 3}};
+  Material light;
+  light.name = "light";
+  light.Ke = Rgb(1e308, 0, 0);
+  mesh.materials = {light};
+  mesh.face_material = {0};
+  CHECK_THROWS_WITH(validate_mesh(mesh), Catch::StartsWith("huge: face 0: emission too large"));
+  mesh.materials[0].Ke = Rgb(1e300, 0, 0);
+  CHECK_NOTHROW(validate_mesh(mesh));
+}
