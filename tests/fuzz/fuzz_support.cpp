@@ -106,6 +106,21 @@ void check_refusal_message(const std::string& message, const std::vector<std::st
                      "message " + quoted(message) + " does not start with one of the files " + expected);
 }
 
+void check_read_mesh(const Mesh& mesh) {
+  const std::size_t n = mesh.face_count();
+  RADWALK_FUZZ_CHECK(mesh.face_material.size() == n && mesh.face_line.size() == n,
+                     "per-face arrays of another size");
+  for (const Vec3& p : mesh.vertices) RADWALK_FUZZ_CHECK(p.allFinite(), "a non-finite vertex was read");
+  for (std::size_t f = 0; f < n; ++f) {
+    const auto& c = mesh.faces[f];
+    RADWALK_FUZZ_CHECK(c[0] >= 0 && c[1] >= 0 && c[2] >= 0 && c[3] >= -1,
+                       "face " + std::to_string(f) + ": corners");
+    RADWALK_FUZZ_CHECK(mesh.face_material[f] >= -1 &&
+                           mesh.face_material[f] < static_cast<std::int32_t>(mesh.materials.size()),
+                       "face " + std::to_string(f) + ": material index");
+  }
+}
+
 void check_warnings(const Mesh& mesh, const std::vector<std::string>& files) {
   for (const std::string& w : mesh.warnings) check_refusal_message(w, files);
 }

@@ -60,6 +60,10 @@ void check_refusal_message(const std::string& message, const std::vector<std::st
 template <class Body>
 bool accepts(Body&& body, const std::vector<std::string>& files);
 
+// What every reader's Mesh is, before validation: one material (-1 or an index) and one line per face,
+// corners 0 to 2 non-negative and corner 3 a vertex or -1, finite vertices.
+void check_read_mesh(const Mesh& mesh);
+
 // Oracle (a) on the warnings of a mesh that was read (and validated): each is a message as
 // check_refusal_message requires.
 void check_warnings(const Mesh& mesh, const std::vector<std::string>& files);
