@@ -39,6 +39,8 @@ struct Mesh {
   // " (object 'chair', group 'seat', material 'red')": where face f is in the file, as far as known ("" if
   // nothing is).
   std::string context(std::size_t f) const;
+  // The same for a face with this material and group (indices, -1 for none), e.g. one not yet added.
+  std::string context_of(std::int32_t material, std::int32_t group) const;
 };
 
 }  // namespace radwalk

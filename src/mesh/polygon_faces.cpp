@@ -30,13 +30,7 @@ void PolygonFaces::add(const std::vector<std::int32_t>& input, long line, std::i
     push(c, line, material, group, source);
     return;
   }
-  // Where this face is, for messages (the material and group of the face, as the file names them).
-  Mesh probe;
-  probe.materials = mesh_.materials;
-  probe.groups = mesh_.groups;
-  probe.face_material = {material};
-  probe.face_group = {group};
-  const std::string where = probe.context(0);
+  const std::string where = mesh_.context_of(material, group);  // for messages
   const std::string n = std::to_string(input.size());
   if (strict_)
     throw InputError(locate(mesh_.path, line, source, "has " + n + " vertices" + where +
