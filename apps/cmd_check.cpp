@@ -1,4 +1,6 @@
-// radwalk check SCENE: validate, report repairs and refusals, exit non-zero on refusal.
+// radwalk check SCENE: validate, report every repair, warning, note and refusal (grouped by kind: the pipeline's
+// load_validated_mesh), exit 2 on refusal once the whole scene was checked. --json lists every finding, also on
+// refusal.
 #include <cstdio>
 
 #include "apps/options.h"
@@ -14,12 +16,19 @@ int run_check(const SceneOptions& options) {
     quads += mesh.is_quad(f);
     emitters += (mesh.materials[mesh.face_material[f]].Ke > 0).any();
   }
+  // "clean", or the count of each severity found ("3 repairs, 2 warnings, 1 note"): printed with --quiet too.
+  std::string found;
+  for (const Severity s : {Severity::repair, Severity::warning, Severity::note}) {
+    long n = 0;
+    for (const Finding& f : mesh.findings) n += f.severity == s;
+    if (n > 0) found += (found.empty() ? "" : ", ") + std::to_string(n) + " " + severity_name(s) + (n == 1 ? "" : "s");
+  }
   std::printf("%s: %zu faces (%zu triangles, %zu quads), %zu vertices, %zu materials, %zu emitting faces: %s\n",
               options.scene.c_str(), mesh.face_count(), mesh.face_count() - quads, quads, mesh.vertices.size(),
-              mesh.materials.size(), emitters,
-              mesh.warnings.empty() ? "clean" : (std::to_string(mesh.warnings.size()) + " warnings").c_str());
+              mesh.materials.size(), emitters, found.empty() ? "clean" : found.c_str());
   summary.json()["emitting_faces"] = emitters;
-  summary.json()["clean"] = mesh.warnings.empty();
+  summary.json()["clean"] = mesh.findings.empty();
+  summary.json()["refused"] = false;
   if (!options.json.empty()) summary.write(options.json);
   return 0;
 }

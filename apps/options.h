@@ -18,6 +18,8 @@ struct SceneOptions {
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
   bool strict = false;     // --strict: refuse what the readers and validation would repair
+  std::vector<std::string> set_material;  // --set MATERIAL.Kd=r,g,b / MATERIAL.Ke=...: material overrides
+  double rho_scale = 1;    // --rho-scale s: every Kd times s (after --set)
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE

@@ -8,6 +8,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 
 #include "core/error.h"
 #include "core/timer.h"
@@ -18,19 +19,28 @@
 #include "io/csv_writer.h"
 #include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
+#include "mesh/material_override.h"
 #include "mesh/read_scene.h"
+#include "mesh/t_junctions.h"
+#include "mesh/validate.h"
 #include "patch/patching.h"
 
 namespace radwalk::app {
 
+namespace {
+bool g_quiet = false;
+long g_silenced = 0;
+}  // namespace
+
 void warn(RunSummary& summary, const std::string& message) {
-  std::fprintf(stderr, "radwalk: warning: %s\n", message.c_str());
+  if (g_quiet)
+    ++g_silenced;
+  else
+    std::fprintf(stderr, "radwalk: warning: %s\n", message.c_str());
   summary.add_warning(message);
 }
 
-namespace {
-bool g_quiet = false;
-}
+long silenced_warnings() { return g_silenced; }
 
 void set_quiet(bool quiet) { g_quiet = quiet; }
 
@@ -38,24 +48,130 @@ void note(const std::string& message) {
   if (!g_quiet) std::fprintf(stderr, "radwalk: %s\n", message.c_str());
 }
 
+namespace {
+
+// What the form-factor stage needs to know about the scene last validated (load_validated_mesh): where each
+// input face is (object, group, material) and whether the faces form a closed shell (mesh/t_junctions.h).
+struct SceneFacts {
+  std::vector<std::string> face_context;  // per input face: " (object 'o', group 'g', material 'm')" or ""
+  bool closed_shell = false;
+};
+SceneFacts g_scene;
+
+// " (object ..., material ...)" of input face f, "" when unknown.
+std::string face_context(std::int32_t face) {
+  return face >= 0 && static_cast<std::size_t>(face) < g_scene.face_context.size()
+             ? g_scene.face_context[static_cast<std::size_t>(face)]
+             : std::string();
+}
+
+nlohmann::json findings_json(const std::vector<Finding>& findings) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const Finding& f : findings)
+    list.push_back({{"kind", f.kind},
+                    {"severity", severity_name(f.severity)},
+                    {"file", f.file},
+                    {"line", f.line},
+                    {"face", f.face},
+                    {"object", f.object},
+                    {"group", f.group},
+                    {"material", f.material},
+                    {"message", f.message}});
+  return list;
+}
+
+// The scene's findings into the summary: the list, and the count of each severity.
+void record_findings(const std::vector<Finding>& findings, RunSummary& summary) {
+  summary.json()["findings"] = findings_json(findings);
+  nlohmann::json counts = {{"error", 0}, {"repair", 0}, {"warning", 0}, {"note", 0}};
+  for (const Finding& f : findings) counts[severity_name(f.severity)] = counts[severity_name(f.severity)].get<long>() + 1;
+  summary.json()["finding_counts"] = counts;
+}
+
+void record_overrides(const SceneOptions& options, const std::vector<MaterialOverride>& overrides,
+                      RunSummary& summary) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const MaterialOverride& o : overrides)
+    list.push_back({{"material", o.material}, {"property", o.property}, {"value", {o.value[0], o.value[1], o.value[2]}}});
+  summary.json()["material_overrides"] = list;
+  summary.json()["rho_scale"] = options.rho_scale;
+}
+
+}  // namespace
+
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   for (const std::string& w : options.warnings) summary.add_warning(w);
-  if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
+  summary.json()["scene"] = options.scene;
+  summary.json()["strict"] = options.strict;
+  std::vector<MaterialOverride> overrides;
+  for (const std::string& text : options.set_material) overrides.push_back(parse_material_override(text));
+  record_overrides(options, overrides, summary);
+  // A refusal is written to --json too, with every finding (a reading error that stops the reader is one).
+  auto refuse = [&](const std::vector<Finding>& findings, const std::string& message) {
+    record_findings(findings, summary);
+    summary.json()["refused"] = true;
+    summary.json()["error"] = message;
+    if (!options.json.empty()) summary.write(options.json);
+  };
+  if (!std::filesystem::exists(options.scene)) {
+    const std::string message = options.scene + ": no such file";
+    Finding f;
+    f.kind = "no such file";
+    f.severity = Severity::error;
+    f.file = options.scene;
+    f.message = "no such file";
+    refuse({f}, message);
+    throw InputError(message);
+  }
   Timer timer;
   ReadOptions read;
   read.strict = options.strict;
-  Mesh mesh = load_scene(options.scene, read);
+  Mesh mesh;
+  try {
+    mesh = read_scene(options.scene, read);
+    std::vector<NamedFile> libraries;
+    for (const Material& m : mesh.materials)
+      if (!m.file.empty()) libraries.push_back({"the scene's material library", m.file});
+    const std::string clash = check_distinct_files(options.outputs, libraries);
+    if (!clash.empty()) throw InputError(clash);
+    apply_material_overrides(mesh, overrides, options.rho_scale);
+    ValidationTolerances tolerances;
+    tolerances.strict = options.strict;
+    validate_mesh(mesh, tolerances);
+  } catch (const MeshRefused& e) {
+    // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
+    const std::vector<Finding>& all = e.findings();
+    for (const std::string& w : validation_lines(all, 10)) warn(summary, w);
+    for (const std::string& line : grouped_lines(all, {Severity::error}, 10))
+      std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
+    const std::string message =
+        options.scene + ": refused: " + count_by_kind(all, Severity::error) +
+        (options.strict ? " (--strict)" : "") + "; every finding is listed above" +
+        (options.json.empty() ? "" : " and in " + options.json);
+    refuse(all, message);
+    throw InputError(message);
+  } catch (const InputError& e) {
+    Finding f;
+    f.kind = "reading error";
+    f.severity = Severity::error;
+    f.file = options.scene;
+    f.message = e.what();
+    refuse({f}, e.what());
+    throw;
+  }
+  g_scene = SceneFacts{};
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const auto source = static_cast<std::size_t>(mesh.source_face(f));
+    if (g_scene.face_context.size() <= source) g_scene.face_context.resize(source + 1);
+    g_scene.face_context[source] = mesh.context(f);
+  }
+  g_scene.closed_shell = is_closed_shell(mesh);
+  summary.json()["closed_shell"] = g_scene.closed_shell;
   summary.add_timing("load", timer.seconds());
-  std::vector<NamedFile> libraries;
-  for (const Material& m : mesh.materials)
-    if (!m.file.empty()) libraries.push_back({"the scene's material library", m.file});
-  const std::string clash = check_distinct_files(options.outputs, libraries);
-  if (!clash.empty()) throw InputError(clash);
   for (const std::string& w : mesh.warnings) warn(summary, w);
-  summary.json()["scene"] = options.scene;
+  record_findings(mesh.findings, summary);
   summary.json()["seed"] = options.seed;
   summary.json()["threads"] = options.threads;
-  summary.json()["strict"] = options.strict;
   summary.json()["faces"] = mesh.face_count();
   summary.json()["materials"] = mesh.materials.size();
   return mesh;
@@ -71,6 +187,43 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
   summary.json()["total_area"] = patches.total_area();
   return patches;
 }
+
+namespace {
+
+// Rays that escaped a closed scene went through a gap (a crack between faces that do not share their edges, a
+// face missing from the room) or started inside a closed object: a warning naming the patches and the groups
+// (object, group, material) they come from, most first; escaped_by_group in the JSON.
+void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint64_t escaped, std::uint64_t rays,
+                       RunSummary& summary) {
+  std::map<std::string, std::uint64_t> by_group;
+  std::size_t worst = 0, sources = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (ff.escaped[i] == 0) continue;
+    ++sources;
+    std::string where = face_context(patches.face[i]);
+    by_group[where.empty() ? "(no object, group or material)" : where.substr(2, where.size() - 3)] += ff.escaped[i];
+    if (ff.escaped[i] > ff.escaped[worst]) worst = i;
+  }
+  std::vector<std::pair<std::string, std::uint64_t>> groups(by_group.begin(), by_group.end());
+  std::stable_sort(groups.begin(), groups.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  nlohmann::json list = nlohmann::json::array();
+  std::string named;
+  for (std::size_t k = 0; k < groups.size(); ++k) {
+    list.push_back({{"where", groups[k].first}, {"escaped", groups[k].second}});
+    if (k < 3) named += (k ? "; " : "") + groups[k].first + ": " + std::to_string(groups[k].second);
+  }
+  summary.json()["escaped_by_group"] = list;
+  summary.json()["patches_with_escaped_rays"] = sources;
+  warn(summary, std::to_string(escaped) + " of " + std::to_string(rays) + " rays (" +
+                    number_text(100.0 * double(escaped) / double(std::max<std::uint64_t>(rays, 1))) +
+                    " %) escaped although the scene's faces form a closed shell: they left " +
+                    std::to_string(sources) + " patches through a gap or from inside a closed object, and their "
+                    "light is lost. Most from patch " + std::to_string(worst) + " (input face " +
+                    std::to_string(patches.face[worst]) + face_context(patches.face[worst]) + "); by group: " +
+                    named + (groups.size() > 3 ? "; ..." : "") + " (escaped_by_group in --json, the escaped field)");
+}
+
+}  // namespace
 
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
                                 const PatchSet& patches, RunSummary& summary) {
@@ -119,8 +272,10 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
                         std::to_string(enclosed) + " of them entirely: they lie inside a closed object, e.g. " +
                         "floor under a block, and receive no light); elsewhere back hits mean a face is " +
                         "oriented the wrong way. Most from patch " + std::to_string(worst) + " (input face " +
-                        std::to_string(patches.face[worst]) + "); see the back_hits field");
+                        std::to_string(patches.face[worst]) + face_context(patches.face[worst]) +
+                        "); see the back_hits field");
     }
+    if (escaped > 0 && g_scene.closed_shell) warn_escaped_rays(ff, patches, escaped, rays, summary);
   }
   summary.json()["form_factor_nonzeros"] = ff.F.nonZeros();
   if (options.reciprocity) {

@@ -14,9 +14,12 @@
 
 namespace radwalk::app {
 
-// Reads and validates the scene (throws InputError on refusal), prints the repairs as warnings; the summary also
-// gets the warnings printed while reading the command line (options.warnings). Output file names were checked
-// then too (apps/output_files.h).
+// Reads the scene, applies the material overrides (--set, --rho-scale: mesh/material_override.h) and validates it,
+// prints the repairs, warnings and notes grouped by kind (mesh/validate.h); the summary gets every finding
+// ("findings"), the overrides, and the warnings printed while reading the command line (options.warnings). On
+// refusal every finding is printed (errors grouped by kind after the warnings), --json is written with them
+// ("refused": true), and an InputError with one summary line is thrown. Output file names were checked while
+// reading the command line (apps/output_files.h), the material libraries here.
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
 // load_validated_mesh, then make_patches with options.max_edge.
@@ -39,8 +42,10 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary, const VtpMetadata& metadata = {});
 
-// Prints "radwalk: warning: ..." and records it in the summary.
+// Prints "radwalk: warning: ..." (unless set_quiet(true): then it is only counted) and records it in the summary.
 void warn(RunSummary& summary, const std::string& message);
+// The warnings warn() did not print because of --quiet.
+long silenced_warnings();
 
 // Prints an informational line on stderr ("radwalk: ..."), unless set_quiet(true) (--quiet).
 void note(const std::string& message);

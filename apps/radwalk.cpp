@@ -131,14 +131,24 @@ void warn_ignored(const CLI::App* cmd, const Command& command, SceneOptions& sce
     return o->count() > 0;
   };
   for (const std::string& w : ignored_options(command, given)) {
-    std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
+    if (!g_quiet) std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
     scene.warnings.push_back(w);
   }
 }
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
-  cmd->add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
+  cmd->add_flag("-q,--quiet", g_quiet,
+                "No progress, notes or warnings on stderr (errors still print; the warnings are counted, and "
+                "listed in --json)");
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
+  cmd->add_option("--set", o.set_material,
+                  "Override a material: MATERIAL.Kd=r,g,b (rho) or MATERIAL.Ke=r,g,b (emitted radiance); one "
+                  "value is grey; repeatable")
+      ->allow_extra_args(false);
+  cmd->add_option("--rho-scale", o.rho_scale, "Multiply every material's Kd by S (after --set); refused if a "
+                                              "channel reaches 1")
+      ->check(kNonNegative)
+      ->capture_default_str();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
                     "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
@@ -228,7 +238,8 @@ int main(int argc, char** argv) {
       "radwalk"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("radwalk ") + RADWALK_VERSION);
-  app.add_flag("-q,--quiet", g_quiet, "No progress or notes on stderr (warnings and errors still print)");
+  app.add_flag("-q,--quiet", g_quiet,
+               "No progress, notes or warnings on stderr (errors still print; the warnings are counted)");
   std::vector<std::string> args(argv, argv + argc);
 
   SceneOptions check;
@@ -472,13 +483,21 @@ int main(int argc, char** argv) {
     if (*compare_cmd) warn_ignored(compare_cmd, compare, compare.scene);
     if (*pt_cmd) warn_ignored(pt_cmd, pt, pt.scene);
 
-    if (*check_cmd) return run_check(check);
-    if (*patch_cmd) return run_patch(patch);
-    if (*ff_cmd) return run_formfactors(ff);
-    if (*solve_cmd) return run_solve(solve);
-    if (*compare_cmd) return run_compare(compare);
-    if (*pt_cmd) return run_pathtrace(pt);
+    // --quiet: the count of the warnings it did not print (they are in --json).
+    auto counted = [](int code) {
+      if (silenced_warnings() > 0)
+        std::fprintf(stderr, "radwalk: %ld warning(s) not shown (--quiet)\n", silenced_warnings());
+      return code;
+    };
+    if (*check_cmd) return counted(run_check(check));
+    if (*patch_cmd) return counted(run_patch(patch));
+    if (*ff_cmd) return counted(run_formfactors(ff));
+    if (*solve_cmd) return counted(run_solve(solve));
+    if (*compare_cmd) return counted(run_compare(compare));
+    if (*pt_cmd) return counted(run_pathtrace(pt));
   } catch (const InputError& e) {
+    if (silenced_warnings() > 0)
+      std::fprintf(stderr, "radwalk: %ld warning(s) not shown (--quiet)\n", silenced_warnings());
     std::fprintf(stderr, "radwalk: error: %s\n", e.what());
     return 2;
   } catch (const NumericalError& e) {

@@ -65,4 +65,13 @@ double quad_min_turn_sine(const Mesh& mesh, std::size_t f) {
   return smallest;
 }
 
+double quad_area_ambiguity(const Mesh& mesh, std::size_t f) {
+  if (!mesh.is_quad(f)) return 0;
+  const Vec3 &p0 = corner(mesh, f, 0), &p1 = corner(mesh, f, 1), &p2 = corner(mesh, f, 2), &p3 = corner(mesh, f, 3);
+  const double a02 = 0.5 * ((p1 - p0).cross(p2 - p0).norm() + (p2 - p0).cross(p3 - p0).norm());
+  const double a13 = 0.5 * ((p1 - p0).cross(p3 - p0).norm() + (p2 - p1).cross(p3 - p1).norm());
+  const double larger = std::max(a02, a13);
+  return larger > 0 ? std::max(0.0, larger - face_vector_area(mesh, f).norm()) / larger : 0;
+}
+
 }  // namespace radwalk

@@ -26,4 +26,11 @@ double quad_nonplanarity(const Mesh& mesh, std::size_t f);
 // (concave quad) or at the corners of a bow-tie; 0 at a straight corner. 1 for a triangle.
 double quad_min_turn_sine(const Mesh& mesh, std::size_t f);
 
+// Area ambiguity of a quad (0 for a triangle): a bent quad has no one area. Its two triangulations (fans 0-2 and
+// 1-3) and its bilinear surface (where its patches lie) have areas between its vector area |A_v| and the larger
+// triangulation's, so the ambiguity is that spread relative to the larger: (max(A_02, A_13) - |A_v|) /
+// max(A_02, A_13). A planar convex quad has 0 up to rounding; a square with a corner lifted to a non-planarity b
+// about 8 b^2 (8e-4 at b = 1e-2); a thin quad far more (first order in its bend).
+double quad_area_ambiguity(const Mesh& mesh, std::size_t f);
+
 }  // namespace radwalk

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "mesh/finding.h"
 #include "mesh/material.h"
 
 namespace radwalk {
@@ -28,8 +29,12 @@ struct Mesh {
                                                  // unless a repair split or dropped faces (pieces share it)
   std::vector<std::int32_t> face_group;          // index into groups, -1 outside any (OBJ `o` and `g`)
   std::vector<std::string> groups;               // "object 'chair', group 'seat'" as the file names them
+  std::vector<std::string> group_object;         // the object name of groups[i] ("" if none)
+  std::vector<std::string> group_name;           // the group name of groups[i] ("" if none)
   std::vector<Material> materials;
-  std::vector<std::string> warnings;             // one line per repair or notice, naming the face
+  std::vector<std::string> warnings;             // one line per repair or notice, naming the face (after
+                                                 // validate_mesh: the non-error findings, grouped by kind)
+  std::vector<Finding> findings;                 // what the reader and validation found (finding.h)
 
   std::size_t face_count() const { return faces.size(); }
   bool is_quad(std::size_t f) const { return faces[f][3] >= 0; }
@@ -41,6 +46,12 @@ struct Mesh {
   std::string context(std::size_t f) const;
   // The same for a face with this material and group (indices, -1 for none), e.g. one not yet added.
   std::string context_of(std::int32_t material, std::int32_t group) const;
+  // A finding about face f: its input face, line, object, group and material filled in.
+  Finding finding(std::size_t f, std::string kind, Severity severity, std::string message) const;
+  // The same for input face `source` at `line` with this material and group (indices, -1 for none), e.g. one
+  // not yet added; source -1 and line 0 for a scene-wide finding.
+  Finding finding_of(long source, long line, std::int32_t material, std::int32_t group, std::string kind,
+                     Severity severity, std::string message) const;
 };
 
 }  // namespace radwalk

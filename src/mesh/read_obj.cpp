@@ -20,6 +20,7 @@ struct ScannedFace {
   std::vector<std::int32_t> v;  // 0-based vertex indices (may be out of range; validate_mesh reports that)
   int usemtl = -1;              // index into ObjScan::usemtl, -1 before any usemtl
   std::int32_t group = -1;      // index into ObjScan::groups, -1 before any o or g
+  std::string bad_index;        // why a corner's index is refused ("" if none): reported with the other findings
 };
 
 struct NamedLine {
@@ -33,6 +34,7 @@ struct ObjScan {
   std::vector<NamedLine> usemtl;
   std::vector<NamedLine> mtllib;
   std::vector<std::string> groups;  // "object 'o', group 'g'" labels in order of first use
+  std::vector<std::string> group_object, group_name;  // their parts
   long ignored_elements = 0;  // `l` and `p` statements
   long first_ignored_line = 0;
 };
@@ -57,9 +59,8 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
         const auto x = parse_double(tokens[k + 1]);
         if (!x)
           throw InputError(locate(path, line, -1, vertex + ": '" + std::string(tokens[k + 1]) + "' is not a number"));
-        if (!std::isfinite(*x))
-          throw InputError(locate(path, line, -1, vertex + " has a non-finite coordinate (" +
-                                                      std::string(tokens[k + 1]) + ")"));
+        // A non-finite coordinate (nan, inf) is kept: validate_mesh refuses the faces that use it, with the
+        // scene's other findings.
         p[k] = *x;
       }
       s.vertices.push_back(p);
@@ -78,13 +79,16 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
         const auto index = parse_long(token.substr(0, token.find('/')));
         if (!index)
           throw InputError(locate(path, line, face, "'" + std::string(token) + "' is not a vertex index"));
-        if (*index == 0) throw InputError(locate(path, line, face, "vertex index 0 is invalid (OBJ counts from 1)"));
         const long resolved = *index > 0 ? *index - 1 : static_cast<long>(s.vertices.size()) + *index;
-        if (resolved < 0)
-          throw InputError(locate(path, line, face, "relative vertex index " + std::to_string(*index) +
-                                                        " points before the first vertex"));
-        if (resolved > std::numeric_limits<std::int32_t>::max())
-          throw InputError(locate(path, line, face, "vertex index " + std::to_string(*index) + " is too large"));
+        if (f.bad_index.empty()) {
+          if (*index == 0)
+            f.bad_index = "vertex index 0 is invalid (OBJ counts from 1)";
+          else if (resolved < 0)
+            f.bad_index = "relative vertex index " + std::to_string(*index) + " points before the first vertex";
+          else if (resolved > std::numeric_limits<std::int32_t>::max())
+            f.bad_index = "vertex index " + std::to_string(*index) + " is too large";
+        }
+        if (!f.bad_index.empty()) continue;
         f.v.push_back(static_cast<std::int32_t>(resolved));
       }
       s.faces.push_back(std::move(f));
@@ -113,6 +117,8 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
         if (group < 0) {
           group = static_cast<std::int32_t>(s.groups.size());
           s.groups.push_back(label);
+          s.group_object.push_back(object);
+          s.group_name.push_back(group_name);
         }
       }
     } else if (key == "l" || key == "p") {
@@ -208,8 +214,14 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
     const int index = static_cast<int>(mesh.materials.size());
     mesh.materials.push_back(material_from_mtl(e));
     if (!by_name.emplace(e.name, index).second)
-      mesh.warnings.push_back(locate(e.file, e.line, -1, "material '" + printable(e.name) +
-                                                             "' is defined again; the first definition is used"));
+    {
+      Finding again = mesh.finding_of(-1, 0, -1, -1, "material defined again", Severity::warning,
+                                      "material '" + printable(e.name) +
+                                          "' is defined again; the first definition is used");
+      again.file = e.file;
+      again.line = e.line;
+      mesh.findings.push_back(again);
+    }
   }
 
   // Faces, with their lines, groups and materials; polygons of more than 4 corners triangulated (polygon_faces.h).
@@ -217,30 +229,45 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
   if (n_faces > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     throw InputError(locate(path, 0, -1, "too many faces"));
   mesh.groups = scan.groups;
+  mesh.group_object = scan.group_object;
+  mesh.group_name = scan.group_name;
   PolygonFaces faces(mesh, options.strict);
   for (std::size_t f = 0; f < n_faces; ++f) {
     const ScannedFace& sf = scan.faces[f];
     std::int32_t material = -1;
+    bool refused = false;
     if (sf.usemtl >= 0) {
       const NamedLine& use = scan.usemtl[static_cast<std::size_t>(sf.usemtl)];
       const auto it = by_name.find(use.name);
       if (it == by_name.end()) {
         std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
         for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
-        throw InputError(locate(path, sf.line, static_cast<long>(f),
-                                "unknown material '" + printable(use.name) + "' (usemtl at line " +
-                                    std::to_string(use.line) + ": " + where + ")"));
+        Finding unknown = mesh.finding_of(static_cast<long>(f), sf.line, -1, sf.group, "unknown material",
+                                          Severity::error,
+                                          "unknown material '" + printable(use.name) + "' (usemtl at line " +
+                                              std::to_string(use.line) + ": " + where + ")");
+        unknown.material = use.name;
+        mesh.findings.push_back(unknown);
+        refused = true;
+      } else {
+        material = it->second;
       }
-      material = it->second;
     }
+    if (!sf.bad_index.empty()) {
+      mesh.findings.push_back(mesh.finding_of(static_cast<long>(f), sf.line, material, sf.group, "bad vertex index",
+                                              Severity::error, sf.bad_index));
+      refused = true;
+    }
+    // A refused face is left out (the scene is refused after validation, with every finding).
+    if (refused) continue;
     faces.add(sf.v, sf.line, material, sf.group, static_cast<std::int32_t>(f));
   }
-  faces.report();
 
   if (scan.ignored_elements > 0)
-    mesh.warnings.push_back(locate(path, scan.first_ignored_line, -1,
-                                   std::to_string(scan.ignored_elements) +
-                                       " line/point elements (l, p) ignored: radiosity needs surfaces"));
+    mesh.findings.push_back(mesh.finding_of(-1, scan.first_ignored_line, -1, -1, "line and point elements ignored",
+                                            Severity::warning,
+                                            std::to_string(scan.ignored_elements) +
+                                                " line/point elements (l, p) ignored: radiosity needs surfaces"));
   return mesh;
 }
 

@@ -291,7 +291,8 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
     m.name = "ply_default";
     m.Kd = Rgb::Constant(0.5);
     mesh.materials.push_back(m);
-    mesh.warnings.push_back(locate(path, 0, -1, "no face colours: every face gets reflectance 0.5"));
+    mesh.findings.push_back(mesh.finding_of(-1, 0, -1, -1, "no face colours", Severity::warning,
+                                            "no face colours: every face gets reflectance 0.5"));
   }
   std::map<std::array<double, 3>, int> material_of_colour;
 
@@ -380,7 +381,6 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
       polygons.add(corners, line, material, -1, static_cast<std::int32_t>(item));
     }
   }
-  polygons.report();
   return mesh;
 }
 

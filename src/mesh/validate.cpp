@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
+#include "mesh/t_junctions.h"
 #include "mesh/triangulate.h"
 
 namespace radwalk {
@@ -55,54 +56,81 @@ const char* kind_name(BsdfKind k) {
   return "?";
 }
 
-// Warnings with a cap per kind; the kinds beyond the cap get one summary line at the end.
-class WarningLog {
+// The findings of one validation, appended to mesh.findings (finding.h) in the order found.
+class FindingLog {
  public:
-  WarningLog(Mesh& mesh, int cap) : mesh_(mesh), cap_(cap) {}
-  void add(const std::string& kind, std::size_t face, const std::string& what) {
-    auto it = std::find_if(counts_.begin(), counts_.end(), [&](const auto& c) { return c.first == kind; });
-    if (it == counts_.end()) it = counts_.insert(counts_.end(), {kind, 0});
-    if (++it->second <= cap_)
-      mesh_.warnings.push_back(locate(mesh_.path, line(face), mesh_.source_face(face), what + mesh_.context(face)));
+  explicit FindingLog(Mesh& mesh) : mesh_(mesh) {}
+  void add(const std::string& kind, Severity severity, std::size_t face, const std::string& what) {
+    mesh_.findings.push_back(mesh_.finding(face, kind, severity, what));
+    mesh_.findings.back().stage = "validate";
   }
-  void add_global(const std::string& what) { mesh_.warnings.push_back(locate(mesh_.path, 0, -1, what)); }
-  void finish() {
-    for (const auto& [kind, n] : counts_)
-      if (n > cap_) add_global(std::to_string(n - cap_) + " more warnings: " + kind);
+  // A refusal of face f: collected, the scene is refused once every finding is in (validate_mesh).
+  void error(const std::string& kind, std::size_t face, const std::string& what) { add(kind, Severity::error, face, what); }
+  void add_global(const std::string& kind, Severity severity, const std::string& what) {
+    mesh_.findings.push_back(mesh_.finding_of(-1, 0, -1, -1, kind, severity, what));
+    mesh_.findings.back().stage = "validate";
   }
   long line(std::size_t face) const { return face < mesh_.face_line.size() ? mesh_.face_line[face] : 0; }
+  bool errors() const {
+    return std::any_of(mesh_.findings.begin(), mesh_.findings.end(),
+                       [](const Finding& f) { return f.severity == Severity::error; });
+  }
 
  private:
   Mesh& mesh_;
-  int cap_;
-  std::vector<std::pair<std::string, int>> counts_;
 };
 
-// A refusal naming face f as the user counts it (its input face), with its object, group and material.
-[[noreturn]] void fail(const Mesh& mesh, std::size_t f, const std::string& what) {
-  const long line = f < mesh.face_line.size() ? mesh.face_line[f] : 0;
-  throw InputError(locate(mesh.path, line, mesh.source_face(f), what + mesh.context(f)));
+// Keeps the faces f with keep[f] (with their lines, materials, groups and input faces).
+void keep_faces(Mesh& mesh, const std::vector<bool>& keep) {
+  std::size_t out = 0;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    if (!keep[f]) continue;
+    mesh.faces[out] = mesh.faces[f];
+    mesh.face_line[out] = mesh.face_line[f];
+    mesh.face_material[out] = mesh.face_material[f];
+    mesh.face_group[out] = mesh.face_group[f];
+    mesh.face_source[out] = mesh.face_source[f];
+    ++out;
+  }
+  mesh.faces.resize(out);
+  mesh.face_line.resize(out);
+  mesh.face_material.resize(out);
+  mesh.face_group.resize(out);
+  mesh.face_source.resize(out);
 }
 
-// Step: every face has 3 or 4 corners with indices in range, and finite coordinates.
-void check_indices_and_coordinates(const Mesh& mesh) {
+// Step: every face has 3 or 4 corners with indices in range, and finite coordinates. Faces that fail are
+// reported and left out of the later steps (which need their corners).
+void check_indices_and_coordinates(Mesh& mesh, FindingLog& log) {
   const auto n_vertices = static_cast<std::int64_t>(mesh.vertices.size());
+  std::vector<bool> keep(mesh.face_count(), true);
+  std::vector<bool> used(mesh.vertices.size(), false);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const auto& c = mesh.faces[f];
-    if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[3] < -1) fail(mesh, f, "has fewer than 3 valid corners");
-    for (int k = 0; k < mesh.corner_count(f); ++k) {
+    if (c[0] < 0 || c[1] < 0 || c[2] < 0 || c[3] < -1) {
+      log.error("fewer than 3 corners", f, "has fewer than 3 valid corners");
+      keep[f] = false;
+      continue;
+    }
+    for (int k = 0; k < mesh.corner_count(f) && keep[f]; ++k) {
       const std::int32_t v = c[static_cast<std::size_t>(k)];
-      if (v >= n_vertices)
-        fail(mesh, f, "bad vertex index: " + vertex_name(v) + " (counting from 1) does not exist, the file has " +
-                          std::to_string(n_vertices) + " vertices");
-      if (!mesh.vertices[static_cast<std::size_t>(v)].allFinite())
-        fail(mesh, f, vertex_name(v) + " has a non-finite coordinate (NaN or inf)");
+      if (v >= n_vertices) {
+        log.error("bad vertex index", f,
+                  "bad vertex index: " + vertex_name(v) + " (counting from 1) does not exist, the file has " +
+                      std::to_string(n_vertices) + " vertices");
+        keep[f] = false;
+      } else if (!mesh.vertices[static_cast<std::size_t>(v)].allFinite()) {
+        log.error("non-finite coordinate", f, vertex_name(v) + " has a non-finite coordinate (NaN or inf)");
+        keep[f] = false;
+        used[static_cast<std::size_t>(v)] = true;
+      }
     }
   }
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
-    if (!mesh.vertices[v].allFinite())
-      throw InputError(locate(mesh.path, 0, -1, vertex_name(static_cast<std::int32_t>(v)) +
-                                                    " has a non-finite coordinate (NaN or inf)"));
+    if (!used[v] && !mesh.vertices[v].allFinite())
+      log.add_global("non-finite coordinate", Severity::error,
+                     vertex_name(static_cast<std::int32_t>(v)) + " has a non-finite coordinate (NaN or inf)");
+  if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
 
 // The bounding box (lowest and highest corner) of the points the faces use.
@@ -119,31 +147,38 @@ std::pair<Vec3, Vec3> corner_bounds(const Mesh& mesh) {
 
 // Step: the scene's size suits single-precision ray tracing (before any area is computed: with coordinates of
 // 1e77 a squared length overflows to inf). The diagonal is a scaled norm, exact at 1e-100 and at 1e300.
-void check_extent(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+// Returns false when the scene cannot be measured (the later steps are skipped).
+bool check_extent(const Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   const auto [lo, hi] = corner_bounds(mesh);
   const Vec3 span = hi - lo;
   const double extent = span.allFinite() ? span.stableNorm() : std::numeric_limits<double>::infinity();
   const double reach = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-  if (!(extent <= tol.max_extent) || !(reach <= tol.max_extent))
-    throw InputError(locate(mesh.path, 0, -1, "the scene is too large for single-precision ray tracing: extent " +
-                                                  fmt(extent) + ", largest |coordinate| " + fmt(reach) +
-                                                  " (limit " + fmt(tol.max_extent) +
-                                                  " mesh units); rescale the mesh (e.g. to metres)"));
-  if (!(extent >= tol.min_extent))
-    throw InputError(locate(mesh.path, 0, -1, "the scene is too small for single-precision ray tracing: extent " +
-                                                  fmt(extent) + " (limit " + fmt(tol.min_extent) +
-                                                  " mesh units); rescale the mesh (e.g. to millimetres)"));
+  if (!(extent <= tol.max_extent) || !(reach <= tol.max_extent)) {
+    log.add_global("scene too large", Severity::error,
+                   "the scene is too large for single-precision ray tracing: extent " + fmt(extent) +
+                       ", largest |coordinate| " + fmt(reach) + " (limit " + fmt(tol.max_extent) +
+                       " mesh units); rescale the mesh (e.g. to metres)");
+    return false;
+  }
+  if (!(extent >= tol.min_extent)) {
+    log.add_global("scene too small", Severity::error,
+                   "the scene is too small for single-precision ray tracing: extent " + fmt(extent) + " (limit " +
+                       fmt(tol.min_extent) + " mesh units); rescale the mesh (e.g. to millimetres)");
+    return false;
+  }
   if (reach > tol.max_offset_ratio * extent)
-    log.add_global("the scene lies far from the origin: largest |coordinate| " + fmt(reach) + " is " +
-                   fmt(reach / extent) + " x its extent " + fmt(extent) +
-                   ", so rays (single precision) resolve only about " + fmt(reach * 6e-8) +
-                   " mesh units; move the origin into the scene");
+    log.add_global("scene far from the origin", Severity::warning,
+                   "the scene lies far from the origin: largest |coordinate| " + fmt(reach) + " is " +
+                       fmt(reach / extent) + " x its extent " + fmt(extent) +
+                       ", so rays (single precision) resolve only about " + fmt(reach * 6e-8) +
+                       " mesh units; move the origin into the scene");
+  return true;
 }
-
 // Step: repeated corners (same index, or bit-identical positions). A quad with one repeat at adjacent corners
-// becomes a triangle; anything else is refused.
-void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
+// becomes a triangle; anything else is refused (and left out of the later steps: it has no proper area).
+void repair_repeated_corners(Mesh& mesh, FindingLog& log) {
   const std::vector<std::int32_t> weld = weld_vertices(mesh);
+  std::vector<bool> keep(mesh.face_count(), true);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     auto& c = mesh.faces[f];
     const int n = mesh.corner_count(f);
@@ -164,11 +199,15 @@ void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
           pj = j;
         }
     if (pairs == 0) continue;
-    if (n == 3) fail(mesh, f, "repeated vertex: triangle " + describe(pi, pj) + ", it has no area");
     const bool adjacent = pj == pi + 1 || (pi == 0 && pj == 3);
-    if (pairs > 1 || !adjacent)
-      fail(mesh, f, "repeated vertex: quad " + describe(pi, pj) + (pairs > 1 ? " and more" : " across a diagonal") +
-                        ", it has no proper area");
+    if (n == 3 || pairs > 1 || !adjacent) {
+      log.error("repeated vertex", f,
+                n == 3 ? "repeated vertex: triangle " + describe(pi, pj) + ", it has no area"
+                       : "repeated vertex: quad " + describe(pi, pj) +
+                             (pairs > 1 ? " and more" : " across a diagonal") + ", it has no proper area");
+      keep[f] = false;
+      continue;
+    }
     // Drop the later corner of the adjacent pair; the other three keep their cyclic order.
     const int drop = (pi == 0 && pj == 3) ? 3 : pj;
     const std::string what = "repeated vertex: quad " + describe(pi, pj) + ", repaired to a triangle";
@@ -176,8 +215,9 @@ void repair_repeated_corners(Mesh& mesh, WarningLog& log) {
     for (int k = 0, m = 0; k < 4; ++k)
       if (k != drop) t[static_cast<std::size_t>(m++)] = c[static_cast<std::size_t>(k)];
     c = t;
-    log.add("repeated vertex repaired", f, what);
+    log.add("repeated vertex repaired", Severity::repair, f, what);
   }
+  if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
 
 // The bounding-box diagonal of the faces' corners (a scaled norm).
@@ -187,9 +227,10 @@ double scene_diagonal(const Mesh& mesh) {
 }
 
 // Step (a repair unless strict): faces without area are dropped (they carry no power); quads bent beyond the
-// planarity limit or non-convex are split into two triangles along the better diagonal (triangulate.h). A
-// self-intersecting quad (a bow-tie) is left to check_face_geometry, which refuses it.
-void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+// planarity limit, non-convex, or whose area is ambiguous beyond tol.area_ambiguity, are split into two triangles
+// along the better diagonal (triangulate.h). A self-intersecting quad (a bow-tie) is left to check_face_geometry,
+// which refuses it.
+void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   if (tol.strict) return;  // check_face_geometry refuses what would be repaired here
   const double diagonal = scene_diagonal(mesh);
   const double min_area = tol.degenerate_area * diagonal * diagonal;
@@ -205,7 +246,7 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLo
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
     if (!(area > min_area)) {
-      log.add("zero-area face dropped", f,
+      log.add("zero-area face dropped", Severity::repair, f,
               "degenerate face dropped: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
                   " x (scene diagonal " + fmt(diagonal) + ")^2; it carries no power");
       changed = true;
@@ -216,11 +257,13 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLo
       continue;
     }
     const double bend = quad_nonplanarity(mesh, f), turn = quad_min_turn_sine(mesh, f);
+    const double ambiguity = quad_area_ambiguity(mesh, f);
     const bool folded = !(face_vector_area(mesh, f).norm() > 0.5 * area);
     const bool bent = bend > tol.planar_error, concave = turn < -tol.convex_sine;
+    const bool ambiguous = ambiguity > tol.area_ambiguity;
     std::array<Vec3, 4> p;
     for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][k])];
-    const auto split = !folded && (bent || concave) ? split_quad(p) : std::nullopt;
+    const auto split = !folded && (bent || concave || ambiguous) ? split_quad(p) : std::nullopt;
     if (!split) {
       keep(f, mesh.faces[f]);
       continue;
@@ -231,13 +274,18 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLo
     changed = true;
     const std::string diag = (*split)[0][0] == 0 ? "0-2" : "1-3";
     if (bent)
-      log.add("non-planar quad split", f,
+      log.add("non-planar quad split", Severity::repair, f,
               "non-planar quad split into two triangles along its diagonal " + diag + " (a corner is " +
-                  fmt(100 * bend) + "% of the diagonal off its plane, limit " + fmt(100 * tol.planar_error) + "%)");
-    else
-      log.add("non-convex quad split", f,
+                  fmt(100 * bend) + "% of the quad's width off its plane, limit " + fmt(100 * tol.planar_error) + "%)");
+    else if (concave)
+      log.add("non-convex quad split", Severity::repair, f,
               "non-convex quad split into two triangles along its inner diagonal " + diag + " (turning sine " +
                   fmt(turn) + ")");
+    else
+      log.add("area-ambiguous quad split", Severity::repair, f,
+              "bent quad split into two triangles along its diagonal " + diag + ": its triangulations and its "
+              "surface differ in area by " + fmt(100 * ambiguity) + "% (limit " + fmt(100 * tol.area_ambiguity) +
+                  "%), although a corner is only " + fmt(100 * bend) + "% of its width off its plane");
   }
   if (!changed) return;
   mesh.faces = std::move(out.faces);
@@ -245,51 +293,78 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, WarningLo
   mesh.face_material = std::move(out.face_material);
   mesh.face_group = std::move(out.face_group);
   mesh.face_source = std::move(out.face_source);
-  if (mesh.faces.empty()) throw InputError(locate(mesh.path, 0, -1, "the scene has no faces with area"));
 }
 
 // Step: area, planarity and convexity, relative to the scene size.
-void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, WarningLog& log) {
+void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   const double diagonal = scene_diagonal(mesh);
   const double min_area = tol.degenerate_area * diagonal * diagonal;
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
-    if (!(area > min_area))
-      fail(mesh, f, "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
-                        " x (scene diagonal " + fmt(diagonal) + ")^2 (refused with --strict; otherwise dropped)");
+    if (!(area > min_area)) {
+      log.error("degenerate face", f,
+                "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
+                    " x (scene diagonal " + fmt(diagonal) + ")^2 (refused with --strict; otherwise dropped)");
+      continue;
+    }
     if (!mesh.is_quad(f)) continue;
     // A planar simple quad has |vector area| = area; a folded or self-intersecting one (a bow-tie) has less, down
     // to 0, and then no normal to measure planarity or convexity against.
     const double vector_area = face_vector_area(mesh, f).norm();
-    if (!(vector_area > 0.5 * area))
-      fail(mesh, f, "self-intersecting or folded quad: its vector area " + fmt(vector_area) + " is below half its area " +
-                        fmt(area) + " (a bow-tie); split it into two triangles");
+    if (!(vector_area > 0.5 * area)) {
+      log.error("self-intersecting quad", f,
+                "self-intersecting or folded quad: its vector area " + fmt(vector_area) +
+                    " is below half its area " + fmt(area) + " (a bow-tie); split it into two triangles");
+      continue;
+    }
     const double bend = quad_nonplanarity(mesh, f);
-    if (bend > tol.planar_error)
-      fail(mesh, f,
-           "non-planar quad: a corner is " + fmt(100 * bend) + "% of the quad's width off its plane (limit " +
-               fmt(100 * tol.planar_error) + "%); split it into two triangles (refused with --strict; otherwise split)");
+    if (bend > tol.planar_error) {
+      log.error("non-planar quad", f,
+                "non-planar quad: a corner is " + fmt(100 * bend) + "% of the quad's width off its plane (limit " +
+                    fmt(100 * tol.planar_error) +
+                    "%); split it into two triangles (refused with --strict; otherwise split)");
+      continue;
+    }
+    const double turn = quad_min_turn_sine(mesh, f);
+    if (turn < -tol.convex_sine) {
+      log.error("non-convex quad", f,
+                "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
+                    "), the quad is concave; split it into two triangles (refused with --strict; otherwise split)");
+      continue;
+    }
+    const double ambiguity = quad_area_ambiguity(mesh, f);
+    if (ambiguity > tol.area_ambiguity) {
+      log.error("area-ambiguous quad", f,
+                "bent quad: its triangulations and its surface differ in area by " + fmt(100 * ambiguity) +
+                    "% (limit " + fmt(100 * tol.area_ambiguity) +
+                    "%); split it into two triangles (refused with --strict; otherwise split)");
+      continue;
+    }
     if (bend > tol.planar_clean)
-      log.add("slightly non-planar quad", f,
+      log.add("slightly non-planar quad", Severity::warning, f,
               "slightly non-planar quad: a corner is " + fmt(100 * bend) +
                   "% of the quad's width off its plane; patches treat it as flat");
-    const double turn = quad_min_turn_sine(mesh, f);
-    if (turn < -tol.convex_sine)
-      fail(mesh, f, "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
-                        "), the quad is concave; split it into two triangles (refused with --strict; otherwise split)");
   }
 }
 
 // Step: materials exist and are physical; faces without one get the default.
-void check_materials(Mesh& mesh, WarningLog& log) {
+void check_materials(Mesh& mesh, FindingLog& log) {
   int default_material = -1;
   const auto n_materials = static_cast<std::int32_t>(mesh.materials.size());
+  std::vector<bool> keep(mesh.face_count(), true);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     std::int32_t& m = mesh.face_material[f];
-    if (m >= n_materials || m < -1)
-      fail(mesh, f, "material index " + std::to_string(m) + " out of range (" + std::to_string(n_materials) +
-                        " materials)");
+    if (m >= n_materials || m < -1) {
+      log.error("material index out of range", f,
+                "material index " + std::to_string(m) + " out of range (" + std::to_string(n_materials) +
+                    " materials)");
+      keep[f] = false;
+      continue;
+    }
     if (m >= 0) continue;
+    // Reported before the default is given, so that the finding names no material.
+    log.add("face without material", Severity::repair, f,
+            "face without material: given the default 'radwalk_default' (rho 0.5, no emission)");
     if (default_material < 0) {
       Material d;
       d.name = "radwalk_default";
@@ -298,8 +373,8 @@ void check_materials(Mesh& mesh, WarningLog& log) {
       mesh.materials.push_back(d);
     }
     m = default_material;
-    log.add("face without material", f, "face without material: given 'radwalk_default' (rho 0.5, no emission)");
   }
+  if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 
   std::vector<long> first_face(mesh.materials.size(), -1);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
@@ -311,25 +386,28 @@ void check_materials(Mesh& mesh, WarningLog& log) {
     const auto f = static_cast<std::size_t>(first_face[i]);
     const Material& m = mesh.materials[i];
     if (!((m.Kd >= 0).all() && (m.Kd < 1).all()))
-      fail(mesh, f, "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +
-                        ", rho must be in [0, 1) for the radiosity equation to have a solution");
+      log.error("reflectance out of range", f,
+                "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +
+                    ", rho must be in [0, 1) for the radiosity equation to have a solution");
     if (!m.Ke.allFinite() || (m.Ke < 0).any())
-      fail(mesh, f, "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                        ", emitted radiance must be finite and >= 0");
+      log.error("negative emission", f,
+                "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
+                    ", emitted radiance must be finite and >= 0");
     // E = pi Ke must be finite too, and leave room for the radiosity it drives (found by fuzz_validate_patch:
     // Ke 1e308 passed and made E infinite).
-    if (!(m.Ke.maxCoeff() <= 1e300))
-      fail(mesh, f, "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                        ", above the 1e300 radwalk computes with (E = pi Ke would overflow)");
+    else if (!(m.Ke.maxCoeff() <= 1e300))
+      log.error("emission too large", f,
+                "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
+                    ", above the 1e300 radwalk computes with (E = pi Ke would overflow)");
     if (m.kind != BsdfKind::diffuse)
-      log.add("non-diffuse material", f,
+      log.add("non-diffuse material", Severity::warning, f,
               material_name(m) + " is " + kind_name(m.kind) +
                   ": the radiosity solvers treat it as diffuse with rho = Kd (only the path tracer uses its kind)");
   }
 }
 
-// Step: duplicates, non-manifold edges and vertices, orientation of neighbours.
-void check_topology(const Mesh& mesh, WarningLog& log) {
+// Step: duplicates, non-manifold edges and vertices, orientation of neighbours, T-junctions (t_junctions.h).
+void check_topology(const Mesh& mesh, FindingLog& log) {
   const EdgeTable t = build_edge_table(mesh);
   auto welded = [&](std::size_t f, int k) {
     return t.weld[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
@@ -338,6 +416,7 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
 
   // Duplicate faces: the same set of welded corners.
   std::map<std::array<std::int32_t, 4>, std::size_t> seen;
+  std::vector<bool> duplicate(mesh.face_count(), false);
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     std::array<std::int32_t, 4> key{-1, -1, -1, -1};
     const int n = mesh.corner_count(f);
@@ -346,11 +425,14 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
     const auto [it, added] = seen.emplace(key, f);
     if (added) continue;
     const std::size_t g = it->second;
+    duplicate[f] = true;
     const std::string other = "face " + std::to_string(mesh.source_face(g)) + " (line " + std::to_string(log.line(g)) + ")";
     if (face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0)
-      fail(mesh, f, "duplicate face: same corners as " + other + "; overlapping faces are refused");
-    fail(mesh, f, "duplicate face: same corners as " + other +
-                      " but facing the other way; back-to-back faces are refused (give the wall a thickness)");
+      log.error("duplicate face", f, "duplicate face: same corners as " + other + "; overlapping faces are refused");
+    else
+      log.error("duplicate face", f,
+                "duplicate face: same corners as " + other +
+                    " but facing the other way; back-to-back faces are refused (give the wall a thickness)");
   }
 
   // Edges: non-manifold (3+ uses) and inconsistent orientation (2 uses in the same direction).
@@ -360,16 +442,52 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
     if (t.use_count(e) >= 3) {
       std::string faces;
       for (const EdgeUse* x = u; x != t.uses_end(e); ++x) faces += (x == u ? "" : ", ") + std::to_string(mesh.source_face(static_cast<std::size_t>(x->face)));
-      log.add("non-manifold edge", static_cast<std::size_t>(u->face),
+      log.add("non-manifold edge", Severity::warning, static_cast<std::size_t>(u->face),
               "non-manifold edge: " + edge + " is shared by " + std::to_string(t.use_count(e)) + " faces (" + faces +
                   "); legal for radiosity, but check the model");
-    } else if (t.use_count(e) == 2 && u[0].forward == u[1].forward) {
+    } else if (t.use_count(e) == 2 && u[0].forward == u[1].forward &&
+               !duplicate[static_cast<std::size_t>(u[1].face)]) {  // a duplicate is reported as such
       const auto g = static_cast<std::size_t>(u[1].face);
-      log.add("flipped face", g,
+      log.add("flipped face", Severity::warning, g,
               "flipped face: face " + std::to_string(mesh.source_face(g)) + " and face " +
                   std::to_string(mesh.source_face(static_cast<std::size_t>(u[0].face))) + " (line " +
                   std::to_string(log.line(static_cast<std::size_t>(u[0].face))) + ") run their shared " + edge +
                   " the same way, so their normals disagree; legal for radiosity, but check the model");
+    }
+  }
+
+  // T-junctions: named at the T point, a note (harmless for constant radiosity).
+  const BoundaryCover cover = find_t_junctions(mesh, t);
+  for (const TJunction& j : cover.t_junctions) {
+    const auto& ends = t.edges[static_cast<std::size_t>(j.edge)];
+    log.add("T-junction", Severity::note, static_cast<std::size_t>(j.face),
+            "T-junction: " + welded_name(j.vertex) + " lies on this face's edge " + welded_name(ends[0]) + " - " +
+                welded_name(ends[1]) + " without being its corner; harmless for the constant-radiosity solve (B per "
+                "patch), it only matters for the smooth point fields, which the .vtp's display mesh stitches there");
+  }
+  // At an end a of a boundary edge a - b holding T points, the edge a - v to the nearest T point v continues it:
+  // the faces using the two are joined into one fan at a (a T-junction is not a non-manifold vertex).
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> continues;  // (vertex, edge a - v) -> edge a - b
+  {
+    std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> edge_of;
+    for (std::size_t e = 0; e < t.edge_count(); ++e) edge_of[{t.edges[e][0], t.edges[e][1]}] = static_cast<std::int32_t>(e);
+    auto find_edge = [&](std::int32_t a, std::int32_t b) {
+      const auto it = edge_of.find({std::min(a, b), std::max(a, b)});
+      return it == edge_of.end() ? -1 : it->second;
+    };
+    for (std::size_t k = 0; k < cover.t_junctions.size(); ++k) {
+      const TJunction& j = cover.t_junctions[k];
+      const auto& ends = t.edges[static_cast<std::size_t>(j.edge)];
+      const bool first = k == 0 || cover.t_junctions[k - 1].edge != j.edge;
+      const bool last = k + 1 == cover.t_junctions.size() || cover.t_junctions[k + 1].edge != j.edge;
+      if (first) {
+        const std::int32_t e = find_edge(ends[0], j.vertex);
+        if (e >= 0) continues[{ends[0], e}] = j.edge;
+      }
+      if (last) {
+        const std::int32_t e = find_edge(ends[1], j.vertex);
+        if (e >= 0) continues[{ends[1], e}] = j.edge;
+      }
     }
   }
 
@@ -405,7 +523,11 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
       const auto [f, k] = around[static_cast<std::size_t>(begin + i)];
       const int n = mesh.corner_count(static_cast<std::size_t>(f));
       for (const int side : {static_cast<int>(k), (k + n - 1) % n}) {
-        const std::int32_t e = t.face_edge[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+        std::int32_t e = t.face_edge[static_cast<std::size_t>(f)][static_cast<std::size_t>(side)];
+        if (!continues.empty()) {
+          const auto c = continues.find({static_cast<std::int32_t>(v), e});
+          if (c != continues.end()) e = c->second;
+        }
         const auto [it, added] = local_of_edge.emplace(e, i);
         if (added) continue;
         const int a = root(i), b = root(it->second);
@@ -416,7 +538,8 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
       }
     }
     if (fans > 1)
-      log.add("non-manifold vertex", static_cast<std::size_t>(around[static_cast<std::size_t>(begin)].first),
+      log.add("non-manifold vertex", Severity::warning,
+              static_cast<std::size_t>(around[static_cast<std::size_t>(begin)].first),
               "non-manifold vertex: " + welded_name(static_cast<std::int32_t>(v)) + " joins " + std::to_string(fans) +
                   " fans of faces that touch only there; legal for radiosity, but check the model");
   }
@@ -424,8 +547,28 @@ void check_topology(const Mesh& mesh, WarningLog& log) {
 
 }  // namespace
 
+std::vector<std::string> validation_lines(const std::vector<Finding>& findings, std::size_t per_kind) {
+  return grouped_lines(findings, {Severity::repair, Severity::warning, Severity::note}, per_kind);
+}
+
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
-  if (mesh.faces.empty()) throw InputError(locate(mesh.path, 0, -1, "the scene has no faces"));
+  // Lines a reader wrote directly into mesh.warnings become findings. A second validation starts again from
+  // the reader's findings (validation is idempotent).
+  {
+    const std::vector<std::string> generated =
+        validation_lines(mesh.findings, static_cast<std::size_t>(tolerances.max_warnings_per_kind));
+    mesh.findings.erase(std::remove_if(mesh.findings.begin(), mesh.findings.end(),
+                                       [](const Finding& f) { return f.stage == "validate"; }),
+                        mesh.findings.end());
+    for (const std::string& w : mesh.warnings)
+      if (std::find(generated.begin(), generated.end(), w) == generated.end()) {
+        Finding f;
+        f.kind = "reader notice";
+        f.file = mesh.path;
+        f.message = w;
+        mesh.findings.push_back(f);
+      }
+  }
   mesh.face_material.resize(mesh.face_count(), -1);
   mesh.face_line.resize(mesh.face_count(), 0);
   mesh.face_group.resize(mesh.face_count(), -1);
@@ -433,22 +576,29 @@ void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
     mesh.face_source.resize(mesh.face_count());
     for (std::size_t f = 0; f < mesh.face_count(); ++f) mesh.face_source[f] = static_cast<std::int32_t>(f);
   }
-  WarningLog log(mesh, tolerances.max_warnings_per_kind);
+  FindingLog log(mesh);
 
-  check_indices_and_coordinates(mesh);
-  check_extent(mesh, tolerances, log);
-  repair_repeated_corners(mesh, log);
-  repair_face_geometry(mesh, tolerances, log);
-  check_face_geometry(mesh, tolerances, log);
-  check_materials(mesh, log);
-  check_topology(mesh, log);
+  if (mesh.faces.empty() && !log.errors()) log.add_global("no faces", Severity::error, "the scene has no faces");
+  check_indices_and_coordinates(mesh, log);
+  if (!mesh.faces.empty() && check_extent(mesh, tolerances, log)) {
+    repair_repeated_corners(mesh, log);
+    if (!mesh.faces.empty()) repair_face_geometry(mesh, tolerances, log);
+    if (mesh.faces.empty() && !log.errors())
+      log.add_global("no faces with area", Severity::error, "the scene has no faces with area");
+    check_face_geometry(mesh, tolerances, log);
+    check_materials(mesh, log);
+    check_topology(mesh, log);
 
-  // Step: an emitter (form factors need none, but a radiosity solution would be zero).
-  bool emitter = false;
-  for (std::size_t f = 0; f < mesh.face_count() && !emitter; ++f)
-    emitter = (mesh.materials[static_cast<std::size_t>(mesh.face_material[f])].Ke > 0).any();
-  if (!emitter) log.add_global("no emitter: no face has Ke > 0 (fine for form factors; every radiosity would be 0)");
-  log.finish();
+    // Step: an emitter (form factors need none, but a radiosity solution would be zero).
+    bool emitter = false;
+    for (std::size_t f = 0; f < mesh.face_count() && !emitter; ++f)
+      emitter = (mesh.materials[static_cast<std::size_t>(mesh.face_material[f])].Ke > 0).any();
+    if (!emitter)
+      log.add_global("no emitter", Severity::warning,
+                     "no emitter: no face has Ke > 0 (fine for form factors; every radiosity would be 0)");
+  }
+  mesh.warnings = validation_lines(mesh.findings, static_cast<std::size_t>(tolerances.max_warnings_per_kind));
+  if (log.errors()) throw MeshRefused(mesh.findings);
 }
 
 }  // namespace radwalk

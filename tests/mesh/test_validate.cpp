@@ -64,7 +64,7 @@ TEST_CASE("each malformed input is refused with its own one-line message", "[mes
       {"truncated_vertex.obj", "truncated_vertex.obj:8:", {"vertex 5", "has 2 numbers", "truncated"}},
       {"bad_index.obj", "bad_index.obj:8: face 1:", {"bad vertex index", "vertex 9", "4 vertices"}},
       {"bad_index_zero.obj", "bad_index_zero.obj:8: face 1:", {"vertex index 0 is invalid"}},
-      {"nan_coordinate.obj", "nan_coordinate.obj:4:", {"vertex 3", "non-finite", "nan"}},
+      {"nan_coordinate.obj", "nan_coordinate.obj:7: face 0:", {"vertex 3", "non-finite"}},
       {"missing_mtl.obj", "missing_mtl.obj:1:", {"material library 'does_not_exist.mtl' not found"}},
       {"unknown_material.obj", "unknown_material.obj:9: face 1:", {"unknown material 'no_such_material'", "line 8"}},
       {"repeated_index_triangle.obj", "repeated_index_triangle.obj:9: face 1:",
@@ -127,8 +127,8 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
       {"zero_area.obj", {"zero_area.obj:10: face 1:", "degenerate face dropped", "area 0", "material 'white'"}},
       {"nonplanar_quad.obj", {"nonplanar_quad.obj:7: face 0:", "non-planar quad split into two triangles"}},
       {"nonconvex_quad.obj", {"nonconvex_quad.obj:7: face 0:", "non-convex quad split", "inner diagonal"}},
-      {"pentagon.obj", {"pentagon.obj:", "1 polygon(s) with more than 4 vertices triangulated", "face 0 (line 8, 5 corners)",
-                        "material 'light'", "into 3 triangles"}},
+      {"pentagon.obj", {"pentagon.obj:8: face 0:", "polygon with 5 vertices triangulated into 3 triangles",
+                        "material 'light'"}},
   };
   for (const Case& c : cases) {
     Mesh mesh;
@@ -156,8 +156,8 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
   ReadOptions strict;
   strict.strict = true;
   CHECK_THROWS_WITH(load_scene(data("pentagon.obj"), strict),
-                    Catch::Contains("pentagon.obj:8: face 0: has 5 vertices (material 'light')") &&
-                        Catch::Contains("--strict"));
+                    Catch::Contains("pentagon.obj:8: face 0: has 5 vertices") &&
+                        Catch::Contains("(material 'light')") && Catch::Contains("--strict"));
   // Faces without material get rho 0.5 and no emission.
   const Mesh plain = load_scene(data("no_material.obj"));
   const Material& m = plain.materials[static_cast<std::size_t>(plain.face_material[0])];
@@ -201,7 +201,7 @@ TEST_CASE("validation of programmatic meshes: NaN, index range, warning cap", "[
   }
   validate_mesh(many);
   CHECK(many.warnings.size() == 11);
-  CHECK(contains(many.warnings.back(), "20 more warnings: face without material"));
+  CHECK(contains(many.warnings.back(), "face without material: 20 more (30 in all)"));
 }
 
 TEST_CASE("scenes too large, too small or far from the origin for single precision are caught", "[mesh][validate]") {
