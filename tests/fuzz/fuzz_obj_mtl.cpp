@@ -13,7 +13,7 @@
 //       every warning of an accepted file;
 //   (reader) an accepted Mesh is well-formed: one line, material (-1 or an index) and 3 or 4 corners per
 //       face, the corners non-negative, lines increasing, finite vertices;
-//   (d) whenever radwalk accepts the file and the bytes lie in the subset where the two parsers are
+//   (d) whenever radwalk accepts the file (no error finding, finite coordinates) and the bytes lie in the subset where the two parsers are
 //       specified to agree (in_reference_subset below), tinyobjloader accepts it too and agrees on the
 //       vertices (to 1e-12 relative: its number parser is not correctly rounded), on the faces with their
 //       corners in order and on each face's material name. Outside the subset the comparison is skipped,
@@ -236,6 +236,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check_read_mesh(mesh);
   check_face_lines(mesh);
   check_warnings(mesh, files);
+  // A file with per-face errors (collected as findings, the faces left out) or non-finite coordinates (kept for
+  // validate_mesh to refuse) is refused once validated: each error is a refusal message, and there is no
+  // reference comparison.
+  bool refused = false;
+  for (const Finding& f : mesh.findings)
+    if (f.severity == Severity::error) {
+      check_refusal_message(finding_line(f), files);
+      refused = true;
+    }
+  for (const Vec3& p : mesh.vertices) refused = refused || !p.allFinite();
+  if (refused) return 0;
   if (in_reference_subset(obj, mtl)) compare_with_reference(mesh, obj, mtl);
   return 0;
 }

@@ -68,16 +68,16 @@ void check_read_mesh(const Mesh& mesh);
 // check_refusal_message requires.
 void check_warnings(const Mesh& mesh, const std::vector<std::string>& files);
 
-// Oracle (b) after read + validate_mesh: faces exist; every corner is a vertex; every face has a finite
+// Oracle (b) after read + validate_mesh: every vertex is finite; faces exist; every corner is a vertex; every face has a finite
 // positive area; every face has a material, and every material a face uses has rho = Kd finite in [0, 1) and
 // an emission with Ke and E = pi * Ke finite and >= 0.
 void check_validated_mesh(const Mesh& mesh);
 
 // Oracle (b) after make_patches(mesh, max_edge) of a validated mesh: patches in face order, each face
 // covered; every patch with the material, rho and E of its face, a finite non-negative area and a unit
-// normal; the areas of a face's patches add up to the face's area within rounding (for a slightly non-planar
-// quad, within the ambiguity of its area: the difference of its two triangulations, and its non-planarity
-// squared); with max_edge > 0 no patch edge is longer than max_edge (up to rounding); with max_edge <= 0
+// normal; the areas of a face's patches add up to the face's area within rounding plus twice the quad's area
+// ambiguity (face_geometry.h; 0 for a planar quad), which validation keeps below its tolerance (checked too);
+// with max_edge > 0 no patch edge is longer than max_edge (up to rounding); with max_edge <= 0
 // patch f is face f, corner for corner.
 void check_patches(const Mesh& mesh, const PatchSet& patches, double max_edge);
 
