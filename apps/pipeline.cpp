@@ -142,6 +142,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
     const std::vector<Finding>& all = e.findings();
     for (const std::string& w : validation_lines(all, 10)) warn(summary, w);
+    for (const std::string& n : grouped_lines(all, {Severity::note}, 10)) note("note: " + n);
     for (const std::string& line : grouped_lines(all, {Severity::error}, 10))
       std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
     const std::string message =
@@ -169,6 +170,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   summary.json()["closed_shell"] = g_scene.closed_shell;
   summary.add_timing("load", timer.seconds());
   for (const std::string& w : mesh.warnings) warn(summary, w);
+  for (const std::string& n : grouped_lines(mesh.findings, {Severity::note}, 10)) note("note: " + n);
   record_findings(mesh.findings, summary);
   summary.json()["seed"] = options.seed;
   summary.json()["threads"] = options.threads;
@@ -193,6 +195,13 @@ namespace {
 // Rays that escaped a closed scene went through a gap (a crack between faces that do not share their edges, a
 // face missing from the room) or started inside a closed object: a warning naming the patches and the groups
 // (object, group, material) they come from, most first; escaped_by_group in the JSON.
+// "16.7 %".
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g %%", 100 * fraction);
+  return text;
+}
+
 void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint64_t escaped, std::uint64_t rays,
                        RunSummary& summary) {
   std::map<std::string, std::uint64_t> by_group;
@@ -215,10 +224,10 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
   summary.json()["escaped_by_group"] = list;
   summary.json()["patches_with_escaped_rays"] = sources;
   warn(summary, std::to_string(escaped) + " of " + std::to_string(rays) + " rays (" +
-                    number_text(100.0 * double(escaped) / double(std::max<std::uint64_t>(rays, 1))) +
-                    " %) escaped although the scene's faces form a closed shell: they left " +
-                    std::to_string(sources) + " patches through a gap or from inside a closed object, and their "
-                    "light is lost. Most from patch " + std::to_string(worst) + " (input face " +
+                    percent(double(escaped) / double(std::max<std::uint64_t>(rays, 1))) +
+                    ") escaped although the scene's faces form a closed shell: they left " +
+                    std::to_string(sources) + " patch(es) through a gap, from a face oriented outwards or from "
+                    "inside a closed object, and their light is lost. Most from patch " + std::to_string(worst) + " (input face " +
                     std::to_string(patches.face[worst]) + face_context(patches.face[worst]) + "); by group: " +
                     named + (groups.size() > 3 ? "; ..." : "") + " (escaped_by_group in --json, the escaped field)");
 }

@@ -548,7 +548,7 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
 }  // namespace
 
 std::vector<std::string> validation_lines(const std::vector<Finding>& findings, std::size_t per_kind) {
-  return grouped_lines(findings, {Severity::repair, Severity::warning, Severity::note}, per_kind);
+  return grouped_lines(findings, {Severity::repair, Severity::warning}, per_kind);
 }
 
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {

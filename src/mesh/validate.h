@@ -5,7 +5,8 @@
 // (unknown materials, bad indices, polygon repairs): refusals (errors), repairs done in place, warnings and notes,
 // each naming the input face, line, object, group and material. Faces with an error are left out of the later
 // steps (that need their corners or area) but every other face is still checked, so one run reports every defect.
-// Then mesh.warnings is set to the non-error findings as lines grouped by kind (validation_lines), and if any
+// Then mesh.warnings is set to the repairs and warnings as lines grouped by kind (validation_lines; the notes are
+// only in mesh.findings), and if any
 // finding is an error, MeshRefused (an InputError whose one-line what() is the first error and the count of the
 // others) is thrown with all of them.
 //
@@ -57,7 +58,7 @@ struct ValidationTolerances {
 
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances = {});
 
-// The repairs, warnings and notes among `findings` as lines grouped by kind, at most per_kind of each and then
+// The repairs and warnings among `findings` as lines grouped by kind, at most per_kind of each and then
 // "FILE: KIND: N more (T in all)" (finding.h grouped_lines).
 std::vector<std::string> validation_lines(const std::vector<Finding>& findings, std::size_t per_kind);
 

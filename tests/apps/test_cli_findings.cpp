@@ -167,3 +167,22 @@ TEST_CASE("radwalk --rho-scale 0.5 equals every Kd halved in the MTL; a scale re
   CHECK(nan.exit_code == 2);
   CHECK(contains(nan.out, "not a finite number"));
 }
+
+TEST_CASE("radwalk solve: rays escaping a closed shell are a warning naming the patch and its group",
+          "[cli][findings]") {
+  const fs::path dir = scratch_dir("escaped");
+  const std::string json = (dir / "escaped.json").string();
+  const Run r = run_loud("solve " + source("tests/data/closed_cube_flipped_wall.obj") + " --rays 500 --json " + json);
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  CHECK(contains(r.out, "500 of 3000 rays (16.7 %) escaped although the scene's faces form a closed shell"));
+  CHECK(contains(r.out, "Most from patch 3 (input face 3 (object 'room', group 'outward', material 'white'))"));
+  const auto j = nlohmann::json::parse(slurp(json));
+  CHECK(j["closed_shell"] == true);
+  REQUIRE(j["escaped_by_group"].size() == 1);
+  CHECK(j["escaped_by_group"][0]["escaped"] == 500);
+  // The same cube with its wall facing in: closed, nothing escapes, no warning.
+  const Run ok = run_loud("solve " + source("meshes/cube.obj") + " --rays 500");
+  CHECK(ok.exit_code == 0);
+  CHECK_FALSE(contains(ok.out, "escaped"));
+}
