@@ -1,5 +1,6 @@
 #include "mesh/material_override.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/did_you_mean.h"
@@ -79,14 +80,17 @@ void apply_material_overrides(Mesh& mesh, const std::vector<MaterialOverride>& o
   std::vector<bool> used(mesh.materials.size(), false);
   for (const std::int32_t m : mesh.face_material)
     if (m >= 0 && static_cast<std::size_t>(m) < used.size()) used[static_cast<std::size_t>(m)] = true;
+  double brightest = 0;  // the largest Kd channel of a used material
+  for (std::size_t i = 0; i < mesh.materials.size(); ++i)
+    if (used[i]) brightest = std::max(brightest, mesh.materials[i].Kd.maxCoeff());
   for (std::size_t i = 0; i < mesh.materials.size(); ++i) {
     Material& m = mesh.materials[i];
     const Rgb scaled = m.Kd * rho_scale;
     if (used[i] && !(scaled < 1).all())
       throw InputError("--rho-scale " + number_text(rho_scale) + ": material '" + printable(m.name) + "' has Kd " +
                        colour_text(m.Kd) + ", scaled to " + colour_text(scaled) +
-                       ", which reaches 1 (rho must stay below 1); the largest scale this scene allows is below " +
-                       number_text(1 / m.Kd.maxCoeff()));
+                       ", which reaches 1 (rho must stay below 1); this scene allows scales below " +
+                       number_text(1 / brightest));
     m.Kd = scaled;
   }
 }
