@@ -33,6 +33,12 @@ long g_silenced = 0;
 }  // namespace
 
 void warn(RunSummary& summary, const std::string& message) {
+  std::fprintf(stderr, "radwalk: warning: %s\n", message.c_str());
+  summary.add_warning(message);
+}
+
+// A warning about the scene (a finding): not printed with --quiet, only counted.
+void warn_scene(RunSummary& summary, const std::string& message) {
   if (g_quiet)
     ++g_silenced;
   else
@@ -141,14 +147,17 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   } catch (const MeshRefused& e) {
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
     const std::vector<Finding>& all = e.findings();
-    for (const std::string& w : validation_lines(all, 10)) warn(summary, w);
+    for (const std::string& w : validation_lines(all, 10)) warn_scene(summary, w);
     for (const std::string& n : grouped_lines(all, {Severity::note}, 10)) note("note: " + n);
-    for (const std::string& line : grouped_lines(all, {Severity::error}, 10))
-      std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
-    const std::string message =
-        options.scene + ": refused: " + count_by_kind(all, Severity::error) +
-        (options.strict ? " (--strict)" : "") + "; every finding is listed above" +
-        (options.json.empty() ? "" : " and in " + options.json);
+    // One error is its own one-line refusal; several are listed, then counted in one line.
+    const std::vector<std::string> errors = grouped_lines(all, {Severity::error}, 10);
+    std::string message = e.what();
+    if (errors.size() > 1) {
+      for (const std::string& line : errors) std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
+      message = options.scene + ": refused: " + count_by_kind(all, Severity::error) +
+                (options.strict ? " (--strict)" : "") + "; every finding is listed above" +
+                (options.json.empty() ? "" : " and in " + options.json);
+    }
     refuse(all, message);
     throw InputError(message);
   } catch (const InputError& e) {
@@ -169,7 +178,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   g_scene.closed_shell = is_closed_shell(mesh);
   summary.json()["closed_shell"] = g_scene.closed_shell;
   summary.add_timing("load", timer.seconds());
-  for (const std::string& w : mesh.warnings) warn(summary, w);
+  for (const std::string& w : mesh.warnings) warn_scene(summary, w);
   for (const std::string& n : grouped_lines(mesh.findings, {Severity::note}, 10)) note("note: " + n);
   record_findings(mesh.findings, summary);
   summary.json()["seed"] = options.seed;

@@ -42,9 +42,12 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary, const VtpMetadata& metadata = {});
 
-// Prints "radwalk: warning: ..." (unless set_quiet(true): then it is only counted) and records it in the summary.
+// Prints "radwalk: warning: ..." and records it in the summary.
 void warn(RunSummary& summary, const std::string& message);
-// The warnings warn() did not print because of --quiet.
+// The same for a warning about the scene (a repair or warning that validation found), which with set_quiet(true)
+// is not printed but counted (the scene's findings can be thousands; --json lists them all).
+void warn_scene(RunSummary& summary, const std::string& message);
+// The scene warnings warn_scene did not print because of --quiet.
 long silenced_warnings();
 
 // Prints an informational line on stderr ("radwalk: ..."), unless set_quiet(true) (--quiet).

@@ -131,15 +131,15 @@ void warn_ignored(const CLI::App* cmd, const Command& command, SceneOptions& sce
     return o->count() > 0;
   };
   for (const std::string& w : ignored_options(command, given)) {
-    if (!g_quiet) std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
+    std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
     scene.warnings.push_back(w);
   }
 }
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
   cmd->add_flag("-q,--quiet", g_quiet,
-                "No progress, notes or warnings on stderr (errors still print; the warnings are counted, and "
-                "listed in --json)");
+                "No progress, notes or scene warnings on stderr (the scene's repairs and warnings are counted in "
+                "one line and listed in --json; other warnings and errors still print)");
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
   cmd->add_option("--set", o.set_material,
                   "Override a material: MATERIAL.Kd=r,g,b (rho) or MATERIAL.Ke=r,g,b (emitted radiance); one "
@@ -239,7 +239,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("radwalk ") + RADWALK_VERSION);
   app.add_flag("-q,--quiet", g_quiet,
-               "No progress, notes or warnings on stderr (errors still print; the warnings are counted)");
+               "No progress, notes or scene warnings on stderr (they are counted; other warnings and errors "
+               "still print)");
   std::vector<std::string> args(argv, argv + argc);
 
   SceneOptions check;
@@ -483,7 +484,7 @@ int main(int argc, char** argv) {
     if (*compare_cmd) warn_ignored(compare_cmd, compare, compare.scene);
     if (*pt_cmd) warn_ignored(pt_cmd, pt, pt.scene);
 
-    // --quiet: the count of the warnings it did not print (they are in --json).
+    // --quiet: the count of the scene warnings it did not print (they are in --json).
     auto counted = [](int code) {
       if (silenced_warnings() > 0)
         std::fprintf(stderr, "radwalk: %ld warning(s) not shown (--quiet)\n", silenced_warnings());
@@ -496,8 +497,6 @@ int main(int argc, char** argv) {
     if (*compare_cmd) return counted(run_compare(compare));
     if (*pt_cmd) return counted(run_pathtrace(pt));
   } catch (const InputError& e) {
-    if (silenced_warnings() > 0)
-      std::fprintf(stderr, "radwalk: %ld warning(s) not shown (--quiet)\n", silenced_warnings());
     std::fprintf(stderr, "radwalk: error: %s\n", e.what());
     return 2;
   } catch (const NumericalError& e) {
