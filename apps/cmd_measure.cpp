@@ -6,9 +6,11 @@
 #include "apps/measure_response.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/scene_camera.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "pathtrace/camera_response.h"
 #include "solve/direct_solver.h"
 #include "solve/measurement.h"
 #include "visibility/embree_visibility.h"
@@ -33,7 +35,25 @@ int run_measure(const MeasureCommand& command) {
   RunSummary summary("measure", command.scene.argv);
   Mesh mesh;
   const PatchSet patches = load_patches(command.scene, summary, mesh);
-  const Response response = parse_response(command.response, mesh, patches);
+  Response response;
+  if (command.response == "camera") {
+    // R_i = f_i / (pi A_i), f_i the film fraction seeing patch i: M is the image's mean pixel radiance.
+    const Camera cam = scene_camera(command.scene.scene, patches, command.camera);
+    const PinholeCamera camera(cam, command.width, command.height);
+    const EmbreeVisibility visibility(patches);
+    const CameraResponse cr = camera_response(camera, visibility, patches, 4);
+    response = {cr.R, "the camera view (" + std::to_string(command.width) + " x " + std::to_string(command.height) +
+                          " pixels, 4 x 4 film points each; M = mean pixel radiance)"};
+    check_response(response, patches.size());
+    summary.json()["camera"] = {{"position", {cam.position(0), cam.position(1), cam.position(2)}},
+                                {"direction", {cam.direction(0), cam.direction(1), cam.direction(2)}},
+                                {"up", {cam.up(0), cam.up(1), cam.up(2)}},
+                                {"vfov_deg", cam.vfov * 180.0 / kPi},
+                                {"width", command.width},
+                                {"height", command.height}};
+  } else {
+    response = parse_response(command.response, mesh, patches);
+  }
   const bool importance = command.method == "importance-gather" || command.method == "importance-shoot";
   const bool deterministic = command.method == "direct" || command.method == "adjoint-direct";
   WalkOptions walk = command.walk;

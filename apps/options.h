@@ -99,6 +99,9 @@ struct MeasureCommand {
   double defensive = -1;           // importance walks: the defensive fraction alpha (importance_walk.h); -1: 0 with
                                    // the exact importance, 0.1 with an approximate one
   bool theory = false;             // also the exact per-walk variance (matrix kernel, N <= 2000)
+  // --response camera: the view (as pathtrace's --camera; empty: the scene's default) and the image size
+  std::vector<double> camera;
+  int width = 256, height = 256;
 };
 
 int run_check(const SceneOptions& options);

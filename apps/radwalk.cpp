@@ -388,7 +388,8 @@ int main(int argc, char** argv) {
   measure_cmd
       ->add_option("--response", measure.response,
                    "The sensor R: patches:I,J,... | material:NAME | group:NAME (OBJ o/g) | csv:FILE:COLUMN "
-                   "(weights by the CSV's patch column)")
+                   "(weights by the CSV's patch column) | camera (M = the mean pixel radiance of the view of "
+                   "--camera, --width, --height)")
       ->required();
   {
     std::vector<std::string> methods = {"direct", "adjoint-direct", "importance-gather", "importance-shoot"};
@@ -427,6 +428,14 @@ int main(int argc, char** argv) {
                    "Importance walks: fraction alpha of the analog walk mixed in (keeps an approximate importance "
                    "unbiased); default 0 with the exact importance, 0.1 otherwise")
       ->check(CLI::Range(0.0, 1.0));
+  measure_cmd->add_option("--camera", measure.camera, "With --response camera: px py pz tx ty tz ux uy uz fov_deg")
+      ->expected(10);
+  measure_cmd->add_option("--width", measure.width, "With --response camera: image width")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  measure_cmd->add_option("--height", measure.height, "With --response camera: image height")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
   measure_cmd->add_flag("--theory", measure.theory,
                         "Also the exact per-walk variance (matrix kernel, at most 2000 patches)");
 

@@ -88,6 +88,16 @@ TEST_CASE("radwalk measure: responses by patch, group and CSV column", "[cli][me
   }
 }
 
+TEST_CASE("radwalk measure: a camera response by the direct and the adjoint solve", "[cli][measure]") {
+  const std::string box = source("meshes/cornell_box.obj") + " --rays 300 --response camera --width 64 --height 64";
+  const Measured direct = measured(box + " --method direct");
+  const Measured adjoint = measured(box + " --method adjoint-direct");
+  for (int c = 0; c < 3; ++c) {
+    CHECK(direct.M[c] > 0);
+    CHECK(adjoint.M[c] == Approx(direct.M[c]).epsilon(1e-9));
+  }
+}
+
 TEST_CASE("radwalk measure: bad responses and methods are one-line refusals", "[cli][measure]") {
   const std::string box = source("meshes/cornell_box.obj") + " --rays 100";
   const auto refused = [](const std::string& args, const std::string& words) {
