@@ -89,7 +89,25 @@ struct PathtraceCommand {
   std::string progressive;     // --progressive DIR: convergence series of the patch averages
 };
 
+// radwalk measure: one measurement M = <R, B>_A (solve/measurement.h) by one method.
+struct MeasureCommand {
+  SceneOptions scene;
+  FormFactorCliOptions ff;
+  std::string response;            // --response SPEC (apps/measure_response.h)
+  std::string method = "adjoint-direct";  // direct | adjoint-direct | a walk method | importance-gather | importance-shoot
+  WalkOptions walk;                // kernel and survival of the walk methods
+  long walks = 100000;             // walks or particles in all (per channel for the importance walks)
+  int importance_sweeps = -1;      // importance walks: -1 the exact importance (direct solve), K >= 0 K Jacobi sweeps
+  double defensive = -1;           // importance walks: the defensive fraction alpha (importance_walk.h); -1: 0 with
+                                   // the exact importance, 0.1 with an approximate one
+  bool theory = false;             // also the exact per-walk variance (matrix kernel, N <= 2000)
+  // --response camera: the view (as pathtrace's --camera; empty: the scene's default) and the image size
+  std::vector<double> camera;
+  int width = 256, height = 256;
+};
+
 int run_check(const SceneOptions& options);
+int run_measure(const MeasureCommand& command);
 int run_patch(const PatchCommand& command);
 int run_formfactors(const FormFactorsCommand& command);
 int run_solve(const SolveCommand& command);

@@ -189,7 +189,12 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
 }
 
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
-  const Mesh mesh = load_validated_mesh(options, summary);
+  Mesh mesh;
+  return load_patches(options, summary, mesh);
+}
+
+PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh) {
+  mesh = load_validated_mesh(options, summary);
   Timer timer;
   PatchSet patches = make_patches(mesh, options.max_edge);
   summary.add_timing("patch", timer.seconds());

@@ -24,6 +24,8 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
 // load_validated_mesh, then make_patches with options.max_edge.
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
+// The same, keeping the validated mesh (its groups and source lines) in `mesh`.
+PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh);
 
 // Form factors for the patches: read from --form-factors (ray counts left empty) or estimated with Embree
 // (timed as "form_factors"); --reciprocity is applied either way and its change reported.

@@ -6,6 +6,7 @@
 // output file names are checked against what is written (apps/output_files.h); options the chosen method ignores
 // are warned about (apps/ignored_options.h).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -20,6 +21,7 @@
 #include "apps/options.h"
 #include "apps/output_files.h"
 #include "apps/pipeline.h"
+#include "core/did_you_mean.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "walk/named_choice.h"
@@ -390,6 +392,65 @@ int main(int argc, char** argv) {
   add_replaced_option(compare_cmd, "--walks", "use --walks-per-patch (the budget per patch of every method)");
   compare_cmd->add_option("--runs", compare.compare.runs, "Independent runs per estimator")->capture_default_str();
 
+  MeasureCommand measure;
+  auto* measure_cmd = app.add_subcommand(
+      "measure", "One measurement M = sum_i A_i R_i B_i (a sensor's response) by one method, with its error bar");
+  add_scene_options(measure_cmd, measure.scene);
+  add_form_factor_options(measure_cmd, measure.ff);
+  measure_cmd
+      ->add_option("--response", measure.response,
+                   "The sensor R: patches:I,J,... | material:NAME | group:NAME (OBJ o/g) | csv:FILE:COLUMN "
+                   "(weights by the CSV's patch column) | camera (M = the mean pixel radiance of the view of "
+                   "--camera, --width, --height)")
+      ->required();
+  {
+    std::vector<std::string> methods = {"direct", "adjoint-direct", "importance-gather", "importance-shoot"};
+    for (const std::string& m : walk_method_names()) methods.push_back(m);
+    measure_cmd
+        ->add_option_function<std::string>(
+            "--method",
+            [&measure, methods](const std::string& name) {
+              if (std::find(methods.begin(), methods.end(), name) == methods.end())
+                throw CLI::ValidationError("--method", "unknown value '" + name + "'" + did_you_mean(name, methods) +
+                                                           "; choose from " + join_names(methods));
+              measure.method = name;
+            },
+            "direct (<R, B> from the direct solve), adjoint-direct (<Y, E> from the adjoint solve), a random-walk "
+            "method (" + join_names(walk_method_names()) + ": gathering methods walk from the sensor, shooting "
+            "methods from the sources), importance-gather | importance-shoot (importance-driven walks)")
+        ->default_str(measure.method);
+  }
+  add_walk_choice(measure_cmd, "--kernel", measure.walk.kernel, parse_walk_kernel, kernel_name(measure.walk.kernel),
+                  "Transition kernel of the walk methods: " + walk_choices_help(kWalkKernels));
+  add_walk_choice(measure_cmd, "--survival", measure.walk.survival.rule, parse_survival_rule,
+                  survival_name(measure.walk.survival.rule), "Russian roulette: " + walk_choices_help(kSurvivalRules));
+  measure_cmd->add_option("--survival-constant", measure.walk.survival.constant, "p for --survival constant, in (0, 1)")
+      ->capture_default_str();
+  measure_cmd->add_option("--walks", measure.walks, "Walks (or particles) in all; per channel for importance walks")
+      ->check(CLI::Range(2L, kMaxWalkCount))
+      ->capture_default_str();
+  measure_cmd
+      ->add_option("--importance-sweeps", measure.importance_sweeps,
+                   "Importance walks: the importance from K Jacobi sweeps (a cheap approximation); -1 = exact "
+                   "(direct solve: zero variance)")
+      ->check(CLI::Range(-1, 100000))
+      ->capture_default_str();
+  measure_cmd
+      ->add_option("--defensive", measure.defensive,
+                   "Importance walks: fraction alpha of the analog walk mixed in (keeps an approximate importance "
+                   "unbiased); default 0 with the exact importance, 0.1 otherwise")
+      ->check(CLI::Range(0.0, 1.0));
+  measure_cmd->add_option("--camera", measure.camera, "With --response camera: px py pz tx ty tz ux uy uz fov_deg")
+      ->expected(10);
+  measure_cmd->add_option("--width", measure.width, "With --response camera: image width")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  measure_cmd->add_option("--height", measure.height, "With --response camera: image height")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  measure_cmd->add_flag("--theory", measure.theory,
+                        "Also the exact per-walk variance (matrix kernel, at most 2000 patches)");
+
   PathtraceCommand pt;
   auto* pt_cmd = app.add_subcommand("pathtrace", "Continuous path tracer: patch averages and images");
   add_scene_options(pt_cmd, pt.scene);
@@ -427,7 +488,7 @@ int main(int argc, char** argv) {
   }
   Progress::set_enabled(!g_quiet);
   set_quiet(g_quiet);
-  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene})
+  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene, &measure.scene})
     o->argv = args;
   // --paraview-state: a Python state file, and only beside a .vtp.
   for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
@@ -462,13 +523,13 @@ int main(int argc, char** argv) {
                                    {"--paraview-state", patch.scene.paraview_state}});
     ff.scene.outputs = outputs({{"-o", ff.mtx}, {"--vtp", ff.diagnostics_vtp}, {"--csv", ff.scene.csv},
                                 {"--json", ff.scene.json}, {"--paraview-state", ff.scene.paraview_state}});
-    for (SceneOptions* o : {&solve.scene, &compare.scene, &pt.scene})
+    for (SceneOptions* o : {&solve.scene, &compare.scene, &pt.scene, &measure.scene})
       o->outputs = outputs({{"-o", o->vtp}, {"--csv", o->csv}, {"--json", o->json},
                             {"--paraview-state", o->paraview_state}});
     for (NamedFile& f : outputs({{"--image", pt.image}})) pt.scene.outputs.push_back(std::move(f));
     const std::vector<std::pair<SceneOptions*, std::string>> commands = {
         {&check, ""}, {&patch.scene, ""}, {&ff.scene, ff.ff.form_factors}, {&solve.scene, solve.ff.form_factors},
-        {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}};
+        {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}, {&measure.scene, measure.ff.form_factors}};
     for (const auto& [o, form_factors] : commands) {
       const std::string clash =
           check_distinct_files(o->outputs, {{"the scene", o->scene}, {"--form-factors", form_factors}});
@@ -496,6 +557,7 @@ int main(int argc, char** argv) {
     if (*solve_cmd) return counted(run_solve(solve));
     if (*compare_cmd) return counted(run_compare(compare));
     if (*pt_cmd) return counted(run_pathtrace(pt));
+    if (*measure_cmd) return counted(run_measure(measure));
   } catch (const InputError& e) {
     std::fprintf(stderr, "radwalk: error: %s\n", e.what());
     return 2;

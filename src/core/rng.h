@@ -31,6 +31,8 @@ enum class StreamDomain : std::uint64_t {
   light_particle = 6,  // light tracing (patch tallies and images): a = 0, b = particle index k
   synthetic_problem = 7,  // synthetic test problems (solve/synthetic_problem.h): a = row i, b = 0
   benchmark = 8,       // bench/ programs' own inputs
+  measure_walk = 9,    // estimators of a measurement M = <R, B> (walk/measure_walks.h): a = 0, b = walk index
+  importance_walk = 10,  // importance-driven walks (walk/importance_walk.h): a = channel c, b = walk index
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

@@ -73,6 +73,11 @@ struct DirectSolver::Impl {
     if (dense) return dense_lu[std::size_t(g)].solve(rhs);
     return sparse_lu[std::size_t(g)]->solve(rhs);
   }
+  // The transposed system of group g: (I - diag(rho) F)^T x = rhs.
+  Eigen::MatrixXd solve_group_transposed(int g, const Eigen::MatrixXd& rhs) const {
+    if (dense) return dense_lu[std::size_t(g)].transpose().solve(rhs);
+    return sparse_lu[std::size_t(g)]->transpose().solve(rhs);
+  }
 };
 
 DirectSolver::DirectSolver(const RadiosityProblem& p, DirectMethod method) : impl_(std::make_unique<Impl>()) {
@@ -199,6 +204,31 @@ Solution DirectSolver::solve(const RadiosityProblem& p) const {
   if (!s.B.allFinite()) {  // cannot happen after the checks above; never hand out NaN
     s.status = SolveStatus::refused;
     s.message = "direct solve refused: the solution is not finite. " + s.message;
+    s.B.resize(0, 3);
+  }
+  return s;
+}
+
+Solution DirectSolver::solve_transposed(const RadiosityProblem& p, const PatchRgb& rhs) const {
+  const Impl& m = *impl_;
+  const Eigen::Index n = Eigen::Index(p.size());
+  RADWALK_CHECK_EQ(rhs.rows(), n);
+  Timer timer;
+  Solution s;
+  s.method = "adjoint-direct";
+  if (!m.ok) {
+    s.status = SolveStatus::refused;
+    s.message = m.message;
+    return s;
+  }
+  s.B.resize(n, 3);
+  for (int c = 0; c < 3 && n > 0; ++c)
+    s.B.col(c) = m.solve_group_transposed(m.group_of_channel[std::size_t(c)], rhs.col(c).matrix()).array();
+  s.seconds = m.factor_seconds + timer.seconds();
+  s.message = std::string(m.dense ? "dense" : "sparse") + " LU of I - diag(rho) F, transposed substitution";
+  if (!s.B.allFinite()) {
+    s.status = SolveStatus::refused;
+    s.message = "adjoint direct solve refused: the solution is not finite. " + s.message;
     s.B.resize(0, 3);
   }
   return s;

@@ -45,6 +45,11 @@ class DirectSolver {
   // B for emission E (N x 3) with the problem's F and rho; status refused (B empty) if the system was refused.
   Solution solve(const RadiosityProblem& p) const;
 
+  // The transposed systems: y_c with (I - diag(rho_c) F)^T y_c = (I - F^T diag(rho_c)) y_c = rhs_c per channel,
+  // by the same factorisation (the adjoint radiosity system, solve/adjoint_radiosity.h). rhs is N x 3. Status
+  // refused (B empty) if the system was refused; Solution.B holds y.
+  Solution solve_transposed(const RadiosityProblem& p, const PatchRgb& rhs) const;
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
