@@ -18,6 +18,7 @@ struct SceneOptions {
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
   bool strict = false;     // --strict: refuse what the readers and validation would repair
+  bool two_sided = false;  // --two-sided: every (non-dielectric) material two-sided (patch/patch_set.h, add_back_sides)
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE
