@@ -20,6 +20,7 @@ struct SceneOptions {
   bool strict = false;     // --strict: refuse what the readers and validation would repair
   std::vector<std::string> set_material;  // --set MATERIAL.Kd=r,g,b / MATERIAL.Ke=...: material overrides
   double rho_scale = 1;    // --rho-scale s: every Kd times s (after --set)
+  bool two_sided = false;  // --two-sided: every (non-dielectric) material two-sided (patch/patch_set.h, add_back_sides)
   std::string vtp;         // -o FILE.vtp
   std::string csv;         // --csv FILE
   std::string json;        // --json FILE

@@ -197,9 +197,12 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& me
   mesh = load_validated_mesh(options, summary);
   Timer timer;
   PatchSet patches = make_patches(mesh, options.max_edge);
+  const std::size_t back = add_back_sides(patches, options.two_sided);  // two-sided faces: a back patch each
   summary.add_timing("patch", timer.seconds());
   summary.json()["max_edge"] = options.max_edge;
   summary.json()["patches"] = patches.size();
+  if (options.two_sided) summary.json()["two_sided"] = true;
+  if (back > 0) summary.json()["back_patches"] = back;
   summary.json()["total_area"] = patches.total_area();
   return patches;
 }

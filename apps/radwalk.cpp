@@ -156,6 +156,10 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                     "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
         ->check(kNonNegative)
         ->capture_default_str();
+  if (patching)
+    cmd->add_flag("--two-sided", o.two_sided,
+                  "Make every material two-sided: each face becomes a front and a back patch with a B each (per "
+                  "material: 'radwalk_two_sided 1' in its MTL block); default one-sided, the back absorbs");
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");

@@ -92,7 +92,9 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
     for (std::uint32_t col = 0; col < m; ++col) s.permutation[k++] = row << 16 | col;
   for (std::uint32_t k = strata; k > 1; --k) std::swap(s.permutation[k - 1], s.permutation[rng.uniform_index(k)]);
 
-  // Step 2: rays in batches; first hits sorted into front hits, back hits and escapes.
+  // Step 2: rays in batches; first hits sorted into front hits, back hits and escapes. A back hit is the absorbing
+  // back of a one-sided face; a two-sided face's back is a patch of its own, reached from its front
+  // (patch/patch_set.h, "Sides"), so rays from a back patch leave by its reversed normal like any other.
   s.targets.clear();
   std::uint32_t dir_row = 0, dir_col = 0;  // direction stratum of the current ray
   for (std::uint32_t base = 0; base < n; base += kBatch) {

@@ -5,7 +5,8 @@
 // an unbiased estimator of F_ij = (1/A_i) int_{A_i} int_{A_j} V cos(t_i) cos(t_j) / (pi r^2) dA_j dA_i, because a
 // ray with a uniform origin on A_i (pdf 1/A_i) and a cosine-weighted direction (pdf cos(t_i)/pi) reaches the
 // front of j with exactly that probability. Rays that leave the scene are counted in `escaped`, rays whose first
-// hit is the back of a patch in `back_hits`; neither enters F, so row sums are 1 - (escaped + back_hits)/n_i.
+// hit is the back of a one-sided patch in `back_hits` (a two-sided face has a patch per side, so it gives none);
+// neither enters F, so row sums are 1 - (escaped + back_hits)/n_i.
 //
 // Sampling (stratified, unbiased): with m = min(floor(sqrt(n_i)), 1024), the first m^2 rays take one jittered stratum each
 // of the direction square (u3, u4) (cosine warp of sample_cosine_hemisphere) and, through a random permutation,

@@ -19,7 +19,10 @@ std::vector<CellField> patch_fields(const PatchSet& patches) {
       E.values.push_back(patches.E[i][c]);
     }
   }
-  return {patch, face, area, normal, rho, E};
+  if (patches.side.empty()) return {patch, face, area, normal, rho, E};
+  CellField side{"side", 1, {}, FieldKind::count, {}};  // two-sided faces: 0 front, 1 back
+  for (std::size_t i = 0; i < n; ++i) side.values.push_back(patches.is_back(i) ? 1 : 0);
+  return {patch, face, side, area, normal, rho, E};
 }
 
 CellField scalar_field(const std::string& name, const std::vector<double>& values, FieldKind kind) {

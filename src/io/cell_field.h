@@ -29,7 +29,8 @@ struct CellField {
   const std::string& column_name() const { return csv_name.empty() ? name : csv_name; }
 };
 
-// The fields every patch output carries: patch and face (counts), area and normal (geometry), rho and E (3).
+// The fields every patch output carries: patch and face (counts), area and normal (geometry), rho and E (3); in a
+// scene with two-sided faces (PatchSet::side not empty) also side (count, after face: 0 front, 1 back).
 // (The centroid goes to CSV as cx, cy, cz; VTK has the geometry itself.)
 std::vector<CellField> patch_fields(const PatchSet& patches);
 

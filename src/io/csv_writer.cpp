@@ -31,6 +31,8 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
   static const char* kChannel[3] = {"_r", "_g", "_b"};
   std::vector<std::string> header = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx", "ny",
                                      "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b"};
+  const bool sides = !patches.side.empty();  // a scene with two-sided faces: "side" after "face"
+  if (sides) header.insert(header.begin() + 2, "side");
   for (const CellField& f : extra) {
     if (f.components == 1) {
       header.push_back(f.column_name());
@@ -52,7 +54,9 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
     for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
     out << '\n';
     for (std::size_t i = 0; i < n; ++i) {
-      out << i << ',' << patches.face[i] << ',' << csv_number(patches.area[i]);
+      out << i << ',' << patches.face[i];
+      if (sides) out << ',' << (patches.is_back(i) ? 1 : 0);
+      out << ',' << csv_number(patches.area[i]);
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.centroid[i][c]);
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.normal[i][c]);
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.rho[i][c]);

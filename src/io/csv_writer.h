@@ -1,7 +1,8 @@
 #pragma once
 // Per-patch CSV: a header row, then one row per patch. Columns: patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,
 // rho_b,E_r,E_g,E_b, then each extra field (a 1-component field is one column NAME, a 3-component field is
-// NAME_r,NAME_g,NAME_b). Numbers are printed with 12 significant digits ("nan" never appears: non-finite values
+// NAME_r,NAME_g,NAME_b). In a scene with two-sided faces (PatchSet::side not empty) a column side (0 front, 1 back)
+// follows face. Numbers are printed with 12 significant digits ("nan" never appears: non-finite values
 // are written as empty cells). Written atomically.
 #include <string>
 #include <vector>

@@ -65,7 +65,7 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
       return;
     }
     const bool known = key == "Kd" || key == "Ke" || key == "Ks" || key == "illum" || key == "Ni" || key == "Ns" ||
-                       key == "Pr" || key == "Pm";
+                       key == "Pr" || key == "Pm" || key == kTwoSidedStatement;
     if (!known) return;
     if (entries.empty())
       throw InputError(locate(path, line, -1, std::string(key) + " before the first newmtl statement"));
@@ -80,9 +80,14 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
       if (!(*e.Pr >= 0 && *e.Pr <= 1))  // the roughness Pr^2 is a GGX alpha (and 1e300^2 is no number)
         throw InputError(
             locate(path, line, -1, "Pr (roughness) must be in [0, 1], found " + std::string(tokens[1])));
-    } else if (key == "Pm")
+    } else if (key == "Pm") {
       e.Pm = parse_scalar(tokens, path, line);
-    else {
+    } else if (key == kTwoSidedStatement) {
+      const auto v = tokens.size() == 2 ? parse_integral(tokens[1]) : std::nullopt;  // 0 or 1
+      if (!v || (*v != 0 && *v != 1))
+        throw InputError(locate(path, line, -1, std::string(kTwoSidedStatement) + " needs 0 or 1"));
+      e.two_sided = *v == 1;
+    } else {
       const auto v = tokens.size() == 2 ? parse_integral(tokens[1]) : std::nullopt;  // "2" or "2.0"
       if (!v || *v < 0 || *v > 10) throw InputError(locate(path, line, -1, "illum needs one integer in 0..10"));
       e.illum = static_cast<int>(*v);
@@ -101,6 +106,7 @@ Material material_from_mtl(const MtlEntry& e) {
   if (e.Ks) m.Ks = *e.Ks;
   if (e.Ni) m.Ni = *e.Ni;
   m.illum = e.illum.value_or(-1);
+  m.two_sided = e.two_sided.value_or(false);
   m.metallic = e.Pm.value_or(0.0);
   const double Pr = e.Pr.value_or(0.0);
 

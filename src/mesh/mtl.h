@@ -6,6 +6,8 @@
 // allowed); Ni, Ns, Pr, Pm as one number (Pr, perceptual roughness, in [0, 1]). Every number must be finite.
 // Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the emitted radiosity is E = pi * Ke).
 // Numbers are read exactly (correctly rounded, see text_scan.h).
+// radwalk's own statement: `radwalk_two_sided 1` (or 0, the default) makes the material's faces two-sided, a
+// front and a back patch each (patch/patch_set.h; README, "One- and two-sided surfaces"). Other programs ignore it.
 //
 // BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
 //   illum 4, 6 or 7 (refraction)              -> dielectric (Ni = index of refraction)
@@ -32,7 +34,11 @@ struct MtlEntry {
   std::optional<Rgb> Kd, Ke, Ks;
   std::optional<int> illum;
   std::optional<double> Ni, Ns, Pr, Pm;
+  std::optional<bool> two_sided;  // radwalk_two_sided 0|1
 };
+
+// The MTL statement that makes a material two-sided.
+inline constexpr const char* kTwoSidedStatement = "radwalk_two_sided";
 
 // All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement
 // radwalk cannot read (a number that does not parse, is out of range or not finite, a spectral or xyz colour,

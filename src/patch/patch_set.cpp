@@ -63,6 +63,34 @@ void set_radiometry_from_materials(PatchSet& patches) {
   }
 }
 
+std::size_t add_back_sides(PatchSet& patches, bool all_materials) {
+  const std::size_t n = patches.size();
+  const auto wanted = [&](std::size_t i) {
+    if (patches.side_of(i) != Side::one_sided) return false;  // already two-sided
+    const Material& m = patches.materials[static_cast<std::size_t>(patches.material[i])];
+    return m.kind != BsdfKind::dielectric && (all_materials || m.two_sided);
+  };
+  std::size_t added = 0;
+  for (std::size_t i = 0; i < n; ++i) added += wanted(i);
+  if (added == 0) return 0;
+  if (patches.side.empty()) patches.side.assign(n, Side::one_sided);
+  patches.corners.reserve(n + added);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!wanted(i)) continue;
+    patches.side[i] = Side::front;
+    const auto c = patches.corners[i];
+    patches.corners.push_back(patches.is_quad(i) ? std::array<std::int32_t, 4>{c[0], c[3], c[2], c[1]}
+                                                 : std::array<std::int32_t, 4>{c[0], c[2], c[1], -1});
+    patches.rho.push_back(patches.rho[i]);
+    patches.E.push_back(patches.E[i]);
+    patches.face.push_back(patches.face[i]);
+    patches.material.push_back(patches.material[i]);
+    patches.side.push_back(Side::back);
+  }
+  compute_patch_geometry(patches);
+  return added;
+}
+
 Vec3 sample_patch_point(const PatchSet& patches, std::size_t i, double u1, double u2) {
   return PatchPointSampler(patches, i).point(u1, u2);
 }

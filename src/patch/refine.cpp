@@ -47,6 +47,7 @@ PatchSet split_patches(const PatchSet& patches, const std::vector<bool>& split, 
     out.E.push_back(patches.E[from]);
     out.face.push_back(patches.face[from]);
     out.material.push_back(patches.material[from]);
+    if (!patches.side.empty()) out.side.push_back(patches.side[from]);  // each side tiles what its parent did
     if (parent) parent->push_back(std::int32_t(from));
   };
 

@@ -5,8 +5,11 @@
 //   f(wo, wi)   the BSDF value (1/sr); 0 for delta lobes,
 //   pdf(wo, wi) the solid-angle density with which sample() returns wi; 0 for delta lobes,
 //   sample(wo, u1, u2, uc) a direction wi with weight f |cos(wi)| / pdf, or nullopt (the path ends).
-// Directions point away from the surface, +z is the normal. Every model except the dielectric is two-sided: the
-// caller turns the frame so that wo.z() > 0 (two_sided() == true). Reflectance never exceeds 1 per channel.
+// Directions point away from the surface, +z is the normal. Every model except the dielectric is opaque
+// (is_opaque()): it scatters only on the side wo.z() > 0, the front of the patch hit; a path reaching the back of
+// a one-sided face is absorbed by the caller, and a two-sided face's back is a patch of its own
+// (patch/patch_set.h, "Sides"). The dielectric is an interface: it scatters from both sides of its front normal.
+// Reflectance never exceeds 1 per channel.
 //
 // Materials (mesh/material.h) map to models as follows (make_bsdf):
 //   diffuse     -> Lambertian(R = rho)                       (rho = the patch's Kd)
@@ -48,7 +51,7 @@ class Bsdf {
     return std::holds_alternative<Mirror>(model_) || std::holds_alternative<Dielectric>(model_) ||
            std::holds_alternative<Conductor>(model_);
   }
-  bool two_sided() const { return !std::holds_alternative<Dielectric>(model_); }
+  bool is_opaque() const { return !std::holds_alternative<Dielectric>(model_); }
   bool is_diffuse() const { return std::holds_alternative<Lambertian>(model_); }
   const Model& model() const { return model_; }
 

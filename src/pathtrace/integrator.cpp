@@ -132,9 +132,11 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
     }
     if (options_.max_depth > 0 && state.depth >= options_.max_depth) return;
 
-    // Scatter: the shading normal faces the arriving path on two-sided surfaces.
+    // The back of a one-sided face absorbs (a two-sided face's back is a patch of its own, hit from its front);
+    // a dielectric is an interface and scatters from both sides with its front normal.
     const Bsdf& bsdf = bsdfs_[j];
-    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-n_front) : n_front;
+    if (!hit.front && bsdf.is_opaque()) return;
+    const Vec3& n = n_front;
     if (!scatter(bsdf, hit.patch, x, n, -ray.direction, state, L, ray, rng, counters)) return;
   }
 }

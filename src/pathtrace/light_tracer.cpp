@@ -59,8 +59,9 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
     const Vec3 x = ray.origin + hit.t * ray.direction;
     const Bsdf& bsdf = integrator.bsdf(hit.patch);
     const Vec3 n_front = geometry.normal(hit.patch, x);
-    const Vec3 n = (bsdf.two_sided() && !hit.front) ? Vec3(-n_front) : n_front;
-    const Frame frame(n);
+    // The back of a one-sided face absorbs (patch/patch_set.h, "Sides"); a dielectric scatters from both sides.
+    if (!hit.front && bsdf.is_opaque()) return;
+    const Frame frame(n_front);
     const Vec3 wo = frame.to_local(-ray.direction);
     visit.arrived(hit, x, bsdf, frame, wo, Rgb(w0 * beta));
     // Scatter by the patch's BSDF.

@@ -35,6 +35,8 @@ std::optional<double> intersect_patch(const PatchSet& patches, std::size_t i, co
 Hit BruteForceVisibility::intersect(const Ray& ray) const {
   Hit hit;
   for (std::size_t i = 0; i < patches_.size(); ++i) {
+    // A two-sided face's patch is seen from its front only (the other side's patch takes the rest).
+    if (patches_.two_sided(i) && !(ray.direction.dot(patches_.normal[i]) < 0)) continue;
     const auto t = intersect_patch(patches_, i, ray);
     if (t && *t < hit.t) {
       hit.t = *t;

@@ -5,7 +5,8 @@
 // A triangle is hit when the ray meets it at t in (0, tmax] with barycentric coordinates in [0, 1] (edges
 // included, so shared edges never leak); a quad (p0, p1, p2, p3) is the two triangles (p0, p1, p2), (p0, p2, p3)
 // (the split sample_patch_point and EmbreeVisibility use). The nearest hit wins; among equal t, the lower patch
-// index. Hit::front = dot(direction, normal) < 0. Keeps a reference to the PatchSet: it must outlive this object.
+// index. Hit::front = dot(direction, normal) < 0. A patch of a two-sided face (PatchSet::two_sided) is skipped by
+// a ray arriving at its back, as in EmbreeVisibility. Keeps a reference to the PatchSet: it must outlive this object.
 #include <optional>
 
 #include "patch/patch_set.h"

@@ -83,6 +83,21 @@ void validate(const PatchSet& patches) {
     }
 }
 
+// The intersection filter of the two-sided geometries: a hit that arrives at the back of its patch
+// (dot(direction, normal) >= 0, the complement of Hit::front in the same float arithmetic) is rejected, so
+// traversal goes on to the coincident patch of the other side.
+void reject_back_hits(const RTCFilterFunctionNArguments* args) {
+  const auto* prims = static_cast<const EmbreeVisibility::Primitives*>(args->geometryUserPtr);
+  for (unsigned k = 0; k < args->N; ++k) {
+    if (args->valid[k] != -1) continue;
+    const unsigned prim = RTCHitN_primID(args->hit, args->N, k);
+    const Eigen::Vector3f& n = (*prims->normal)[std::size_t(prims->patch[prim])];
+    const float dx = RTCRayN_dir_x(args->ray, args->N, k), dy = RTCRayN_dir_y(args->ray, args->N, k),
+                dz = RTCRayN_dir_z(args->ray, args->N, k);
+    if (!(dx * n.x() + dy * n.y() + dz * n.z() < 0.0f)) args->valid[k] = 0;
+  }
+}
+
 }  // namespace
 
 EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions& options)
@@ -105,11 +120,16 @@ EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions&
   normal_.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     normal_[i] = patches.normal[i].cast<float>();
-    (patches.is_quad(i) ? quad_patch_ : triangle_patch_).push_back(PatchIndex(i));
+    primitives_[(patches.two_sided(i) ? 2 : 0) + (patches.is_quad(i) ? 1 : 0)].patch.push_back(PatchIndex(i));
+  }
+  if (!primitives_[2].patch.empty() || !primitives_[3].patch.empty()) {
+    if (!rtcGetDeviceProperty(device_->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
+      throw std::runtime_error("embree: this Embree has no filter functions, which two-sided faces need");
   }
 
   // Step 4: one geometry per primitive kind, both over all points (float copies made by Embree buffers).
-  auto add_geometry = [&](RTCGeometryType type, const std::vector<PatchIndex>& prims) -> unsigned {
+  auto add_geometry = [&](RTCGeometryType type, Primitives& primitives, bool two_sided) -> unsigned {
+    const std::vector<PatchIndex>& prims = primitives.patch;
     if (prims.empty()) return ~0u;
     RTCGeometry geom = rtcNewGeometry(device_->device, type);
     auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
@@ -128,14 +148,24 @@ EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions&
       // Quads rotated by one corner: Embree splits (q0,q1,q3),(q2,q3,q1), i.e. along p0-p2 after rotation.
       for (int r = 0; r < m; ++r) idx[m * k + r] = unsigned(quad ? c[(r + 1) % 4] : c[r]);
     }
+    if (two_sided) {
+      primitives.normal = &normal_;
+      rtcSetGeometryUserData(geom, &primitives);
+      rtcSetGeometryIntersectFilterFunction(geom, reject_back_hits);
+    }
     rtcCommitGeometry(geom);
     const unsigned id = rtcAttachGeometry(device_->scene, geom);
     rtcReleaseGeometry(geom);
     device_->check("geometry");
     return id;
   };
-  triangle_geom_ = add_geometry(RTC_GEOMETRY_TYPE_TRIANGLE, triangle_patch_);
-  quad_geom_ = add_geometry(RTC_GEOMETRY_TYPE_QUAD, quad_patch_);
+  for (unsigned kind = 0; kind < 4; ++kind) {
+    const unsigned id = add_geometry(kind % 2 ? RTC_GEOMETRY_TYPE_QUAD : RTC_GEOMETRY_TYPE_TRIANGLE,
+                                     primitives_[kind], kind >= 2);
+    if (id == ~0u) continue;
+    if (geometry_kind_.size() <= id) geometry_kind_.resize(id + 1, ~0u);
+    geometry_kind_[id] = kind;
+  }
 
   // Step 5: build the BVH.
   rtcCommitScene(device_->scene);
@@ -147,7 +177,7 @@ EmbreeVisibility::~EmbreeVisibility() = default;
 Hit EmbreeVisibility::make_hit(unsigned geom_id, unsigned prim_id, float t, const float dir[3]) const {
   Hit h;
   if (geom_id == RTC_INVALID_GEOMETRY_ID) return h;
-  h.patch = geom_id == triangle_geom_ ? triangle_patch_[prim_id] : quad_patch_[prim_id];
+  h.patch = primitives_[geometry_kind_[geom_id]].patch[prim_id];
   h.t = t;
   const Eigen::Vector3f& nrm = normal_[h.patch];
   h.front = dir[0] * nrm.x() + dir[1] * nrm.y() + dir[2] * nrm.z() < 0.0f;

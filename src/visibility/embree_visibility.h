@@ -7,6 +7,10 @@
 //   (p1, p2, p3, p0) so that Embree's split diagonal is p0-p2, the same split as sample_patch_point and
 //   BruteForceVisibility use (this matters only for non-planar quads).
 // - Hit::front = dot(ray direction, patch normal) < 0, with the PatchSet's normal (not Embree's Ng).
+// - Two-sided faces (PatchSet::two_sided): their patches go into geometries of their own (triangles, quads) with an
+//   intersection filter that rejects a hit arriving at a patch's back (the same float test as Hit::front), so the
+//   ray goes on to the coincident patch of the other side, which it reaches from its front. A one-sided scene
+//   builds exactly the geometries it built before (no filter, the same hits).
 // - Hit::t is the ray parameter in the mesh's length unit (directions are unit length); rays are traced in
 //   single precision, so t and the hit patch near a shared edge agree with exact arithmetic only up to float
 //   rounding. Origins should come from spawn_ray (ray_offset.h), which keeps them off their own patch.
@@ -54,11 +58,19 @@ class EmbreeVisibility final : public Visibility {
  private:
   Hit make_hit(unsigned geom_id, unsigned prim_id, float t, const float dir[3]) const;
 
+ public:
+  // The patches of one Embree geometry (primID -> patch) and the normals, for the two-sided filter.
+  struct Primitives {
+    std::vector<PatchIndex> patch;
+    const std::vector<Eigen::Vector3f>* normal = nullptr;
+  };
+
+ private:
   std::unique_ptr<Device> device_;
-  std::vector<PatchIndex> triangle_patch_;  // Embree primID in the triangle geometry -> patch
-  std::vector<PatchIndex> quad_patch_;      // Embree primID in the quad geometry -> patch
-  std::vector<Eigen::Vector3f> normal_;     // patch normals, for Hit::front
-  unsigned triangle_geom_ = ~0u, quad_geom_ = ~0u;
+  // Geometries in the order triangles, quads, two-sided triangles, two-sided quads; empty ones are not attached.
+  std::vector<Primitives> primitives_ = std::vector<Primitives>(4);
+  std::vector<unsigned> geometry_kind_;   // Embree geomID -> index into primitives_
+  std::vector<Eigen::Vector3f> normal_;   // patch normals, for Hit::front
 };
 
 }  // namespace radwalk

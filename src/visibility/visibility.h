@@ -18,7 +18,10 @@ struct Ray {
 struct Hit {
   PatchIndex patch = -1;  // -1: the ray left the scene
   double t = std::numeric_limits<double>::infinity();
-  bool front = false;     // true when the ray arrives against the patch normal (dot(direction, normal) < 0)
+  // True when the ray arrives against the patch normal (dot(direction, normal) < 0). False is a back hit on a
+  // one-sided face; a ray reaching a two-sided face hits the patch of the side it arrives on, always front
+  // (patch/patch_set.h, "Sides").
+  bool front = false;
   bool missed() const { return patch < 0; }
 };
 

@@ -4,8 +4,9 @@
 // sample(k): a uniform point x on patch k, a cosine-weighted direction w about n_k, the ray spawn_ray(x, w)
 // (ray_offset.h) traced through the Visibility. A front-face hit on patch j returns j, which happens with
 // probability F_kj (the exact form factor of the geometry, up to the ray offset of ray_offset.h); a miss
-// returns kEscaped and a back-face hit kBackHit, both ending the walk (counted). So n_k = 1, and the walk
-// needs O(N) memory.
+// returns kEscaped and a back-face hit kBackHit (the absorbing back of a one-sided face; the visibility maps a
+// two-sided face's hit to the patch of the side it arrives on, patch/patch_set.h "Sides"), both ending the walk
+// (counted). So n_k = 1, and the walk needs O(N) memory.
 //
 // Rays are made in single precision, the precision they are traced in, straight into a RayPacket
 // (ray_packet.h). Four 32-bit draws per ray, u = (next_u32 >> 8) 2^-24 in [0, 1) (a grid exact in float):

@@ -183,7 +183,7 @@ TEST_CASE("materials map to models; is_diffuse_scene", "[bsdf]") {
   m.kind = BsdfKind::mirror;
   CHECK(std::holds_alternative<Mirror>(make_bsdf(m, m.Kd).model()));
   m.kind = BsdfKind::dielectric;
-  CHECK_FALSE(make_bsdf(m, m.Kd).two_sided());
+  CHECK_FALSE(make_bsdf(m, m.Kd).is_opaque());
   m.kind = BsdfKind::conductor;
   CHECK(std::holds_alternative<Conductor>(make_bsdf(m, m.Kd).model()));
   m.roughness = 0.3;

@@ -3,6 +3,8 @@
 // tests. unit_cube_room(1) is the geometry of the unit cube of reference_problems.h.
 #include <array>
 
+#include <string>
+
 #include "patch/patch_builder.h"
 
 namespace radwalk::test {
@@ -46,6 +48,43 @@ inline PatchSet unit_cube_room(int k, bool with_triangles = false) {
   const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
   add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), k, true, m, with_triangles);
   return b.build();
+}
+
+// The closed box [0,1]^3, k x k inward patches per wall, and a thin square panel at x = 0.5 over y, z in
+// [0.25, 0.75], m x m patches, its front facing -x. Materials: 0 the walls, 1 the wall x = 0, 2 the wall x = 1,
+// 3 the panel (two-sided when panel_two_sided); then add_back_sides(patches, all_two_sided).
+inline PatchSet panel_box(int k, int m, const Material& walls, const Material& low, const Material& high, Material panel,
+                   bool panel_two_sided, bool all_two_sided = false) {
+  PatchBuilder b;
+  b.add_material(walls);
+  b.add_material(low);
+  b.add_material(high);
+  panel.two_sided = panel_two_sided;
+  b.add_material(panel);
+  add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), k, true, 0);
+  for (int a = 0; a < m; ++a)
+    for (int c = 0; c < m; ++c) {
+      const double y0 = 0.25 + 0.5 * a / m, y1 = 0.25 + 0.5 * (a + 1) / m;
+      const double z0 = 0.25 + 0.5 * c / m, z1 = 0.25 + 0.5 * (c + 1) / m;
+      b.add_quad(Vec3(0.5, y0, z0), Vec3(0.5, y0, z1), Vec3(0.5, y1, z1), Vec3(0.5, y1, z0), 3);
+    }
+  PatchSet ps = b.build();
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    if (ps.material[i] != 0) continue;
+    if (ps.centroid[i].x() < 1e-9) ps.material[i] = 1;
+    if (ps.centroid[i].x() > 1 - 1e-9) ps.material[i] = 2;
+  }
+  set_radiometry_from_materials(ps);
+  add_back_sides(ps, all_two_sided);
+  return ps;
+}
+
+inline Material diffuse_material(const std::string& name, double rho, double Le = 0) {
+  Material m;
+  m.name = name;
+  m.Kd = Rgb::Constant(rho);
+  m.Ke = Rgb::Constant(Le);
+  return m;
 }
 
 }  // namespace radwalk::test
