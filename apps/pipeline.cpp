@@ -7,7 +7,6 @@
 #include "io/paraview_state.h"
 
 #include <cstdio>
-#include <filesystem>
 
 #include "core/error.h"
 #include "core/timer.h"
@@ -40,7 +39,6 @@ void note(const std::string& message) {
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   for (const std::string& w : options.warnings) summary.add_warning(w);
-  if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
   Timer timer;
   ReadOptions read;
   read.strict = options.strict;
