@@ -1,6 +1,7 @@
-"""Shared helpers of the radwalk experiments: import the radwalk Python module (import_radwalk), or find and run
-the radwalk program and read its JSON / CSV / Matrix Market outputs (the scripts not yet on the module); write CSV
-tables, and set up matplotlib (Agg backend, no display needed).
+"""Shared helpers of the radwalk experiments: import the radwalk Python module (import_radwalk); find and run the
+radwalk program (Radwalk) and read CSV tables (read_csv), for adaptive_patching.py, the one script not yet on the
+module, and for redrawing charts from a script's own CSV; write CSV tables, and set up matplotlib (Agg backend,
+no display needed).
 
 Every experiment script takes --out DIR (default: results/<experiment>/ under the current directory), --threads
 and --seed; those that run the program also --radwalk PATH (default: $RADWALK, else build/apps/radwalk under the
@@ -113,12 +114,6 @@ def read_csv(path):
     return rows
 
 
-def read_B(path):
-    """Patch CSV of `radwalk solve` -> N x 3 array of B (W/m^2)."""
-    rows = read_csv(path)
-    return np.array([[r["B_r"], r["B_g"], r["B_b"]] for r in rows], dtype=float)
-
-
 def write_csv(path, rows, fields=None, digits=6):
     """Rows (dicts) as CSV, floats with `digits` significant digits (12: as radwalk's own CSVs), empty if not finite."""
     fields = fields or list(rows[0].keys())
@@ -142,30 +137,6 @@ def rms_relative_error(B, B_ref):
     rel = (B[mask] - B_ref[mask]) / B_ref[mask]
     rel = np.where(np.isfinite(rel), rel, 1.0)
     return float(np.sqrt(np.mean(rel ** 2)))
-
-
-def read_mtx(path):
-    """Matrix Market coordinate file -> (header lines, n, list of (i, j, value)) with 1-based i, j."""
-    header, entries, n = [], [], None
-    with open(path) as f:
-        for line in f:
-            if line.startswith("%"):
-                header.append(line)
-                continue
-            parts = line.split()
-            if n is None:
-                n = int(parts[0])
-                continue
-            entries.append((int(parts[0]), int(parts[1]), float(parts[2])))
-    return header, n, entries
-
-
-def write_mtx(path, header, n, entries):
-    with open(path, "w") as f:
-        f.writelines(header)
-        f.write(f"{n} {n} {len(entries)}\n")
-        for i, j, v in entries:
-            f.write(f"{i} {j} {v:.9g}\n")
 
 
 def table(rows, fields, title=None):
