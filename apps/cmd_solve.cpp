@@ -33,9 +33,7 @@ SolveOptions solve_options(const SolveCommand& c, std::size_t patches) {
   SolveOptions o;
   o.solver = c.solver;
   o.tol = c.tol;
-  o.max_iterations = c.max_iterations > 0 ? c.max_iterations
-                     : c.solver == "southwell"  ? 1000 * static_cast<long>(patches)
-                                                : 10000;
+  o.max_iterations = c.max_iterations > 0 ? c.max_iterations : default_max_iterations(c.solver, patches);
   return o;
 }
 

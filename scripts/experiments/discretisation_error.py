@@ -1,83 +1,83 @@
 #!/usr/bin/python3
 """Discretisation error: the discrete radiosity solution against the continuous path tracer, as patches shrink.
 
-For each --max-edge L, on the same patches:
-  discrete   = radwalk solve (direct or Gauss-Seidel) of F estimated with --rays rays per patch, twice with
-               different seeds (their difference measures the form-factor noise);
-  continuous = radwalk pathtrace patch averages with --spp samples per patch (with standard errors).
+For each --max-edge L, on the same patches (the Python module radwalk: each scene loaded once):
+  discrete   = radwalk.solve (direct or Gauss-Seidel) of F estimated with --rays rays per patch, twice with
+               seeds S and S + 1 (their difference measures the form-factor noise);
+  continuous = radwalk.pathtrace patch averages with --spp samples per patch, seed S + 2 (with standard errors).
 Error measure: area-weighted RMS over patches and channels of (B_discrete - B_continuous), relative to the
 area-weighted RMS of B_continuous. Patches whose rays hit the back of another patch (hidden inside the blocks)
 are left out. The statistical floor of that difference is sqrt(ff_noise^2 + pt_noise^2); what exceeds it is the
 discretisation error (constant radiosity per patch).
 
-Writes results/discretisation/discretisation.csv and discretisation.png.
+Writes OUT/discretisation.csv and discretisation.png, and per L the per-patch CSVs of the three solutions
+(discrete_s1_L.csv, discrete_s2_L.csv: as `radwalk solve --csv`; pathtrace_L.csv: as `radwalk pathtrace --csv`).
 Usage: /usr/bin/python3 scripts/experiments/discretisation_error.py [--max-edges 200,100,50,25] [--rays 4000]
-       [--spp 4096] [--radwalk build/apps/radwalk] [--out results/discretisation]
+       [--spp 4096] [--scale K] [--seed S] [--threads T] [--out results/discretisation]
 """
 import argparse
 import csv
 import math
 import os
-import subprocess
 
+import rwexp
 
-def run(cmd):
-    subprocess.run(cmd, check=True, stdout=subprocess.DEVNULL)
-
-
-def read(path):
-    with open(path) as f:
-        return list(csv.DictReader(f))
+radwalk = rwexp.import_radwalk()
 
 
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--scene", default="meshes/cornell_box.obj")
     p.add_argument("--max-edges", default="200,100,50,25")
-    p.add_argument("--rays", type=int, default=4000)
-    p.add_argument("--spp", type=int, default=4096)
-    p.add_argument("--radwalk", default=os.environ.get("RADWALK", "build/apps/radwalk"))
+    p.add_argument("--rays", type=int, default=4000, help="rays per patch of each F (default 4000)")
+    p.add_argument("--spp", type=int, default=4096, help="path-traced samples per patch (default 4096)")
+    p.add_argument("--scale", type=float, default=1, help="multiplies --rays and --spp (default 1)")
+    p.add_argument("--seed", type=int, default=1, help="seeds S, S + 1 (form factors) and S + 2 (path tracer)")
+    p.add_argument("--threads", type=int, default=0, help="threads (default 0: all cores)")
     p.add_argument("--out", default="results/discretisation")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
+    rays, spp = max(1, round(a.rays * a.scale)), max(2, round(a.spp * a.scale))
 
     rows = []
     for L in a.max_edges.split(","):
-        d1, d2, pt = (os.path.join(a.out, f"{name}_{L}.csv") for name in ("discrete_s1", "discrete_s2", "pathtrace"))
-        base = [a.radwalk, "-q"]
-        run(base + ["solve", a.scene, "--max-edge", L, "--rays", str(a.rays), "--seed", "1", "--csv", d1])
-        run(base + ["solve", a.scene, "--max-edge", L, "--rays", str(a.rays), "--seed", "2", "--csv", d2])
-        run(base + ["pathtrace", a.scene, "--max-edge", L, "--spp", str(a.spp), "--seed", "3", "--csv", pt])
-        r1, r2, rp = read(d1), read(d2), read(pt)
-        num = ff = se2 = den = area = 0.0
-        for x, y, z in zip(r1, r2, rp):
-            if float(x["back_hits"]) > 0 or float(y["back_hits"]) > 0:
+        scene = radwalk.load(a.scene, max_edge=float(L))
+        solutions = []
+        for k, seed in enumerate((a.seed, a.seed + 1)):
+            ff = radwalk.form_factors(scene, rays=rays, seed=seed, threads=a.threads)
+            s = radwalk.solve(scene, ff, threads=a.threads)
+            radwalk.write_csv(os.path.join(a.out, f"discrete_s{k + 1}_{L}.csv"), scene, {**ff.diagnostics, **s.fields})
+            solutions.append((s.B, ff.back_hits))
+        pt = radwalk.pathtrace(scene, spp=spp, seed=a.seed + 2, threads=a.threads).averages
+        radwalk.write_csv(os.path.join(a.out, f"pathtrace_{L}.csv"), scene, pt.fields)
+        (B1, back1), (B2, back2) = solutions
+        num = ff_var = se2 = den = area = 0.0
+        for i in range(len(scene)):
+            if back1[i] > 0 or back2[i] > 0:
                 continue
-            A = float(x["area"])
+            A = float(scene.areas[i])
             area += A
-            for c in "rgb":
-                b1, b2, bp = float(x["B_" + c]), float(y["B_" + c]), float(z["B_" + c])
+            for c in range(3):
+                b1, b2, bp = float(B1[i, c]), float(B2[i, c]), float(pt.B[i, c])
                 num += A * (b1 - bp) ** 2
-                ff += A * (b1 - b2) ** 2 / 2  # variance of one discrete solution from form-factor noise
-                se2 += A * float(z["B_se_" + c]) ** 2
+                ff_var += A * (b1 - b2) ** 2 / 2  # variance of one discrete solution from form-factor noise
+                se2 += A * float(pt.B_se[i, c]) ** 2
                 den += A * bp ** 2
         rel = lambda v: math.sqrt(v / den)
-        floor = math.sqrt((ff + se2) / den)
-        excess = math.sqrt(max(num - ff - se2, 0.0) / den)
-        rows.append({"max_edge": L, "patches": len(r1), "rms_rel_difference": rel(num), "ff_noise": rel(ff),
+        floor = math.sqrt((ff_var + se2) / den)
+        excess = math.sqrt(max(num - ff_var - se2, 0.0) / den)
+        rows.append({"max_edge": L, "patches": len(scene), "rms_rel_difference": rel(num), "ff_noise": rel(ff_var),
                      "pt_noise": rel(se2), "noise_floor": floor, "discretisation": excess})
-        print(f"max edge {L:>5}: {len(r1):6d} patches, RMS relative difference {rel(num):.4f}, "
-              f"noise floor {floor:.4f} (form factors {rel(ff):.4f}, path tracer {rel(se2):.4f}), "
-              f"discretisation {excess:.4f}")
+        print(f"max edge {L:>5}: {len(scene):6d} patches, RMS relative difference {rel(num):.4f}, "
+              f"noise floor {floor:.4f} (form factors {rel(ff_var):.4f}, path tracer {rel(se2):.4f}), "
+              f"discretisation {excess:.4f}", flush=True)
 
     with open(os.path.join(a.out, "discretisation.csv"), "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
         w.writerows(rows)
 
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    from rwexp import plt
     n = [r["patches"] for r in rows]
     fig, ax = plt.subplots(figsize=(6, 4.2))
     ax.loglog(n, [r["rms_rel_difference"] for r in rows], "o-", label="discrete - continuous (measured)")
@@ -85,7 +85,7 @@ def main():
     ax.loglog(n, [r["noise_floor"] for r in rows], "^--", label="noise floor (form factors + path tracer)")
     ax.set_xlabel("patches")
     ax.set_ylabel("area-weighted RMS difference / RMS B")
-    ax.set_title(f"{os.path.basename(a.scene)}: {a.rays} rays/patch, {a.spp} spp")
+    ax.set_title(f"{os.path.basename(a.scene)}: {rays} rays/patch, {spp} spp")
     ax.grid(True, which="both", alpha=0.3)
     ax.legend()
     fig.tight_layout()

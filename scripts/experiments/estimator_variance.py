@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Estimator variance: empirical against theoretical per-walk variance, and efficiency ratios, per regime.
 
-Runs `radwalk compare` (all six estimators, matrix kernel, same traced F for the estimators and the exact
-variance) on scenes chosen to show each regime:
+Runs radwalk.compare (the Python module: all six estimators, matrix kernel, the same traced F for the estimators
+and the exact variance, as `radwalk compare`) on scenes chosen to show each regime:
   furnace          meshes/furnace.obj (closed, E and rho = 0.5 everywhere): gathering absorption has zero
                    variance; collision per-walk variance E^2 rho / (1 - rho)^2; expected value = rho^2 x collision
   black_emitter    scenes/cube_black_emitter.obj (emitter rho = 0): gathering absorption = collision, patch by patch
@@ -10,9 +10,11 @@ variance) on scenes chosen to show each regime:
   bright_emitters  scenes/cube_bright_emitters.obj (two adjacent emitters with rho = 0.9 see each other):
                    absorption pays for the emitters' reflection, collision wins
   cornell          meshes/cornell_box.obj --max-edge 200 (109 patches; small light)
-Writes OUT/<scene>.csv, OUT/<scene>.vtp (ParaView: per-patch var_<estimator> and var_theory_<estimator>, with
-underscores for hyphens), OUT/ratios.csv, OUT/checks.csv and OUT/variance_scatter.png, OUT/efficiency_ratios.png."""
+Writes OUT/<scene>.csv (the long table of `radwalk compare --csv`), OUT/<scene>.vtp (ParaView: per-patch
+var_<estimator> and var_theory_<estimator>, with underscores for hyphens), OUT/<scene>.json (counts, timings and
+the per-method summary), OUT/ratios.csv, OUT/checks.csv and OUT/variance_scatter.png, OUT/efficiency_ratios.png."""
 
+import json
 import math
 import os
 
@@ -21,8 +23,10 @@ import numpy as np
 import rwexp
 from rwexp import plt
 
-METHODS = ["gather-absorption", "gather-collision", "gather-expected-value", "shoot-collision",
-           "shoot-absorption", "shoot-survival"]
+radwalk = rwexp.import_radwalk()
+
+METHODS = radwalk.walk_methods()  # the one method table (src/walk/walk_method.h)
+CHANNELS = "rgb"
 # (label, first, second): ratio = first / second
 PAIRS = [("collision / absorption (gather)", "gather-collision", "gather-absorption"),
          ("expected value / collision (gather)", "gather-expected-value", "gather-collision"),
@@ -34,32 +38,52 @@ PAIRS = [("collision / absorption (gather)", "gather-collision", "gather-absorpt
 def scenes(scale):
     m, s = rwexp.MESHES, rwexp.SCENES
     return [
-        ("furnace", os.path.join(m, "furnace.obj"), ["--max-edge", 0.5], 20000),
-        ("black_emitter", os.path.join(s, "cube_black_emitter.obj"), ["--max-edge", 0.5], 20000),
-        ("parallel", os.path.join(m, "parallel_squares.obj"), ["--max-edge", 0.5], 20000),
-        ("bright_emitters", os.path.join(s, "cube_bright_emitters.obj"), ["--max-edge", 0.5], 20000),
-        ("cornell", os.path.join(m, "cornell_box.obj"), ["--max-edge", 200 if scale < 4 else 100], 8000),
+        ("furnace", os.path.join(m, "furnace.obj"), 0.5, 20000),
+        ("black_emitter", os.path.join(s, "cube_black_emitter.obj"), 0.5, 20000),
+        ("parallel", os.path.join(m, "parallel_squares.obj"), 0.5, 20000),
+        ("bright_emitters", os.path.join(s, "cube_bright_emitters.obj"), 0.5, 20000),
+        ("cornell", os.path.join(m, "cornell_box.obj"), 200 if scale < 4 else 100, 8000),
     ]
 
 
 def main():
-    p = rwexp.parser("estimator_variance", __doc__.splitlines()[0])
+    p = rwexp.parser("estimator_variance", __doc__.splitlines()[0], program=False)
     p.add_argument("--runs", type=int, default=5, help="independent runs per estimator")
     p.add_argument("--rays", type=int, default=10000, help="rays per patch of the traced F")
     p.add_argument("--scale", type=int, default=1, help="multiplies the walks (and refines the Cornell box at >= 4)")
     a = p.parse_args()
-    rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
+    os.makedirs(a.out, exist_ok=True)
+    out = rwexp.Folder(a.out)
     data = {}
-    for name, path, extra, walks in scenes(a.scale):
+    for name, path, max_edge, walks in scenes(a.scale):
         walks *= a.scale
-        csvp = rw.path(f"{name}.csv")
-        r = rw.run(["compare", path] + extra + ["--rays", a.rays, "--walks-per-patch", walks, "--runs", a.runs,
-                                                 "--seed", a.seed, "--kernel", "matrix", "--csv", csvp,
-                                                 "-o", rw.path(f"{name}.vtp")], rw.path(f"{name}.json"))
-        rows = rwexp.read_csv(csvp)
-        data[name] = (rows, r["json"], walks)
-        print(f"{name}: {r['json']['patches']} patches, {walks} walks/patch x {a.runs} runs, "
-              f"{r['json']['timings_s']['walks']:.2f} s of walks")
+        scene = radwalk.load(path, max_edge=max_edge)
+        ff = radwalk.form_factors(scene, rays=a.rays, seed=a.seed, threads=a.threads)
+        c = radwalk.compare(scene, ff, walks_per_patch=walks, runs=a.runs, seed=a.seed, kernel="matrix",
+                            threads=a.threads)
+        rows = [dict(zip(c.rows, values)) for values in zip(*c.rows.values())]
+        for r in rows:
+            r["channel"] = CHANNELS[r["channel"]]
+        rwexp.write_csv(out.path(f"{name}.csv"), rows, list(c.rows), digits=12)
+        fields = {"B_reference": c.B_reference}
+        for m, e in c.estimators.items():
+            k = m.replace("-", "_")
+            fields.update({f"mean_{k}": e.mean, f"var_{k}": e.var, f"var_theory_{k}": e.var_theory, f"z_{k}": e.z})
+        radwalk.write_vtp(out.path(f"{name}.vtp"), scene, fields,
+                          {"estimators": ",".join(c.estimators), "walks_per_patch": walks, "runs": a.runs,
+                           "seed": a.seed, "kernel": "matrix"})
+        js = {"scene": path, "max_edge": max_edge, "patches": len(scene), "rays": a.rays, "seed": a.seed,
+              "walks_per_patch": walks, "runs": a.runs, "timings_s": {**ff.timings, **c.timings},
+              "estimators": {m: {"runs": e.runs, "total_walks": e.walks, "steps": e.steps, "seconds": e.seconds,
+                                 "mean_abs_z": e.mean_abs_z, "max_abs_z": e.max_abs_z,
+                                 "var_ratio": e.var_ratio if math.isfinite(e.var_ratio) else None,
+                                 "spread_ratio": e.spread_ratio if math.isfinite(e.spread_ratio) else None,
+                                 "efficiency": e.efficiency} for m, e in c.estimators.items()}}
+        with open(out.path(f"{name}.json"), "w") as f:
+            json.dump(js, f, indent=1)
+        data[name] = (rows, js, walks)
+        print(f"{name}: {js['patches']} patches, {walks} walks/patch x {a.runs} runs, "
+              f"{js['timings_s']['walks']:.2f} s of walks", flush=True)
 
     ratio_rows, check_rows = [], []
     for name, (rows, js, walks) in data.items():
@@ -88,15 +112,15 @@ def main():
 
     fields = ["scene", "ratio", "variance_ratio", "variance_ratio_theory", "efficiency_ratio",
               "efficiency_ratio_theory", "seconds_first", "seconds_second", "steps_first", "steps_second"]
-    rwexp.write_csv(rw.path("ratios.csv"), ratio_rows, fields)
+    rwexp.write_csv(out.path("ratios.csv"), ratio_rows, fields)
     print(rwexp.table(ratio_rows, fields[:6], "\nvariance_ratio: mean over (patch, channel) of the pooled-estimate "
                       "variance var/walks, first / second; efficiency_ratio: efficiency first / second;\n"
                       "*_theory: the same with the exact variances (and the measured seconds)"))
     cf = ["scene", "claim", "predicted", "measured", "note"]
-    rwexp.write_csv(rw.path("checks.csv"), check_rows, cf)
+    rwexp.write_csv(out.path("checks.csv"), check_rows, cf)
     print(rwexp.table(check_rows, cf[:4], "\nregime checks"))
-    plot_scatter(data, rw)
-    plot_ratios(ratio_rows, rw)
+    plot_scatter(data, out)
+    plot_ratios(ratio_rows, out)
 
 
 def checks(name, by, js, out):

@@ -3,7 +3,8 @@
 above 1, sliver patches.
 
   sweep     unit cube (closed; and open: wall z = 0 removed), uniform rho, ceiling emitting Ke = 1, --max-edge 0.25
-            (96 patches closed, 80 open), F traced once per scene (--rays) and shared by every method. Per rho:
+            (96 patches closed, 80 open), loaded once and F traced once per scene (--rays), shared by every
+            method; rho is set in memory (Scene.set_material, as the box's MTL with that rho). Per rho:
             direct (condition number kappa_inf), Jacobi / Gauss-Seidel / Southwell at tol 1e-8 with the default
             budget (10000 iterations; the status and message say why a method stops), the iteration count they need
             (a second run with an unlimited budget), gathering collision and absorption walks (matrix kernel,
@@ -15,7 +16,9 @@ above 1, sliver patches.
             and the relative spread of F_{emitter, sliver} across seeds, against the binomial prediction
             sqrt((1 - F) / (n F)); and which widths validation refuses.
 Writes OUT/failure_modes.csv (one row per scene, rho and method), OUT/rows_above_one.csv, OUT/slivers.csv,
-OUT/failure_modes.png, and the scenes it generated (OUT/scenes/)."""
+OUT/failure_modes.png, and the scenes it generated (OUT/scenes/). Runs on the Python module radwalk;
+exit_code is the code the radwalk program gives for the same run (0 converged, 1 max-iterations, 2 input
+refused, 3 diverged or refused by the solver)."""
 
 import math
 import os
@@ -28,6 +31,9 @@ from rwexp import plt
 
 sys.path.insert(0, rwexp.SCENES)
 from make_scenes import write_box  # noqa: E402
+
+radwalk = rwexp.import_radwalk()
+EXIT_CODE = {"converged": 0, "max-iterations": 1, "diverged": 3, "refused": 3}  # the program's exit codes
 
 RHOS = [0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99, 0.995, 0.999]
 ITERATIVE = ["jacobi", "gauss-seidel", "southwell"]
@@ -48,96 +54,78 @@ def sweep(rw, a, rows):
     tol = 1e-8
     for open_ in (False, True):
         scene_name = "open" if open_ else "closed"
-        # F depends on the geometry only: trace it once per scene and share it.
-        F = rw.path(f"F_{scene_name}.mtx")
-        rw.run(["formfactors", box_scene(folder, 0.5, open_), "--max-edge", a.max_edge, "--rays", a.rays,
-                "--seed", a.seed, "-o", F])
+        # F depends on the geometry only: trace it once per scene and share it; rho changes in memory.
+        scene = radwalk.load(box_scene(folder, 0.5, open_), max_edge=a.max_edge)
+        ff = radwalk.form_factors(scene, rays=a.rays, seed=a.seed, threads=a.threads)
+        radwalk.write_matrix_market(rw.path(f"F_{scene_name}.mtx"), ff, scene)
         for rho in RHOS:
-            scene = box_scene(folder, rho, open_)
-            base = [scene, "--max-edge", a.max_edge, "--form-factors", F, "--seed", a.seed]
-            tag = f"{scene_name}_{rho:g}"
+            box_scene(folder, rho, open_)  # the scene file of this rho, for ParaView or the program
+            for material in ("wall", "light"):
+                scene.set_material(material, rho=(rho, rho, rho))
 
-            def solve(args, name, ok=(0, 1, 3)):
-                js_path = rw.path(f"tmp_{tag}_{name}.json")
-                csv_path = rw.path(f"tmp_{tag}_{name}.csv")
-                r = rw.run(["solve"] + base + args + ["--csv", csv_path], js_path, ok_codes=ok)
-                js = r["json"]
-                data = rwexp.read_csv(csv_path) if os.path.exists(csv_path) else []
-                for p in (js_path, csv_path):
-                    if os.path.exists(p):
-                        os.remove(p)
-                return r, js, data
-
-            def row(method, r, js, **kw):
-                sol = js["solution"] if js else {}
-                info = sol.get("info", {})
-                out = dict(scene=scene_name, rho=rho, method=method, exit_code=r["rc"],
-                           status=sol.get("status", "error"), iterations=sol.get("iterations", math.nan),
-                           iterations_needed=info.get("iterations_needed", math.nan),
-                           spectral_radius=info.get("spectral_radius_estimate", math.nan),
-                           condition=info.get("condition_estimate", math.nan), seconds=sol.get("seconds", math.nan),
-                           message=(sol.get("message") or r["stderr"]).replace("\n", " "))
+            def row(method, result, **kw):
+                out = dict(scene=scene_name, rho=rho, method=method, exit_code=EXIT_CODE[result.status],
+                           status=result.status, iterations=result.iterations,
+                           iterations_needed=result.info.get("iterations_needed", math.nan),
+                           spectral_radius=result.info.get("spectral_radius_estimate", math.nan),
+                           condition=result.info.get("condition_estimate", math.nan), seconds=result.seconds,
+                           message=result.message.replace("\n", " "))
                 out.update(kw)
                 rows.append(out)
                 return out
 
-            r, js, data = solve(["--solver", "direct"], "direct")
-            d = row("direct", r, js)
-            B = np.array([[x["B_r"] for x in data]]) if data else None
-            if B is not None and B.size:
-                area = np.array([x["area"] for x in data])
-                E = np.array([x["E_r"] for x in data])
-                d["mean_B"] = float(np.sum(area * B[0]) / area.sum())
+            direct = radwalk.solve(scene, ff, solver="direct", threads=a.threads)
+            d = row("direct", direct)
+            if direct.status == "converged":
+                d["mean_B"] = float(np.sum(scene.areas * direct.B[:, 0]) / scene.areas.sum())
                 if not open_:
-                    d["mean_B_exact"] = float(np.sum(area * E) / (area.sum() * (1 - rho)))
+                    d["mean_B_exact"] = float(np.sum(scene.areas * scene.E[:, 0]) / (scene.areas.sum() * (1 - rho)))
             for s in ITERATIVE:
                 budget = 10000
-                r, js, _ = solve(["--solver", s, "--tol", tol, "--max-iterations", budget], s)
-                out = row(s, r, js, budget=budget)
+                out = row(s, radwalk.solve(scene, ff, solver=s, tol=tol, max_iterations=budget, threads=a.threads),
+                          budget=budget)
                 if out["status"] != "converged":  # how many it needs: run again without a budget
-                    r2, js2, _ = solve(["--solver", s, "--tol", tol, "--max-iterations", 100000000], s + "_free")
-                    out["iterations_unlimited"] = js2["solution"]["iterations"] if js2 else math.nan
-                    out["status_unlimited"] = js2["solution"]["status"] if js2 else "error"
+                    free = radwalk.solve(scene, ff, solver=s, tol=tol, max_iterations=100000000, threads=a.threads)
+                    out["iterations_unlimited"] = free.iterations
+                    out["status_unlimited"] = free.status
                 else:
                     out["iterations_unlimited"] = out["iterations"]
                     out["status_unlimited"] = out["status"]
             for est in ("collision", "absorption"):
-                r, js, data = solve(["--solver", "random-walk", "--walk", "gather", "--estimator", est,
-                                     "--walks-per-patch", a.walks, "--theory"], est)
-                sol = js["solution"]
-                Bw = np.array([x["B_r"] for x in data])
-                var = np.array([x["var_r"] for x in data])
-                vth = np.array([x["var_theory_r"] for x in data])
+                w = radwalk.random_walk(scene, ff, method=f"gather-{est}", walks_per_patch=a.walks, seed=a.seed,
+                                        theory=True, threads=a.threads)
+                Bw, var, vth = w.B[:, 0], w.var[:, 0], w.var_theory[:, 0]
                 lit = Bw > 0
-                row(f"gather-{est}", r, js, walk_length=sol["steps"] / sol["walks"],
+                row(f"gather-{est}", w, walk_length=w.steps / w.walks,
                     walk_length_theory=rho / (1 - rho) if not open_ else math.nan,
                     var_rel=float(np.mean(var[lit] / Bw[lit] ** 2)),
                     var_rel_theory=float(np.mean(vth[lit] / Bw[lit] ** 2)),
-                    variance_radius=sol["info"].get("variance_radius", math.nan),
-                    escapes_per_walk=sol["info"].get("escapes", 0) / sol["walks"])
+                    variance_radius=w.info.get("variance_radius", math.nan),
+                    escapes_per_walk=w.info.get("escapes", 0) / w.walks)
             print(f"{scene_name} rho {rho:g}: " + ", ".join(
                 f"{x['method']} {x['status']}" + (f" ({int(x['iterations'])})" if x["method"] in ITERATIVE else "")
-                for x in rows if x["scene"] == scene_name and x["rho"] == rho))
+                for x in rows if x["scene"] == scene_name and x["rho"] == rho), flush=True)
 
 
 def rows_above_one(rw, a):
     folder = rw.path("scenes")
-    scene = box_scene(folder, 0.9, False)
-    F = rw.path("F_closed.mtx")
-    header, n, entries = rwexp.read_mtx(F)
+    scene = radwalk.load(box_scene(folder, 0.9, False), max_edge=a.max_edge)
+    F = radwalk.read_form_factors(rw.path("F_closed.mtx"), scene).F.astype(np.float64)
     out = []
     for s in (1.0, 1.000001, 1.01, 1.1, 1.25):
         path = rw.path(f"F_closed_x{s:g}.mtx")
-        rwexp.write_mtx(path, header, n, [(i, j, v * s) for i, j, v in entries])
+        radwalk.write_matrix_market(path, F * s, scene)
         for solver in ("direct", "gauss-seidel", "random-walk"):
-            r = rw.run(["solve", scene, "--max-edge", a.max_edge, "--form-factors", path, "--solver", solver,
-                        "--walks-per-patch", 100], rw.path("tmp_rows.json"), ok_codes=(0, 1, 2, 3))
-            js = r["json"]
-            msg = (js["solution"]["message"] if js else r["stderr"]).replace("\n", " ")
-            out.append(dict(row_scale=f"{s:.7g}", solver=solver, exit_code=r["rc"],
-                            status=js["solution"]["status"] if js else "input refused", message=msg))
-            if os.path.exists(rw.path("tmp_rows.json")):
-                os.remove(rw.path("tmp_rows.json"))
+            try:
+                # As `radwalk solve --form-factors FILE`: the reader refuses rows summing above 1 + 1e-6.
+                Fs = radwalk.read_form_factors(path, scene)
+                r = (radwalk.random_walk(scene, Fs, walks_per_patch=100, seed=a.seed, threads=a.threads)
+                     if solver == "random-walk" else radwalk.solve(scene, Fs, solver=solver, threads=a.threads))
+                row = dict(exit_code=EXIT_CODE[r.status], status=r.status, message=r.message)
+            except ValueError as e:
+                row = dict(exit_code=2, status="input refused", message=f"radwalk: error: {e}")
+            out.append(dict(row_scale=f"{s:.7g}", solver=solver, message=row["message"].replace("\n", " "),
+                            **{k: row[k] for k in ("exit_code", "status")}))
         os.remove(path)
     return out
 
@@ -160,20 +148,13 @@ def slivers(rw, a):
     folder = rw.path("scenes")
     out = []
     for w in (1.0, 0.3, 0.1, 0.03, 0.01, 0.003, 0.001, 1e-4):
-        scene = sliver_scene(folder, w)
+        scene = radwalk.load(sliver_scene(folder, w))
         F01, F10, rec = [], [], []
         for s in range(1, a.sliver_seeds + 1):
-            csvp = rw.path("tmp_sliver.csv")
-            F = rw.path("tmp_sliver.mtx")
-            rw.run(["formfactors", scene, "--rays", a.sliver_rays, "--seed", s, "-o", F, "--csv", csvp])
-            d = rwexp.read_csv(csvp)
-            _, _, entries = rwexp.read_mtx(F)
-            f = {(i, j): v for i, j, v in entries}
-            F01.append(f.get((1, 2), 0.0))
-            F10.append(f.get((2, 1), 0.0))
-            rec.append(d[0]["reciprocity_error"])
-            os.remove(csvp)
-            os.remove(F)
+            ff = radwalk.form_factors(scene, rays=a.sliver_rays, seed=s, threads=a.threads)
+            F01.append(float(ff.F[0, 1]))
+            F10.append(float(ff.F[1, 0]))
+            rec.append(float(ff.diagnostics["reciprocity_error"][0]))
         F01, F10 = np.array(F01), np.array(F10)
         m01 = F01.mean()
         n = a.sliver_rays
@@ -186,9 +167,12 @@ def slivers(rw, a):
                         zero_hit_runs=int(np.sum(F01 == 0)), seeds=a.sliver_seeds, rays=n, check="accepted"))
     # Validation: a sliver whose area is below 1e-10 D^2 is refused.
     for w in (1e-9, 1e-11):
-        r = rw.run(["check", sliver_scene(folder, w)], ok_codes=(0, 2))
-        out.append(dict(width=w, area_ratio=w, check=("accepted" if r["rc"] == 0 else "refused (exit 2): " +
-                                                      r["stderr"].splitlines()[-1])))
+        try:
+            radwalk.load(sliver_scene(folder, w))
+            check = "accepted"
+        except ValueError as e:
+            check = f"refused (exit 2): radwalk: error: {e}"
+        out.append(dict(width=w, area_ratio=w, check=check))
     return out
 
 
@@ -279,7 +263,7 @@ def plot(rows, srows, rw):
 
 
 def main():
-    p = rwexp.parser("failure_modes", __doc__.splitlines()[0])
+    p = rwexp.parser("failure_modes", __doc__.splitlines()[0], program=False)
     p.add_argument("--max-edge", type=float, default=0.25, help="patch size of the box sweep")
     p.add_argument("--rays", type=int, default=4000, help="rays per patch of the box's F")
     p.add_argument("--walks", type=int, default=200, help="walks per patch in the sweep")
@@ -290,7 +274,8 @@ def main():
     a.walks *= a.scale
     a.rays *= a.scale
     a.sliver_seeds *= a.scale
-    rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
+    os.makedirs(a.out, exist_ok=True)
+    rw = rwexp.Folder(a.out)
     rows = []
     sweep(rw, a, rows)
     fields = ["scene", "rho", "method", "exit_code", "status", "iterations", "budget", "iterations_unlimited",

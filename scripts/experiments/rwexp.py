@@ -1,8 +1,11 @@
-"""Shared helpers of the radwalk experiments: find and run the radwalk program, read its JSON / CSV / Matrix
-Market outputs, write CSV tables, and set up matplotlib (Agg backend, no display needed).
+"""Shared helpers of the radwalk experiments: import the radwalk Python module (import_radwalk); find and run the
+radwalk program (Radwalk) and read CSV tables (read_csv), for adaptive_patching.py, the one script not yet on the
+module, and for redrawing charts from a script's own CSV; write CSV tables, and set up matplotlib (Agg backend,
+no display needed).
 
-Every experiment script takes --radwalk PATH (default: $RADWALK, else build/apps/radwalk under the repository
-root) and --out DIR (default: results/<experiment>/ under the current directory)."""
+Every experiment script takes --out DIR (default: results/<experiment>/ under the current directory), --threads
+and --seed; those that run the program also --radwalk PATH (default: $RADWALK, else build/apps/radwalk under the
+repository root)."""
 
 import argparse
 import csv
@@ -24,14 +27,29 @@ MESHES = os.path.join(REPO, "meshes")
 SCENES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "scenes")
 
 
-def parser(experiment, description):
-    """argparse parser with the options every experiment shares."""
+def import_radwalk():
+    """The radwalk Python module: from PYTHONPATH (an installed one), else from build/python of this checkout."""
+    try:
+        import radwalk
+    except ImportError:
+        sys.path.insert(0, os.path.join(REPO, "build", "python"))
+        try:
+            import radwalk
+        except ImportError:
+            sys.exit("the radwalk Python module is not built: run scripts/build.sh (needs pybind11-dev), or set "
+                     "PYTHONPATH to where it is installed")
+    return radwalk
+
+
+def parser(experiment, description, program=True):
+    """argparse parser with the options every experiment shares (--radwalk only for those that run the program)."""
     p = argparse.ArgumentParser(description=description)
-    p.add_argument("--radwalk", default=os.environ.get("RADWALK", os.path.join(REPO, "build", "apps", "radwalk")),
-                   help="radwalk program (default: $RADWALK, else build/apps/radwalk)")
+    if program:
+        p.add_argument("--radwalk", default=os.environ.get("RADWALK", os.path.join(REPO, "build", "apps", "radwalk")),
+                       help="radwalk program (default: $RADWALK, else build/apps/radwalk)")
     p.add_argument("--out", default=os.path.join("results", experiment), help="results folder")
     p.add_argument("--threads", type=int, default=2, help="threads per radwalk run (default 2)")
-    p.add_argument("--seed", type=int, default=1)
+    p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     return p
 
 
@@ -96,24 +114,19 @@ def read_csv(path):
     return rows
 
 
-def read_B(path):
-    """Patch CSV of `radwalk solve` -> N x 3 array of B (W/m^2)."""
-    rows = read_csv(path)
-    return np.array([[r["B_r"], r["B_g"], r["B_b"]] for r in rows], dtype=float)
-
-
-def write_csv(path, rows, fields=None):
+def write_csv(path, rows, fields=None, digits=6):
+    """Rows (dicts) as CSV, floats with `digits` significant digits (12: as radwalk's own CSVs), empty if not finite."""
     fields = fields or list(rows[0].keys())
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
         w.writeheader()
         for r in rows:
-            w.writerow({k: fmt(r.get(k, "")) for k in fields})
+            w.writerow({k: fmt(r.get(k, ""), digits) for k in fields})
 
 
-def fmt(v):
+def fmt(v, digits=6):
     if isinstance(v, float):
-        return "" if not math.isfinite(v) else f"{v:.6g}"
+        return "" if not math.isfinite(v) else f"{v:.{digits}g}"
     return v
 
 
@@ -124,30 +137,6 @@ def rms_relative_error(B, B_ref):
     rel = (B[mask] - B_ref[mask]) / B_ref[mask]
     rel = np.where(np.isfinite(rel), rel, 1.0)
     return float(np.sqrt(np.mean(rel ** 2)))
-
-
-def read_mtx(path):
-    """Matrix Market coordinate file -> (header lines, n, list of (i, j, value)) with 1-based i, j."""
-    header, entries, n = [], [], None
-    with open(path) as f:
-        for line in f:
-            if line.startswith("%"):
-                header.append(line)
-                continue
-            parts = line.split()
-            if n is None:
-                n = int(parts[0])
-                continue
-            entries.append((int(parts[0]), int(parts[1]), float(parts[2])))
-    return header, n, entries
-
-
-def write_mtx(path, header, n, entries):
-    with open(path, "w") as f:
-        f.writelines(header)
-        f.write(f"{n} {n} {len(entries)}\n")
-        for i, j, v in entries:
-            f.write(f"{i} {j} {v:.9g}\n")
 
 
 def table(rows, fields, title=None):

@@ -1,19 +1,20 @@
 #!/usr/bin/python3
 """Speed against accuracy on the Cornell box: every discrete method's error against wall time (log-log).
 
-For each patch level (--max-edge values):
-  reference  `radwalk formfactors --rays REF` (seed 1) -> F_ref.mtx, then `radwalk solve --solver direct
-             --form-factors F_ref.mtx`. A second reference with seed 2 measures the reference's own noise
-             (RMS difference / sqrt 2), the floor under every error in panel B.
-  panel A    solver error only: every method reads the same F_ref.mtx; error against the reference; time = the
-             solve stage of the JSON summary (timings_s.solve). Deterministic solvers at tol 1e-2 .. 1e-8,
-             matrix-kernel random walks (6 estimators) at several walk budgets.
+Runs on the Python module radwalk (the library code of the radwalk program; the times are the library's stage
+timings, as in the program's JSON summaries). For each patch level (--max-edge values), the scene loaded once:
+  reference  F with --ref-rays rays per patch (seed S) -> F_ref.mtx, then the direct solve. A second reference
+             with seed S + 1 measures the reference's own noise (RMS difference / sqrt 2), the floor under every
+             error in panel B.
+  panel A    solver error only: every method uses the same F_ref; error against the reference; time = the
+             solve stage. Deterministic solvers at tol 1e-2 .. 1e-8, matrix-kernel random walks (6 estimators)
+             at several walk budgets.
   panel B    everything from scratch: deterministic solvers with their own F at several ray budgets (total
              time = form-factor stage + solve stage; the form-factor time is also a column of its own),
              matrix-kernel walks on a 1024-ray F (time = its form-factor stage + walks), ray-kernel walks
-             (no F at all; time = walks, tracing included).
+             (no F at all; time = walks, tracing included), and the path tracer's patch averages.
 Error = RMS over (patch, channel) of (B - B_ref) / B_ref. Writes OUT/speed_accuracy.csv, OUT/*.png, the
-reference's .vtp and the matrices."""
+reference's .vtp and .csv (as `radwalk solve`'s) and F_ref.mtx."""
 
 import math
 import os
@@ -23,18 +24,21 @@ import numpy as np
 import rwexp
 from rwexp import plt
 
+radwalk = rwexp.import_radwalk()
+
 GATHER = ["absorption", "collision", "expected-value"]
 SHOOT = ["collision", "absorption", "survival"]
 DETERMINISTIC = ["direct", "jacobi", "gauss-seidel", "southwell"]
 
 
 
-def walk_count_option(walk):
-    """radwalk's count option for a walk direction: walks from each patch, or particles in total."""
-    return "--walks-per-patch" if walk == "gather" else "--particles"
+def walk_budget(walk, w, N):
+    """The count argument of a walk budget w: walks from each patch (gather), or w x N particles in total (shoot)."""
+    return {"walks_per_patch": w} if walk == "gather" else {"particles": w * N}
+
 
 def main():
-    p = rwexp.parser("speed_accuracy", __doc__.splitlines()[0])
+    p = rwexp.parser("speed_accuracy", __doc__.splitlines()[0], program=False)
     p.add_argument("--max-edge", type=float, nargs="+", default=[100, 50], help="patch levels (mm)")
     p.add_argument("--ref-rays", type=int, default=100000, help="rays per patch of the reference F")
     p.add_argument("--scale", type=int, default=1,
@@ -48,8 +52,10 @@ def main():
         plot(rows, levels, rwexp.Folder(a.out))
         summary(rows, levels)
         return
-    rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
-    scene = os.path.join(rwexp.MESHES, "cornell_box.obj")
+    os.makedirs(a.out, exist_ok=True)
+    rw = rwexp.Folder(a.out)
+    T = a.threads
+    scene_file = os.path.join(rwexp.MESHES, "cornell_box.obj")
     levels = list(a.max_edge) + ([25.0] if a.scale >= 4 and 25.0 not in a.max_edge else [])
     extra = int(round(math.log(a.scale, 4))) if a.scale > 1 else 0
     walk_budgets = [16 * 4 ** k for k in range(5 + extra)]       # walks per patch (gather), x N particles (shoot)
@@ -58,99 +64,72 @@ def main():
     rows = []
     for me in levels:
         tag = f"e{int(me)}"
-        common = [scene, "--max-edge", me, "--seed", a.seed]
+        scene = radwalk.load(scene_file, max_edge=me)
 
         # Reference (and its noise from a second seed).
         refs = []
         for s in (a.seed, a.seed + 1):
-            F = rw.path(f"{tag}_Fref_s{s}.mtx")
-            ff = rw.run(["formfactors", scene, "--max-edge", me, "--seed", s, "--rays", a.ref_rays, "-o", F],
-                        rw.path(f"{tag}_Fref_s{s}.json"))["json"]
-            csvp = rw.path(f"{tag}_reference_s{s}.csv")
-            extra_out = ["-o", rw.path(f"{tag}_reference.vtp")] if s == a.seed else []
-            rw.run(["solve", scene, "--max-edge", me, "--solver", "direct", "--form-factors", F, "--csv", csvp]
-                   + extra_out, rw.path(f"{tag}_reference_s{s}.json"))
-            refs.append((rwexp.read_B(csvp), ff["timings_s"]["form_factors"], F))
+            ff = radwalk.form_factors(scene, rays=a.ref_rays, seed=s, threads=T)
+            ref = radwalk.solve(scene, ff, solver="direct", threads=T)
+            if s == a.seed:
+                radwalk.write_matrix_market(rw.path(f"{tag}_Fref_s{s}.mtx"), ff, scene)
+                radwalk.write_csv(rw.path(f"{tag}_reference_s{s}.csv"), scene, {**ff.diagnostics, **ref.fields})
+                radwalk.write_vtp(rw.path(f"{tag}_reference.vtp"), scene, {**ff.diagnostics, **ref.fields},
+                                  {"method": ref.method, "scene": scene_file, "seed": s, "max_edge": me})
+            refs.append((np.array(ref.B), ff.timings["form_factors"], ff))
         B_ref, ref_ff_s, F_ref = refs[0]
         N = B_ref.shape[0]
         ref_noise = rwexp.rms_relative_error(refs[1][0], B_ref) / math.sqrt(2)
+        del refs[1]
         print(f"max-edge {me}: {N} patches, reference F {a.ref_rays} rays/patch in {ref_ff_s:.1f} s, "
-              f"reference noise (RMS relative) {ref_noise:.2e}")
+              f"reference noise (RMS relative) {ref_noise:.2e}", flush=True)
         rows.append(dict(max_edge=me, patches=N, panel="reference", method="direct (reference)", kernel="matrix",
                          budget=a.ref_rays, budget_unit="rays/patch", ff_seconds=ref_ff_s, solve_seconds=math.nan,
                          total_seconds=ref_ff_s, error=ref_noise, status="converged", iterations=0, steps=0,
                          note="error = RMS difference of two reference seeds / sqrt 2"))
 
-        def solve(panel, method, kernel, budget, unit, args, ff_s, name):
-            csvp = rw.path(f"{tag}_{name}.csv")
-            js = rw.run(["solve"] + common + args + ["--csv", csvp], rw.path(f"{tag}_{name}.json"),
-                        ok_codes=(0, 1))["json"]
-            sol = js["solution"]
-            solve_s = js["timings_s"]["solve"]
-            B = rwexp.read_B(csvp)
-            os.remove(csvp)
-            os.remove(rw.path(f"{tag}_{name}.json"))
+        def record(panel, method, kernel, budget, unit, result, ff_s, note="", steps=None):
+            solve_s = result.timings.get("solve", result.timings.get("patch_averages"))
             rows.append(dict(max_edge=me, patches=N, panel=panel, method=method, kernel=kernel, budget=budget,
                              budget_unit=unit, ff_seconds=ff_s, solve_seconds=solve_s, total_seconds=ff_s + solve_s,
-                             error=rwexp.rms_relative_error(B, B_ref), status=sol["status"],
-                             iterations=sol["iterations"], steps=sol["steps"], note=""))
+                             error=rwexp.rms_relative_error(result.B, B_ref), status=result.status,
+                             iterations=result.iterations, steps=result.steps if steps is None else steps,
+                             note=note))
+
+        def walks(panel, F, ff_s, kernel):
+            for walk, ests in (("gather", GATHER), ("shoot", SHOOT)):
+                for est in ests:
+                    for w in walk_budgets:
+                        r = radwalk.random_walk(scene, F, method=f"{walk}-{est}", kernel=kernel, seed=a.seed,
+                                                threads=T, **walk_budget(walk, w, N))
+                        record(panel, f"{walk}-{est}", kernel, w, "walks/patch", r, ff_s)
 
         # Panel A: shared F_ref.
-        shared = ["--form-factors", F_ref]
-        solve("A", "direct", "matrix", 0, "-", shared + ["--solver", "direct"], 0.0, "A_direct")
+        record("A", "direct", "matrix", 0, "-", radwalk.solve(scene, F_ref, solver="direct", threads=T), 0.0)
         for s in DETERMINISTIC[1:]:
             for tol in tols:
-                solve("A", s, "matrix", tol, "tol", shared + ["--solver", s, "--tol", tol, "--max-iterations",
-                                                              100000000], 0.0, f"A_{s}_{tol:g}")
-        for walk, ests in (("gather", GATHER), ("shoot", SHOOT)):
-            for est in ests:
-                for w in walk_budgets:
-                    n = w if walk == "gather" else w * N
-                    solve("A", f"{walk}-{est}", "matrix", w, "walks/patch", shared + [
-                        "--solver", "random-walk", "--walk", walk, "--estimator", est, "--kernel", "matrix",
-                        walk_count_option(walk), n], 0.0, f"A_{walk}_{est}_{w}")
+                record("A", s, "matrix", tol, "tol",
+                       radwalk.solve(scene, F_ref, solver=s, tol=tol, max_iterations=100000000, threads=T), 0.0)
+        walks("A", F_ref, 0.0, "matrix")
+        print(f"  panel A done", flush=True)
 
         # Panel B: from scratch.
         for rays in ray_budgets:
-            F = rw.path(f"{tag}_F_{rays}.mtx")
-            ff = rw.run(["formfactors"] + common + ["--rays", rays, "-o", F], rw.path(f"{tag}_F_{rays}.json"))
-            ff_s = ff["json"]["timings_s"]["form_factors"]
+            ff = radwalk.form_factors(scene, rays=rays, seed=a.seed, threads=T)
+            ff_s = ff.timings["form_factors"]
             for s in DETERMINISTIC:
-                solve("B", s, "matrix", rays, "rays/patch", ["--form-factors", F, "--solver", s, "--tol", 1e-6,
-                                                             "--max-iterations", 100000000], ff_s, f"B_{s}_{rays}")
+                record("B", s, "matrix", rays, "rays/patch",
+                       radwalk.solve(scene, ff, solver=s, tol=1e-6, max_iterations=100000000, threads=T), ff_s)
             if rays == 1024:
-                for walk, ests in (("gather", GATHER), ("shoot", SHOOT)):
-                    for est in ests:
-                        for w in walk_budgets:
-                            n = w if walk == "gather" else w * N
-                            solve("B", f"{walk}-{est}", "matrix", w, "walks/patch", [
-                                "--form-factors", F, "--solver", "random-walk", "--walk", walk, "--estimator", est,
-                                "--kernel", "matrix", walk_count_option(walk), n], ff_s, f"B_{walk}_{est}_m{w}")
-            if rays != ray_budgets[-1]:
-                os.remove(F)
-        for walk, ests in (("gather", GATHER), ("shoot", SHOOT)):
-            for est in ests:
-                for w in walk_budgets:
-                    n = w if walk == "gather" else w * N
-                    solve("B", f"{walk}-{est}", "ray", w, "walks/patch", [
-                        "--solver", "random-walk", "--walk", walk, "--estimator", est, "--kernel", "ray",
-                        walk_count_option(walk), n], 0.0, f"B_{walk}_{est}_r{w}")
+                walks("B", ff, ff_s, "matrix")
+        walks("B", None, 0.0, "ray")
         # The continuous path tracer's patch averages (MIS, no F): its error against the discrete reference also
         # holds the discretisation error (about 1e-3 at these patch sizes, see discretisation_error.py).
         for w in walk_budgets:
-            csvp, jsp = rw.path(f"{tag}_B_pt_{w}.csv"), rw.path(f"{tag}_B_pt_{w}.json")
-            js = rw.run(["pathtrace"] + common + ["--spp", w, "--csv", csvp], jsp)["json"]
-            t = js["timings_s"]["patch_averages"]
-            B = rwexp.read_B(csvp)
-            os.remove(csvp)
-            os.remove(jsp)
-            rows.append(dict(max_edge=me, patches=N, panel="B", method="pathtrace-mis", kernel="continuous",
-                             budget=w, budget_unit="samples/patch", ff_seconds=0.0, solve_seconds=t,
-                             total_seconds=t, error=rwexp.rms_relative_error(B, B_ref),
-                             status=js["solution"]["status"], iterations=0, steps=0,
-                             note="continuous solution: error includes the discretisation error"))
-        os.remove(rw.path(f"{tag}_reference_s{a.seed + 1}.csv"))  # keep one reference (csv, vtp, F_ref)
-        os.remove(rw.path(f"{tag}_Fref_s{a.seed + 1}.mtx"))
+            pt = radwalk.pathtrace(scene, spp=w, seed=a.seed, threads=T).averages
+            record("B", "pathtrace-mis", "continuous", w, "samples/patch", pt, 0.0,
+                   note="continuous solution: error includes the discretisation error", steps=0)
+        print(f"  panel B done", flush=True)
 
     fields = ["max_edge", "patches", "panel", "method", "kernel", "budget", "budget_unit", "ff_seconds",
               "solve_seconds", "total_seconds", "error", "status", "iterations", "steps", "note"]

@@ -1,5 +1,7 @@
 #include "mesh/read_scene.h"
 
+#include <filesystem>
+
 #include "core/error.h"
 #include "mesh/read_obj.h"
 #include "mesh/read_ply.h"
@@ -16,6 +18,7 @@ Mesh read_scene(const std::string& path, const ReadOptions& options) {
 }
 
 Mesh load_scene(const std::string& path, const ReadOptions& options) {
+  if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
   Mesh mesh = read_scene(path, options);
   ValidationTolerances tolerances;
   tolerances.strict = options.strict;

@@ -13,7 +13,8 @@ namespace radwalk {
 
 Mesh read_scene(const std::string& path, const ReadOptions& options = {});
 
-// read_scene + validate_mesh with the default tolerances (strict as in options: repairs become refusals).
+// read_scene + validate_mesh with the default tolerances (strict as in options: repairs become refusals); a path
+// that does not exist is refused first as "PATH: no such file".
 Mesh load_scene(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace radwalk

@@ -6,6 +6,10 @@
 
 namespace radwalk {
 
+long default_max_iterations(const std::string& solver, std::size_t patches) {
+  return solver == "southwell" ? 1000 * static_cast<long>(patches) : 10000;
+}
+
 void check_options(const SolveOptions& options) {
   if (!std::isfinite(options.tol) || !(options.tol > 0))
     throw InputError("solver tolerance " + number_text(options.tol) + " must be finite and > 0");

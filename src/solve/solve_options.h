@@ -1,5 +1,6 @@
 #pragma once
 // Options shared by the deterministic solvers and the dispatcher solve_radiosity().
+#include <cstddef>
 #include <functional>
 #include <string>
 
@@ -19,6 +20,10 @@ struct SolveOptions {
   std::function<void(long iteration, const PatchRgb& B)> on_iterate;
   long iterate_every = 0;       // Southwell: shots between on_iterate calls (0: N), >= 0
 };
+
+// The iteration budget when none is given (the CLI's --max-iterations 0): 1000 x N shots for "southwell", 10000
+// sweeps for every other solver.
+long default_max_iterations(const std::string& solver, std::size_t patches);
 
 // Throws InputError unless tol > 0 (finite) and max_iterations >= 0 (Southwell also refuses iterate_every < 0).
 void check_options(const SolveOptions& options);

@@ -1,0 +1,82 @@
+#pragma once
+// The Python module `radwalk` (pybind11): a thin layer over the C++ library, with no computation of its own. Each
+// file binds one concept; module.cpp ties them together:
+//   scene_bindings.cpp        radwalk.load -> Scene (numpy views of the PatchSet; rho and E writable in place)
+//   form_factor_bindings.cpp  radwalk.form_factors -> FormFactors (F as a scipy.sparse.csr_matrix, diagnostics)
+//   solver_bindings.cpp       radwalk.solve -> Result (the deterministic solvers); the Result type
+//   walk_bindings.cpp         radwalk.random_walk, radwalk.compare, radwalk.exact_variance
+//   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
+//   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
+// Conventions: every computation releases the GIL and runs under ThreadLimit(threads) (0 = all cores); the
+// library's InputError becomes radwalk.InputError (a ValueError) carrying the CLI's one-line text,
+// NumericalError radwalk.NumericalError (an ArithmeticError), InternalError radwalk.InternalError (a
+// RuntimeError).
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstdint>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "core/solution.h"
+#include "core/types.h"
+#include "formfactor/form_factors.h"
+#include "patch/patch_set.h"
+
+namespace radwalk::python {
+
+namespace py = pybind11;
+
+// A loaded scene: the patches every computation works on, and what the CLI reports about them.
+struct Scene {
+  std::string path;
+  double max_edge = 0;
+  bool strict = false;
+  PatchSet patches;
+  std::vector<std::int32_t> group;    // per patch: the group index of its input face, -1 outside any
+  std::vector<std::string> groups;    // "object 'chair', group 'seat'"
+  std::vector<std::string> warnings;  // validation's repairs and notices (the CLI's "radwalk: warning:" lines)
+};
+
+// Form factors of one scene, as estimated (rays, escaped, back_hits filled) or read from Matrix Market (empty).
+struct FormFactorsResult {
+  FormFactors ff;
+  std::vector<double> area;               // the scene's patch areas (for the diagnostics)
+  std::map<std::string, double> timings;  // stage -> seconds, as the JSON's timings_s
+  std::map<std::string, double> info;     // reciprocity change when enforced (the JSON's reciprocity_* keys)
+};
+
+// What a solver returns: the Solution, its stage timings, and the JSON metadata the CLI writes for it.
+struct Result {
+  Solution solution;
+  std::map<std::string, double> timings;
+  std::string metadata;  // a JSON object: the CLI's "solution" object and the run's options
+};
+
+// A read-only numpy view of an N x 3 PatchRgb owned by `base` (an N x 3 array of zeros' shape (0, 3) when empty).
+py::array_t<double> rgb_view(const PatchRgb& values, py::handle base);
+
+// The form factors a computation on `scene` uses: those of a FormFactors object or of a scipy.sparse matrix
+// (converted to float32 CSR: a copy), or, for None, estimated with `rays` rays per patch and `seed` (GIL released,
+// timed into `timings` as "embree_scene" and "form_factors"). An N x N check names the sizes that disagree.
+SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, std::uint64_t seed, int threads,
+                           std::map<std::string, double>& timings);
+
+// The metadata of a result as a JSON text: `run` (the options) plus the CLI's "solution" object, scene, max_edge,
+// patches and timings_s.
+std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json run);
+
+// A Python object from a JSON text (through Python's json module).
+py::object json_to_python(const std::string& json_text);
+
+void bind_scene(py::module_& m);
+void bind_form_factors(py::module_& m);
+void bind_solvers(py::module_& m);
+void bind_walks(py::module_& m);
+void bind_pathtrace(py::module_& m);
+void bind_writers(py::module_& m);
+
+}  // namespace radwalk::python

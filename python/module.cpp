@@ -1,0 +1,77 @@
+// PYBIND11_MODULE(radwalk): the module's docstring, its exceptions and the bindings of every file (bindings.h).
+#include <pybind11/pybind11.h>
+
+#include "bindings.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "walk/walk_method.h"
+
+namespace radwalk::python {
+
+py::array_t<double> rgb_view(const PatchRgb& values, py::handle base) {
+  const auto rows = static_cast<py::ssize_t>(values.rows());
+  py::array_t<double> a({rows, py::ssize_t{3}}, {py::ssize_t{3 * sizeof(double)}, py::ssize_t{sizeof(double)}},
+                        values.size() ? values.data() : nullptr, base);
+  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  return a;
+}
+
+py::object json_to_python(const std::string& json_text) {
+  return py::module_::import("json").attr("loads")(json_text);
+}
+
+}  // namespace radwalk::python
+
+using namespace radwalk;
+using namespace radwalk::python;
+
+PYBIND11_MODULE(radwalk, m) {
+  m.doc() = R"doc(radwalk: the radiosity equation B = E + diag(rho) F B on meshes, from Python.
+
+A thin layer over radwalk's C++ library (the same code as the `radwalk` program, so the same seed gives the same
+numbers, byte for byte in the CSV):
+
+    import radwalk
+    scene = radwalk.load("meshes/cube.obj")             # Scene: numpy views of the patches
+    ff = radwalk.form_factors(scene, rays=1000, seed=1) # FormFactors: ff.F is a scipy.sparse.csr_matrix
+    exact = radwalk.solve(scene, ff)                    # Result: exact.B is an N x 3 numpy array
+    scene.rho[:] *= 0.9                                 # edit reflectances in place (or scene.set_material)
+    walk = radwalk.random_walk(scene, ff, method="gather-collision", walks_per_patch=1000, seed=1)
+    radwalk.write_csv("cube.csv", scene, {**ff.diagnostics, **walk.fields})
+
+Units as in the CLI: lengths in the mesh's unit, rho = Kd, E = pi * Ke, B in W per unit length squared.
+Every computation releases the GIL and honours threads= (0: all cores; the output does not depend on it).
+Bad input raises radwalk.InputError, a ValueError whose text is the CLI's one-line message; numerical failures
+raise radwalk.NumericalError (an ArithmeticError). Progress lines go to stderr as in the CLI (set_progress).)doc";
+  m.attr("__version__") = RADWALK_VERSION;
+
+  static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
+  static py::exception<NumericalError> numerical_error(m, "NumericalError", PyExc_ArithmeticError);
+  static py::exception<InternalError> internal_error(m, "InternalError", PyExc_RuntimeError);
+  input_error.doc() = "Bad input (a file, a face, an option): the CLI's one-line message; a ValueError.";
+  numerical_error.doc() = "A numerical failure a solver detected (singular or divergent system).";
+  internal_error.doc() = "A broken internal invariant: a bug in radwalk, please report it.";
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const InputError& e) {
+      input_error(e.what());
+    } catch (const NumericalError& e) {
+      numerical_error(e.what());
+    } catch (const InternalError& e) {
+      internal_error(e.what());
+    }
+  });
+
+  m.def("set_progress", &Progress::set_enabled, py::arg("enabled"),
+        "Turns the progress lines on stderr on or off (the CLI's -q is set_progress(False)); on by default.");
+  m.def("walk_methods", &walk_method_names,
+        "The random-walk methods' names, in the order of the one method table (src/walk/walk_method.h).");
+
+  bind_scene(m);
+  bind_form_factors(m);
+  bind_solvers(m);
+  bind_walks(m);
+  bind_pathtrace(m);
+  bind_writers(m);
+}

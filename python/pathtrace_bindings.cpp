@@ -1,0 +1,132 @@
+// radwalk.pathtrace: the continuous path tracer (patch averages with error bars, and images as float arrays).
+#include <optional>
+
+#include "apps/scene_camera.h"
+#include "bindings.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/timer.h"
+#include "pathtrace/light_tracer.h"
+#include "pathtrace/patch_average.h"
+#include "pathtrace/render.h"
+#include "visibility/embree_visibility.h"
+
+namespace radwalk::python {
+namespace {
+
+struct PathtraceResult {
+  std::optional<Result> averages;
+  RenderResult image;
+  bool has_image = false;
+  std::map<std::string, double> timings;
+};
+
+// A (height, width, 3) float64 copy of an image.
+py::array_t<double> image_array(const RgbImage& image) {
+  py::array_t<double> a({py::ssize_t{image.height}, py::ssize_t{image.width}, py::ssize_t{3}});
+  double* out = a.mutable_data();
+  for (const Rgb& p : image.pixels)
+    for (int c = 0; c < 3; ++c) *out++ = p[c];
+  return a;
+}
+
+PathtraceResult pathtrace(const Scene& scene, long spp, const std::string& integrator_name, std::uint64_t seed,
+                          bool averages, bool image, int width, int height, const std::vector<double>& camera_numbers,
+                          int threads, bool progress) {
+  if (!camera_numbers.empty() && camera_numbers.size() != 10)
+    throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
+  const bool light = integrator_name == "light";
+  IntegratorOptions integrator;
+  if (!light) integrator.kind = parse_integrator_kind(integrator_name);
+  PathtraceResult r;
+  Solution s;
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    Timer timer;
+    const EmbreeVisibility visibility(scene.patches);
+    r.timings["embree_scene"] = timer.seconds();
+    if (image) {
+      const Camera camera = app::scene_camera(scene.path, scene.patches, camera_numbers);
+      if (light) {
+        LightTraceOptions o;
+        o.particles = spp * width * height;
+        o.seed = seed;
+        o.progress = progress;
+        r.image = light_trace_image(scene.patches, visibility, camera, width, height, o);
+      } else {
+        RenderOptions o;
+        o.width = width;
+        o.height = height;
+        o.spp = spp;
+        o.seed = seed;
+        o.integrator = integrator;
+        o.progress = progress;
+        r.image = render_image(scene.patches, visibility, camera, o);
+      }
+      r.has_image = true;
+      r.timings["render"] = r.image.seconds;
+    }
+    if (averages) {
+      if (light) {
+        LightTraceOptions o;
+        o.particles = spp * static_cast<long>(scene.patches.size());
+        o.seed = seed;
+        o.progress = progress;
+        s = light_trace_patches(scene.patches, visibility, o);
+      } else {
+        PatchAverageOptions o;
+        o.spp = spp;
+        o.seed = seed;
+        o.integrator = integrator;
+        o.progress = progress;
+        s = estimate_patch_averages(scene.patches, visibility, o);
+      }
+      r.timings["patch_averages"] = s.seconds;
+    }
+  }
+  if (averages) {
+    Result a;
+    a.solution = std::move(s);
+    a.timings = r.timings;
+    nlohmann::json run = {{"integrator", integrator_name}, {"seed", seed}, {"threads", threads}};
+    run[light ? "particles_per_patch" : "spp"] = spp;
+    a.metadata = result_metadata(a, scene, run);
+    r.averages = std::move(a);
+  }
+  return r;
+}
+
+}  // namespace
+
+void bind_pathtrace(py::module_& m) {
+  py::class_<PathtraceResult>(m, "PathtraceResult", R"doc(What pathtrace() returns.
+
+averages: a Result (B, B_se, var per patch) or None; image, image_se: (height, width, 3) float64 arrays of
+radiance and its per-pixel standard error (copies), or None; rays, seconds: of the image; timings.)doc")
+      .def_property_readonly("averages", [](const PathtraceResult& r) { return r.averages; })
+      .def_property_readonly("image", [](const PathtraceResult& r) -> py::object {
+        if (!r.has_image) return py::none();
+        return image_array(r.image.mean);
+      })
+      .def_property_readonly("image_se", [](const PathtraceResult& r) -> py::object {
+        if (!r.has_image) return py::none();
+        return image_array(r.image.se);
+      })
+      .def_property_readonly("rays", [](const PathtraceResult& r) { return r.image.rays; })
+      .def_property_readonly("seconds", [](const PathtraceResult& r) { return r.image.seconds; })
+      .def_readonly("timings", &PathtraceResult::timings);
+
+  m.def("pathtrace", &pathtrace, py::arg("scene"), py::arg("spp") = 64, py::arg("integrator") = "mis",
+        py::arg("seed") = 1, py::arg("averages") = true, py::arg("image") = false, py::arg("width") = 256,
+        py::arg("height") = 256, py::arg("camera") = std::vector<double>{}, py::arg("threads") = 0,
+        py::arg("progress") = false,
+        R"doc(The continuous path tracer (no patches, no F): patch averages with error bars and/or an image.
+
+As `radwalk pathtrace`: spp samples per patch (averages) and per pixel (image); integrator "mis", "nee",
+"implicit" or "light" (light tracing: spp x N particles for the averages, spp x width x height for the image);
+camera: 10 numbers (position, target, up, vertical fov in degrees) or empty for the scene's own (the Cornell
+camera for cornell_box*, else a view of the bounding box). Returns a PathtraceResult; its averages are a Result.)doc");
+}
+
+}  // namespace radwalk::python

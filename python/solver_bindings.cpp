@@ -1,0 +1,115 @@
+// radwalk.solve (the deterministic solvers) and the Result type every solver, walk and path tracer returns.
+#include <nlohmann/json.hpp>
+
+#include "bindings.h"
+#include "core/parallel.h"
+#include "io/run_summary.h"
+#include "solve/problem.h"
+#include "solve/solve_radiosity.h"
+
+namespace radwalk::python {
+namespace {
+
+// An N x 3 field of the result, or None when the solver does not give it (e.g. B_se of a deterministic solve).
+py::object rgb_or_none(py::object self, const PatchRgb& values) {
+  if (values.size() == 0) return py::none();
+  return rgb_view(values, self);
+}
+
+Result solve(const Scene& scene, const py::object& F, const std::string& solver, double tol, long max_iterations,
+             long rays, std::uint64_t seed, int threads) {
+  Result r;
+  SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings);
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    SolveOptions o;
+    o.solver = solver;
+    o.tol = tol;
+    o.max_iterations = max_iterations > 0 ? max_iterations : default_max_iterations(solver, scene.patches.size());
+    const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
+    r.solution = solve_radiosity(problem, o);
+  }
+  r.timings["solve"] = r.solution.seconds;
+  nlohmann::json run = {{"solver", solver}, {"tol", tol}, {"seed", seed}, {"threads", threads}};
+  r.metadata = result_metadata(r, scene, run);
+  return r;
+}
+
+}  // namespace
+
+std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json run) {
+  run["solution"] = solution_json(r.solution);
+  run["scene"] = scene.path;
+  run["max_edge"] = scene.max_edge;
+  run["patches"] = scene.patches.size();
+  run["timings_s"] = r.timings;
+  return run.dump();
+}
+
+void bind_solvers(py::module_& m) {
+  py::class_<Result>(m, "Result", R"doc(What a solver, a random walk or the path tracer returns.
+
+B (N, 3): radiosity per patch and channel (W per unit length squared); B_se, var, var_theory (N, 3): standard
+error, per-walk variance and exact per-walk variance (Monte Carlo results; None where not computed). These are
+read-only views of the C++ result (no copy) that keep it alive; np.array(r.B) gives a writable copy.
+method, status ("converged", "max-iterations", "diverged", "refused"), message, iterations, residual,
+residual_history, walks, steps, seconds, info: as the CLI's JSON "solution" object (a status other than
+"converged" is not an exception: the CLI's exit code 1 or 3).
+timings: stage -> seconds; metadata: the JSON the CLI writes for the run (its "solution" object, options, timings_s).
+fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp.)doc")
+      .def_property_readonly("B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); })
+      .def_property_readonly("B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); })
+      .def_property_readonly("var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); })
+      .def_property_readonly("var_theory", [](py::object self) {
+        return rgb_or_none(self, self.cast<const Result&>().solution.var_theory);
+      })
+      .def_property_readonly("method", [](const Result& r) { return r.solution.method; })
+      .def_property_readonly("status", [](const Result& r) { return std::string(to_string(r.solution.status)); })
+      .def_property_readonly("message", [](const Result& r) { return r.solution.message; })
+      .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; })
+      .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; })
+      .def_property_readonly("residual_history", [](const Result& r) {
+        const auto& h = r.solution.residual_history;
+        return py::array_t<double>(h.size(), h.data());
+      })
+      .def_property_readonly("walks", [](const Result& r) { return r.solution.walks; })
+      .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; })
+      .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; })
+      .def_property_readonly("info", [](const Result& r) { return r.solution.info; })
+      .def_readonly("timings", &Result::timings)
+      .def_property_readonly("metadata", [](const Result& r) { return json_to_python(r.metadata); })
+      .def_property_readonly(
+          "fields", [](py::object self) {
+            // The names of cmd_solve / cmd_pathtrace: ParaView's B_var and B_var_theory, written var_* in the CSV.
+            const Solution& s = self.cast<const Result&>().solution;
+            py::dict d;
+            d["B"] = rgb_view(s.B, self);
+            if (s.B_se.size()) d["B_se"] = rgb_view(s.B_se, self);
+            if (s.var.size()) d["B_var"] = py::make_tuple(rgb_view(s.var, self), "var");
+            if (s.var_theory.size()) d["B_var_theory"] = py::make_tuple(rgb_view(s.var_theory, self), "var_theory");
+            return d;
+          },
+          "The CLI's per-patch fields of this result (B, B_se, B_var, B_var_theory), as write_csv takes them.")
+      .def("__repr__", [](const Result& r) {
+        return "<radwalk.Result " + r.solution.method + ": " + to_string(r.solution.status) + ", " +
+               std::to_string(r.solution.B.rows()) + " patches>";
+      });
+
+  m.def("solve", &solve, py::arg("scene"), py::arg("F") = py::none(), py::arg("solver") = "auto",
+        py::arg("tol") = 1e-10, py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("seed") = 1,
+        py::arg("threads") = 0,
+        R"doc(Solves B = E + diag(rho) F B with a deterministic solver: a Result (B, residual, iterations, ...).
+
+scene: a Scene, with rho and E as they are now (in-place edits count).
+F: a FormFactors (form_factors), a scipy.sparse matrix (copied to float32 CSR), or None: estimated here with
+  `rays` rays per patch and `seed`, as `radwalk solve SCENE --rays R --seed S` does.
+solver: "auto" (direct up to a few thousand patches, else Gauss-Seidel), "direct", "jacobi", "gauss-seidel",
+  "southwell" (the CLI's --solver); tol: relative residual to stop at (--tol);
+  max_iterations: sweeps or shots, 0 = the CLI's default (10000, or 1000 x N shots for southwell).
+threads: 0 = all cores. The GIL is released during the solve.
+Raises radwalk.InputError (a ValueError) for an unknown solver, bad options or bad values (rho < 0, NaN, ...).
+For random walks use random_walk; for the continuous reference, pathtrace.)doc");
+}
+
+}  // namespace radwalk::python

@@ -1,0 +1,290 @@
+// radwalk.random_walk, radwalk.compare and radwalk.exact_variance: the discrete random-walk estimators.
+// The method names are those of the one method table (walk/walk_method.h, radwalk.walk_methods()).
+#include <limits>
+#include <memory>
+
+#include "bindings.h"
+#include "core/parallel.h"
+#include "solve/problem.h"
+#include "solve/solve_radiosity.h"
+#include "visibility/embree_visibility.h"
+#include "walk/random_walk_solver.h"
+#include "walk/walk_compare.h"
+#include "walk/walk_variance.h"
+
+namespace radwalk::python {
+namespace {
+
+// The per-method part of a comparison: its summary and its per-patch arrays (NaN where it estimated nothing).
+struct EstimatorComparison {
+  CompareSummary summary;
+  PatchRgb mean, var, var_theory, z;
+};
+
+struct Comparison {
+  PatchRgb B_reference;
+  std::vector<std::string> names;
+  std::vector<EstimatorComparison> estimators;
+  std::vector<CompareRow> rows;
+  std::map<std::string, double> timings;
+};
+
+WalkOptions walk_options(const std::string& method, const std::string& kernel, long walks_per_patch, long particles,
+                         std::uint64_t seed, const std::string& survival, double survival_constant,
+                         const std::vector<int>& patches) {
+  WalkOptions w;
+  w.method = parse_walk_method(method);
+  w.kernel = parse_walk_kernel(kernel);
+  w.walks_per_patch = walks_per_patch;
+  w.particles = particles;
+  w.seed = seed;
+  w.survival.rule = parse_survival_rule(survival);
+  w.survival.constant = survival_constant;
+  w.patches = patches;
+  return w;
+}
+
+// F for the matrix kernel (form_factor_matrix); the ray kernel stores none (an empty N x N F, as the CLI's).
+SparseF walk_form_factors(const py::object& F, const Scene& scene, WalkKernel kernel, long rays, std::uint64_t seed,
+                          int threads, std::map<std::string, double>& timings) {
+  const auto n = static_cast<Eigen::Index>(scene.patches.size());
+  if (kernel == WalkKernel::ray) return SparseF(n, n);
+  return form_factor_matrix(F, scene, rays, seed, threads, timings);
+}
+
+Result random_walk(const Scene& scene, const py::object& F, const std::string& method, const std::string& kernel,
+                   long walks_per_patch, long particles, std::uint64_t seed, const std::string& survival,
+                   double survival_constant, bool theory, const std::vector<int>& patches, long rays, int threads,
+                   bool progress) {
+  WalkOptions w = walk_options(method, kernel, walks_per_patch, particles, seed, survival, survival_constant, patches);
+  w.theory = theory;
+  w.progress = progress;
+  check_walk_options(w, scene.patches.size());  // before any form factor is traced, as the CLI
+  Result r;
+  SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings);
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
+    std::unique_ptr<EmbreeVisibility> visibility;
+    if (w.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
+    r.solution = solve_random_walk(problem, &scene.patches, visibility.get(), w);
+  }
+  r.timings["solve"] = r.solution.seconds;
+  const WalkMethodRow& row = method_row(w.method);
+  nlohmann::json run = {{"solver", "random-walk"},
+                        {"method", std::string(row.name)},
+                        {"walk", std::string(direction_name(row.direction))},
+                        {"estimator", std::string(row.estimator)},
+                        {"kernel", std::string(kernel_name(w.kernel))},
+                        {"survival", std::string(survival_name(w.survival.rule))},
+                        {"seed", seed},
+                        {"threads", threads},
+                        {"total_walks", total_walks(w, scene.patches.size())}};
+  if (is_gathering(w.method))
+    run["walks_per_patch"] = w.walks_per_patch;
+  else
+    run["particles"] = w.particles;
+  r.metadata = result_metadata(r, scene, run);
+  return r;
+}
+
+Comparison compare(const Scene& scene, const py::object& F, const std::optional<std::vector<std::string>>& methods,
+                   int runs, long walks_per_patch, const std::string& kernel, std::uint64_t seed,
+                   const std::string& survival, double survival_constant, bool theory,
+                   const std::vector<int>& patches, long rays, int threads, bool progress) {
+  CompareOptions o;
+  if (methods) {
+    o.methods.clear();
+    for (const std::string& name : *methods) o.methods.push_back(parse_walk_method(name));
+  }
+  o.runs = runs;
+  o.walk = walk_options("gather-collision", kernel, walks_per_patch, 1000, seed, survival, survival_constant, patches);
+  o.theory = theory;
+  o.progress = progress;
+  check_compare_options(o, scene.patches.size());
+  Comparison c;
+  SparseF f = form_factor_matrix(F, scene, rays, seed, threads, c.timings);  // the reference needs F either way
+  CompareResult result;
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
+    // The reference, as `radwalk compare`: the direct solve of the same discrete system.
+    SolveOptions direct;
+    direct.solver = "direct";
+    const Solution reference = solve_radiosity(problem, direct);
+    c.timings["reference solve"] = reference.seconds;
+    c.B_reference = reference.B;
+    std::unique_ptr<EmbreeVisibility> visibility;
+    if (o.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
+    result = compare_random_walks(problem, &scene.patches, visibility.get(), o, reference.B);
+  }
+  const auto n = static_cast<Eigen::Index>(scene.patches.size());
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  double walks_seconds = 0;
+  for (const CompareSummary& s : result.summary) {
+    EstimatorComparison e;
+    e.summary = s;
+    e.mean = e.var = e.var_theory = e.z = PatchRgb::Constant(n, 3, nan);
+    c.names.emplace_back(method_name(s.method));
+    c.estimators.push_back(std::move(e));
+    walks_seconds += s.seconds;
+  }
+  for (const CompareRow& row : result.rows)
+    for (std::size_t k = 0; k < c.estimators.size(); ++k)
+      if (c.estimators[k].summary.method == row.method) {
+        c.estimators[k].mean(row.patch, row.channel) = row.mean;
+        c.estimators[k].var(row.patch, row.channel) = row.var;
+        c.estimators[k].var_theory(row.patch, row.channel) = row.var_theory;
+        c.estimators[k].z(row.patch, row.channel) = row.z;
+      }
+  c.timings["walks"] = walks_seconds;
+  c.rows = std::move(result.rows);
+  return c;
+}
+
+py::array_t<double> exact_variance(const Scene& scene, const py::object& F, const std::string& method,
+                                   const std::string& survival, double survival_constant, long rays,
+                                   std::uint64_t seed, int threads) {
+  WalkOptions w = walk_options(method, "matrix", 1000, 1000, seed, survival, survival_constant, {});
+  std::map<std::string, double> timings;
+  SparseF f = form_factor_matrix(F, scene, rays, seed, threads, timings);
+  PatchRgb var;
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
+    var = theoretical_variance(problem, w, dense_radiosity(problem));
+  }
+  py::array_t<double> out({static_cast<py::ssize_t>(var.rows()), py::ssize_t{3}});
+  std::copy(var.data(), var.data() + var.size(), out.mutable_data());
+  return out;
+}
+
+}  // namespace
+
+void bind_walks(py::module_& m) {
+  py::class_<EstimatorComparison>(m, "EstimatorComparison",
+                                  R"doc(One method of a compare(): per-patch arrays and its summary.
+
+mean, var, var_theory, z (N, 3): average of the runs' estimates, per-walk variance averaged over the runs, exact
+per-walk variance (NaN where not computable), (mean - B_reference) / sqrt(var / walks); NaN for patches the method
+did not estimate. Summary (walk/walk_compare.h): runs, walks (over all runs), steps, seconds, mean_abs_z (about 0.80
+for an unbiased method with right error bars), max_abs_z, var_ratio (mean var / var_theory, about 1),
+spread_ratio (run-to-run spread over the predicted standard error, about 1; NaN for one run), mean_var,
+efficiency = walks / (mean_var x seconds).)doc")
+      .def_property_readonly("method", [](const EstimatorComparison& e) { return std::string(method_name(e.summary.method)); })
+      .def_property_readonly("mean", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().mean, self); })
+      .def_property_readonly("var", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var, self); })
+      .def_property_readonly("var_theory", [](py::object self) {
+        return rgb_view(self.cast<const EstimatorComparison&>().var_theory, self);
+      })
+      .def_property_readonly("z", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().z, self); })
+      .def_property_readonly("runs", [](const EstimatorComparison& e) { return e.summary.runs; })
+      .def_property_readonly("walks", [](const EstimatorComparison& e) { return e.summary.walks; })
+      .def_property_readonly("steps", [](const EstimatorComparison& e) { return e.summary.steps; })
+      .def_property_readonly("seconds", [](const EstimatorComparison& e) { return e.summary.seconds; })
+      .def_property_readonly("mean_abs_z", [](const EstimatorComparison& e) { return e.summary.mean_abs_z; })
+      .def_property_readonly("max_abs_z", [](const EstimatorComparison& e) { return e.summary.max_abs_z; })
+      .def_property_readonly("var_ratio", [](const EstimatorComparison& e) { return e.summary.var_ratio; })
+      .def_property_readonly("spread_ratio", [](const EstimatorComparison& e) { return e.summary.spread_ratio; })
+      .def_property_readonly("mean_var", [](const EstimatorComparison& e) { return e.summary.mean_var; })
+      .def_property_readonly("efficiency", [](const EstimatorComparison& e) { return e.summary.efficiency; })
+      .def("__repr__", [](const EstimatorComparison& e) {
+        return "<radwalk.EstimatorComparison " + std::string(method_name(e.summary.method)) + ">";
+      });
+
+  py::class_<Comparison>(m, "Comparison", R"doc(What compare() returns.
+
+B_reference (N, 3): the direct solve the z-scores are measured against; estimators: dict method name ->
+EstimatorComparison, in the order asked; summary: the CLI's text table; rows: the CLI's long-format CSV as a
+dict of numpy columns (patch, estimator, channel 0..2, mean, var, var_theory, z, walks, steps, seconds,
+efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
+      .def_property_readonly("B_reference", [](py::object self) { return rgb_view(self.cast<const Comparison&>().B_reference, self); })
+      .def_property_readonly("estimators", [](py::object self) {
+        const Comparison& c = self.cast<const Comparison&>();
+        py::dict d;
+        for (std::size_t k = 0; k < c.names.size(); ++k)
+          d[py::str(c.names[k])] = py::cast(&c.estimators[k], py::return_value_policy::reference_internal, self);
+        return d;
+      })
+      .def_property_readonly("summary", [](const Comparison& c) {
+        std::vector<CompareSummary> s;
+        for (const auto& e : c.estimators) s.push_back(e.summary);
+        return format_compare_summary(s);
+      })
+      .def_property_readonly("rows", [](const Comparison& c) {
+        const std::size_t n = c.rows.size();
+        py::array_t<std::int64_t> patch(n), channel(n), walks(n), steps(n);
+        py::array_t<double> mean(n), var(n), var_theory(n), z(n), seconds(n), efficiency(n);
+        py::list estimator;
+        for (std::size_t i = 0; i < n; ++i) {
+          const CompareRow& r = c.rows[i];
+          patch.mutable_at(i) = r.patch;
+          channel.mutable_at(i) = r.channel;
+          walks.mutable_at(i) = r.walks;
+          steps.mutable_at(i) = r.steps;
+          mean.mutable_at(i) = r.mean;
+          var.mutable_at(i) = r.var;
+          var_theory.mutable_at(i) = r.var_theory;
+          z.mutable_at(i) = r.z;
+          seconds.mutable_at(i) = r.seconds;
+          efficiency.mutable_at(i) = r.efficiency;
+          estimator.append(py::str(std::string(method_name(r.method))));
+        }
+        py::dict d;
+        d["patch"] = patch;
+        d["estimator"] = estimator;
+        d["channel"] = channel;
+        d["mean"] = mean;
+        d["var"] = var;
+        d["var_theory"] = var_theory;
+        d["z"] = z;
+        d["walks"] = walks;
+        d["steps"] = steps;
+        d["seconds"] = seconds;
+        d["efficiency"] = efficiency;
+        return d;
+      })
+      .def_readonly("timings", &Comparison::timings);
+
+  m.def("random_walk", &random_walk, py::arg("scene"), py::arg("F") = py::none(),
+        py::arg("method") = "gather-collision", py::arg("kernel") = "matrix", py::arg("walks_per_patch") = 1000,
+        py::arg("particles") = 1000, py::arg("seed") = 1, py::arg("survival") = "analog",
+        py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
+        py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
+        R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
+
+method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): "gather-absorption",
+  "gather-collision", "gather-expected-value" (walks from each estimated patch, walks_per_patch of them) or
+  "shoot-collision", "shoot-absorption", "shoot-survival" (particles from the emitters, `particles` in total);
+  the CLI's --walk D --estimator E is method "D-E".
+kernel: "matrix" (stored F, alias tables) or "ray" (Embree traces every step, F is not used or estimated).
+F: a FormFactors, a scipy.sparse matrix, or None (estimated with `rays` and `seed`, as the CLI).
+survival: "analog", "max" or "constant" (with survival_constant), the roulette rule; theory: also the exact
+  per-walk variance var_theory (matrix kernel, N <= 2000); patches: gathering only, the patches to estimate
+  (empty: all; the others are NaN); seed: as the CLI's --seed (same seed, same B for any thread count).
+Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count.)doc");
+
+  m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),
+        py::arg("runs") = 5, py::arg("walks_per_patch") = 1000, py::arg("kernel") = "matrix", py::arg("seed") = 1,
+        py::arg("survival") = "analog", py::arg("survival_constant") = 0.5, py::arg("theory") = true,
+        py::arg("patches") = std::vector<int>{}, py::arg("rays") = 1000, py::arg("threads") = 0,
+        py::arg("progress") = false,
+        R"doc(Runs random-walk methods `runs` times each on one budget and compares them: a Comparison.
+
+As `radwalk compare`: the budget is walks_per_patch walks per estimated patch for gathering methods and the same
+total as particles for shooting ones; run r uses seed + r; the reference is the direct solve of the same F.
+methods: names of radwalk.walk_methods() (None: all six); the other options as random_walk.)doc");
+
+  m.def("exact_variance", &exact_variance, py::arg("scene"), py::arg("F") = py::none(),
+        py::arg("method") = "gather-collision", py::arg("survival") = "analog", py::arg("survival_constant") = 0.5,
+        py::arg("rays") = 1000, py::arg("seed") = 1, py::arg("threads") = 0,
+        R"doc(The exact per-walk (gathering) or per-particle (shooting) variance of a method with the matrix kernel.
+
+An (N, 3) array, +inf where the variance is infinite (spectral radius of K >= 1); dense algebra, N <= 2000
+(walk/walk_variance.h). The standard error of a run of n walks is sqrt(var / n).)doc");
+}
+
+}  // namespace radwalk::python

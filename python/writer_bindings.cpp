@@ -1,0 +1,123 @@
+// The writers (per-patch CSV and .vtp, Matrix Market F) and the Matrix Market reader, as the CLI's outputs.
+#include "apps/distinct_files.h"
+#include <pybind11/stl/filesystem.h>
+
+#include "bindings.h"
+#include "core/error.h"
+#include "formfactor/matrix_market.h"
+#include "io/cell_field.h"
+#include "io/csv_writer.h"
+#include "io/vtp_writer.h"
+
+namespace radwalk::python {
+namespace {
+
+// Refuses an output that is one of the scene's input files (the scene, its material libraries), as the CLI does.
+void check_not_an_input(const std::string& path, const Scene& scene) {
+  std::vector<app::NamedFile> inputs = {{"the scene", scene.path}};
+  for (const Material& m : scene.patches.materials)
+    if (!m.file.empty()) inputs.push_back({"the scene's material library", m.file});
+  const std::string clash = app::check_distinct_files({{"the output", path}}, inputs);
+  if (!clash.empty()) throw InputError(clash);
+}
+
+// dict name -> array (N,) or (N, 3), or -> (array, csv_name): CellFields in the dict's order. Integer arrays are
+// counts (FieldKind::count: Int64 in the .vtp), floating ones quantities.
+std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n) {
+  std::vector<CellField> out;
+  const py::module_ np = py::module_::import("numpy");
+  for (const auto& [key, value] : fields) {
+    CellField f;
+    f.name = key.cast<std::string>();
+    py::object array = py::reinterpret_borrow<py::object>(value);
+    if (py::isinstance<py::tuple>(array)) {
+      const py::tuple t = array.cast<py::tuple>();
+      if (t.size() != 2) throw InputError("field '" + f.name + "': expected an array or (array, csv_name)");
+      array = t[0];
+      f.csv_name = t[1].cast<std::string>();
+    }
+    array = np.attr("asarray")(array);
+    if (np.attr("issubdtype")(array.attr("dtype"), np.attr("integer")).cast<bool>()) f.kind = FieldKind::count;
+    const auto a = array.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+    const bool rgb = a.ndim() == 2 && a.shape(1) == 3;
+    if (!(a.ndim() == 1 || rgb) || static_cast<std::size_t>(a.shape(0)) != n)
+      throw InputError("field '" + f.name + "': expected shape (" + std::to_string(n) + ",) or (" +
+                       std::to_string(n) + ", 3), one row per patch");
+    f.components = rgb ? 3 : 1;
+    f.values.assign(a.data(), a.data() + a.size());
+    out.push_back(std::move(f));
+  }
+  return out;
+}
+
+void write_csv(const std::filesystem::path& file, const Scene& scene, const py::dict& fields) {
+  const std::string path = file.string();
+  check_not_an_input(path, scene);
+  const std::vector<CellField> f = cell_fields(fields, scene.patches.size());
+  py::gil_scoped_release release;
+  write_patch_csv(path, scene.patches, f);
+}
+
+void write_vtp(const std::filesystem::path& file, const Scene& scene, const py::dict& fields, const py::dict& metadata) {
+  const std::string path = file.string();
+  check_not_an_input(path, scene);
+  std::vector<CellField> all = patch_fields(scene.patches);
+  for (CellField& f : cell_fields(fields, scene.patches.size())) all.push_back(std::move(f));
+  VtpMetadata m;
+  for (const auto& [key, value] : metadata) {
+    const std::string k = key.cast<std::string>();
+    if (py::isinstance<py::bool_>(value) || py::isinstance<py::int_>(value))
+      m.set_integer(k, value.cast<std::int64_t>());
+    else if (py::isinstance<py::float_>(value))
+      m.set_real(k, value.cast<double>());
+    else
+      m.set_text(k, py::str(value).cast<std::string>());
+  }
+  py::gil_scoped_release release;
+  write_vtp(path, scene.patches, all, m);
+}
+
+}  // namespace
+
+void bind_writers(py::module_& m) {
+  m.def("write_csv", &write_csv, py::arg("path"), py::arg("scene"), py::arg("fields") = py::dict(),
+        R"doc(Writes the per-patch CSV of the CLI (io/csv_writer.h), atomically.
+
+Columns patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,E_r,E_g,E_b (the scene as it is now, edits included),
+then each field of `fields` in its order: name -> (N,) array (one column) or (N, 3) array (NAME_r, NAME_g,
+NAME_b), or name -> (array, csv_name) for a different CSV name. 12 significant digits, empty cells for non-finite
+values. The CLI's solve CSV is write_csv(path, scene, {**ff.diagnostics, **result.fields}), byte for byte.
+Refuses (InputError) to write over the scene or its MTL.)doc");
+  m.def("write_vtp", &write_vtp, py::arg("path"), py::arg("scene"), py::arg("fields") = py::dict(),
+        py::arg("metadata") = py::dict(),
+        R"doc(Writes a .vtp for ParaView (io/vtp_writer.h): the patch fields (patch, face, area, normal, rho, E), then
+`fields` (as write_csv; integer arrays become Int64 count arrays; the names must be ParaView identifiers, e.g.
+B_var, not var), and `metadata` (str/int/float values) as field data. A field B gets its true-colour B_srgb.)doc");
+  m.def(
+      "write_matrix_market",
+      [](const std::filesystem::path& file, const py::object& F, const Scene& scene) {
+        const std::string path = file.string();
+        check_not_an_input(path, scene);
+        std::map<std::string, double> timings;
+        const SparseF f = form_factor_matrix(F, scene, 1000, 1, 0, timings);
+        py::gil_scoped_release release;
+        write_matrix_market(path, f);
+      },
+      py::arg("path"), py::arg("F"), py::arg("scene"),
+      "Writes F (a FormFactors or a scipy.sparse matrix) as the CLI's Matrix Market file (`formfactors -o F.mtx`), "
+      "coordinate real general, 1-based, atomically; byte for byte the CLI's for the same F.");
+  m.def(
+      "read_form_factors",
+      [](const std::filesystem::path& path, const Scene& scene) {
+        FormFactorsResult r;
+        r.area = scene.patches.area;
+        py::gil_scoped_release release;
+        r.ff.F = read_matrix_market(path.string(), scene.patches.size());
+        return r;
+      },
+      py::arg("path"), py::arg("scene"),
+      "Reads a Matrix Market F for the scene (the CLI's --form-factors): a FormFactors without ray counts. "
+      "InputError with the CLI's message for a malformed file or a size that is not N x N.");
+}
+
+}  // namespace radwalk::python

@@ -1,0 +1,34 @@
+"""Shared fixtures of the Python module's tests: the CLI of the same build, the source tree, small scenes."""
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(os.environ.get("RADWALK_SOURCE", Path(__file__).resolve().parents[2]))
+CLI = os.environ.get("RADWALK_CLI", str(SOURCE / "build" / "apps" / "radwalk"))
+
+
+def run_cli(*args, check=True):
+    """Runs the radwalk program of the same build; returns the CompletedProcess (text)."""
+    result = subprocess.run([CLI, *map(str, args), "-q"], capture_output=True, text=True)
+    if check and result.returncode != 0:
+        raise AssertionError(f"radwalk {' '.join(map(str, args))} failed: {result.stderr}")
+    return result
+
+
+@pytest.fixture
+def cube(tmp_path):
+    """A private copy of the bundled cube (OBJ + MTL), so that tests may edit its MTL."""
+    for name in ("cube.obj", "cube.mtl"):
+        shutil.copy(SOURCE / "meshes" / name, tmp_path / name)
+    return tmp_path / "cube.obj"
+
+
+def mesh(name):
+    return str(SOURCE / "meshes" / name)
+
+
+def data(name):
+    return str(SOURCE / "tests" / "data" / name)

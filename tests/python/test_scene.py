@@ -1,0 +1,74 @@
+"""The Scene's numpy views, in-place edits of rho and E against edited MTL files, and F's zero-copy layout."""
+import numpy as np
+import pytest
+
+import radwalk
+from conftest import mesh, run_cli
+
+
+def edit_mtl(path, material, key, values):
+    """Rewrites `key` of `material` in the MTL beside path (as a user would in a text editor)."""
+    mtl = path.with_suffix(".mtl")
+    lines, current = [], None
+    for line in mtl.read_text().splitlines():
+        words = line.split()
+        if words[:1] == ["newmtl"]:
+            current = words[1]
+        if current == material and words[:1] == [key]:
+            line = key + " " + " ".join(repr(v) for v in values)
+        lines.append(line)
+    mtl.write_text("\n".join(lines) + "\n")
+
+
+def test_views_describe_the_patches():
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    n = len(scene)
+    assert scene.areas.shape == (n,) and scene.centroids.shape == (n, 3) and scene.normals.shape == (n, 3)
+    assert scene.face.shape == scene.material.shape == scene.group.shape == (n,)
+    assert scene.areas.sum() == pytest.approx(scene.total_area, rel=1e-12)
+    assert np.allclose(np.linalg.norm(scene.normals, axis=1), 1)
+    assert scene.material.max() < len(scene.materials)
+    with pytest.raises(ValueError):
+        scene.areas[0] = 1  # geometry is read-only
+    assert scene.rho.flags.writeable and scene.E.flags.writeable
+
+
+def test_rho_set_per_material_solves_as_an_edited_MTL(cube, tmp_path):
+    scene = radwalk.load(cube)  # before the edit
+    edit_mtl(cube, "white", "Kd", (0.7, 0.6, 0.25))
+    run_cli("solve", cube, "--seed", 5, "--csv", tmp_path / "cli.csv")
+    ff = radwalk.form_factors(scene, seed=5)
+    before = radwalk.solve(scene, ff).B.copy()
+    scene.set_material("white", rho=(0.7, 0.6, 0.25))
+    after = radwalk.solve(scene, ff)
+    radwalk.write_csv(tmp_path / "py.csv", scene, {**ff.diagnostics, **after.fields})
+    assert (tmp_path / "cli.csv").read_bytes() == (tmp_path / "py.csv").read_bytes()
+    assert not np.array_equal(before, after.B)
+
+
+def test_rho_and_E_edited_per_patch_in_place_solve_as_an_edited_MTL(cube, tmp_path):
+    scene = radwalk.load(cube)
+    edit_mtl(cube, "white", "Kd", (0.3, 0.4, 0.5))
+    edit_mtl(cube, "light", "Ke", (2.0, 1.0, 0.5))
+    run_cli("solve", cube, "--seed", 5, "--csv", tmp_path / "cli.csv")
+    white = [m.name for m in scene.materials].index("white")
+    light = [m.name for m in scene.materials].index("light")
+    scene.rho[scene.material == white] = (0.3, 0.4, 0.5)
+    scene.E[scene.material == light] = np.pi * np.array([2.0, 1.0, 0.5])
+    ff = radwalk.form_factors(scene, seed=5)
+    radwalk.write_csv(tmp_path / "py.csv", scene, {**ff.diagnostics, **radwalk.solve(scene, ff).fields})
+    assert (tmp_path / "cli.csv").read_bytes() == (tmp_path / "py.csv").read_bytes()
+
+
+def test_F_is_a_float32_csr_view_without_a_copy():
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    ff = radwalk.form_factors(scene, rays=200)
+    a, b = ff.F, ff.F
+    assert a.dtype == np.float32 and a.indices.dtype == np.int32 and a.indptr.dtype == np.int32
+    assert np.shares_memory(a.data, b.data) and np.shares_memory(a.indices, b.indices)
+    assert a.shape == (len(scene), len(scene)) and a.nnz == ff.nnz
+    assert not a.data.flags.writeable
+    # Closed cube: every ray lands on a front face, so every row sums to 1 (up to float32 rounding).
+    assert np.allclose(np.asarray(a.sum(axis=1)).ravel(), 1, atol=1e-5)
+    del ff  # the views keep the C++ matrix alive
+    assert np.isfinite(a.data).all()

@@ -1,0 +1,50 @@
+"""random_walk, compare, exact_variance and pathtrace through the module: names from the one method table,
+results against the direct solve as hypothesis tests."""
+import numpy as np
+from scipy.stats import norm
+
+import radwalk
+from conftest import mesh
+
+ALPHA = 1e-3  # family-wise significance level of each test below (Sidak over its checks)
+
+
+def sidak_z(alpha, m):
+    """Two-sided normal quantile for m checks at family-wise level alpha."""
+    return norm.ppf(1 - (1 - (1 - alpha) ** (1 / m)) / 2)
+
+
+def test_gathering_walks_agree_with_the_direct_solve():
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    ff = radwalk.form_factors(scene, rays=400, seed=1)
+    exact = radwalk.solve(scene, ff, solver="direct").B
+    walk = radwalk.random_walk(scene, ff, method="gather-collision", walks_per_patch=2000, seed=11)
+    z = (walk.B - exact) / walk.B_se
+    assert np.abs(z).max() < sidak_z(ALPHA, z.size)
+
+
+def test_exact_variance_is_the_variance_the_walks_report():
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    ff = radwalk.form_factors(scene, rays=400, seed=1)
+    for method in radwalk.walk_methods():
+        exact = radwalk.exact_variance(scene, ff, method=method)
+        walk = radwalk.random_walk(scene, ff, method=method, walks_per_patch=50, particles=5000, theory=True)
+        assert np.array_equal(exact, walk.var_theory)
+
+
+def test_compare_runs_every_method_of_the_table():
+    scene = radwalk.load(mesh("cube.obj"))
+    c = radwalk.compare(scene, walks_per_patch=200, runs=2, seed=4)
+    assert list(c.estimators) == radwalk.walk_methods()
+    assert len(c.rows["patch"]) == len(radwalk.walk_methods()) * len(scene) * 3
+    z = np.concatenate([e.z.ravel() for e in c.estimators.values()])
+    z = z[np.isfinite(z)]
+    assert np.abs(z).max() < sidak_z(ALPHA, z.size)
+    assert c.B_reference.shape == (len(scene), 3)
+
+
+def test_pathtrace_renders_an_image_as_a_float_array():
+    scene = radwalk.load(mesh("cube.obj"))
+    r = radwalk.pathtrace(scene, spp=4, image=True, width=16, height=12, averages=False)
+    assert r.image.shape == (12, 16, 3) and r.image_se.shape == (12, 16, 3)
+    assert np.isfinite(r.image).all() and r.averages is None
