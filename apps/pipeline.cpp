@@ -64,11 +64,22 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
   const Mesh mesh = load_validated_mesh(options, summary);
   Timer timer;
-  PatchSet patches = make_patches(mesh, options.max_edge);
+  PatchingOptions patching;
+  patching.max_edge = options.max_edge;
+  patching.max_area = options.max_area;
+  PatchSet patches = make_patches(mesh, patching);
   summary.add_timing("patch", timer.seconds());
   summary.json()["max_edge"] = options.max_edge;
+  summary.json()["max_area"] = options.max_area;
   summary.json()["patches"] = patches.size();
   summary.json()["total_area"] = patches.total_area();
+  const PatchAreaDistribution areas = patch_area_distribution(patches);
+  summary.json()["patch_area"] = {{"count", areas.count}, {"min", areas.min}, {"median", areas.median},
+                                  {"max", areas.max}};
+  char line[160];
+  std::snprintf(line, sizeof line, "%zu patches from %zu faces, patch area min %.4g, median %.4g, max %.4g",
+                areas.count, mesh.face_count(), areas.min, areas.median, areas.max);
+  note(line);
   return patches;
 }
 

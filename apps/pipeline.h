@@ -19,7 +19,8 @@ namespace radwalk::app {
 // then too (apps/output_files.h).
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
-// load_validated_mesh, then make_patches with options.max_edge.
+// load_validated_mesh, then make_patches with options.max_edge and max_area; notes the patch count and area
+// distribution (min, median, max; JSON `patch_area`).
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 
 // Form factors for the patches: read from --form-factors (ray counts left empty) or estimated with Embree

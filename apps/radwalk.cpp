@@ -141,7 +141,14 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
-                    "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
+                    "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces. Each face "
+                    "is split on its own: a face whose edges are all at most L stays whole")
+        ->check(kNonNegative)
+        ->capture_default_str();
+  if (patching)
+    cmd->add_option("--max-area", o.max_area,
+                    "Split faces until no patch area is above A (mesh units squared; with --max-edge both hold); "
+                    "0: no bound")
         ->check(kNonNegative)
         ->capture_default_str();
   cmd->add_flag("--strict", o.strict,
