@@ -16,6 +16,7 @@ struct SceneOptions {
   std::string scene;       // OBJ (+MTL) or PLY
   double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
   double max_area = 0;     // --max-area: split faces until no patch area is above this; 0: no bound
+  bool no_contact_cut = false;  // --no-contact-cut: keep faces that objects stand on whole (patch/contact.h)
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
   bool strict = false;     // --strict: refuse what the readers and validation would repair

@@ -19,6 +19,7 @@
 #include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
 #include "mesh/read_scene.h"
+#include "patch/contact.h"
 #include "patch/patching.h"
 
 namespace radwalk::app {
@@ -61,9 +62,40 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   return mesh;
 }
 
+// Objects standing on faces (patch/contact.h): noted, and when the faces are split (and not --no-contact-cut)
+// the supporting faces are cut along the footprints first.
+Mesh cut_contacts(const SceneOptions& options, Mesh mesh, RunSummary& summary) {
+  const std::vector<Contact> contacts = find_contacts(mesh);
+  const bool splitting = options.max_edge > 0 || options.max_area > 0;
+  const bool cut = splitting && !options.no_contact_cut;
+  summary.json()["contacts"] = contacts.size();
+  summary.json()["contact_cut"] = cut;
+  if (contacts.empty()) {
+    summary.json()["contact_faces_cut"] = 0;
+    return mesh;
+  }
+  for (std::size_t c = 0; c < contacts.size() && c < 10; ++c) note("contact: " + describe_contact(mesh, contacts[c]));
+  if (contacts.size() > 10) note("contact: " + std::to_string(contacts.size() - 10) + " more");
+  std::size_t cut_faces = 0;
+  if (cut) mesh = cut_along_contacts(mesh, contacts, &cut_faces);
+  summary.json()["contact_faces_cut"] = cut_faces;
+  note(std::to_string(contacts.size()) + (contacts.size() == 1 ? " object stands" : " objects stand") +
+       " on faces of the scene: " +
+       (cut ? "the supporting faces are cut along the footprints (" + std::to_string(cut_faces) +
+                  " faces cut), so no patch mixes the lit floor with the part hidden underneath; --no-contact-cut "
+                  "keeps them whole"
+            : options.no_contact_cut ? std::string("not cut (--no-contact-cut)")
+                                     : std::string("not cut, since the input faces are kept as patches (cut with "
+                                                   "--max-edge or --max-area)")));
+  return mesh;
+}
+
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
-  const Mesh mesh = load_validated_mesh(options, summary);
+  Mesh loaded = load_validated_mesh(options, summary);
   Timer timer;
+  const Mesh mesh = cut_contacts(options, std::move(loaded), summary);
+  summary.add_timing("contacts", timer.seconds());
+  timer.reset();
   PatchingOptions patching;
   patching.max_edge = options.max_edge;
   patching.max_area = options.max_area;

@@ -151,6 +151,10 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                     "0: no bound")
         ->check(kNonNegative)
         ->capture_default_str();
+  if (patching)
+    cmd->add_flag("--no-contact-cut", o.no_contact_cut,
+                  "Do not cut a face that an object stands on along the contact footprint (the cut is made "
+                  "whenever faces are split, i.e. with --max-edge or --max-area)");
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");

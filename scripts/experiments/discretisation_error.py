@@ -6,8 +6,9 @@ For each --max-edge L, on the same patches:
                different seeds (their difference measures the form-factor noise);
   continuous = radwalk pathtrace patch averages with --spp samples per patch (with standard errors).
 Error measure: area-weighted RMS over patches and channels of (B_discrete - B_continuous), relative to the
-area-weighted RMS of B_continuous. Patches whose rays hit the back of another patch (hidden inside the blocks)
-are left out. The statistical floor of that difference is sqrt(ff_noise^2 + pt_noise^2); what exceeds it is the
+area-weighted RMS of B_continuous, both over the reflecting patches only: emitters (E > 0) are left out, since
+their B is mostly their own emission (exact in both models) and would dominate the RMS of B, and so are patches
+whose rays hit the back of another patch (hidden under the blocks). The statistical floor of that difference is sqrt(ff_noise^2 + pt_noise^2); what exceeds it is the
 discretisation error (constant radiosity per patch).
 
 Writes results/discretisation/discretisation.csv and discretisation.png.
@@ -53,6 +54,8 @@ def main():
         for x, y, z in zip(r1, r2, rp):
             if float(x["back_hits"]) > 0 or float(y["back_hits"]) > 0:
                 continue
+            if any(float(x["E_" + c]) > 0 for c in "rgb"):
+                continue  # emitters: their B is mostly E, which both models have exactly
             A = float(x["area"])
             area += A
             for c in "rgb":
