@@ -177,6 +177,33 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
   for (const auto& [root, faces] : members)
     for (const std::int32_t f : faces) surface_of[static_cast<std::size_t>(f)] = root;
 
+  // Welded vertex -> edges and faces using it; a uniform grid of the welded vertices (cells of 1/128 of the
+  // extent), so each surface only looks at the vertices near its bounding box.
+  const std::size_t n_welded = table.welded_source.size();
+  std::vector<std::vector<std::int32_t>> vertex_edges(n_welded), vertex_faces(n_welded);
+  for (std::size_t e = 0; e < table.edge_count(); ++e)
+    for (const std::int32_t v : table.edges[e]) vertex_edges[static_cast<std::size_t>(v)].push_back(static_cast<std::int32_t>(e));
+  for (std::size_t f = 0; f < n_faces; ++f)
+    for (int k = 0; k < mesh.corner_count(f); ++k) {
+      auto& list = vertex_faces[static_cast<std::size_t>(table.weld[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])])];
+      if (list.empty() || list.back() != static_cast<std::int32_t>(f)) list.push_back(static_cast<std::int32_t>(f));
+    }
+  Vec3 scene_lo = position(0), scene_hi = position(0);
+  for (std::size_t w = 0; w < n_welded; ++w) {
+    scene_lo = scene_lo.cwiseMin(position(static_cast<std::int32_t>(w)));
+    scene_hi = scene_hi.cwiseMax(position(static_cast<std::int32_t>(w)));
+  }
+  const double cell = std::max((scene_hi - scene_lo).maxCoeff() / 128.0, std::max(tol, 1e-300));
+  auto cell_of = [&](double x, double origin) {
+    return static_cast<std::int64_t>(std::floor(std::min((x - origin) / cell, 1e6)));
+  };
+  std::map<std::array<std::int64_t, 3>, std::vector<std::int32_t>> grid;
+  for (std::size_t w = 0; w < n_welded; ++w) {
+    const Vec3& p = position(static_cast<std::int32_t>(w));
+    grid[{cell_of(p.x(), scene_lo.x()), cell_of(p.y(), scene_lo.y()), cell_of(p.z(), scene_lo.z())}].push_back(
+        static_cast<std::int32_t>(w));
+  }
+
   for (const auto& [root, faces] : members) {
     const auto s0 = static_cast<std::size_t>(faces.front());
     const Vec3 n = normal[s0];
@@ -191,10 +218,45 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
     auto on_surface = [&](const Vec3& p) {
       return std::abs(distance(s0, p)) <= tol && (p.array() >= lo.array()).all() && (p.array() <= hi.array()).all();
     };
+    // The welded vertices on the surface's plane within its bounding box, from the grid cells the box overlaps.
+    std::vector<std::int32_t> near;
+    {
+      const std::int64_t x0 = cell_of(lo.x(), scene_lo.x()), x1 = cell_of(hi.x(), scene_lo.x());
+      const std::int64_t y0 = cell_of(lo.y(), scene_lo.y()), y1 = cell_of(hi.y(), scene_lo.y());
+      const std::int64_t z0 = cell_of(lo.z(), scene_lo.z()), z1 = cell_of(hi.z(), scene_lo.z());
+      if ((x1 - x0 + 1) * (y1 - y0 + 1) * (z1 - z0 + 1) > static_cast<std::int64_t>(grid.size())) {
+        for (const auto& [key, list] : grid)
+          for (const std::int32_t w : list)
+            if (on_surface(position(w))) near.push_back(w);
+      } else {
+        for (std::int64_t x = x0; x <= x1; ++x)
+          for (std::int64_t y = y0; y <= y1; ++y)
+            for (std::int64_t z = z0; z <= z1; ++z) {
+              const auto it = grid.find({x, y, z});
+              if (it == grid.end()) continue;
+              for (const std::int32_t w : it->second)
+                if (on_surface(position(w))) near.push_back(w);
+            }
+      }
+      std::sort(near.begin(), near.end());
+    }
+    auto is_near = [&](std::int32_t w) { return std::binary_search(near.begin(), near.end(), w); };
+    std::vector<std::int32_t> candidate_edges, candidate_faces;
+    for (const std::int32_t w : near) {
+      for (const std::int32_t e : vertex_edges[static_cast<std::size_t>(w)]) {
+        const auto& ends = table.edges[static_cast<std::size_t>(e)];
+        if (is_near(ends[0] == w ? ends[1] : ends[0])) candidate_edges.push_back(e);
+      }
+      for (const std::int32_t f : vertex_faces[static_cast<std::size_t>(w)]) candidate_faces.push_back(f);
+    }
+    std::sort(candidate_edges.begin(), candidate_edges.end());
+    candidate_edges.erase(std::unique(candidate_edges.begin(), candidate_edges.end()), candidate_edges.end());
+    std::sort(candidate_faces.begin(), candidate_faces.end());
+    candidate_faces.erase(std::unique(candidate_faces.begin(), candidate_faces.end()), candidate_faces.end());
     // Contact edges: (edge, rising face), adjacency by welded vertex.
     std::map<std::int32_t, std::vector<std::pair<std::int32_t, std::int32_t>>> at;  // vertex -> (edge, face)
-    for (std::size_t e = 0; e < table.edge_count(); ++e) {
-      if (!on_surface(position(table.edges[e][0])) || !on_surface(position(table.edges[e][1]))) continue;
+    for (const std::int32_t edge : candidate_edges) {
+      const auto e = static_cast<std::size_t>(edge);
       bool own = false;
       std::int32_t rising = -1;
       for (const EdgeUse* u = table.uses_begin(e); u != table.uses_end(e); ++u) {
@@ -267,7 +329,8 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
     }
     // Faces lying on the surface back to back, not already the inside of a loop.
     const std::size_t first_of_surface = contacts.size() - loop_vertices.size();
-    for (std::size_t g = 0; g < n_faces; ++g) {
+    for (const std::int32_t face : candidate_faces) {
+      const auto g = static_cast<std::size_t>(face);
       if (normal[g].dot(n) > -kCoplanarDot) continue;
       bool on = true;
       for (int k = 0; k < mesh.corner_count(g) && on; ++k) on = on_surface(corner(mesh, g, k));
