@@ -1,5 +1,6 @@
 // radwalk pathtrace SCENE --spp N [--csv] [-o] [--image out.png|out.exr]: the continuous reference.
 // Patch averages (same CSV columns and VTK fields as the solvers: B_*, B_se_*) and/or an image.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -54,7 +55,19 @@ int run_pathtrace(const PathtraceCommand& command) {
   if (!light) integrator.kind = parse_integrator_kind(command.integrator);
 
   if (!command.image.empty()) {
-    const Camera camera = scene_camera(command.scene.scene, patches, command.camera);
+    const SceneCamera fitted = fit_scene_camera(command.scene.scene, patches, command.camera, &visibility);
+    const Camera& camera = fitted.camera;
+    const Vec3 look_at = camera_focal_point(camera, patches);
+    summary.json()["camera"] = {{"position", {camera.position.x(), camera.position.y(), camera.position.z()}},
+                                {"look_at", {look_at.x(), look_at.y(), look_at.z()}},
+                                {"up", {camera.up.x(), camera.up.y(), camera.up.z()}},
+                                {"fov_deg", camera.vfov * 180.0 / kPi},
+                                {"source", fitted.source}};
+    if (fitted.source == "inside" || fitted.source == "outside")
+      note("camera " + fitted.source + " the scene (" + (fitted.source == "inside" ? "it is closed" : "it is open") +
+           "), at " + number_text(camera.position.x()) + " " + number_text(camera.position.y()) + " " +
+           number_text(camera.position.z()) + " looking at " + number_text(look_at.x()) + " " +
+           number_text(look_at.y()) + " " + number_text(look_at.z()) + "; --camera sets another");
     RenderResult r;
     if (light) {
       LightTraceOptions o;
@@ -75,6 +88,9 @@ int run_pathtrace(const PathtraceCommand& command) {
                                {"spp", command.spp}, {"rays", r.rays}, {"seconds", r.seconds}};
     std::printf("rendered %dx%d at %ld samples per pixel: %ld rays in %.2f s (%.2f Mrays/s)\n", command.width,
                 command.height, command.spp, r.rays, r.seconds, r.rays / std::max(r.seconds, 1e-9) / 1e6);
+    if (std::all_of(r.mean.pixels.begin(), r.mean.pixels.end(), [](const Rgb& p) { return (p == 0).all(); }))
+      warn(summary, "every pixel of " + command.image + " is black: the camera sees no lit surface (no emitter, " +
+                        "or the camera is outside a closed scene or inside an object); set one with --camera");
     write_image(command.image, r);
   }
 

@@ -153,13 +153,25 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
       ->capture_default_str();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
-                    "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces")
+                    "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces. Each face "
+                    "is split on its own: a face whose edges are all at most L stays whole")
         ->check(kNonNegative)
         ->capture_default_str();
   if (patching)
     cmd->add_flag("--two-sided", o.two_sided,
                   "Make every material two-sided: each face becomes a front and a back patch with a B each (per "
                   "material: 'radwalk_two_sided 1' in its MTL block); default one-sided, the back absorbs");
+  if (patching)
+    cmd->add_option("--max-area", o.max_area,
+                    "Split faces until no patch area is above A (mesh units squared; with --max-edge both hold); "
+                    "0: no bound")
+        ->check(kNonNegative)
+        ->capture_default_str();
+  if (patching)
+    cmd->add_flag("--contact-cut", o.contact_cut,
+                  "Cut a face that an object stands on along the contact footprint, so that no patch averages the "
+                  "lit part with the part hidden underneath (with --max-edge or --max-area; contacts are always "
+                  "noted)");
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");

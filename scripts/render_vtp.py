@@ -8,7 +8,11 @@ solution and a path-traced image of the same scene can be compared side by side.
 Usage (Debian's VTK is an X build: run it under xvfb-run when there is no display):
     xvfb-run -a -s "-screen 0 1024x1024x24" /usr/bin/python3 scripts/render_vtp.py cb.vtp cb.png [--smooth]
         [--field B] [--size 512] [--camera px py pz tx ty tz ux uy uz fov_deg] [--exposure 1]
-The default camera is the Cornell box's (position 278 273 -800, looking along +z, 39.3 degree field of view).
+Without --camera the camera is fitted to the data: the Cornell box's own camera (position 278 273 -800, looking
+along +z, 39.3 degree field of view) when the file's field data name a scene cornell_box*; inside a closed scene
+(every probe ray from the bounding box's centre hits a cell) at the centre, 60 degrees, looking where the cone of
+view holds the most radiance B of non-emitting cells; otherwise from outside, framing the bounding box's sphere (40 degrees) along the
+axis or diagonal whose rays see the most B on cell fronts. The camera used is printed.
 """
 import argparse
 import math
@@ -35,6 +39,103 @@ def colours(array, exposure):
     return out
 
 
+CORNELL_BOX_CAMERA = [278, 273, -800, 278, 273, 0, 0, 1, 0, 2 * math.degrees(math.atan(0.0125 / 0.035))]
+
+
+def fibonacci(n):
+    """n directions spread evenly over the sphere (a fixed set: the fit is deterministic)."""
+    golden = math.pi * (3 - math.sqrt(5))
+    out = []
+    for k in range(n):
+        z = 1 - (2 * k + 1) / n
+        r = math.sqrt(max(0.0, 1 - z * z))
+        out.append((r * math.cos(golden * k), z, r * math.sin(golden * k)))
+    return out
+
+
+def fit_camera(poly, field):
+    """The camera for the data: see the module's doc."""
+    fd = poly.GetFieldData()
+    scene = fd.GetAbstractArray("scene")
+    if scene is not None and scene.GetNumberOfValues() and \
+            scene.GetValue(0).split("/")[-1].startswith("cornell_box"):
+        return CORNELL_BOX_CAMERA
+    b = poly.GetBounds()
+    lo, hi = (b[0], b[2], b[4]), (b[1], b[3], b[5])
+    centre = [0.5 * (l + h) for l, h in zip(lo, hi)]
+    radius = 0.5 * math.dist(lo, hi)
+    locator = vtk.vtkCellLocator()
+    locator.SetDataSet(poly)
+    locator.BuildLocator()
+    cell_b = poly.GetCellData().GetArray("B") or field
+
+    def first_hit(origin, d, far):
+        t, x, pc = vtk.mutable(0.0), [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+        sub, cell = vtk.mutable(0), vtk.mutable(-1)
+        end = [o + far * di for o, di in zip(origin, d)]
+        if not locator.IntersectWithLine(origin, end, 1e-9, t, x, pc, sub, cell):
+            return None
+        return int(cell), float(t) * far
+
+    def front(cell, d):
+        normal = [0.0, 0.0, 0.0]
+        pts = poly.GetCell(cell).GetPoints()
+        vtk.vtkPolygon.ComputeNormal(pts, normal)
+        return sum(n * di for n, di in zip(normal, d)) < 0
+
+    emitted = poly.GetCellData().GetArray("E")
+
+    def brightness(cell):  # the lit surfaces, not the lights themselves
+        if emitted is not None and any(v > 0 for v in emitted.GetTuple(cell)):
+            return 0.0
+        return sum(cell_b.GetTuple3(cell)) if cell_b is not None and cell_b.GetNumberOfComponents() == 3 else 1.0
+
+    far = 4 * radius + 1e-12
+    probes = fibonacci(256)
+    hits = [first_hit(centre, d, far) for d in probes]
+    if all(h is not None for h in hits):  # closed: look where the cone of view holds the most B
+        half = math.radians(30)
+        score = [brightness(h[0]) for h in hits]
+        best, best_sum = probes[0], -1.0
+        for d in probes:
+            if abs(d[1]) > 0.9:
+                continue
+            s = sum(w for e, w in zip(probes, score) if sum(x * y for x, y in zip(d, e)) >= math.cos(half))
+            if s > best_sum:
+                best, best_sum = d, s
+        look = [c + h for c, h in zip(centre, best)]
+        return centre + look + [0, 1, 0] + [60.0]
+    # Open: frame the bounding sphere from the view whose rays see the most B on cell fronts.
+    fov = 40.0
+    best_camera, best_seen = None, -1.0
+    for d in [(0, 0, 1), (0, 0, -1), (1, 0, 0), (-1, 0, 0), (0, -1, 0), (0, 1, 0), (1, -1, 1), (-1, -1, 1),
+              (1, -1, -1), (-1, -1, -1), (1, 1, 1), (-1, 1, 1), (1, 1, -1), (-1, 1, -1)]:
+        n = math.sqrt(sum(x * x for x in d))
+        d = [x / n for x in d]
+        up = [0, 0, 1] if abs(d[1]) > 0.99 else [0, 1, 0]
+        distance = radius / math.tan(math.radians(fov / 2)) + 0.5 * sum(abs((h - l) * x) for l, h, x in zip(lo, hi, d))
+        position = [c - distance * x for c, x in zip(centre, d)]
+        # right and true up of the view, for a 12 x 12 grid of rays over the field of view
+        right = [d[1] * up[2] - d[2] * up[1], d[2] * up[0] - d[0] * up[2], d[0] * up[1] - d[1] * up[0]]
+        rn = math.sqrt(sum(x * x for x in right))
+        right = [x / rn for x in right]
+        up2 = [right[1] * d[2] - right[2] * d[1], right[2] * d[0] - right[0] * d[2], right[0] * d[1] - right[1] * d[0]]
+        tan = math.tan(math.radians(fov / 2))
+        seen = 0.0
+        for i in range(12):
+            for j in range(12):
+                sx, sy = (2 * (i + 0.5) / 12 - 1) * tan, (2 * (j + 0.5) / 12 - 1) * tan
+                ray = [x + sx * r + sy * u for x, r, u in zip(d, right, up2)]
+                rl = math.sqrt(sum(x * x for x in ray))
+                ray = [x / rl for x in ray]
+                h = first_hit(position, ray, distance + 2 * radius)
+                if h is not None and front(h[0], ray):
+                    seen += brightness(h[0]) + 1e-12
+        if seen > best_seen:
+            best_camera, best_seen = position + centre + up + [fov], seen
+    return best_camera
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("vtp")
@@ -43,8 +144,8 @@ def main():
     p.add_argument("--smooth", action="store_true", help="use the point field (Gouraud shading)")
     p.add_argument("--size", type=int, default=512)
     p.add_argument("--exposure", type=float, default=1.0)
-    p.add_argument("--camera", type=float, nargs=10,
-                   default=[278, 273, -800, 278, 273, 0, 0, 1, 0, 2 * math.degrees(math.atan(0.0125 / 0.035))])
+    p.add_argument("--camera", type=float, nargs=10, default=None,
+                   help="px py pz tx ty tz ux uy uz fov_deg (default: fitted to the data)")
     a = p.parse_args()
 
     reader = vtk.vtkXMLPolyDataReader()
@@ -72,7 +173,8 @@ def main():
     renderer.AddActor(actor)
     renderer.SetBackground(0, 0, 0)
     cam = renderer.GetActiveCamera()
-    c = a.camera
+    c = a.camera if a.camera else fit_camera(poly, field)
+    print("camera: position %g %g %g, look at %g %g %g, up %g %g %g, fov %g degrees" % tuple(c))
     cam.SetPosition(c[0], c[1], c[2])
     cam.SetFocalPoint(c[3], c[4], c[5])
     cam.SetViewUp(c[6], c[7], c[8])

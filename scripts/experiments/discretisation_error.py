@@ -6,8 +6,9 @@ For each --max-edge L, on the same patches (the Python module radwalk: each scen
                seeds S and S + 1 (their difference measures the form-factor noise);
   continuous = radwalk.pathtrace patch averages with --spp samples per patch, seed S + 2 (with standard errors).
 Error measure: area-weighted RMS over patches and channels of (B_discrete - B_continuous), relative to the
-area-weighted RMS of B_continuous. Patches whose rays hit the back of another patch (hidden inside the blocks)
-are left out. The statistical floor of that difference is sqrt(ff_noise^2 + pt_noise^2); what exceeds it is the
+area-weighted RMS of B_continuous, both over the reflecting patches only: emitters (E > 0) are left out, since
+their B is mostly their own emission (exact in both models) and would dominate the RMS of B, and so are patches
+whose rays hit the back of another patch (hidden under the blocks). The statistical floor of that difference is sqrt(ff_noise^2 + pt_noise^2); what exceeds it is the
 discretisation error (constant radiosity per patch).
 
 Writes OUT/discretisation.csv and discretisation.png, and per L the per-patch CSVs of the three solutions
@@ -55,6 +56,8 @@ def main():
         for i in range(len(scene)):
             if back1[i] > 0 or back2[i] > 0:
                 continue
+            if (scene.E[i] > 0).any():
+                continue  # emitters: their B is mostly E, which both models have exactly
             A = float(scene.areas[i])
             area += A
             for c in range(3):

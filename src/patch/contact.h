@@ -1,0 +1,57 @@
+#pragma once
+// Contacts: objects standing on a face (a block on a floor), and the cut of the supporting face along the contact
+// footprint, so that no patch averages a lit part of the floor with the part hidden under the object.
+//
+// Detection (find_contacts), on a validated Mesh, with tol = kContactTolerance x the scene's extent:
+//   - support surfaces: faces joined through shared edges when coplanar (normals within 1e-6 rad, each one's
+//     corners within tol of the other's plane) and facing the same way, e.g. a floor cut into a grid;
+//   - contact edges of a surface: mesh edges that are not edges of the surface itself, both of whose end points lie
+//     within tol of its plane and inside its bounding box, and that are a side of a face F rising from the
+//     surface's front: F not coplanar with it and every corner of F at signed distance >= -tol (above the floor);
+//   - footprints: the contact edges, joined at welded vertices, that form a closed loop (every vertex on two of
+//     them). The loop is the footprint polygon K. It is kept when the rising faces face away from K's inside (a
+//     solid standing on the floor; walls standing around a floor face into it and are not a contact) and K is
+//     convex (a non-convex footprint is reported, not cut);
+//   - a face G lying on the surface back to back (coplanar, normal opposite: a block's bottom) whose corners are not
+//     already a footprint loop's is a footprint too (K = G).
+// Each footprint lists the surface's faces it overlaps (area of S n K above 1e-9 of S's area).
+//
+// Cutting (cut_along_contacts): every overlapped support face S (convex: a triangle or convex quad) is replaced in
+// place by S n K and the pieces of S \ K, cut off one footprint edge at a time (the part of S outside the line of
+// edge i, then the rest continues with the part inside), each a convex polygon, given as quads and triangles (a fan
+// of quads from the first corner, one triangle if the count is odd). Several footprints on one face cut the pieces
+// in turn (a piece already under a footprint is not cut again). Pieces keep S's orientation, material, group,
+// line and input face (Mesh::face_source), so the `face` field still names the input face; they tile S (areas add
+// up to rounding). A cut point on an edge is computed from the edge's end points in a fixed order, so two faces
+// sharing the edge get the same point. Pieces are made before the --max-edge split, which then splits each piece
+// on its own.
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "mesh/mesh.h"
+
+namespace radwalk {
+
+inline constexpr double kContactTolerance = 1e-6;  // of the scene's extent
+
+struct Contact {
+  std::vector<Vec3> footprint;           // convex polygon K, counter-clockwise about the support's normal
+  double area = 0;                       // of K
+  std::vector<std::int32_t> standing;    // faces whose sides are K's edges (or the face lying on the support)
+  std::vector<std::int32_t> supports;    // faces of the support surface that K overlaps
+  bool convex = true;                    // false: reported, not cut
+  bool lying = false;                    // K is a face lying on the support back to back
+};
+
+std::vector<Contact> find_contacts(const Mesh& mesh);
+
+// The mesh with every support face of a convex contact replaced by its pieces (see above). cut_faces, if given,
+// gets the number of faces that were cut.
+Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, std::size_t* cut_faces = nullptr);
+
+// One line for a contact: what stands on what (faces with their object, group and material), the footprint's
+// corners count and area.
+std::string describe_contact(const Mesh& mesh, const Contact& contact);
+
+}  // namespace radwalk

@@ -1,0 +1,210 @@
+// Contacts: an object standing on a face is found, its footprint is the polygon of its bottom edges, and the
+// supporting face is cut along it into pieces that tile it, each either under the object or beside it.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "mesh/face_geometry.h"
+#include "mesh/read_scene.h"
+#include "mesh/validate.h"
+#include "patch/contact.h"
+#include "patch/patching.h"
+
+using namespace radwalk;
+
+namespace {
+
+std::string bundled(const std::string& name) { return std::string(RADWALK_SOURCE_DIR) + "/meshes/" + name; }
+
+const Vec3& corner(const Mesh& m, std::size_t f, int k) {
+  return m.vertices[static_cast<std::size_t>(m.faces[f][static_cast<std::size_t>(k)])];
+}
+
+// Shoelace area of a polygon's projection on y = 0 (x, z).
+double area_xz(const std::vector<Vec3>& p) {
+  double a = 0;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3& u = p[k];
+    const Vec3& v = p[(k + 1) % p.size()];
+    a += u.z() * v.x() - u.x() * v.z();
+  }
+  return 0.5 * std::abs(a);
+}
+
+// Signed distance of q to the inside of convex polygon K (counter-clockwise about n): >= 0 inside, by edge lines.
+double inside_margin(const std::vector<Vec3>& K, const Vec3& n, const Vec3& q) {
+  double m = 1e300;
+  for (std::size_t k = 0; k < K.size(); ++k) {
+    const Vec3 d = n.cross(K[(k + 1) % K.size()] - K[k]).normalized();
+    m = std::min(m, (q - K[k]).dot(d));
+  }
+  return m;
+}
+
+// Checks the cut: the pieces of each input face keep its orientation and material, add up to its area, and each
+// piece lies entirely inside or entirely outside every convex footprint on its plane.
+void check_cut(const Mesh& before, const Mesh& after, const std::vector<Contact>& contacts, double tol) {
+  std::vector<double> area(before.face_count(), 0.0);
+  for (std::size_t f = 0; f < after.face_count(); ++f) {
+    const auto s = static_cast<std::size_t>(after.source_face(f));
+    REQUIRE(s < before.face_count());
+    CHECK(after.face_material[f] == before.face_material[s]);
+    CHECK(face_vector_area(after, f).dot(face_vector_area(before, s)) > 0);
+    area[s] += face_area(after, f);
+    for (const Contact& c : contacts) {
+      if (std::find(c.supports.begin(), c.supports.end(), static_cast<std::int32_t>(s)) == c.supports.end()) continue;
+      const Vec3 n = face_vector_area(before, s).normalized();
+      double lo = 1e300, hi = -1e300;
+      for (int k = 0; k < after.corner_count(f); ++k) {
+        const double m = inside_margin(c.footprint, n, corner(after, f, k));
+        lo = std::min(lo, m);
+        hi = std::max(hi, m);
+      }
+      INFO("piece " << f << " of face " << s << ": footprint margins " << lo << " .. " << hi);
+      CHECK((lo >= -tol || hi <= tol));  // inside or outside, never across
+    }
+  }
+  for (std::size_t s = 0; s < before.face_count(); ++s) {
+    INFO("face " << s);
+    CHECK(area[s] == Approx(face_area(before, s)).epsilon(1e-12));
+  }
+}
+
+// A 4 x 4 floor (one quad, facing up) with a unit block standing on [1, 2] x [1, 2] (4 sides facing out, a top,
+// optionally a bottom facing down), optionally inside walls facing in.
+Mesh block_on_floor(bool bottom, bool walls, bool plate = false) {
+  Mesh m;
+  m.path = "generated";
+  auto v = [&](double x, double y, double z) {
+    m.vertices.push_back({x, y, z});
+    return static_cast<std::int32_t>(m.vertices.size() - 1);
+  };
+  auto quad = [&](std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) { m.faces.push_back({a, b, c, d}); };
+  // Floor, normal +y: corners counter-clockwise seen from above.
+  const auto f0 = v(0, 0, 0), f1 = v(0, 0, 4), f2 = v(4, 0, 4), f3 = v(4, 0, 0);
+  quad(f0, f1, f2, f3);
+  // Block: bottom corners b, top corners t.
+  const auto b0 = v(1, 0, 1), b1 = v(2, 0, 1), b2 = v(2, 0, 2), b3 = v(1, 0, 2);
+  const auto t0 = v(1, 1, 1), t1 = v(2, 1, 1), t2 = v(2, 1, 2), t3 = v(1, 1, 2);
+  quad(b1, b0, t0, t1);  // z = 1, normal -z
+  quad(b2, b1, t1, t2);  // x = 2, normal +x
+  quad(b3, b2, t2, t3);  // z = 2, normal +z
+  quad(b0, b3, t3, t0);  // x = 1, normal -x
+  quad(t0, t1, t2, t3);  // top: normal +y? (t1 - t0) x (t3 - t0) = x x z = -y: reversed below
+  std::swap(m.faces.back()[1], m.faces.back()[3]);
+  if (bottom) quad(b0, b1, b2, b3);  // (x) x (z) = -y: facing down, onto the floor
+  if (walls) {
+    const auto w0 = v(0, 2, 0), w1 = v(0, 2, 4), w2 = v(4, 2, 4), w3 = v(4, 2, 0);
+    quad(f0, w0, w1, f1);  // x = 0, facing in (+x)
+    quad(f1, w1, w2, f2);
+    quad(f2, w2, w3, f3);
+    quad(f3, w3, w0, f0);
+  }
+  if (plate) {  // a thin plate lying on the floor at [2.5, 3.5] x [2.5, 3], facing down
+    const auto p0 = v(2.5, 0, 2.5), p1 = v(3.5, 0, 2.5), p2 = v(3.5, 0, 3), p3 = v(2.5, 0, 3);
+    quad(p0, p1, p2, p3);
+  }
+  Material white;
+  white.name = "white";
+  white.Kd = Rgb(0.5, 0.5, 0.5);
+  m.materials = {white};
+  m.face_material.assign(m.faces.size(), 0);
+  validate_mesh(m);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("contacts: a block on a floor is found and the floor cut into the footprint and 4 pieces", "[patch][contact]") {
+  for (const bool bottom : {false, true}) {
+    INFO("block bottom " << bottom);
+    const Mesh m = block_on_floor(bottom, false);
+    const auto contacts = find_contacts(m);
+    REQUIRE(contacts.size() == 1);  // with a bottom: the same footprint, not a second contact
+    const Contact& c = contacts[0];
+    CHECK(c.convex);
+    CHECK_FALSE(c.lying);
+    CHECK(c.footprint.size() == 4);
+    CHECK(c.area == Approx(1.0).epsilon(1e-14));
+    CHECK(c.supports == std::vector<std::int32_t>{0});
+    CHECK(c.standing == std::vector<std::int32_t>{1, 2, 3, 4});
+    CHECK_THAT(describe_contact(m, c), Catch::Contains("faces 1, 2, 3, 4") && Catch::Contains("stand on face 0") &&
+                                           Catch::Contains("material 'white'"));
+    std::size_t cut = 0;
+    const Mesh after = cut_along_contacts(m, contacts, &cut);
+    CHECK(cut == 1);
+    // The footprint first, then the strips cut off one footprint edge at a time (by hand: the loop starts with
+    // the edge on z = 2, so the parts of the floor outside the lines z = 2, x = 2, z = 1, x = 1 in turn: 8, 4, 2,
+    // 1).
+    REQUIRE(after.face_count() == m.face_count() + 4);
+    CHECK(face_area(after, 0) == Approx(1.0));
+    std::vector<double> strips;
+    for (std::size_t f = 1; f <= 4; ++f) strips.push_back(face_area(after, f));
+    std::sort(strips.begin(), strips.end());
+    CHECK(strips == std::vector<double>{1, 2, 4, 8});
+    for (std::size_t f = 0; f < 5; ++f) CHECK(after.source_face(f) == 0);
+    for (std::size_t f = 5; f < after.face_count(); ++f) CHECK(after.source_face(f) == static_cast<long>(f - 4));
+    check_cut(m, after, contacts, 1e-12);
+    // The patches then split each piece on its own: areas still add up per input face.
+    const PatchSet s = make_patches(after, 0.5);
+    double floor_area = 0;
+    for (std::size_t p = 0; p < s.size(); ++p)
+      if (s.face[p] == 0) floor_area += s.area[p];
+    CHECK(floor_area == Approx(16.0).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("contacts: walls around a floor are no contact; a plate lying on it is one", "[patch][contact]") {
+  const Mesh m = block_on_floor(false, true, true);
+  const auto contacts = find_contacts(m);
+  REQUIRE(contacts.size() == 2);
+  CHECK_FALSE(contacts[0].lying);
+  CHECK(contacts[1].lying);
+  CHECK(contacts[1].standing == std::vector<std::int32_t>{10});
+  CHECK(contacts[1].area == Approx(0.5));
+  CHECK_THAT(describe_contact(m, contacts[1]), Catch::Contains("lies back to back on face 0"));
+  const Mesh after = cut_along_contacts(m, contacts);
+  check_cut(m, after, contacts, 1e-12);
+  double floor_area = 0;
+  std::size_t pieces = 0;
+  for (std::size_t f = 0; f < after.face_count(); ++f)
+    if (after.source_face(f) == 0) {
+      floor_area += face_area(after, f);
+      ++pieces;
+    }
+  CHECK(floor_area == Approx(16.0));
+  CHECK(pieces == 5 + 4);  // the block's cut (5 pieces), then the plate's footprint cuts one of them (4 more)
+}
+
+TEST_CASE("contacts: the Cornell box's blocks stand on the floor, cut along their footprints", "[patch][contact]") {
+  const Mesh m = load_scene(bundled("cornell_box.obj"));
+  const auto contacts = find_contacts(m);
+  REQUIRE(contacts.size() == 2);
+  // The footprints are the blocks' bottom corners (meshes/cornell_box.obj, lines v 130 0 65 ... and v 423 0 247
+  // ...), by the shoelace formula: short block 27633 mm^2, tall block 27626.5 mm^2.
+  CHECK(contacts[0].area == Approx(area_xz({{290, 0, 114}, {240, 0, 272}, {82, 0, 225}, {130, 0, 65}})));
+  CHECK(contacts[1].area == Approx(area_xz({{423, 0, 247}, {472, 0, 406}, {314, 0, 456}, {265, 0, 296}})));
+  for (const Contact& c : contacts) {
+    CHECK(c.convex);
+    CHECK(c.standing.size() == 4);
+    for (const std::int32_t f : c.supports) CHECK(f <= 8);  // floor faces 0-8
+  }
+  std::size_t cut = 0;
+  const Mesh after = cut_along_contacts(m, contacts, &cut);
+  CHECK(cut == 7);
+  check_cut(m, after, contacts, 1e-9);
+  // Under the blocks the pieces add up to the footprints.
+  for (const Contact& c : contacts) {
+    double under = 0;
+    const Vec3 up(0, 1, 0);
+    for (std::size_t f = 0; f < after.face_count(); ++f) {
+      if (after.source_face(f) > 8) continue;
+      Vec3 centre = Vec3::Zero();
+      for (int k = 0; k < after.corner_count(f); ++k) centre += corner(after, f, k) / after.corner_count(f);
+      if (inside_margin(c.footprint, up, centre) > 0) under += face_area(after, f);
+    }
+    CHECK(under == Approx(c.area).epsilon(1e-9));
+  }
+}
