@@ -37,6 +37,10 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
 Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                            const WalkOptions& options, Progress& progress);
 
+// The shadow rays per receiving patch (over all replicates) a Sobol run with direct_light traces on the ray
+// kernel: options.shadow_rays, or particles / (2 N) and at least 16 per replicate; 0 without direct_light.
+long direct_shadow_rays(const WalkOptions& options, std::size_t patch_count);
+
 // The work items (chunks of walks) a solve with these options advances its Progress by, for N patches.
 std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count);
 

@@ -15,7 +15,8 @@ namespace {
 const std::vector<StreamDomain> kDomains = {
     StreamDomain::test,          StreamDomain::form_factor_row, StreamDomain::gather_walk,
     StreamDomain::shoot_particle, StreamDomain::patch_average,  StreamDomain::render_pixel,
-    StreamDomain::light_particle, StreamDomain::synthetic_problem, StreamDomain::benchmark};
+    StreamDomain::light_particle, StreamDomain::synthetic_problem, StreamDomain::benchmark,
+    StreamDomain::direct_light_shift, StreamDomain::emission_shift, StreamDomain::sobol_particle};
 
 // The first 64 draws of a stream.
 std::vector<std::uint32_t> first_draws(Rng rng) {
