@@ -21,7 +21,7 @@
 // Then, per method, the rays needed for e = 0.8 % and 0.3 % (log-log interpolation between the measured
 // budgets; ">" when beyond the largest).
 // Usage: bench_error_vs_rays [--quick] [--repeat R] [--max-edge H[,H...]] [--csv PATH] [--ref-particles N]
-//                            [--scene PATH]   (default meshes/cornell_box.obj of the current directory, run from
+//                            [--scene PATH] [--methods SUBSTRING]   (default meshes/cornell_box.obj of the current directory, run from
 //                            the source tree, else the one next to the bench sources)
 //   default --max-edge 100,50 (328 and 975 patches on today's patching), --csv bench_error_vs_rays.csv.
 #include <time.h>
@@ -200,6 +200,7 @@ int main(int argc, char** argv) {
   std::vector<double> max_edges = {100, 50};
   std::string csv_path = "bench_error_vs_rays.csv";
   long ref_particles = 0;
+  std::string only;  // --methods SUBSTRING: only the methods whose name contains it
   std::string scene = std::filesystem::exists("meshes/cornell_box.obj") ? "meshes/cornell_box.obj"
                                                                          : bench::default_scene();
   for (int a = 1; a < argc; ++a) {
@@ -207,6 +208,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[a], "--repeat") && a + 1 < argc) repeat = std::max(1, std::atoi(argv[++a]));
     else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc) csv_path = argv[++a];
     else if (!std::strcmp(argv[a], "--scene") && a + 1 < argc) scene = argv[++a];
+    else if (!std::strcmp(argv[a], "--methods") && a + 1 < argc) only = argv[++a];
     else if (!std::strcmp(argv[a], "--ref-particles") && a + 1 < argc) ref_particles = std::atol(argv[++a]);
     else if (!std::strcmp(argv[a], "--max-edge") && a + 1 < argc) {
       max_edges.clear();
@@ -270,6 +272,7 @@ int main(int argc, char** argv) {
     };
     std::vector<Curve> curves;
     for (Method m : methods()) {
+      if (m.name.find(only) == std::string::npos) continue;
       // Pilot: rays per particle (walk).
       WalkOptions pilot = m.options;
       set_budget(pilot, 2e5, 1.0, N);

@@ -261,46 +261,52 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
   const typename Estimator::Tables tables(kernel.tables());
   const int R = options.replicates;
   RunResult r;
+  // Per replicate: its base (E or E + D_r), its emission and its chunks; then all chunks of all replicates in one
+  // parallel pass (fixed order: replicate, then chunk), each replicate's sums merged in chunk order.
   std::vector<PatchRgb> Bs(static_cast<std::size_t>(R));
+  std::vector<StratifiedEmission> emissions;
+  struct Chunk {
+    int rep;
+    long begin, end;
+  };
+  std::vector<Chunk> chunks;
   for (int rep = 0; rep < R; ++rep) {
     const long n = replicate_particles(options, rep);
-    PatchRgb base = problem.E, source = problem.E;
+    PatchRgb source = problem.E;
+    Bs[static_cast<std::size_t>(rep)] = problem.E;
     if (direct) {
       source = direct(static_cast<std::uint64_t>(rep), r.counters);
-      base += source;
+      Bs[static_cast<std::size_t>(rep)] += source;
     }
-    const StratifiedEmission emission(source, problem.area, n, options.seed, static_cast<std::uint64_t>(rep));
-    PatchRgb sum = PatchRgb::Zero(N, 3);
+    emissions.emplace_back(source, problem.area, n, options.seed, static_cast<std::uint64_t>(rep));
     const long chunk = shoot_chunk(n);
-    const auto chunks = static_cast<std::size_t>((n + chunk - 1) / chunk);
-    if (emission.power() > 0) {
-      const RngFamily streams(options.seed, StreamDomain::sobol_particle, static_cast<std::uint64_t>(rep));
-      ordered_reduce(
-          chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
-          [&](std::size_t c) {
-            const long begin = static_cast<long>(c) * chunk;
-            const long end = std::min(n, begin + chunk);
-            auto make = [&](std::size_t w) {
-              const long particle = begin + static_cast<long>(w);
-              const std::size_t j = emission.patch_of(particle);
-              return typename Estimator::template Particle<K>(kernel, tables, j, emission.weight(j),
-                                                              streams.stream(static_cast<std::uint64_t>(particle)),
-                                                              emission.first_uniforms(particle, j));
-            };
-            ShootPart part =
-                shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin), make);
-            if (progress) progress->advance(1);
-            return part;
-          },
-          [&](const ShootPart& part) {
-            sum += part.sum;
-            r.counters += part.counters;
-          });
-    } else if (progress) {
-      progress->advance(chunks);
-    }
-    Bs[static_cast<std::size_t>(rep)] = base + sum / static_cast<double>(n);
+    for (long begin = 0; begin < n; begin += chunk)
+      if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
+      else if (progress) progress->advance(1);
   }
+  ordered_reduce(
+      chunks.size(), 2 * static_cast<std::size_t>(std::max(1, active_threads())),
+      [&](std::size_t c) {
+        const Chunk& ch = chunks[c];
+        const StratifiedEmission& emission = emissions[static_cast<std::size_t>(ch.rep)];
+        const RngFamily streams(options.seed, StreamDomain::sobol_particle, static_cast<std::uint64_t>(ch.rep));
+        auto make = [&](std::size_t w) {
+          const long particle = ch.begin + static_cast<long>(w);
+          const std::size_t j = emission.patch_of(particle);
+          return typename Estimator::template Particle<K>(kernel, tables, j, emission.weight(j),
+                                                          streams.stream(static_cast<std::uint64_t>(particle)),
+                                                          emission.first_uniforms(particle, j));
+        };
+        ShootPart part =
+            shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin), make);
+        if (progress) progress->advance(1);
+        return part;
+      },
+      [&, c = std::size_t{0}](const ShootPart& part) mutable {
+        const int rep = chunks[c++].rep;
+        Bs[static_cast<std::size_t>(rep)] += part.sum / static_cast<double>(replicate_particles(options, rep));
+        r.counters += part.counters;
+      });
   r.B = PatchRgb::Zero(N, 3);
   for (const PatchRgb& B : Bs) r.B += B;
   r.B /= static_cast<double>(R);
