@@ -51,8 +51,8 @@ inline constexpr auto kSobolV = sobol_directions();
 // Coordinate d (0 .. kSobolDimensions - 1) of Sobol point r, unshifted, as a 32-bit fraction.
 constexpr std::uint32_t sobol_u32(std::uint32_t r, int d) {
   std::uint32_t x = 0;
-  for (int k = 0; r != 0; ++k, r >>= 1)
-    if (r & 1u) x ^= detail::kSobolV[static_cast<std::size_t>(d)][static_cast<std::size_t>(k)];
+  const auto& v = detail::kSobolV[static_cast<std::size_t>(d)];
+  for (std::size_t k = 0; r != 0; ++k, r >>= 1) x ^= v[k] & (0u - (r & 1u));  // branch-free: bit k of r selects v_k
   return x;
 }
 
