@@ -11,6 +11,8 @@
 // its own order, so each walk's outcome is the same for any `lanes` and any batch (up to a visibility whose answer
 // for one ray depends on the other rays of its packet: Embree's does not, except perhaps for ties at equal t).
 // lanes = 1 drives each walk alone through the single-sample kernel.sample(k, rng, counters).
+// A walk may also give the uniforms of its next ray (uniforms(): 4 floats or nullptr; the Sobol sampler's first
+// rays, stratified_emission.h): they go into its request (SampleRequest::u) instead of draws from its stream.
 #include <algorithm>
 #include <array>
 #include <cstddef>
