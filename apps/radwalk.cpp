@@ -249,6 +249,20 @@ void add_replaced_option(CLI::App* cmd, const std::string& flag, const std::stri
 
 }  // namespace
 
+// The shooting sampler's options (walk_options.h WalkSampler), the same for solve and compare.
+void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
+  add_walk_choice(cmd, "--sampler", walk.sampler, parse_walk_sampler, sampler_name(walk.sampler),
+                  "Shooting particles: " + walk_choices_help(kWalkSamplers));
+  cmd->add_option("--replicates", walk.replicates,
+                  "--sampler sobol: independent randomisations; the standard errors come from their spread")
+      ->capture_default_str();
+  cmd->add_flag("--direct-light", walk.direct_light,
+                "--sampler sobol: the first bounce from the emitters by shadow rays (exact from F on the matrix "
+                "kernel); the particles carry the indirect light only");
+  cmd->add_option("--shadow-rays", walk.shadow_rays,
+                  "--direct-light: shadow rays per receiving patch (default particles / (2 x patches))");
+}
+
 int main(int argc, char** argv) {
   CLI::App app{
       "radwalk: solve the radiosity equation B = E + diag(rho) F B on a mesh and compare the solvers.\n"
@@ -338,6 +352,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.walk.theory,
                       "Also compute the exact per-walk variance (dense; small scenes)");
+  add_sampler_options(solve_cmd, solve.walk);
   // The method from --walk and --estimator; the walk count that the method does not read is refused.
   solve_cmd->callback([&solve, &walk_direction, &walk_estimator, walks_per_patch, particles] {
     WalkDirection direction = WalkDirection::gather;
@@ -407,6 +422,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   add_replaced_option(compare_cmd, "--walks", "use --walks-per-patch (the budget per patch of every method)");
   compare_cmd->add_option("--runs", compare.compare.runs, "Independent runs per estimator")->capture_default_str();
+  add_sampler_options(compare_cmd, compare.compare.walk);
 
   MeasureCommand measure;
   auto* measure_cmd = app.add_subcommand(

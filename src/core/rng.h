@@ -31,8 +31,12 @@ enum class StreamDomain : std::uint64_t {
   light_particle = 6,  // light tracing (patch tallies and images): a = 0, b = particle index k
   synthetic_problem = 7,  // synthetic test problems (solve/synthetic_problem.h): a = row i, b = 0
   benchmark = 8,       // bench/ programs' own inputs
-  measure_walk = 9,    // estimators of a measurement M = <R, B> (walk/measure_walks.h): a = 0, b = walk index
-  importance_walk = 10,  // importance-driven walks (walk/importance_walk.h): a = channel c, b = walk index
+  direct_light_shift = 9,  // Sobol direct light (walk/direct_light.h): a = receiving patch j, b = replicate r
+  emission_shift = 10,     // Sobol shooting, first rays (walk/stratified_emission.h): a = source patch j, b = replicate r;
+                           // a = 2^47: the systematic birth offset of replicate b
+  sobol_particle = 11,     // Sobol shooting, the particles' later draws: a = replicate r, b = particle index w
+  measure_walk = 12,   // estimators of a measurement M = <R, B> (walk/measure_walks.h): a = 0, b = walk index
+  importance_walk = 13,  // importance-driven walks (walk/importance_walk.h): a = channel c, b = walk index
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

@@ -1,6 +1,7 @@
 #include "walk/random_walk_solver.h"
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -20,6 +21,8 @@
 #include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
+#include "walk/direct_light.h"
+#include "walk/stratified_emission.h"
 
 namespace radwalk {
 namespace {
@@ -132,9 +135,9 @@ std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
 // order) and then summed the same way, so the sums do not depend on the lane count.
-template <class Estimator, TransitionKernel K>
-ShootPart shoot_particles(const K& kernel, const typename Estimator::Tables& tables, const ShootSource& source,
-                          const Eigen::VectorXd& area, long begin, long end, std::uint64_t seed) {
+// make(w) returns particle w (0 .. count-1) of the chunk, born.
+template <class Estimator, TransitionKernel K, class Make>
+ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, Make&& make) {
   using Particle = typename Estimator::template Particle<K>;
   const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
@@ -144,7 +147,6 @@ ShootPart shoot_particles(const K& kernel, const typename Estimator::Tables& tab
     std::uint32_t particle, j;  // particle - begin, patch
     Rgb power;
   };
-  const auto count = static_cast<std::size_t>(end - begin);
   // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the sums
   // by flush once the particle is done.
   std::vector<Rgb> current(kernel.size(), Rgb::Zero());
@@ -167,10 +169,6 @@ ShootPart shoot_particles(const K& kernel, const typename Estimator::Tables& tab
       touched_flag[j] = 0;
     }
     touched.clear();
-  };
-  const RngFamily particles(seed, StreamDomain::shoot_particle, 0);  // particle w: stream w
-  auto make = [&](std::size_t w) {
-    return Particle(kernel, tables, source, particles.stream(static_cast<std::uint64_t>(begin) + w));
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.
@@ -215,7 +213,13 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
         [&](std::size_t c) {
           const long begin = static_cast<long>(c) * chunk;
           const long end = std::min(particles, begin + chunk);
-          ShootPart part = shoot_particles<Estimator>(kernel, tables, source, problem.area, begin, end, seed);
+          const RngFamily streams(seed, StreamDomain::shoot_particle, 0);  // particle w: stream w
+          auto make = [&](std::size_t w) {
+            return typename Estimator::template Particle<K>(kernel, tables, source,
+                                                            streams.stream(static_cast<std::uint64_t>(begin) + w));
+          };
+          ShootPart part =
+              shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin), make);
           if (progress) progress->advance(1);
           return part;
         },
@@ -234,9 +238,89 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   return r;
 }
 
+// The particles of replicate r of a Sobol shooting run (the first `rest` replicates take one more).
+long replicate_particles(const WalkOptions& options, int r) {
+  const long R = options.replicates;
+  return options.particles / R + (r < options.particles % R ? 1 : 0);
+}
+
+// The direct light of replicate r (direct_light.h), adding its shadow rays to the counters.
+using DirectLightOf = std::function<PatchRgb(std::uint64_t replicate, WalkCounters& counters)>;
+
+// Sobol shooting (WalkSampler::sobol): R replicates, each an independent estimate
+//   B_r = E [+ D_r] + (1 / n_r) sum_w Y_w,
+// with the particles of stratified_emission.h shot from S = E (or from S = D_r, the direct light, when
+// `direct` is given: they then carry the indirect light only); particle w of replicate r draws after its first
+// ray from stream (seed, sobol_particle, r, w). B = mean_r B_r, its standard error s_R / sqrt(R) from the spread
+// s_R of the replicates (R - 1 degrees of freedom), and var = se^2 x particles (the per-particle variance an
+// i.i.d. run of the same error would have, so that B_se = sqrt(var / particles) as for the random sampler).
+template <class Estimator, TransitionKernel K>
+RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options,
+                          const DirectLightOf& direct, Progress* progress) {
+  const auto N = static_cast<Eigen::Index>(kernel.size());
+  const typename Estimator::Tables tables(kernel.tables());
+  const int R = options.replicates;
+  RunResult r;
+  // Per replicate: its base (E or E + D_r), its emission and its chunks; then all chunks of all replicates in one
+  // parallel pass (fixed order: replicate, then chunk), each replicate's sums merged in chunk order.
+  std::vector<PatchRgb> Bs(static_cast<std::size_t>(R));
+  std::vector<StratifiedEmission> emissions;
+  struct Chunk {
+    int rep;
+    long begin, end;
+  };
+  std::vector<Chunk> chunks;
+  for (int rep = 0; rep < R; ++rep) {
+    const long n = replicate_particles(options, rep);
+    PatchRgb source = problem.E;
+    Bs[static_cast<std::size_t>(rep)] = problem.E;
+    if (direct) {
+      source = direct(static_cast<std::uint64_t>(rep), r.counters);
+      Bs[static_cast<std::size_t>(rep)] += source;
+    }
+    emissions.emplace_back(source, problem.area, n, options.seed, static_cast<std::uint64_t>(rep));
+    const long chunk = shoot_chunk(n);
+    for (long begin = 0; begin < n; begin += chunk)
+      if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
+      else if (progress) progress->advance(1);
+  }
+  ordered_reduce(
+      chunks.size(), 2 * static_cast<std::size_t>(std::max(1, active_threads())),
+      [&](std::size_t c) {
+        const Chunk& ch = chunks[c];
+        const StratifiedEmission& emission = emissions[static_cast<std::size_t>(ch.rep)];
+        const RngFamily streams(options.seed, StreamDomain::sobol_particle, static_cast<std::uint64_t>(ch.rep));
+        auto make = [&](std::size_t w) {
+          const long particle = ch.begin + static_cast<long>(w);
+          const std::size_t j = emission.patch_of(particle);
+          return typename Estimator::template Particle<K>(kernel, tables, j, emission.weight(j),
+                                                          streams.stream(static_cast<std::uint64_t>(particle)),
+                                                          emission.first_uniforms(particle, j));
+        };
+        ShootPart part =
+            shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin), make);
+        if (progress) progress->advance(1);
+        return part;
+      },
+      [&, c = std::size_t{0}](const ShootPart& part) mutable {
+        const int rep = chunks[c++].rep;
+        Bs[static_cast<std::size_t>(rep)] += part.sum / static_cast<double>(replicate_particles(options, rep));
+        r.counters += part.counters;
+      });
+  r.B = PatchRgb::Zero(N, 3);
+  for (const PatchRgb& B : Bs) r.B += B;
+  r.B /= static_cast<double>(R);
+  PatchRgb spread = PatchRgb::Zero(N, 3);
+  for (const PatchRgb& B : Bs) spread += (B - r.B).square();
+  r.se = (spread / (static_cast<double>(R) * (R - 1))).sqrt();
+  r.var = r.se.square() * static_cast<double>(options.particles);
+  return r;
+}
+
 // The one dispatch from the method to its estimator (walk_estimators.h).
 template <TransitionKernel K>
-RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options, Progress* progress) {
+RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options, Progress* progress,
+              const DirectLightOf& direct) {
   return with_estimator(options.method, [&](auto method) {
     using Method = decltype(method);
     using Estimator = typename Method::Estimator;
@@ -247,6 +331,8 @@ RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOption
       else
         for (int i : options.patches) targets.push_back(static_cast<std::size_t>(i));
       return run_gather<Estimator>(kernel, targets, options.walks_per_patch, options.seed, progress);
+    } else if (options.sampler == WalkSampler::sobol) {
+      return run_shoot_sobol<Estimator>(kernel, problem, options, direct, progress);
     } else {
       return run_shoot<Estimator>(kernel, problem, options.particles, options.seed, progress);
     }
@@ -312,12 +398,24 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     progress = &own_progress.emplace("random walks (" + sol.method + ")", walk_work_items(options, N));
   const Timer timer;
   RunResult r;
+  // The direct light of the Sobol sampler: exact from F (matrix kernel) or by shadow rays (ray kernel).
+  const long shadow_rays = direct_shadow_rays(options, N);
+  DirectLightOf direct;
+  if (options.direct_light && options.kernel == WalkKernel::matrix)
+    direct = [&](std::uint64_t, WalkCounters&) { return exact_direct_light(problem); };
+  else if (options.direct_light)
+    direct = [&](std::uint64_t rep, WalkCounters& counters) {
+      DirectLight d = estimate_direct_light(problem, *patches, *visibility, shadow_rays / options.replicates,
+                                            options.seed, rep);
+      counters.steps += d.rays;
+      return std::move(d.D);
+    };
   if (options.kernel == WalkKernel::matrix) {
     const MatrixKernel kernel(problem, std::move(p), direction_of(options.method));
-    r = run(kernel, problem, options, progress);
+    r = run(kernel, problem, options, progress, direct);
   } else {
     const RayKernel kernel(problem, *patches, *visibility, std::move(p));
-    r = run(kernel, problem, options, progress);
+    r = run(kernel, problem, options, progress, direct);
   }
   sol.seconds = timer.seconds();
   if (own_progress) own_progress->finish();
@@ -332,6 +430,9 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     sol.info["walks_per_patch"] = static_cast<double>(options.walks_per_patch);
   else
     sol.info["particles"] = static_cast<double>(options.particles);
+  if (options.sampler == WalkSampler::sobol) sol.info["replicates"] = options.replicates;
+  if (options.direct_light && options.kernel == WalkKernel::ray)
+    sol.info["shadow_rays_per_patch"] = static_cast<double>(shadow_rays / options.replicates * options.replicates);
   double power = 0;
   for (Eigen::Index i = 0; i < problem.area.size(); ++i) power += problem.area(i) * problem.E.row(i).sum();
   sol.info["emitted_power"] = power;
@@ -341,6 +442,9 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   msg << sol.method << " (" << kernel_name(options.kernel) << " kernel, survival "
       << survival_name(options.survival.rule) << "): "
       << (gather ? options.walks_per_patch : options.particles) << (gather ? " walks per patch" : " particles");
+  if (options.sampler == WalkSampler::sobol)
+    msg << ", sobol sampler, " << options.replicates << " replicates"
+        << (options.direct_light ? ", direct light apart" : "");
   if (!gather) {
     const Reach reach = shooting_reach(problem, sol.B);
     sol.info["unreached_patches"] = static_cast<double>(reach.unreached);
@@ -375,10 +479,25 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
 
 }  // namespace
 
+long direct_shadow_rays(const WalkOptions& options, std::size_t patch_count) {
+  if (!options.direct_light) return 0;
+  const long R = options.replicates;
+  if (options.shadow_rays > 0) return std::max(R, options.shadow_rays);
+  return std::max(16 * R, options.particles / (2 * static_cast<long>(std::max<std::size_t>(patch_count, 1))));
+}
+
 std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count) {
   if (is_gathering(options.method)) {
     const std::size_t m = options.patches.empty() ? patch_count : options.patches.size();
     return m * gather_layout(m, options.walks_per_patch).per_patch;
+  }
+  if (options.sampler == WalkSampler::sobol) {
+    std::size_t items = 0;
+    for (int r = 0; r < options.replicates; ++r) {
+      const long n = replicate_particles(options, r), chunk = shoot_chunk(n);
+      items += static_cast<std::size_t>((n + chunk - 1) / chunk);
+    }
+    return items;
   }
   const long chunk = shoot_chunk(options.particles);
   return static_cast<std::size_t>((options.particles + chunk - 1) / chunk);

@@ -8,6 +8,10 @@
 //   B     the estimate (gathering: the mean walk score; shooting: E_j + mean reflected-power score / A_j),
 //   var   the per-walk (per-particle) sample variance, B_se = sqrt(var / walks),
 //   var_theory  with options.theory and the matrix kernel: walk_variance.h (empty otherwise).
+// With options.sampler == sobol (shooting): options.replicates independent stratified replicates
+// (stratified_emission.h; with options.direct_light the first bounce apart, direct_light.h), B their mean, B_se
+// from their spread (R - 1 degrees of freedom), var = B_se^2 x particles; steps include the shadow rays; info holds
+// "replicates" (and "shadow_rays_per_patch" on the ray kernel).
 // Patches a gathering run did not estimate are NaN. walks, steps (destination samples: alias draws or rays),
 // seconds (walks only, without the optional theory) are filled; info holds "variance_radius" (spectral radius of
 // K, finite variance iff < 1; NaN when F is not stored), "escapes", "back_hits", "walks_per_patch" or
@@ -36,6 +40,10 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
                            const WalkOptions& options);
 Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                            const WalkOptions& options, Progress& progress);
+
+// The shadow rays per receiving patch (over all replicates) a Sobol run with direct_light traces on the ray
+// kernel: options.shadow_rays, or particles / (2 N) and at least 16 per replicate; 0 without direct_light.
+long direct_shadow_rays(const WalkOptions& options, std::size_t patch_count);
 
 // The work items (chunks of walks) a solve with these options advances its Progress by, for N patches.
 std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count);

@@ -75,15 +75,21 @@ void RayKernel::make_rays(const SampleRequest* requests, std::size_t count, RayP
              u4 = LaneFloats::Zero();
   int triangle[kPacketSize];
   for (std::size_t l = 0; l < count; ++l) {
-    Rng& rng = *requests[l].rng;
     const PatchSampler& p = samplers_[requests[l].k];
-    const float u = uniform_float(rng);
+    float given[4];
+    if (requests[l].u) {  // the caller's uniforms (SampleRequest::u), nothing drawn
+      std::copy(requests[l].u, requests[l].u + 4, given);
+    } else {
+      Rng& rng = *requests[l].rng;
+      for (float& g : given) g = uniform_float(rng);
+    }
+    const float u = given[0];
     const int t = static_cast<int>(u >= p.lower[1]);
     triangle[l] = t;
     u1[l] = std::min((u - p.lower[t]) * p.inv_width[t], kBelowOne);
-    u2[l] = uniform_float(rng);
-    u3[l] = uniform_float(rng);
-    u4[l] = uniform_float(rng);
+    u2[l] = given[1];
+    u3[l] = given[2];
+    u4[l] = given[3];
   }
   // Step 2, all lanes at once: the weights of the edges, s u2 and s (1 - u2), and the direction in the frame
   // turned by q quarter turns, (r cos theta, r sin theta, z).

@@ -16,6 +16,7 @@
 //   survival   arrivals surviving j:   W_in rho_j / p_j          (probability p_j; = the weight it leaves with)
 // score(j, power) receives each score in W (power units); a patch's per-particle score is the sum of its scores
 // from that particle.
+#include <array>
 #include <vector>
 
 #include "core/rng.h"
@@ -66,13 +67,21 @@ class ShootParticle {
     k_ = source.birth.sample(rng_.uniform());
     W_ = source.W0[k_];
   }
+  // Born on patch k with weight W (stratified emission: stratified_emission.h), its first ray made from the four
+  // uniforms `first` (SampleRequest::u; the ray kernel) and every later draw from rng.
+  ShootParticle(const K& kernel, const Tables& tables, std::size_t k, const Rgb& W, const Rng& rng,
+                const std::array<float, 4>& first)
+      : kt_(&kernel.tables()), t_(&tables), k_(k), W_(W), rng_(rng), first_(first), has_first_(true) {}
   bool done() const { return done_; }
   std::size_t from() const { return k_; }
   Rng& rng() { return rng_; }
+  // The uniforms of the next ray when they are given (the first ray of a stratified particle), else nullptr.
+  const float* uniforms() const { return has_first_ ? first_.data() : nullptr; }
 
  protected:
   // True if the particle arrives at j; false (and done) at a stop.
   bool arrives(PatchIndex j) {
+    has_first_ = false;
     done_ = j < 0;
     return !done_;
   }
@@ -92,6 +101,8 @@ class ShootParticle {
   std::size_t k_ = 0;
   Rgb W_ = Rgb::Zero();
   Rng rng_;
+  std::array<float, 4> first_{};
+  bool has_first_ = false;
   bool done_ = false;
 };
 

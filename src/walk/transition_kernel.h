@@ -78,10 +78,14 @@ struct KernelTables {
 KernelTables make_kernel_tables(const PatchRgb& rho, const PatchRgb& E, std::vector<double> p, std::vector<double> n,
                                 std::vector<double> s);
 
-// One destination-sample request of a batch: a sample from patch k, drawn from the walk's own stream.
+// One destination-sample request of a batch: a sample from patch k, drawn from the walk's own stream; or, when u
+// is set, a ray made from the four given uniforms u[0..3] in [0, 1) (point u[0], u[1]; direction u[2], u[3]) with
+// nothing drawn from the stream (the ray kernel; the Sobol sampler's first rays, quasi_random_shoot.h). A kernel
+// that makes no rays (the matrix kernel) ignores u and draws from the stream.
 struct SampleRequest {
   std::size_t k = 0;
   Rng* rng = nullptr;
+  const float* u = nullptr;
 };
 
 // HE(k, j)'s j for a kernel without kHESampled: no destination sample was drawn.

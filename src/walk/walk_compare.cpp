@@ -24,6 +24,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 WalkOptions method_options(const CompareOptions& options, WalkMethod method, std::size_t patch_count) {
   WalkOptions wo = options.walk;
   wo.method = method;
+  if (is_gathering(method)) {  // the sampler's options are the shooting methods' (walk_options.h)
+    wo.sampler = WalkSampler::random;
+    wo.direct_light = false;
+  }
   wo.particles = options.walk.walks_per_patch *
                  static_cast<long>(options.walk.patches.empty() ? patch_count : options.walk.patches.size());
   wo.progress = false;

@@ -30,8 +30,9 @@ namespace radwalk {
 struct CompareOptions {
   std::vector<WalkMethod> methods = all_walk_methods();
   int runs = 5;         // R >= 1
-  WalkOptions walk;     // kernel, walks_per_patch (the budget), seed, patches (gathering), survival; method,
-                        // particles and progress ignored
+  WalkOptions walk;     // kernel, walks_per_patch (the budget), seed, patches (gathering), survival, and for the
+                        // shooting methods sampler, replicates, direct_light, shadow_rays; method, particles and
+                        // progress ignored
   bool theory = true;   // var_theory where computable
   bool progress = false;  // a progress line per method on stderr (core/progress.h)
 };

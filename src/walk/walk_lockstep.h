@@ -11,6 +11,8 @@
 // its own order, so each walk's outcome is the same for any `lanes` and any batch (up to a visibility whose answer
 // for one ray depends on the other rays of its packet: Embree's does not, except perhaps for ties at equal t).
 // lanes = 1 drives each walk alone through the single-sample kernel.sample(k, rng, counters).
+// A walk may also give the uniforms of its next ray (uniforms(): 4 floats or nullptr; the Sobol sampler's first
+// rays, stratified_emission.h): they go into its request (SampleRequest::u) instead of draws from its stream.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -21,6 +23,28 @@
 
 namespace radwalk {
 
+// The uniforms a walk gives for its next ray (SampleRequest::u), or nullptr: walks without uniforms() draw from
+// their stream.
+template <class Walk>
+const float* walk_uniforms(const Walk& walk) {
+  if constexpr (requires { walk.uniforms(); })
+    return walk.uniforms();
+  else
+    return nullptr;
+}
+
+// One destination sample for one walk: through the batch call when the walk gives its uniforms.
+template <TransitionKernel K, class Walk>
+PatchIndex sample_one(const K& kernel, Walk& walk, WalkCounters& counters) {
+  if (const float* u = walk_uniforms(walk)) {
+    const SampleRequest request{walk.from(), &walk.rng(), u};
+    PatchIndex j = kEscaped;
+    kernel.sample(std::span<const SampleRequest>(&request, 1), std::span<PatchIndex>(&j, 1), counters);
+    return j;
+  }
+  return kernel.sample(walk.from(), walk.rng(), counters);
+}
+
 // The walks one at a time (run_lockstep with lanes = 1; a function of its own, small enough for the compiler to
 // inline the kernel and the walk into it).
 template <TransitionKernel K, class Make, class Step, class Finish>
@@ -28,7 +52,7 @@ void run_singly(const K& kernel, std::size_t count, Make&& make, Step&& step, Fi
                 WalkCounters& counters) {
   for (std::size_t w = 0; w < count; ++w) {
     auto walk = make(w);
-    while (!walk.done()) step(walk, w, kernel.sample(walk.from(), walk.rng(), counters));
+    while (!walk.done()) step(walk, w, sample_one(kernel, walk, counters));
     finish(w, walk);
   }
 }
@@ -57,7 +81,7 @@ void run_lockstep(const K& kernel, std::size_t count, std::size_t lanes, Make&& 
   std::array<PatchIndex, kMaxLanes> destination{};
   while (active > 0) {
     // One batch: a destination for every walk in flight.
-    for (std::size_t r = 0; r < active; ++r) request[r] = {walk[r].from(), &walk[r].rng()};
+    for (std::size_t r = 0; r < active; ++r) request[r] = {walk[r].from(), &walk[r].rng(), walk_uniforms(walk[r])};
     kernel.sample(std::span<const SampleRequest>(request.data(), active),
                   std::span<PatchIndex>(destination.data(), active), counters);
     // Step each. A finished walk's lane takes the next walk or, when none is left, the last lane's walk (not yet

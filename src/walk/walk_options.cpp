@@ -11,8 +11,25 @@ namespace radwalk {
 
 WalkKernel parse_walk_kernel(std::string_view name) { return find_choice(kWalkKernels, name, "kernel").value; }
 
+WalkSampler parse_walk_sampler(std::string_view name) { return find_choice(kWalkSamplers, name, "sampler").value; }
+
 void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
   const bool gather = is_gathering(options.method);
+  if (gather && options.sampler != WalkSampler::random)
+    throw InputError("random walk: --sampler " + std::string(sampler_name(options.sampler)) +
+                     " is for shooting methods (--walk shoot); gathering walks use --sampler random");
+  if (options.direct_light && options.sampler != WalkSampler::sobol)
+    throw InputError("random walk: --direct-light needs --sampler sobol (and a shooting method)");
+  if (options.sampler == WalkSampler::sobol) {
+    if (options.replicates < 2)
+      throw InputError("random walk: --replicates " + std::to_string(options.replicates) +
+                       " (need at least 2 for a standard error)");
+    if (options.particles < 2L * options.replicates)
+      throw InputError("random walk: " + std::to_string(options.particles) + " particles for " +
+                       std::to_string(options.replicates) + " replicates (need at least 2 per replicate)");
+  }
+  if (options.shadow_rays < 0)
+    throw InputError("random walk: --shadow-rays " + std::to_string(options.shadow_rays) + " is negative");
   const long count = gather ? options.walks_per_patch : options.particles;
   if (count < 2)
     throw InputError("random walk: " + std::string(gather ? "walks per patch" : "particles") + " = " +

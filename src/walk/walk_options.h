@@ -33,6 +33,25 @@ constexpr std::string_view kernel_name(WalkKernel kernel) { return choice_name(k
 // "matrix" | "ray"; InputError naming the valid kernels otherwise.
 WalkKernel parse_walk_kernel(std::string_view name);
 
+// How a shooting run draws its particles (random_walk_solver.h):
+//   random  i.i.d. particles: births from the alias table, every ray from the particle's stream;
+//   sobol   R = replicates independent randomisations, each with particles / R particles allocated to the
+//           sources systematically and first rays from randomised Sobol points (stratified_emission.h); with
+//           direct_light the first bounce is computed apart (direct_light.h) and the particles carry the
+//           indirect light only. Standard errors come from the spread of the replicates.
+enum class WalkSampler { random, sobol };
+
+inline constexpr std::array<NamedChoice<WalkSampler>, 2> kWalkSamplers = {{
+    {WalkSampler::random, "random", "independent particles, pseudo-random"},
+    {WalkSampler::sobol, "sobol", "stratified emission, randomised Sobol first rays, replicates for the error bars"},
+}};
+static_assert(in_enum_order(kWalkSamplers));
+
+constexpr std::string_view sampler_name(WalkSampler sampler) { return choice_name(kWalkSamplers, sampler); }
+
+// "random" | "sobol"; InputError naming the valid samplers otherwise.
+WalkSampler parse_walk_sampler(std::string_view name);
+
 struct WalkOptions {
   WalkMethod method = WalkMethod::gather_collision;
   WalkKernel kernel = WalkKernel::matrix;
@@ -43,6 +62,12 @@ struct WalkOptions {
   Survival survival;
   bool theory = false;          // also fill Solution::var_theory (matrix kernel, N <= kMaxTheoryPatches)
   bool progress = false;        // a progress line on stderr over the walks (core/progress.h)
+  // Shooting only (refused for gathering unless at their defaults):
+  WalkSampler sampler = WalkSampler::random;
+  int replicates = 4;           // sobol: independent randomisations, >= 2 (the error bars' degrees of freedom + 1)
+  bool direct_light = false;    // sobol: the first bounce from the emitters computed apart (direct_light.h)
+  long shadow_rays = 0;         // direct_light, ray kernel: shadow samples per receiving patch over all replicates
+                                // (0: particles / (2 N), at least 16 per replicate)
 };
 
 // The one check of WalkOptions: InputError with a one-line message on a count below 2 (of the method's

@@ -16,6 +16,7 @@ const std::vector<StreamDomain> kDomains = {
     StreamDomain::test,          StreamDomain::form_factor_row, StreamDomain::gather_walk,
     StreamDomain::shoot_particle, StreamDomain::patch_average,  StreamDomain::render_pixel,
     StreamDomain::light_particle, StreamDomain::synthetic_problem, StreamDomain::benchmark,
+    StreamDomain::direct_light_shift, StreamDomain::emission_shift, StreamDomain::sobol_particle,
     StreamDomain::measure_walk,   StreamDomain::importance_walk};
 
 // The first 64 draws of a stream.

@@ -1,0 +1,103 @@
+#include "walk/direct_light.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sobol.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+
+DirectLight estimate_direct_light(const RadiosityProblem& problem, const PatchSet& patches,
+                                  const Visibility& visibility, long samples_per_patch, std::uint64_t seed,
+                                  std::uint64_t replicate) {
+  const std::size_t N = patches.size();
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK(samples_per_patch >= 1);
+  DirectLight out;
+  out.D.setZero(static_cast<Eigen::Index>(N), 3);
+  // The emitters and the CDF of their powers Phi_e.
+  std::vector<std::size_t> emitter;
+  std::vector<double> cdf{0.0};
+  for (std::size_t e = 0; e < N; ++e) {
+    const double phi = problem.area(static_cast<Eigen::Index>(e)) * problem.E.row(static_cast<Eigen::Index>(e)).sum();
+    if (phi > 0) {
+      emitter.push_back(e);
+      cdf.push_back(cdf.back() + phi);
+    }
+  }
+  if (emitter.empty()) return out;
+  const double Phi = cdf.back();
+  const double eps = ray_epsilon(patches);
+  std::vector<long> rays(N, 0);
+  parallel_for(
+      N,
+      [&](std::size_t j) {
+        const auto row = static_cast<Eigen::Index>(j);
+        if (!(problem.rho.row(row).maxCoeff() > 0)) return;
+        Rng rng = stream(seed, StreamDomain::direct_light_shift, j, replicate);
+        SobolShift shift;
+        for (auto& w : shift.word) w = rng.next_u32();
+        const PatchRayOffset offset = patch_ray_offset(patches, j, eps);
+        const Vec3& nj = patches.normal[j];
+        constexpr std::size_t kBatch = 64;
+        std::vector<Ray> batch;
+        std::vector<Rgb> value;    // E_e G A_e Phi / Phi_e of each traced ray
+        std::vector<double> dist;  // |y - x|
+        std::vector<Hit> hits(kBatch);
+        Rgb sum = Rgb::Zero();
+        auto trace = [&] {
+          visibility.intersect(batch.data(), hits.data(), batch.size());
+          for (std::size_t q = 0; q < batch.size(); ++q)
+            if (hits[q].missed() || hits[q].t >= dist[q] * (1 - 1e-5) - 4 * eps) sum += value[q];
+          rays[j] += static_cast<long>(batch.size());
+          batch.clear();
+          value.clear();
+          dist.clear();
+        };
+        for (long s = 0; s < samples_per_patch; ++s) {
+          const auto u = sobol_point(static_cast<std::uint32_t>(s), shift);
+          const Vec3 x = sample_patch_point(patches, j, u[0], u[1]);
+          // The emitter of u2 and u2 rescaled within its interval.
+          const double u2 = double(u[2]) * Phi;
+          const auto it = std::upper_bound(cdf.begin() + 1, cdf.end(), u2);
+          const auto m = static_cast<std::size_t>(std::min<std::ptrdiff_t>(it - cdf.begin() - 1,
+                                                                             static_cast<std::ptrdiff_t>(emitter.size()) - 1));
+          const std::size_t e = emitter[m];
+          if (e == j) continue;
+          const double phi_e = cdf[m + 1] - cdf[m];
+          const double v = std::clamp((u2 - cdf[m]) / phi_e, 0.0, 0x1.fffffffffffffp-1);
+          const Vec3 y = sample_patch_point(patches, e, v, u[3]);
+          const Vec3 d = y - x;
+          const double r2 = d.squaredNorm();
+          if (!(r2 > 0)) continue;
+          const double r = std::sqrt(r2);
+          const Vec3 w = d / r;
+          const double cos_x = nj.dot(w), cos_y = -patches.normal[e].dot(w);
+          if (cos_x <= 0 || cos_y <= 0) continue;
+          const double G = cos_x * cos_y / (kPi * r2);
+          const auto erow = static_cast<Eigen::Index>(e);
+          value.push_back(problem.E.row(erow).transpose() * (G * problem.area(erow) * Phi / phi_e));
+          dist.push_back(r);
+          batch.push_back(spawn_ray(offset, x, w));
+          if (batch.size() == kBatch) trace();
+        }
+        if (!batch.empty()) trace();
+        out.D.row(row) = (problem.rho.row(row).transpose() * sum / static_cast<double>(samples_per_patch)).transpose();
+      },
+      1);
+  for (long n : rays) out.rays += n;
+  return out;
+}
+
+PatchRgb exact_direct_light(const RadiosityProblem& problem) {
+  RADWALK_CHECK_EQ(problem.F.rows(), problem.E.rows());
+  const PatchRgb FE = (problem.F.cast<double>() * problem.E.matrix()).array();
+  return problem.rho * FE;
+}
+
+}  // namespace radwalk
