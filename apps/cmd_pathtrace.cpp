@@ -25,14 +25,14 @@ namespace radwalk::app {
 namespace {
 
 // path ends in .png or .exr (checked with the command line: apps/output_files.h).
-void write_image(const std::string& path, const RenderResult& r) {
+void write_image(const std::string& path, const RenderResult& r, const std::string& run_id) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".png") {
-    write_png(path, r.mean);
+    write_png(path, r.mean, 1.0, run_id);
   } else {
-    write_exr(path, r.mean);
+    write_exr(path, r.mean, ExrPixelType::float32, run_id);
     const auto se = std::filesystem::path(path).replace_extension(".se.exr").string();
-    write_exr(se, r.se);
+    write_exr(se, r.se, ExrPixelType::float32, run_id);
     note("wrote " + se + " (per-pixel standard error)");
   }
   note("wrote " + path);
@@ -75,7 +75,7 @@ int run_pathtrace(const PathtraceCommand& command) {
                                {"spp", command.spp}, {"rays", r.rays}, {"seconds", r.seconds}};
     std::printf("rendered %dx%d at %ld samples per pixel: %ld rays in %.2f s (%.2f Mrays/s)\n", command.width,
                 command.height, command.spp, r.rays, r.seconds, r.rays / std::max(r.seconds, 1e-9) / 1e6);
-    write_image(command.image, r);
+    write_image(command.image, r, run_id_of(summary));
   }
 
   const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty() ||

@@ -8,8 +8,11 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 
+#include "core/digest.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/timer.h"
 #include "core/parallel.h"
 #include "formfactor/form_factor_diagnostics.h"
@@ -38,13 +41,43 @@ void note(const std::string& message) {
   if (!g_quiet) std::fprintf(stderr, "radwalk: %s\n", message.c_str());
 }
 
+namespace {
+
+// The digest of a file's bytes, read in blocks (a form-factor file may be large); refuses what read_input_file
+// refuses (a FIFO, a device).
+std::uint64_t file_bytes_digest(const std::string& path) {
+  input_file_size(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  Digest d;
+  std::vector<char> block(std::size_t{1} << 20);
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    d.add(std::string_view(block.data(), static_cast<std::size_t>(in.gcount())));
+  }
+  if (in.bad()) throw InputError(path + ": read error");
+  return d.value();
+}
+
+}  // namespace
+
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   for (const std::string& w : options.warnings) summary.add_warning(w);
   if (!std::filesystem::exists(options.scene)) throw InputError(options.scene + ": no such file");
   Timer timer;
   ReadOptions read;
   read.strict = options.strict;
+  // The run id hashes the bytes the readers parse, as they read them (core/input_file.h), then the
+  // --form-factors file.
+  Digest input_bytes;
+  struct ObserverScope {
+    ~ObserverScope() { set_input_observer({}); }
+  } scope;
+  set_input_observer([&input_bytes](const std::string&, const std::string& bytes) { input_bytes.add(bytes); });
   Mesh mesh = load_scene(options.scene, read);
+  set_input_observer({});
+  if (!options.form_factors_input.empty()) input_bytes.add(file_bytes_digest(options.form_factors_input));
+  summary.json()["run_id"] = run_id(options, input_bytes);
   summary.add_timing("load", timer.seconds());
   std::vector<NamedFile> libraries;
   for (const Material& m : mesh.materials)
@@ -164,12 +197,12 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
       const Camera camera = scene_camera(options.scene, patches);
       const ViewPoint view{camera.position, camera_focal_point(camera, patches), camera.up,
                            camera.vfov * 180.0 / kPi};
-      write_paraview_state(options.paraview_state, options.vtp, view);
+      write_paraview_state(options.paraview_state, options.vtp, view, run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
     }
   }
   if (!options.csv.empty()) {
-    write_patch_csv(options.csv, patches, fields);
+    write_patch_csv(options.csv, patches, fields, run_id_of(summary));
     note("wrote " + options.csv);
   }
   summary.add_timing("write", timer.seconds());
