@@ -82,12 +82,16 @@ class Radwalk:
 
 
 def read_csv(path):
-    """Rows of a CSV as dicts; numeric-looking values become float, empty cells NaN."""
+    """Rows of a CSV as dicts; numeric-looking values become float, empty cells NaN; the run_id column (the run
+    that wrote the file, hexadecimal digits) stays text."""
     rows = []
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             out = {}
             for k, v in row.items():
+                if k == "run_id":
+                    out[k] = v
+                    continue
                 try:
                     out[k] = float(v) if v != "" else math.nan
                 except ValueError:
@@ -143,8 +147,9 @@ def read_mtx(path):
 
 
 def write_mtx(path, header, n, entries):
+    """Writes a derived matrix with the header of the one it came from, without its run id (not that run's)."""
     with open(path, "w") as f:
-        f.writelines(header)
+        f.writelines(line for line in header if not line.startswith("% run_id "))
         f.write(f"{n} {n} {len(entries)}\n")
         for i, j, v in entries:
             f.write(f"{i} {j} {v:.9g}\n")
