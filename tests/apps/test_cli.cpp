@@ -90,10 +90,10 @@ TEST_CASE("radwalk solve: the furnace gives B = E / (1 - rho) = 2 pi on every pa
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    const auto pos = line.find(",B_r");  // not in data rows; parse the last three columns
-    (void)pos;
+    // B_b is the column before the last (the run id, docs/reliability.md).
     const auto last = line.rfind(',');
-    const double B_b = std::stod(line.substr(last + 1));
+    const auto before = line.rfind(',', last - 1);
+    const double B_b = std::stod(line.substr(before + 1, last - before - 1));
     CHECK(B_b == Approx(2 * M_PI).epsilon(1e-6));
   }
   CHECK(rows == 24);  // 6 faces x 2 x 2
