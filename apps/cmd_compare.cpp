@@ -5,6 +5,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/run_metadata.h"
 #include "core/parallel.h"
 #include "io/csv_writer.h"
 #include "solve/problem.h"
@@ -52,7 +53,7 @@ int run_compare(const CompareCommand& command) {
     write_csv_table(command.scene.csv,
                     {"patch", "estimator", "channel", "mean", "var", "var_theory", "z", "walks", "steps", "seconds",
                      "efficiency"},
-                    rows);
+                    rows, run_id_of(summary));
     note("wrote " + command.scene.csv);
   }
 

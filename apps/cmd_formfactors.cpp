@@ -4,6 +4,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/run_metadata.h"
 #include "core/timer.h"
 #include "formfactor/matrix_market.h"
 
@@ -15,7 +16,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
   if (!command.mtx.empty()) {
     Timer timer;
-    write_matrix_market(command.mtx, ff.F);
+    write_matrix_market(command.mtx, ff.F, run_id_of(summary));
     summary.add_timing("write_matrix", timer.seconds());
     note("wrote " + command.mtx);
   }

@@ -4,6 +4,7 @@
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/run_metadata.h"
 #include "core/timer.h"
 #include "io/obj_writer.h"
 
@@ -22,7 +23,7 @@ int run_patch(const PatchCommand& command) {
     outputs.vtp = command.output;
   } else {
     Timer timer;
-    write_obj(command.output, patches);
+    write_obj(command.output, patches, run_id_of(summary));
     summary.add_timing("write_obj", timer.seconds());
     note("wrote " + command.output);
   }

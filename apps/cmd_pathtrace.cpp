@@ -2,6 +2,7 @@
 // Patch averages (same CSV columns and VTK fields as the solvers: B_*, B_se_*) and/or an image.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
@@ -26,17 +27,33 @@ namespace radwalk::app {
 namespace {
 
 // path ends in .png or .exr (checked with the command line: apps/output_files.h).
-void write_image(const std::string& path, const RenderResult& r) {
+void write_image(const std::string& path, const RenderResult& r, const std::string& run_id) {
   const std::string ext = std::filesystem::path(path).extension().string();
   if (ext == ".png") {
-    write_png(path, r.mean);
+    write_png(path, r.mean, 1.0, run_id);
   } else {
-    write_exr(path, r.mean);
+    write_exr(path, r.mean, ExrPixelType::float32, run_id);
     const auto se = std::filesystem::path(path).replace_extension(".se.exr").string();
-    write_exr(se, r.se);
+    write_exr(se, r.se, ExrPixelType::float32, run_id);
     note("wrote " + se + " (per-pixel standard error)");
   }
   note("wrote " + path);
+}
+
+// Images hold a mean and a standard error of 3 doubles per pixel (48 bytes), and the writers and the light
+// tracer's tallies more: at most 2^26 pixels (8192 x 8192, 3.2 GB for the two images), refused up front with the
+// bytes the size would need (O4).
+constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 26;
+constexpr std::uint64_t kImageBytesPerPixel = 2 * 3 * sizeof(double);
+
+void check_image_size(int width, int height) {
+  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
+  if (pixels <= kMaxPixels) return;
+  throw InputError("--width " + std::to_string(width) + " --height " + std::to_string(height) + ": " +
+                   std::to_string(pixels) + " pixels would need at least " +
+                   std::to_string(pixels * kImageBytesPerPixel) + " bytes (" +
+                   std::to_string(kImageBytesPerPixel) + " per pixel for the image and its standard error); at most " +
+                   std::to_string(kMaxPixels) + " pixels (e.g. 8192 x 8192)");
 }
 
 }  // namespace
@@ -44,6 +61,7 @@ void write_image(const std::string& path, const RenderResult& r) {
 int run_pathtrace(const PathtraceCommand& command) {
   if (!command.camera.empty() && command.camera.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
+  if (!command.image.empty()) check_image_size(command.width, command.height);
   RunSummary summary("pathtrace", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
   ThreadLimit limit(command.scene.threads);
@@ -91,7 +109,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     if (std::all_of(r.mean.pixels.begin(), r.mean.pixels.end(), [](const Rgb& p) { return (p == 0).all(); }))
       warn(summary, "every pixel of " + command.image + " is black: the camera sees no lit surface (no emitter, " +
                         "or the camera is outside a closed scene or inside an object); set one with --camera");
-    write_image(command.image, r);
+    write_image(command.image, r, run_id_of(summary));
   }
 
   const bool averages = command.image.empty() || !command.scene.vtp.empty() || !command.scene.csv.empty() ||

@@ -183,6 +183,7 @@ int run_solve(const SolveCommand& command) {
       std::optional<ProgressiveSeries> series;
       if (!command.progressive.empty()) {
         VtpMetadata m;
+        m.set_text("run_id", run_id_of(summary));
         m.set_text("method", command.solver);
         m.set_text("scene", command.scene.scene);
         series.emplace(command.progressive, patches,

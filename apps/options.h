@@ -30,6 +30,10 @@ struct SceneOptions {
   std::vector<std::string> argv;  // the command line, for the JSON summary
   std::vector<std::string> warnings;  // printed while reading the command line (ignored options), for the summary
   std::vector<NamedFile> outputs;     // every file the command writes (distinct_files.h), checked against inputs
+  // For the run id (run_metadata.h): the command and its option values, canonical (radwalk.cpp), and the
+  // --form-factors file of the commands that take one.
+  std::string run_options;
+  std::string form_factors_input;
 };
 
 // Commands that need form factors: estimate them, or read them from a Matrix Market file.

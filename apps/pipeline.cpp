@@ -9,8 +9,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <fstream>
 
+#include "core/digest.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/timer.h"
 #include "core/parallel.h"
 #include "formfactor/form_factor_diagnostics.h"
@@ -104,6 +107,22 @@ void record_overrides(const SceneOptions& options, const std::vector<MaterialOve
   summary.json()["rho_scale"] = options.rho_scale;
 }
 
+// The digest of a file's bytes, read in blocks (a form-factor file may be large); refuses what read_input_file
+// refuses (a FIFO, a device).
+std::uint64_t file_bytes_digest(const std::string& path) {
+  input_file_size(path);
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the file");
+  Digest d;
+  std::vector<char> block(std::size_t{1} << 20);
+  while (in) {
+    in.read(block.data(), static_cast<std::streamsize>(block.size()));
+    d.add(std::string_view(block.data(), static_cast<std::size_t>(in.gcount())));
+  }
+  if (in.bad()) throw InputError(path + ": read error");
+  return d.value();
+}
+
 }  // namespace
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
@@ -135,7 +154,17 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   read.strict = options.strict;
   Mesh mesh;
   try {
+    // The run id hashes the bytes the readers parse, as they read them (core/input_file.h), then the
+    // --form-factors file.
+    Digest input_bytes;
+    struct ObserverScope {
+      ~ObserverScope() { set_input_observer({}); }
+    } scope;
+    set_input_observer([&input_bytes](const std::string&, const std::string& bytes) { input_bytes.add(bytes); });
     mesh = read_scene(options.scene, read);
+    set_input_observer({});
+    if (!options.form_factors_input.empty()) input_bytes.add(file_bytes_digest(options.form_factors_input));
+    summary.json()["run_id"] = run_id(options, input_bytes);
     std::vector<NamedFile> libraries;
     for (const Material& m : mesh.materials)
       if (!m.file.empty()) libraries.push_back({"the scene's material library", m.file});
@@ -388,12 +417,12 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
       const Camera camera = scene_camera(options.scene, patches);
       const ViewPoint view{camera.position, camera_focal_point(camera, patches), camera.up,
                            camera.vfov * 180.0 / kPi};
-      write_paraview_state(options.paraview_state, options.vtp, view);
+      write_paraview_state(options.paraview_state, options.vtp, view, run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
     }
   }
   if (!options.csv.empty()) {
-    write_patch_csv(options.csv, patches, fields);
+    write_patch_csv(options.csv, patches, fields, run_id_of(summary));
     note("wrote " + options.csv);
   }
   summary.add_timing("write", timer.seconds());

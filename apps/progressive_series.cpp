@@ -117,6 +117,7 @@ void write_convergence_series(const std::string& dir, const std::string& pvd_nam
                               const PatchSet& patches, long total, const Solution& full,
                               const std::function<Solution(long count)>& run, RunSummary& summary) {
   VtpMetadata metadata;
+  metadata.set_text("run_id", run_id_of(summary));
   metadata.set_text("method", full.method);
   metadata.set_text("scene", scene);
   ProgressiveSeries series(dir, patches, nullptr, metadata, 200, pvd_name);

@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <set>
 #include <string>
 #include <thread>
 #include <utility>
@@ -245,6 +246,30 @@ void add_replaced_option(CLI::App* cmd, const std::string& flag, const std::stri
   cmd->add_option_function<std::string>(
          flag, [flag, instead](const std::string&) { throw CLI::ValidationError(flag, "no longer exists: " + instead); })
       ->group("");
+}
+
+// The command and its option values for the run id (apps/run_metadata.h): one line "NAME=VALUE" per option in
+// the order declared, VALUE as given (the values joined by a unit separator) or the default. Left out: what
+// does not change what is computed (--threads, --quiet, --help); of the output files only whether each was given.
+std::string canonical_options(const CLI::App* cmd) {
+  static const std::set<std::string> kIgnored = {"--threads", "--quiet", "--help"};
+  static const std::set<std::string> kOutputs = {"--output", "--csv",   "--json",       "--vtp",
+                                                 "--image",  "--paraview-state", "--progressive"};
+  std::string canonical = cmd->get_name();
+  for (const CLI::Option* o : cmd->get_options()) {
+    const std::string name = o->get_name();
+    if (kIgnored.count(name)) continue;
+    std::string value;
+    if (kOutputs.count(name)) {
+      value = o->count() > 0 ? "given" : "";
+    } else if (o->count() > 0) {
+      for (const std::string& r : o->results()) value += (value.empty() ? "" : "\x1f") + r;
+    } else {
+      value = "default:" + o->get_default_str();
+    }
+    canonical += "\n" + name + "=" + value;
+  }
+  return canonical;
 }
 
 }  // namespace
@@ -563,6 +588,7 @@ int main(int argc, char** argv) {
         {&check, ""}, {&patch.scene, ""}, {&ff.scene, ff.ff.form_factors}, {&solve.scene, solve.ff.form_factors},
         {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}, {&measure.scene, measure.ff.form_factors}};
     for (const auto& [o, form_factors] : commands) {
+      o->form_factors_input = form_factors;
       const std::string clash =
           check_distinct_files(o->outputs, {{"the scene", o->scene}, {"--form-factors", form_factors}});
       if (clash.empty()) continue;
@@ -570,6 +596,11 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
+
+  for (const auto& [o, cmd] : {std::pair{&check, check_cmd}, std::pair{&patch.scene, patch_cmd},
+                               std::pair{&ff.scene, ff_cmd}, std::pair{&solve.scene, solve_cmd},
+                               std::pair{&compare.scene, compare_cmd}, std::pair{&pt.scene, pt_cmd}})
+    if (*cmd) o->run_options = canonical_options(cmd);
 
   try {
     if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);

@@ -31,9 +31,21 @@ std::string key_of(std::string stage) {
 
 }  // namespace
 
+std::string run_id(const SceneOptions& options, const Digest& input_bytes) {
+  Digest d;
+  d.add(std::string("radwalk ") + RADWALK_VERSION);
+  d.add(std::string_view(git_describe()));
+  d.add(options.run_options);
+  d.add(input_bytes.value());
+  return d.hex();
+}
+
+std::string run_id_of(RunSummary& summary) { return summary.json().value("run_id", std::string()); }
+
 VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
   const nlohmann::json& j = summary.json();
   VtpMetadata m;
+  if (j.contains("run_id")) m.set_text("run_id", j["run_id"].get<std::string>());
   m.set_text("radwalk_version", j.value("radwalk", std::string("unknown")));
   m.set_text("git_commit", git_describe());  // the JSON summary's git_describe (io/run_summary.h)
   m.set_text("command", j.value("command", std::string()));

@@ -1,6 +1,6 @@
 #pragma once
 // The run metadata a .vtp carries as field data (io/vtp_metadata.h), from what the command already knows:
-//   radwalk_version, git_commit (git describe of the source tree at build time, "unknown" outside a checkout),
+//   run_id (below), radwalk_version, git_commit (git describe of the source tree at build time, "unknown" outside a checkout),
 //   command, command_line, scene, seed, max_edge, patches, length_unit, B_unit, B_srgb (the display mapping),
 //   the form-factor ray count (rays: total traced, when F was estimated) or form_factors_file, and a
 //   seconds_<stage> entry per stage timed so far in the RunSummary (spaces become underscores).
@@ -10,12 +10,27 @@
 //   B_se_relative_rms  sqrt(sum_i A_i sum_c B_se_ic^2 / sum_i A_i sum_c B_ic^2) (area-weighted RMS of B_se
 //                      relative to that of B)
 #include "apps/options.h"
+#include "core/digest.h"
 #include "core/solution.h"
 #include "io/run_summary.h"
 #include "io/vtp_metadata.h"
 #include "patch/patch_set.h"
 
 namespace radwalk::app {
+
+// The run id: 16 hexadecimal digits, the 64-bit FNV-1a digest (core/digest.h) of radwalk's version and git
+// describe, the command and its canonical option values (options.run_options: every option as given or its
+// default, except --threads, --quiet and the names of output files, of which only the presence counts) and the
+// bytes of every input file in the order they were read (input_bytes: the scene, its MTL libraries, the
+// --form-factors file). Deterministic: two runs with the same id compute the same outputs (up to the fields that
+// record how a run went rather than what it computed: docs/reliability.md, "Run id"), and a change of any input
+// byte or option value changes it. Every output carries it (the JSON key run_id, the .vtp field data run_id, a
+// CSV column run_id, a comment in .mtx, .obj, .mtl and ParaView state files, an EXR header attribute, a PNG tEXt
+// chunk), so that files of two different runs left side by side are told apart.
+std::string run_id(const SceneOptions& options, const Digest& input_bytes);
+
+// The run id load_validated_mesh recorded in the summary (json()["run_id"]), "" before.
+std::string run_id_of(RunSummary& summary);
 
 VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary);
 

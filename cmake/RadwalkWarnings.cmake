@@ -1,10 +1,17 @@
 # radwalk_options: an INTERFACE target every radwalk target links, carrying warnings and sanitizers.
 add_library(radwalk_options INTERFACE)
 target_compile_options(radwalk_options INTERFACE -Wall -Wextra -Wpedantic)
+# RADWALK_SANITIZE: OFF, ON (= address,undefined) or a -fsanitize= list such as address,undefined (g++ or clang;
+# scripts/sanitize.sh builds build-asan/ with it and runs the suite there).
 if(RADWALK_SANITIZE)
-  target_compile_options(radwalk_options INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
+  if(RADWALK_SANITIZE MATCHES "^(ON|on|On|TRUE|true|YES|yes|1)$")
+    set(radwalk_sanitizers address,undefined)
+  else()
+    set(radwalk_sanitizers ${RADWALK_SANITIZE})
+  endif()
+  target_compile_options(radwalk_options INTERFACE -fsanitize=${radwalk_sanitizers} -fno-omit-frame-pointer
                                                    -fno-sanitize-recover=undefined)
-  target_link_options(radwalk_options INTERFACE -fsanitize=address,undefined)
+  target_link_options(radwalk_options INTERFACE -fsanitize=${radwalk_sanitizers})
 endif()
 # The fuzz tree: libFuzzer's coverage instrumentation in every library (the harness executables of tests/fuzz add
 # -fsanitize=fuzzer, libFuzzer's main), ASan + UBSan, -O1 with debug information and assertions (Eigen's too).

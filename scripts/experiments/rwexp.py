@@ -100,12 +100,16 @@ class Radwalk:
 
 
 def read_csv(path):
-    """Rows of a CSV as dicts; numeric-looking values become float, empty cells NaN."""
+    """Rows of a CSV as dicts; numeric-looking values become float, empty cells NaN; the run_id column (the run
+    that wrote the file, hexadecimal digits) stays text."""
     rows = []
     with open(path, newline="") as f:
         for row in csv.DictReader(f):
             out = {}
             for k, v in row.items():
+                if k == "run_id":
+                    out[k] = v
+                    continue
                 try:
                     out[k] = float(v) if v != "" else math.nan
                 except ValueError:

@@ -161,10 +161,17 @@ PendingFile::PendingFile(const std::string& path) : path_(path), target_(output_
   name += std::to_string(g_counter++);
   name += t.extension().string();
   temporary_ = (t.parent_path() / name).string();
-  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
-  if (fd < 0) throw InputError(path + ": cannot open for writing (" + std::strerror(errno) + ")");
-  ::close(fd);
+  // Registered before it exists: a signal between creating and registering would leave it behind (found by the
+  // CLI test that kills radwalk as soon as the temporary appears). Unlinking a name not yet created is harmless.
   slot_ = register_pending(temporary_);
+  const int fd = ::open(temporary_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+  if (fd < 0) {
+    const int error = errno;
+    unregister_pending(slot_);
+    slot_ = -1;
+    throw InputError(path + ": cannot open for writing (" + std::strerror(error) + ")");
+  }
+  ::close(fd);
 }
 
 PendingFile::~PendingFile() {

@@ -27,6 +27,8 @@ struct FileDescriptor {
   }
 };
 
+InputObserver g_observer;
+
 std::string size_text(std::uint64_t bytes) {
   return bytes >= (std::uint64_t{1} << 30) ? std::to_string(bytes >> 30) + " GiB" : std::to_string(bytes) + " bytes";
 }
@@ -85,8 +87,11 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
     have += static_cast<std::size_t>(got);
   }
   content.resize(have);
+  if (g_observer) g_observer(path, content);
   return content;
 }
+
+void set_input_observer(InputObserver observer) { g_observer = std::move(observer); }
 
 
 }  // namespace radwalk

@@ -16,7 +16,7 @@
 namespace radwalk {
 namespace {
 
-constexpr std::size_t kBlockRays = std::size_t(1) << 24;  // rays per assembly block (working buffer size)
+constexpr std::size_t kBlockRays = std::size_t(1) << 24;  // row entries (min(rays, N) per row) per assembly block
 constexpr std::size_t kBatch = 64;                        // rays per Visibility::intersect batch
 constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 constexpr std::uint32_t kMaxStrataSide = 1024;  // at most 2^20 stratified rays per patch; the rest are uniform
@@ -35,7 +35,9 @@ void check_options(const FormFactorOptions& o) {
 struct RowScratch {
   std::vector<Ray> rays = std::vector<Ray>(kBatch);
   std::vector<Hit> hits = std::vector<Hit>(kBatch);
-  std::vector<std::int32_t> targets, sort_buffer;  // front-hit patch of every ray of the row
+  std::vector<std::int32_t> targets, sort_buffer;  // front-hit patches of the row's rays not yet counted
+  std::vector<std::int32_t> run_cols, merged_cols;  // the row's (column, count) runs so far, columns increasing
+  std::vector<std::uint32_t> run_counts, merged_counts;
   std::vector<std::uint32_t> permutation;         // origin stratum (row << 16 | column) per direction stratum
 };
 
@@ -69,7 +71,38 @@ void sort_indices(std::vector<std::int32_t>& v, std::vector<std::int32_t>& tmp, 
   }
 }
 
-// Traces the n rays of patch i and writes its sorted (j, count) runs to cols/counts (room for n entries).
+// Front hits are counted in chunks of at most kTargetChunk: a row's memory is bounded by the patch count, not by
+// its ray count (O4: 16 bytes per ray of one patch made --rays 2e9 need 32 GB).
+constexpr std::size_t kTargetChunk = std::size_t{1} << 20;
+
+// Sorts s.targets, run-length encodes them and merges the runs into s.run_cols/s.run_counts (columns
+// increasing); empties s.targets.
+void count_targets(RowScratch& s, int sort_passes) {
+  sort_indices(s.targets, s.sort_buffer, sort_passes);
+  s.merged_cols.clear();
+  s.merged_counts.clear();
+  std::size_t a = 0, k = 0;
+  while (a < s.run_cols.size() || k < s.targets.size()) {
+    if (k == s.targets.size() || (a < s.run_cols.size() && s.run_cols[a] < s.targets[k])) {
+      s.merged_cols.push_back(s.run_cols[a]);
+      s.merged_counts.push_back(s.run_counts[a++]);
+      continue;
+    }
+    std::size_t e = k + 1;
+    while (e < s.targets.size() && s.targets[e] == s.targets[k]) ++e;
+    std::uint32_t count = std::uint32_t(e - k);
+    if (a < s.run_cols.size() && s.run_cols[a] == s.targets[k]) count += s.run_counts[a++];
+    s.merged_cols.push_back(s.targets[k]);
+    s.merged_counts.push_back(count);
+    k = e;
+  }
+  s.run_cols.swap(s.merged_cols);
+  s.run_counts.swap(s.merged_counts);
+  s.targets.clear();
+}
+
+// Traces the n rays of patch i and writes its sorted (j, count) runs to cols/counts (room for min(n, N) entries:
+// one per distinct patch hit).
 RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& opt, double eps,
                     int sort_passes, std::size_t i, std::uint32_t n, RowScratch& s, std::int32_t* cols,
                     std::uint32_t* counts) {
@@ -96,6 +129,8 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
   // back of a one-sided face; a two-sided face's back is a patch of its own, reached from its front
   // (patch/patch_set.h, "Sides"), so rays from a back patch leave by its reversed normal like any other.
   s.targets.clear();
+  s.run_cols.clear();
+  s.run_counts.clear();
   std::uint32_t dir_row = 0, dir_col = 0;  // direction stratum of the current ray
   for (std::uint32_t base = 0; base < n; base += kBatch) {
     const std::size_t b = std::min<std::size_t>(kBatch, n - base);
@@ -126,17 +161,15 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
       else
         s.targets.push_back(h.patch);
     }
+    if (s.targets.size() >= kTargetChunk) count_targets(s, sort_passes);
   }
 
-  // Step 3: run-length encode the sorted targets.
-  sort_indices(s.targets, s.sort_buffer, sort_passes);
-  for (std::size_t k = 0; k < s.targets.size();) {
-    std::size_t e = k + 1;
-    while (e < s.targets.size() && s.targets[e] == s.targets[k]) ++e;
-    cols[r.nnz] = s.targets[k];
-    counts[r.nnz] = std::uint32_t(e - k);
+  // Step 3: the counts per target patch (sorted, run-length encoded, merged chunk by chunk).
+  count_targets(s, sort_passes);
+  for (std::size_t k = 0; k < s.run_cols.size(); ++k) {
+    cols[r.nnz] = s.run_cols[k];
+    counts[r.nnz] = s.run_counts[k];
     ++r.nnz;
-    k = e;
   }
   return r;
 }
@@ -181,9 +214,9 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   Progress progress("form factors", N);
   for (std::size_t first = 0; first < N;) {
     std::size_t last = first, total = 0;
-    while (last < N && (last == first || total + out.rays[last] <= kBlockRays)) {
+    while (last < N && (last == first || total + std::min<std::size_t>(out.rays[last], N) <= kBlockRays)) {
       offset[last] = total;
-      total += out.rays[last++];
+      total += std::min<std::size_t>(out.rays[last++], N);  // a row has at most N non-zeros
     }
     buf_cols.resize(total);
     buf_counts.resize(total);

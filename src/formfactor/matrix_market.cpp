@@ -83,9 +83,11 @@ long line_of_entry(const std::string& path, std::size_t k) {
 
 }  // namespace
 
-void write_matrix_market(const std::string& path, const SparseF& F) {
+void write_matrix_market(const std::string& path, const SparseF& F, const std::string& run_id) {
   write_atomically(path, [&](std::ostream& os) {
-    os << "%%MatrixMarket matrix coordinate real general\n"
+    os << "%%MatrixMarket matrix coordinate real general\n";
+    if (!run_id.empty()) os << "% run_id " << run_id << '\n';
+    os
        << "% radwalk form factors: row i, column j (1-based) = F_ij, the fraction of the power leaving patch i\n"
        << "% diffusely that arrives at the front of patch j\n"
        << F.rows() << ' ' << F.cols() << ' ' << F.nonZeros() << '\n';

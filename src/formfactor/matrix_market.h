@@ -25,7 +25,8 @@ namespace radwalk {
 // Largest row sum read_matrix_market accepts.
 inline constexpr double kMaxRowSum = 1.0 + 1e-6;
 
-void write_matrix_market(const std::string& path, const SparseF& F);
+// run_id: when not empty, the comment line "% run_id RUN_ID" after the banner (apps/run_metadata.h).
+void write_matrix_market(const std::string& path, const SparseF& F, const std::string& run_id = "");
 
 SparseF read_matrix_market(const std::string& path, std::size_t expected_n);
 

@@ -16,18 +16,20 @@ std::string csv_number(double v) {
 }
 
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
-                     const std::vector<std::vector<std::string>>& rows) {
+                     const std::vector<std::vector<std::string>>& rows, const std::string& run_id) {
+  const std::string last = run_id.empty() ? "" : "," + run_id;
   write_atomically(path, [&](std::ostream& out) {
     for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
-    out << '\n';
+    out << (run_id.empty() ? "" : ",run_id") << '\n';
     for (const auto& row : rows) {
       for (std::size_t k = 0; k < row.size(); ++k) out << (k ? "," : "") << row[k];
-      out << '\n';
+      out << last << '\n';
     }
   });
 }
 
-void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra) {
+void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra,
+                     const std::string& run_id) {
   static const char* kChannel[3] = {"_r", "_g", "_b"};
   std::vector<std::string> header = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx", "ny",
                                      "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b"};
@@ -49,6 +51,8 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
       }
     }
   }
+  if (!run_id.empty()) header.push_back("run_id");
+  const std::string last = run_id.empty() ? "" : "," + run_id;
   const std::size_t n = patches.size();
   write_atomically(path, [&](std::ostream& out) {
     for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
@@ -63,7 +67,7 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.E[i][c]);
       for (const CellField& f : extra)
         for (int c = 0; c < f.components; ++c) out << ',' << csv_number(f.values[i * f.components + c]);
-      out << '\n';
+      out << last << '\n';
     }
   });
 }

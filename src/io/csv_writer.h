@@ -4,6 +4,8 @@
 // NAME_r,NAME_g,NAME_b). In a scene with two-sided faces (PatchSet::side not empty) a column side (0 front, 1 back)
 // follows face. Numbers are printed with 12 significant digits ("nan" never appears: non-finite values
 // are written as empty cells). Written atomically.
+// run_id: when not empty, a last column `run_id` holding it on every row (the run that wrote the file,
+// apps/run_metadata.h; a constant column keeps the file one plain table for every CSV reader).
 #include <string>
 #include <vector>
 
@@ -11,11 +13,12 @@
 
 namespace radwalk {
 
-void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra);
+void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra,
+                     const std::string& run_id = "");
 
-// Writes a generic table (header + rows of already formatted cells), atomically.
+// Writes a generic table (header + rows of already formatted cells), atomically; run_id as for write_patch_csv.
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
-                     const std::vector<std::vector<std::string>>& rows);
+                     const std::vector<std::vector<std::string>>& rows, const std::string& run_id = "");
 
 // Formats a number for CSV: 12 significant digits, empty for NaN or infinity.
 std::string csv_number(double v);

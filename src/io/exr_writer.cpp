@@ -5,6 +5,7 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <half.h>
 
 #include <exception>
@@ -18,7 +19,7 @@ namespace radwalk {
 namespace {
 // Planar channel buffers, then one Slice per channel (xStride = one element, yStride = one row).
 template <class T>
-void write_planes(const std::string& tmp_path, const RgbImage& image, Imf::PixelType type) {
+void write_planes(const std::string& tmp_path, const RgbImage& image, Imf::PixelType type, const std::string& run_id) {
   const std::size_t n = image.pixels.size();
   std::vector<T> planes[3];
   for (int c = 0; c < 3; ++c) {
@@ -27,6 +28,7 @@ void write_planes(const std::string& tmp_path, const RgbImage& image, Imf::Pixel
   }
   Imf::Header header(image.width, image.height);
   header.compression() = Imf::ZIP_COMPRESSION;
+  if (!run_id.empty()) header.insert("run_id", Imf::StringAttribute(run_id));
   const char* names[3] = {"R", "G", "B"};
   Imf::FrameBuffer fb;
   for (int c = 0; c < 3; ++c) {
@@ -40,18 +42,28 @@ void write_planes(const std::string& tmp_path, const RgbImage& image, Imf::Pixel
 }
 }  // namespace
 
-void write_exr(const std::string& path, const RgbImage& image, ExrPixelType type) {
+void write_exr(const std::string& path, const RgbImage& image, ExrPixelType type, const std::string& run_id) {
   if (image.width <= 0 || image.height <= 0) throw InputError(path + ": cannot write an empty image");
   write_atomically_via_path(path, [&](const std::string& tmp) {
     try {
       if (type == ExrPixelType::half)
-        write_planes<half>(tmp, image, Imf::HALF);
+        write_planes<half>(tmp, image, Imf::HALF, run_id);
       else
-        write_planes<float>(tmp, image, Imf::FLOAT);
+        write_planes<float>(tmp, image, Imf::FLOAT, run_id);
     } catch (const std::exception& e) {
       throw InputError(path + ": cannot write EXR: " + e.what());
     }
   });
+}
+
+std::string read_exr_run_id(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const auto* id = file.header().findTypedAttribute<Imf::StringAttribute>("run_id");
+    return id ? id->value() : std::string();
+  } catch (const std::exception& e) {
+    throw InputError(path + ": cannot read EXR: " + e.what());
+  }
 }
 
 RgbImage read_exr(const std::string& path) {

@@ -20,7 +20,8 @@ std::string rgb(const Rgb& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c
 
 }  // namespace
 
-void write_obj(const std::string& path, const PatchSet& patches) {
+void write_obj(const std::string& path, const PatchSet& patches, const std::string& run_id) {
+  const std::string id_line = run_id.empty() ? "" : "# run_id " + run_id + "\n";
   const std::filesystem::path obj(path);
   const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
 
@@ -28,7 +29,8 @@ void write_obj(const std::string& path, const PatchSet& patches) {
   // the old pair, never a new .mtl beside an old .obj.
   PendingFile mtl_file(mtl.string()), obj_file(path);
   mtl_file.write([&](std::ostream& out) {
-    out << "# radwalk patches of " << patches.source << "\n# Kd = diffuse reflectance, Ke = emitted radiance\n";
+    out << "# radwalk patches of " << patches.source << "\n" << id_line
+        << "# Kd = diffuse reflectance, Ke = emitted radiance\n";
     for (const Material& m : patches.materials) {
       out << "\nnewmtl " << m.name << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
       if (m.illum >= 0) out << "illum " << m.illum << "\n";
@@ -41,7 +43,7 @@ void write_obj(const std::string& path, const PatchSet& patches) {
     }
   });
   obj_file.write([&](std::ostream& out) {
-    out << "# radwalk patches of " << patches.source << ": " << patches.size() << " patches\n";
+    out << "# radwalk patches of " << patches.source << ": " << patches.size() << " patches\n" << id_line;
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
     int current = -1;

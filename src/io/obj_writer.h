@@ -2,12 +2,13 @@
 // Writes patches as OBJ + MTL so that they load back as the same scene: one material per input material
 // (Kd = rho, Ke = E / pi, plus the non-diffuse parameters), faces in patch order (patch i = face i of the output).
 // The MTL file is PATH with its extension replaced by .mtl. Both files are written atomically.
+// run_id: when not empty, both files' second line is the comment "# run_id RUN_ID" (apps/run_metadata.h).
 #include <string>
 
 #include "patch/patch_set.h"
 
 namespace radwalk {
 
-void write_obj(const std::string& path, const PatchSet& patches);
+void write_obj(const std::string& path, const PatchSet& patches, const std::string& run_id = "");
 
 }  // namespace radwalk

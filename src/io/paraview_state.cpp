@@ -26,7 +26,8 @@ std::string python_list(const Vec3& v) {
 
 }  // namespace
 
-void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view) {
+void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view,
+                          const std::string& run_id) {
   const std::filesystem::path data(vtp);
   const std::string absolute = std::filesystem::absolute(data).lexically_normal().string();
   char angle[32];
@@ -35,7 +36,9 @@ void write_paraview_state(const std::string& path, const std::string& vtp, const
     out << "# ParaView state written by radwalk: File > Load State, `paraview --state=THIS.py` or `pvpython "
            "THIS.py`.\n"
            "# Shows " << data.filename().string() << " coloured by B_srgb (sRGB of the radiance B/pi, exposure 1) "
-           "with Map Scalars off, unlit, from the scene's camera.\n"
+           "with Map Scalars off, unlit, from the scene's camera.\n";
+    if (!run_id.empty()) out << "# run_id " << run_id << "\n";
+    out <<
            "import os\n"
            "from paraview import simple\n\n"
            "name = " << python_string(data.filename().string()) << "\n"

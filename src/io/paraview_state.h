@@ -19,6 +19,8 @@ struct ViewPoint {
   double view_angle_deg = 30;  // vertical field of view
 };
 
-void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view);
+// run_id: when not empty, the comment line "# run_id RUN_ID" (the run of the .vtp, apps/run_metadata.h).
+void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view,
+                          const std::string& run_id = "");
 
 }  // namespace radwalk

@@ -89,16 +89,27 @@ bool plain_corner(std::string_view s) {
   return plain_index(v) && (t.empty() || plain_index(t)) && plain_index(n);
 }
 
-// A coordinate tinyobjloader's own number parser reads to about 1e-14: at most 17 significant digits, and
-// zero or a magnitude in [1e-200, 1e200] (it scales by pow(5, exponent), which loses digits near the ends of
-// the double range).
+// A coordinate tinyobjloader's own number parser reads to about 1e-14: at most 17 significant digits, zero or
+// a magnitude in [1e-200, 1e200] (it scales by pow(5, exponent), which loses digits near the ends of the double
+// range), and a written decimal exponent of at most 300 in magnitude (it reads "00e3020" as 0 x pow(5, 3020) =
+// 0 x inf = NaN, where radwalk reads 0: regression-zero-huge-exponent.obj).
 bool plain_coordinate(std::string_view s) {
   int digits = 0;
   bool leading = true;
-  for (const char c : s) {
-    if (c == 'e' || c == 'E') break;
+  std::size_t exponent_at = std::string_view::npos;
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    const char c = s[k];
+    if (c == 'e' || c == 'E') {
+      exponent_at = k + 1;
+      break;
+    }
     if (c >= '1' && c <= '9') leading = false;
     if (c >= '0' && c <= '9' && !leading) ++digits;
+  }
+  if (exponent_at != std::string_view::npos) {
+    const std::string exponent(s.substr(exponent_at));
+    const long e = std::strtol(exponent.c_str(), nullptr, 10);  // saturates at LONG_MAX: still above 300
+    if (e > 300 || e < -300) return false;
   }
   const double x = std::strtod(std::string(s).c_str(), nullptr);
   return digits <= 17 && (x == 0 || (std::abs(x) >= 1e-200 && std::abs(x) <= 1e200));
