@@ -127,7 +127,15 @@ TEST_CASE("radwalk --set MATERIAL.Kd gives byte for byte the B of the edited MTL
   INFO(a.out << b.out);
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
-  const std::string edited_csv = slurp(dir / "edited.csv"), set_csv = slurp(dir / "set.csv");
+  // Equal but for the run id (the last column), which differs because the options and the inputs differ.
+  const auto without_run_id = [](const std::string& csv) {
+    std::string out, line;
+    std::istringstream in(csv);
+    while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  const std::string edited_csv = without_run_id(slurp(dir / "edited.csv")),
+                    set_csv = without_run_id(slurp(dir / "set.csv"));
   CHECK(!edited_csv.empty());
   CHECK(edited_csv == set_csv);
   const auto j = nlohmann::json::parse(slurp(json));

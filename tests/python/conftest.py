@@ -32,3 +32,12 @@ def mesh(name):
 
 def data(name):
     return str(SOURCE / "tests" / "data" / name)
+
+
+def without_run_id(data):
+    """A file's bytes without the run id the CLI writes into it (docs/reliability.md, "Run id"): the CSV's last
+    column `run_id`, the `% run_id` / `# run_id` comment lines. The module writes none (it is not a CLI run)."""
+    lines = data.split(b"\n")
+    if lines and lines[0].endswith(b",run_id"):
+        lines = [l.rsplit(b",", 1)[0] if l else l for l in lines]
+    return b"\n".join(l for l in lines if not l.startswith((b"% run_id", b"# run_id")))

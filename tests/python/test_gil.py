@@ -15,7 +15,7 @@ def test_python_runs_while_a_random_walk_runs():
 
     def solve():
         span["start"] = time.perf_counter()
-        radwalk.random_walk(scene, ff, walks_per_patch=20000, seed=2, threads=1)
+        radwalk.random_walk(scene, ff, walks_per_patch=400000, seed=2, threads=1)
         span["end"] = time.perf_counter()
 
     worker = threading.Thread(target=solve)
