@@ -48,14 +48,9 @@
 #include "walk/ray_kernel.h"
 
 using namespace radwalk;
+using radwalk::bench::cpu_seconds;
 
 namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());

@@ -1,6 +1,8 @@
 #pragma once
 // The benchmark programs' scene: the bundled Cornell box, found next to the bench sources (so a benchmark runs
 // from any directory), patched to about a target number of patches.
+#include <time.h>
+
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -16,6 +18,13 @@
 #include "visibility/ray_offset.h"
 
 namespace radwalk::bench {
+
+// CPU seconds of the whole process (all threads), for rays per CPU second.
+inline double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 // meshes/cornell_box.obj of this source tree.
 inline std::string default_scene() {

@@ -44,14 +44,9 @@
 #include "walk/walk_compare.h"
 
 using namespace radwalk;
+using radwalk::bench::cpu_seconds;
 
 namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 // A rate per wall-clock second and per CPU second of the process, over the same timed region.
 struct Rate {
