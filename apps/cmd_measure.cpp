@@ -63,6 +63,16 @@ int run_measure(const MeasureCommand& command) {
     walk.walks_per_patch = walk.particles = command.walks;
     check_walk_options(walk, patches.size());
   }
+  // The LU solves (direct, adjoint-direct, the exact importance) are for scenes the dense LU handles; above, a
+  // sparse LU of a form-factor matrix fills in (solve/direct_solver.h) and takes minutes to hours: refused
+  // before any form factor is traced.
+  const bool needs_lu = deterministic || (importance && command.importance_sweeps < 0);
+  if (needs_lu && patches.size() > static_cast<std::size_t>(kDenseMaxPatches))
+    throw InputError("--method " + command.method +
+                     (importance ? " with the exact importance" : "") + " needs an LU of " +
+                     std::to_string(patches.size()) + " patches (at most " + std::to_string(kDenseMaxPatches) +
+                     "): use a walk method (e.g. --method gather-expected-value --kernel ray, no F stored) or " +
+                     (importance ? "--importance-sweeps K" : "importance walks with --importance-sweeps K"));
   ThreadLimit limit(command.scene.threads);
   const bool ray = !deterministic && !importance && walk.kernel == WalkKernel::ray;
 
