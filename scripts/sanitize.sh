@@ -2,7 +2,8 @@
 # The sanitizer build of the whole suite (docs/reliability.md, "Sanitizer build"): configures and builds radwalk,
 # its tests and the replay programs with AddressSanitizer and UndefinedBehaviorSanitizer (RADWALK_SANITIZE,
 # default address,undefined) into build-asan/ (or $RADWALK_ASAN_BUILD_DIR), then runs the default suite there except
-# the fuzz and paraview labels (the fuzz campaigns have their own instrumented tree; pvpython is not instrumented).
+# the fuzz, paraview and python labels (the fuzz campaigns have their own instrumented tree; pvpython and the
+# system python3 are not instrumented, so neither can load instrumented code).
 #   scripts/sanitize.sh                      # build and run
 #   scripts/sanitize.sh --build-only
 #   scripts/sanitize.sh --no-build -R atomic # more arguments go to ctest
@@ -28,5 +29,5 @@ if [ "$run" = 1 ]; then
   # halt_on_error: a report fails its test; detect_leaks stays on (tests/lsan.supp lists the known library leaks).
   export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:abort_on_error=0:detect_stack_use_after_return=0}
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-  ctest --test-dir "$build_dir" -LE 'slow|fuzz|paraview' --output-on-failure -j"$(nproc)" "$@"
+  ctest --test-dir "$build_dir" -LE 'slow|fuzz|paraview|python' --output-on-failure -j"$(nproc)" "$@"
 fi
