@@ -40,7 +40,7 @@ Tiling tiling(const std::vector<Vec3>& p, const std::vector<std::array<std::int3
 TEST_CASE("ear clipping tiles convex and concave planar polygons exactly, keeping their orientation", "[mesh][triangulate]") {
   // A regular 64-gon, an L-shaped hexagon, a 5-pointed star (10 corners), a comb, all in a tilted plane.
   const Vec3 u = Vec3(1, 0.2, 0.1).normalized(), w = Vec3(0, 1, 0).cross(u).normalized(), v = w.cross(u);
-  auto plane = [&](double x, double y) { return Vec3(3, -2, 5) + x * u + y * v; };
+  auto plane = [&](double x, double y) -> Vec3 { return Vec3(3, -2, 5) + x * u + y * v; };  // a Vec3, not an expression of temporaries
   std::vector<std::vector<Vec3>> polygons;
   std::vector<Vec3> circle;
   for (int k = 0; k < 64; ++k) circle.push_back(plane(std::cos(2 * M_PI * k / 64), std::sin(2 * M_PI * k / 64)));
