@@ -52,7 +52,10 @@ TEST_CASE("pathtrace: an open scene is framed from outside, every corner of its 
   const auto p = vec(j["camera"]["position"]), t = vec(j["camera"]["look_at"]);
   const double half = 0.5 * j["camera"]["fov_deg"].get<double>() * M_PI / 180;
   double axis[3], n = 0;
-  for (int k = 0; k < 3; ++k) n += (axis[k] = t[k] - p[k]) * axis[k];
+  for (int k = 0; k < 3; ++k) {
+    axis[k] = t[k] - p[k];
+    n += axis[k] * axis[k];
+  }
   for (int c = 0; c < 8; ++c) {  // the squares' bounding box is the unit cube
     const double q[3] = {double(c & 1), double((c >> 1) & 1), double((c >> 2) & 1)};
     double dot = 0, m = 0;
