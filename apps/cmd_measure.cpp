@@ -22,13 +22,6 @@ namespace {
 
 nlohmann::json rgb_json(const Rgb& v) { return {v(0), v(1), v(2)}; }
 
-// <Y, E>_A.
-Rgb inner_with_emission(const RadiosityProblem& p, const PatchRgb& Y) {
-  Rgb M = Rgb::Zero();
-  for (Eigen::Index i = 0; i < p.E.rows(); ++i) M += p.area(i) * Y.row(i).transpose() * p.E.row(i).transpose();
-  return M;
-}
-
 }  // namespace
 
 int run_measure(const MeasureCommand& command) {
@@ -96,7 +89,7 @@ int run_measure(const MeasureCommand& command) {
     } else if (command.method == "adjoint-direct") {
       const Solution Y = solve_adjoint_direct(problem, response);
       if (Y.status != SolveStatus::converged) throw NumericalError(Y.message);
-      est.M = inner_with_emission(problem, Y.B);
+      est.M = adjoint_measure(problem.area, Y.B, problem.E);
       est.se = est.var = Rgb::Zero();
     } else if (importance) {
       const bool sensor = command.method == "importance-gather";

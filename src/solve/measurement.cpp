@@ -34,6 +34,14 @@ Rgb measure(const Eigen::VectorXd& area, const Eigen::VectorXd& R, const PatchRg
   return M;
 }
 
+Rgb adjoint_measure(const Eigen::VectorXd& area, const PatchRgb& Y, const PatchRgb& E) {
+  RADWALK_CHECK_EQ(Y.rows(), area.size());
+  RADWALK_CHECK_EQ(E.rows(), area.size());
+  Rgb M = Rgb::Zero();
+  for (Eigen::Index i = 0; i < area.size(); ++i) M += area(i) * Y.row(i).transpose() * E.row(i).transpose();
+  return M;
+}
+
 Solution solve_adjoint_direct(const RadiosityProblem& problem, const Response& response) {
   check_response(response, problem.size());
   Timer timer;
@@ -49,10 +57,10 @@ Solution solve_adjoint_direct(const RadiosityProblem& problem, const Response& r
 
 PatchRgb partial_radiosity(const RadiosityProblem& problem, int sweeps) {
   PatchRgb B = problem.E, term = problem.E;
+  const Eigen::SparseMatrix<double, Eigen::RowMajor, int> F = problem.F.cast<double>();
   for (int m = 0; m < sweeps; ++m) {
     PatchRgb next(term.rows(), 3);
-    for (int c = 0; c < 3; ++c)
-      next.col(c) = problem.rho.col(c) * (problem.F.cast<double>() * term.col(c).matrix()).array();
+    for (int c = 0; c < 3; ++c) next.col(c) = problem.rho.col(c) * (F * term.col(c).matrix()).array();
     term = next;
     B += term;
   }

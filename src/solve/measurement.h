@@ -33,6 +33,9 @@ void check_response(const Response& response, std::size_t patches);
 // M_c = sum_i A_i R_i B_ic per channel.
 Rgb measure(const Eigen::VectorXd& area, const Eigen::VectorXd& R, const PatchRgb& B);
 
+// <Y, E>_A = sum_i A_i Y_ic E_ic per channel: M from the adjoint solution Y.
+Rgb adjoint_measure(const Eigen::VectorXd& area, const PatchRgb& Y, const PatchRgb& E);
+
 // Y (N x 3, the importance) from the adjoint system above, by one LU of I - H_c per distinct rho column and a
 // transposed substitution (DirectSolver::solve_transposed). Solution.B holds Y; status refused (with the direct
 // solver's message) when the system is. Throws InputError for a bad problem or response.

@@ -38,9 +38,7 @@ Rgb exact_M(const RadiosityProblem& p, const Response& r) { return measure(p.are
 Rgb adjoint_M(const RadiosityProblem& p, const Response& r) {
   const Solution Y = solve_adjoint_direct(p, r);
   REQUIRE(Y.status == SolveStatus::converged);
-  Rgb M = Rgb::Zero();
-  for (Eigen::Index i = 0; i < p.E.rows(); ++i) M += p.area(i) * Y.B.row(i).transpose() * p.E.row(i).transpose();
-  return M;
+  return adjoint_measure(p.area, Y.B, p.E);
 }
 
 // The synthetic problem (Monte Carlo-like, not reciprocal) with areas varying over [0.5, 2).
