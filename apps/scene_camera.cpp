@@ -101,6 +101,66 @@ Camera inside_camera(const PatchSet& s, const Visibility& v, const Vec3& p, cons
   return cam;
 }
 
+// The objects in an enclosure: the non-emitting patches whose centroid lies on none of the bounding box's six
+// planes (to 1e-6 of its diagonal), i.e. not on the room's floor, walls or ceiling.
+std::vector<std::size_t> object_patches(const PatchSet& s, const Vec3& lo, const Vec3& hi) {
+  const double tol = 1e-6 * (hi - lo).norm();
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    if ((s.E[i] > 0).any()) continue;
+    const Vec3& c = s.centroid[i];
+    bool on_box = false;
+    for (int a = 0; a < 3; ++a) on_box = on_box || std::abs(c[a] - lo[a]) <= tol || std::abs(c[a] - hi[a]) <= tol;
+    if (!on_box) out.push_back(i);
+  }
+  return out;
+}
+
+// A camera inside the enclosure that frames the objects: it looks at their area-weighted centroid c with a 60
+// degree field of view, from the candidate position that sees the most of them. The candidates are the points
+// 0.8 of the way from p (enclosed) to each probe hit; a candidate's score is the number of sampled object patches
+// (at most kObjectSamples, every k-th) whose centroid is in its image (square of half-angle vfov / 2) and whose
+// front it sees unoccluded (the first hit towards the centroid is that patch, from the front). Ties keep the
+// earlier probe. Returns false (cam untouched) when there are no objects or no candidate sees one.
+bool frame_objects(const PatchSet& s, const Visibility& v, const Vec3& p, const std::vector<Hit>& hits,
+                   const std::vector<std::size_t>& objects, Camera& cam) {
+  constexpr std::size_t kObjectSamples = 256;
+  if (objects.empty()) return false;
+  Vec3 c = Vec3::Zero();
+  double area = 0;
+  for (const std::size_t i : objects) {
+    c += s.area[i] * s.centroid[i];
+    area += s.area[i];
+  }
+  if (!(area > 0)) return false;
+  c /= area;
+  const std::size_t stride = std::max<std::size_t>(1, objects.size() / kObjectSamples);
+  const double vfov = 60.0 * kPi / 180.0, tan_half = std::tan(0.5 * vfov);
+  int best_score = 0;
+  for (int k = 0; k < kProbeRays; ++k) {
+    const Vec3 q = p + 0.8 * hits[static_cast<std::size_t>(k)].t * probe_direction(k, kProbeRays);
+    const Vec3 f = (c - q).normalized();
+    const Vec3 up = up_for(f), r = f.cross(up).normalized(), u = r.cross(f);
+    int score = 0;
+    for (std::size_t n = 0; n < objects.size(); n += stride) {
+      const std::size_t i = objects[n];
+      const Vec3 d = s.centroid[i] - q;
+      const double z = d.dot(f);
+      if (!(z > 0) || std::abs(d.dot(r)) > z * tan_half || std::abs(d.dot(u)) > z * tan_half) continue;
+      const Hit h = v.intersect(Ray{q, d.normalized()});
+      if (!h.missed() && h.front && static_cast<std::size_t>(h.patch) == i) ++score;
+    }
+    if (score > best_score) {
+      best_score = score;
+      cam.position = q;
+      cam.direction = f;
+      cam.up = up;
+      cam.vfov = vfov;
+    }
+  }
+  return best_score > 0;
+}
+
 }  // namespace
 
 SceneCamera fit_scene_camera(const std::string& scene, const PatchSet& patches, const std::vector<double>& c,
@@ -132,7 +192,12 @@ SceneCamera fit_scene_camera(const std::string& scene, const PatchSet& patches, 
     for (const Vec3& p : {center, Vec3(center + Vec3(q.x(), 0, 0)), Vec3(center - Vec3(q.x(), 0, 0)),
                           Vec3(center + Vec3(0, q.y(), 0)), Vec3(center - Vec3(0, q.y(), 0)),
                           Vec3(center + Vec3(0, 0, q.z())), Vec3(center - Vec3(0, 0, q.z()))})
-      if (enclosed(*visibility, p, hits)) return {inside_camera(patches, *visibility, p, hits), "inside"};
+      if (enclosed(*visibility, p, hits)) {
+        Camera cam;
+        if (frame_objects(patches, *visibility, p, hits, object_patches(patches, lo, hi), cam))
+          return {cam, "inside"};
+        return {inside_camera(patches, *visibility, p, hits), "inside"};
+      }
   }
   // Outside: of the views along +z (first), the other axes and the diagonals, each framing the bounding box's
   // sphere, the one whose kOutsideProbes^2 pixel-centre rays hit the most fronts of patches (emitters twice).

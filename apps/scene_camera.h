@@ -3,8 +3,13 @@
 //   - --camera if given (px py pz tx ty tz ux uy uz fov_deg): source "option";
 //   - the Cornell box's own camera for a scene file named cornell_box*: source "cornell_box";
 //   - a closed scene (a point inside it from which every probe ray hits the front of a patch: the bounding box's
-//     centre, else one of the six points a quarter of the box's size away from it along an axis): the camera
-//     stands at that point, 60 degree vertical field of view, and looks at the largest lit region: of the probe
+//     centre, else one of the six points a quarter of the box's size away from it along an axis): when the scene
+//     has objects (non-emitting patches off the bounding box's six planes, i.e. not the room's own floor, walls
+//     or ceiling) the camera looks at their area-weighted centroid with a 60 degree vertical field of view, from
+//     the point (0.8 of the way from that enclosed point to a probe hit) that sees the most of them (sampled
+//     object patches whose centroid is in the image and whose front is seen unoccluded), source "inside";
+//     without objects it stands at the enclosed point, 60 degree vertical field of view, and looks at the
+//     largest lit region: of the probe
 //     directions (a fixed Fibonacci sphere of kProbeRays directions), the one whose field-of-view cone holds the
 //     most directly lit surface (per probe hit, the unoccluded irradiance sum_j E_j A_j cos cos / (pi r^2) from
 //     the emitting patches' centroids, times the solid angle per probe), source "inside"; with no emitter it
