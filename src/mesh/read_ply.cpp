@@ -10,6 +10,8 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "core/error.h"
@@ -316,6 +318,9 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
                                          : printable(e.name) + " " + std::to_string(item);
       Vec3 point = Vec3::Zero();
       std::vector<std::int32_t> corners;
+      // A face's own defects are collected (one finding each, the face left out, the scene refused after
+      // validation with every finding, as the OBJ reader does); the values are still read, so the next face is.
+      std::vector<std::pair<std::string, std::string>> face_errors;  // kind, message
       std::array<double, 3> colour{};
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& p = e.properties[k];
@@ -330,9 +335,8 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
           if (is_face && coloured && (static_cast<int>(k) == pr || static_cast<int>(k) == pg || static_cast<int>(k) == pb)) {
             const double top = is_float(p.type) ? 1.0 : 255.0;
             if (!(v >= 0 && v <= top))
-              throw InputError(locate(path, line, face,
-                                      "colour " + p.name + " = " + value_text(v) + " is outside 0.." +
-                                          (is_float(p.type) ? "1" : "255")));
+              face_errors.emplace_back("colour out of range", "colour " + p.name + " = " + value_text(v) +
+                                                                  " is outside 0.." + (is_float(p.type) ? "1" : "255"));
             colour[static_cast<int>(k) == pr ? 0 : static_cast<int>(k) == pg ? 1 : 2] = v / top;
           }
           continue;
@@ -345,23 +349,33 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
         const auto count = static_cast<std::size_t>(n);
         const bool indices = is_face && static_cast<int>(k) == pv;
         if (indices && count < 3)
-          throw InputError(locate(path, line, face, "has " + std::to_string(count) + " vertices, a face needs 3 or 4"));
+          face_errors.emplace_back("face of fewer than 3 corners",
+                                   "has " + std::to_string(count) + " vertices, a face needs at least 3");
         if (indices && count > kMaxPolygonCorners)
-          throw InputError(locate(path, line, face, "has " + std::to_string(count) + " vertices, more than the " +
-                                                        std::to_string(kMaxPolygonCorners) +
-                                                        " radwalk triangulates; split the polygon"));
+          face_errors.emplace_back("polygon of too many corners",
+                                   "has " + std::to_string(count) + " vertices, more than the " +
+                                       std::to_string(kMaxPolygonCorners) + " radwalk triangulates; split the polygon");
+        bool bad_index = false;
         for (std::size_t c = 0; c < count; ++c) {
           const double v = in.value(p.type, value_name + " entry " + std::to_string(c));
           if (!indices) continue;
-          if (!(v >= 0 && v < static_cast<double>(vertex_element->count)))
-            throw InputError(locate(path, line, face,
-                                    "vertex index " + value_text(v) + " is out of range (" +
-                                        std::to_string(vertex_element->count) + " vertices)"));
+          if (!(v >= 0 && v < static_cast<double>(vertex_element->count))) {
+            if (!bad_index)
+              face_errors.emplace_back("bad vertex index", "vertex index " + value_text(v) + " is out of range (" +
+                                                               std::to_string(vertex_element->count) + " vertices)");
+            bad_index = true;
+            continue;
+          }
           corners.push_back(static_cast<std::int32_t>(v));
         }
       }
       if (is_vertex) mesh.vertices.push_back(point);
       if (!is_face) continue;
+      if (!face_errors.empty()) {
+        for (const auto& [kind, message] : face_errors)
+          mesh.findings.push_back(mesh.finding_of(face, line, -1, -1, kind, Severity::error, message));
+        continue;
+      }
       int material = 0;
       if (coloured) {
         auto it = material_of_colour.find(colour);

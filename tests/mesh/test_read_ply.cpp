@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "mesh/read_ply.h"
 #include "mesh/read_scene.h"
+#include "mesh/validate.h"
 
 using namespace radwalk;
 namespace fs = std::filesystem;
@@ -52,6 +53,13 @@ std::string binary_square(bool big_endian, double easting, std::uint16_t red) {
   return s;
 }
 
+// Read and validate (a face's own defects are findings; validation refuses the scene with all of them).
+Mesh load_ply_bytes(const std::string& bytes) {
+  Mesh mesh = read_ply_bytes(kPlyPath, bytes);
+  validate_mesh(mesh);
+  return mesh;
+}
+
 }  // namespace
 
 TEST_CASE("PLY double coordinates stay doubles, in either byte order", "[mesh][ply]") {
@@ -71,17 +79,73 @@ TEST_CASE("PLY double coordinates stay doubles, in either byte order", "[mesh][p
 
 TEST_CASE("PLY colours outside 0..255 are refused, not wrapped", "[mesh][ply]") {
   // W7: 300 wrapped to 44.
-  CHECK_THROWS_WITH(read_ply_bytes(kPlyPath, binary_square(false, 0, 300)),
+  CHECK_THROWS_WITH(load_ply_bytes(binary_square(false, 0, 300)),
                     Catch::Contains("test.ply") && Catch::Contains("face 0") && Catch::Contains("outside 0..255"));
   const std::string floats =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 2\nproperty list uchar int vertex_indices\nproperty float red\nproperty float green\n"
       "property float blue\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 0.5 0.25 1\n3 0 2 1 1.5 0 0\n";
-  CHECK_THROWS_WITH(read_ply_bytes(kPlyPath, floats), Catch::Contains("test.ply:17") && Catch::Contains("outside 0..1"));
+  CHECK_THROWS_WITH(load_ply_bytes(floats), Catch::Contains("test.ply:17") && Catch::Contains("outside 0..1"));
   const std::string ok = floats.substr(0, floats.rfind("3 0 2 1")) + "3 0 2 1 0.5 0.25 1\n";
   const Mesh mesh = read_ply_bytes(kPlyPath, ok);
   CHECK(mesh.materials.size() == 1);
   CHECK(mesh.materials[0].Kd[1] == 0.25);
+}
+
+TEST_CASE("PLY per-face defects are all reported at once, each naming its face and line", "[mesh][ply]") {
+  // Issue 11: the PLY reader stopped at the first bad face; the OBJ reader collected them all.
+  const std::string text =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+      "element face 6\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"
+      "property uchar blue\nend_header\n0 0 0\n1 0 0\n0 1 0\n"
+      "3 0 1 7 10 10 10\n"     // face 0 (line 16): bad index
+      "3 0 1 2 300 10 10\n"    // face 1: colour out of range
+      "2 0 1 10 10 10\n"       // face 2: two corners
+      "3 0 1 2 10 10 10\n"     // face 3: fine
+      "3 9 8 2 10 10 10\n"     // face 4: two bad indices, one finding
+      "3 0 1 5 999 10 10\n";   // face 5: bad index and colour
+  const Mesh read = read_ply_bytes(kPlyPath, text);
+  CHECK(read.face_count() == 1);  // only face 3 is kept
+  struct Expected {
+    long face, line;
+    std::string kind;
+  };
+  const std::vector<Expected> expected = {{0, 16, "bad vertex index"}, {1, 17, "colour out of range"},
+                                          {2, 18, "face of fewer than 3 corners"}, {4, 20, "bad vertex index"},
+                                          {5, 21, "bad vertex index"}, {5, 21, "colour out of range"}};
+  REQUIRE(read.findings.size() == expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k) {
+    INFO(finding_line(read.findings[k]));
+    CHECK(read.findings[k].face == expected[k].face);
+    CHECK(read.findings[k].line == expected[k].line);
+    CHECK(read.findings[k].kind == expected[k].kind);
+    CHECK(read.findings[k].severity == Severity::error);
+  }
+  try {
+    (void)load_ply_bytes(text);
+    FAIL("not refused");
+  } catch (const MeshRefused& e) {
+    std::size_t errors = 0;
+    for (const Finding& f : e.findings()) errors += f.severity == Severity::error;
+    CHECK(errors == expected.size());
+    CHECK(std::string(e.what()).find("; and 5 more: 6 errors") != std::string::npos);
+  }
+  // Binary: the bad face's values are still read, so the next face is read right.
+  std::string bin = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n";
+  for (float c : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f, 0.f}) put(bin, c, false);
+  put(bin, std::uint8_t{3}, false);
+  for (std::int32_t v : {0, 1, 9}) put(bin, v, false);
+  put(bin, std::uint8_t{3}, false);
+  for (std::int32_t v : {0, 1, 2}) put(bin, v, false);
+  const Mesh b = read_ply_bytes(kPlyPath, bin);
+  CHECK(b.face_count() == 1);
+  std::vector<Finding> errors;
+  for (const Finding& f : b.findings)
+    if (f.severity == Severity::error) errors.push_back(f);
+  REQUIRE(errors.size() == 1);
+  CHECK(errors[0].face == 0);
+  CHECK(b.faces[0][2] == 2);
 }
 
 TEST_CASE("PLY element counts are bounded by the bytes of the file", "[mesh][ply]") {
@@ -123,7 +187,7 @@ TEST_CASE("PLY refusals name the real cause on one line", "[mesh][ply]") {
         Case{head + "property float z\nelement face 1\nproperty list uchar int vertex_indices\n", "no end_header"}}) {
     INFO(c.text);
     try {
-      (void)read_ply_bytes(kPlyPath, c.text);
+      (void)load_ply_bytes(c.text);
       FAIL("no error");
     } catch (const InputError& e) {
       const std::string what = e.what();
