@@ -10,7 +10,10 @@ Usage (Debian's VTK is an X build: run it under xvfb-run when there is no displa
         [--field B] [--size 512] [--camera px py pz tx ty tz ux uy uz fov_deg] [--exposure 1]
 Without --camera the camera is fitted to the data: the Cornell box's own camera (position 278 273 -800, looking
 along +z, 39.3 degree field of view) when the file's field data name a scene cornell_box*; inside a closed scene
-(every probe ray from the bounding box's centre hits a cell) at the centre, 60 degrees, looking where the cone of
+(every probe ray from the bounding box's centre hits a cell) with objects in it (non-emitting cells off the
+bounding box's planes: not the room's own floor, walls or ceiling), 60 degrees, looking at the objects'
+area-weighted centroid from the point inside that sees the most of them (frame_objects; the rule of
+apps/scene_camera.h); in a closed scene without objects at the centre, 60 degrees, looking where the cone of
 view holds the most radiance B of non-emitting cells; otherwise from outside, framing the bounding box's sphere (40 degrees) along the
 axis or diagonal whose rays see the most B on cell fronts. The camera used is printed.
 """
@@ -53,6 +56,64 @@ def fibonacci(n):
     return out
 
 
+def cell_centroid(poly, cell):
+    pts = poly.GetCell(cell).GetPoints()
+    n = pts.GetNumberOfPoints()
+    return [sum(pts.GetPoint(k)[a] for k in range(n)) / n for a in range(3)]
+
+
+def frame_objects(poly, lo, hi, centre, probes, hits, first_hit, front, emitted, samples=128):
+    """Inside a closed scene with objects, the camera that frames them (apps/scene_camera.h, the same rule): the
+    objects are the non-emitting cells whose centroid lies on none of the bounding box's planes (not the room's
+    floor, walls or ceiling); the camera looks at their area-weighted centroid with 60 degrees, from the point 0.8
+    of the way from the box's centre to a probe hit that sees the most of them (of at most `samples` object cells,
+    every k-th: centroid inside the square image, front seen unoccluded). None when there are no objects."""
+    tol = 1e-6 * math.dist(lo, hi)
+    area = poly.GetCellData().GetArray("area")
+    objects, c, total = [], [0.0, 0.0, 0.0], 0.0
+    for i in range(poly.GetNumberOfCells()):
+        if emitted is not None and any(v > 0 for v in emitted.GetTuple(i)):
+            continue
+        x = cell_centroid(poly, i)
+        if any(abs(x[a] - lo[a]) <= tol or abs(x[a] - hi[a]) <= tol for a in range(3)):
+            continue
+        w = area.GetValue(i) if area is not None else 1.0
+        objects.append((i, x))
+        c = [c[a] + w * x[a] for a in range(3)]
+        total += w
+    if not objects or not total > 0:
+        return None
+    c = [v / total for v in c]
+    sampled = objects[::max(1, len(objects) // samples)]
+    tan_half = math.tan(math.radians(30))
+    best, best_score = None, 0
+    for d, h in zip(probes, hits):
+        q = [centre[a] + 0.8 * h[1] * d[a] for a in range(3)]
+        f = [c[a] - q[a] for a in range(3)]
+        fl = math.sqrt(sum(x * x for x in f))
+        f = [x / fl for x in f]
+        up = [0, 0, 1] if abs(f[1]) > 0.99 else [0, 1, 0]
+        r = [f[1] * up[2] - f[2] * up[1], f[2] * up[0] - f[0] * up[2], f[0] * up[1] - f[1] * up[0]]
+        rl = math.sqrt(sum(x * x for x in r))
+        r = [x / rl for x in r]
+        u = [r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]]
+        score = 0
+        for i, x in sampled:
+            v = [x[a] - q[a] for a in range(3)]
+            z = sum(v[a] * f[a] for a in range(3))
+            if z <= 0 or abs(sum(v[a] * r[a] for a in range(3))) > z * tan_half or \
+                    abs(sum(v[a] * u[a] for a in range(3))) > z * tan_half:
+                continue
+            dist = math.sqrt(sum(x * x for x in v))
+            w = [x / dist for x in v]
+            hit = first_hit(q, w, 1.01 * dist)
+            if hit is not None and hit[0] == i and front(i, w):
+                score += 1
+        if score > best_score:
+            best, best_score = q + c + up + [60.0], score
+    return best
+
+
 def fit_camera(poly, field):
     """The camera for the data: see the module's doc."""
     fd = poly.GetFieldData()
@@ -93,7 +154,11 @@ def fit_camera(poly, field):
     far = 4 * radius + 1e-12
     probes = fibonacci(256)
     hits = [first_hit(centre, d, far) for d in probes]
-    if all(h is not None for h in hits):  # closed: look where the cone of view holds the most B
+    if all(h is not None for h in hits):
+        framed = frame_objects(poly, lo, hi, centre, probes, hits, first_hit, front, emitted)
+        if framed is not None:
+            return framed
+    if all(h is not None for h in hits):  # closed, no objects: look where the cone of view holds the most B
         half = math.radians(30)
         score = [brightness(h[0]) for h in hits]
         best, best_sum = probes[0], -1.0

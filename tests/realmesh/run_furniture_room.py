@@ -17,7 +17,9 @@ against a wall; ten materials, four with one-letter names) and goes through radw
               do, they leave only from faces lying on another face back to back (bottoms on the floor, a panel
               against the wall): nothing reaches those hidden faces, so the leak costs no light;
   compare     the random-walk estimators against the direct solve, exit 0, finite;
-  pathtrace   patch averages and an image with the fitted camera: not black, and the lit furniture in view.
+  pathtrace   patch averages and an image with the fitted camera: not black, and at least half of the
+              furniture's patch centres inside the image (the camera frames the objects, not a wall); the same
+              for scripts/render_vtp.py's fitted camera on the solve's .vtp.
 
 The agreement test (per material m and channel c, area-weighted means over the material's patches):
   d  = mean_direct(L/2) - mean_pathtracer,    tested |d| <= t * s + D
@@ -262,8 +264,9 @@ def main():
         direct[L] = []
         for seed in range(1, SEEDS + 1):
             out = j("solve_%g_%d" % (L, seed))
+            vtp = ["-o", out + ".vtp"] if seed == 1 else []
             r = run(radwalk, "solve", scene, "--max-edge", L, "--rays-per-area", RAYS_PER_AREA, "--seed", seed,
-                    "--csv", out + ".csv", "--json", out + ".json", "-q", show=seed == 1)
+                    "--csv", out + ".csv", "--json", out + ".json", "-q", *vtp, show=seed == 1)
             expect(r.returncode == 0, "solve --max-edge %g --seed %d exits 0" % (L, seed))
             direct[L].append(material_means(out + ".csv", materials))
     solve = json.load(open(j("solve_%g_1.json" % L_COARSE)))
@@ -329,6 +332,24 @@ def main():
     seen = in_view(camera, furniture, 96 / 72)
     print("camera %s: %.0f %% of the furniture's patch centres in the image" % (camera, 100 * seen))
     expect(seen >= 0.5, "pathtrace: the fitted camera frames the furniture (at least half its patches in view)")
+
+    # scripts/render_vtp.py fits its camera by the same rule (VTK's Python; no rendering, so no display needed)
+    sys.path.insert(0, os.path.join(source_dir, "scripts"))
+    try:
+        import render_vtp
+        import vtk
+    except ImportError as e:
+        print("render_vtp.py's camera not checked: %s" % e)
+    else:
+        reader = vtk.vtkXMLPolyDataReader()
+        reader.SetFileName(j("solve_%g_1.vtp" % L_COARSE))
+        reader.Update()
+        poly = reader.GetOutput()
+        c = render_vtp.fit_camera(poly, poly.GetCellData().GetArray("B"))
+        vtp_camera = {"position": c[0:3], "look_at": c[3:6], "up": c[6:9], "fov_deg": c[9]}
+        seen = in_view(vtp_camera, furniture, 1.0)
+        print("render_vtp.py camera %s: %.0f %% of the furniture's patch centres in the image" % (vtp_camera, 100 * seen))
+        expect(seen >= 0.5, "render_vtp.py: the fitted camera frames the furniture (at least half its patches)")
 
     if failures:
         print("%d check(s) failed: %s" % (len(failures), "; ".join(failures)))
