@@ -51,7 +51,7 @@ except ImportError:
     sys.exit(77)
 
 L_COARSE, L_FINE = 0.5, 0.25
-SEEDS = 6
+SEEDS = 10
 RAYS_PER_AREA = "20000"
 SPP = "256"
 ALPHA = 0.01
