@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
+
+#include "mesh/face_geometry.h"
 
 namespace radwalk {
 
@@ -108,6 +111,46 @@ BoundaryCover find_t_junctions(const Mesh& mesh, const EdgeTable& t, double rel_
   return out;
 }
 
-bool is_closed_shell(const Mesh& mesh) { return find_t_junctions(mesh, build_edge_table(mesh)).closed(); }
+bool is_closed_shell(const Mesh& mesh) {
+  if (find_t_junctions(mesh, build_edge_table(mesh)).closed()) return true;
+  return encloses(mesh, enclosure_faces(mesh));
+}
+
+std::vector<std::size_t> enclosure_faces(const Mesh& mesh) {
+  std::vector<std::size_t> out;
+  if (mesh.faces.empty()) return out;
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (std::size_t f = 0; f < mesh.face_count(); ++f)
+    for (int k = 0; k < mesh.corner_count(f); ++k) {
+      const Vec3& p = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  const double tol = 1e-9 * (hi - lo).norm();
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    const Vec3 n = face_vector_area(mesh, f);
+    for (int a = 0; a < 3; ++a) {
+      bool on_lo = true, on_hi = true;
+      for (int k = 0; k < mesh.corner_count(f); ++k) {
+        const double x = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])][a];
+        on_lo = on_lo && std::abs(x - lo[a]) <= tol;
+        on_hi = on_hi && std::abs(x - hi[a]) <= tol;
+      }
+      if ((on_lo && n[a] > 0) || (on_hi && n[a] < 0)) {
+        out.push_back(f);
+        break;
+      }
+    }
+  }
+  return out;
+}
+
+bool encloses(const Mesh& mesh, const std::vector<std::size_t>& faces) {
+  if (faces.empty()) return false;
+  Mesh shell;
+  shell.vertices = mesh.vertices;
+  for (const std::size_t f : faces) shell.faces.push_back(mesh.faces[f]);  // geometry is all the cover needs
+  return find_t_junctions(shell, build_edge_table(shell)).closed();
+}
 
 }  // namespace radwalk

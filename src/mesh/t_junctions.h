@@ -39,8 +39,17 @@ struct BoundaryCover {
 // Precondition: every face index is in range and every coordinate finite (validate_mesh checks this first).
 BoundaryCover find_t_junctions(const Mesh& mesh, const EdgeTable& table, double rel_tolerance = 1e-9);
 
-// find_t_junctions(mesh, build_edge_table(mesh)).closed(): the faces form a closed surface (rays leaving any
-// face land on one), T-junctions allowed.
+// The faces form a closed surface (rays leaving any face land on one), T-junctions allowed: either all of them
+// (find_t_junctions(mesh, build_edge_table(mesh)).closed()), or the room around everything does:
+// encloses(mesh, enclosure_faces(mesh)). So a closed room with open objects in it (a table top as one sheet)
+// counts as closed, and rays that escape it are reported.
 bool is_closed_shell(const Mesh& mesh);
+
+// The faces of the room around the scene: all corners on one plane of the bounding box (to 1e-9 of its
+// diagonal) and facing into the box. An object's bottom on the floor or back against a wall faces out: not one.
+std::vector<std::size_t> enclosure_faces(const Mesh& mesh);
+
+// These faces alone form a closed shell (find_t_junctions on the sub-mesh; false for none).
+bool encloses(const Mesh& mesh, const std::vector<std::size_t>& faces);
 
 }  // namespace radwalk

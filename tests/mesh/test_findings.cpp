@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "mesh/edge_table.h"
 #include "mesh/finding.h"
 #include "mesh/material_override.h"
 #include "mesh/read_scene.h"
@@ -144,6 +145,38 @@ TEST_CASE("T-junctions are named at the T point, as a note, and are not non-mani
   CHECK(contains(t->message, "harmless for the constant-radiosity solve"));
   // Before, file vertices 2 and 3 were reported as non-manifold (two fans each, joined only across the junction).
   CHECK(count_kind(mesh.findings, "non-manifold vertex") == 0);
+}
+
+TEST_CASE("closed shells: a closed room around open objects is closed; objects' outward faces on its planes are not the room",
+          "[mesh][findings]") {
+  // Issue 11: a closed room with a table top modelled as one sheet was not a closed shell, so rays escaping it
+  // through furniture bottoms lying on the floor were not reported.
+  std::vector<Vec3> v = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}, {0, 0, 4}, {4, 0, 4}, {4, 3, 4}, {0, 3, 4}};
+  // the room, facing in (the reversed windings of a closed box facing out)
+  std::vector<std::array<std::int32_t, 4>> room = {{1, 2, 3, 0}, {7, 6, 5, 4}, {4, 5, 1, 0},
+                                                   {5, 6, 2, 1}, {6, 7, 3, 2}, {7, 4, 0, 3}};
+  // an open sheet in the room (a table top) and a box bottom on the floor facing down (out of the room)
+  for (const Vec3& p : {Vec3(1, 1, 1), Vec3(2, 1, 1), Vec3(2, 1, 2), Vec3(1, 1, 2), Vec3(3, 0, 3), Vec3(3.5, 0, 3),
+                        Vec3(3.5, 0, 3.5), Vec3(3, 0, 3.5)})
+    v.push_back(p);
+  auto faces = room;
+  faces.push_back({8, 11, 10, 9});    // the sheet, facing up
+  faces.push_back({12, 13, 14, 15});  // the bottom, facing down: on the floor's plane, not part of the room
+  const Mesh scene = mesh_of(v, faces);
+  CHECK(enclosure_faces(scene) == std::vector<std::size_t>{0, 1, 2, 3, 4, 5});
+  CHECK_FALSE(find_t_junctions(scene, build_edge_table(scene)).closed());  // the sheet has open edges
+  CHECK(is_closed_shell(scene));
+  // Without the ceiling the room is open.
+  auto open = faces;
+  open.erase(open.begin() + 4);
+  CHECK_FALSE(is_closed_shell(mesh_of(v, open)));
+  // A box facing out (a closed object, seen from outside) is closed on its own; with an open sheet beside it,
+  // its faces face out of its bounding box: no enclosure, not closed.
+  auto outward = faces;
+  for (std::size_t f = 0; f < 6; ++f) std::reverse(outward[f].begin(), outward[f].end());
+  const Mesh object = mesh_of(v, outward);
+  CHECK(enclosure_faces(object).empty());
+  CHECK_FALSE(is_closed_shell(object));
 }
 
 TEST_CASE("closed shells: a cube is closed, with or without a T-junction; an open box is not", "[mesh][findings]") {
