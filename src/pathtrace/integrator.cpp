@@ -114,7 +114,10 @@ void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCoun
   for (;;) {
     const Hit hit = visibility_.intersect(ray);
     ++counters.rays;
-    if (hit.missed()) return;
+    if (hit.missed()) {
+      ++counters.escapes;
+      return;
+    }
     const auto j = static_cast<std::size_t>(hit.patch);
     const Vec3 x = ray.origin + hit.t * ray.direction;
     const Vec3 n_front = geometry_.normal(hit.patch, x);

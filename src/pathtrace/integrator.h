@@ -50,9 +50,11 @@ struct IntegratorOptions {
 struct PathCounters {
   long rays = 0;      // intersect calls, shadow rays included
   long vertices = 0;  // scattering events
+  long escapes = 0;   // path rays that hit nothing (left the scene; shadow rays are not counted)
   void add(const PathCounters& o) {
     rays += o.rays;
     vertices += o.vertices;
+    escapes += o.escapes;
   }
 };
 

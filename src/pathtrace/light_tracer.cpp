@@ -55,7 +55,10 @@ void trace_particle(const PatchSet& patches, const Visibility& visibility, const
   for (;;) {
     const Hit hit = visibility.intersect(ray);
     ++counters.rays;
-    if (hit.missed()) return;
+    if (hit.missed()) {
+      ++counters.escapes;
+      return;
+    }
     const Vec3 x = ray.origin + hit.t * ray.direction;
     const Bsdf& bsdf = integrator.bsdf(hit.patch);
     const Vec3 n_front = geometry.normal(hit.patch, x);
@@ -231,6 +234,7 @@ Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geo
   if (options.max_depth > 0)
     sol.message += " (biased: paths capped at " + std::to_string(options.max_depth) + " bounces)";
   sol.info["rays"] = static_cast<double>(total.counters.rays);
+  sol.info["escapes"] = static_cast<double>(total.counters.escapes);
   sol.info["rays_per_second"] = sol.seconds > 0 ? static_cast<double>(total.counters.rays) / sol.seconds : 0.0;
   return sol;
 }

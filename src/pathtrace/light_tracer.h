@@ -36,7 +36,7 @@ struct LightTraceOptions {
   bool progress = true;
 };
 
-// Solution::method = "lighttrace", walks = particles, steps = bounces; info: "rays", "rays_per_second".
+// Solution::method = "lighttrace", walks = particles, steps = bounces; info: "rays", "escapes" (rays that hit nothing), "rays_per_second".
 // A scene without emitters gives B = E = 0 with zero error. Throws InputError when particles < 2.
 Solution light_trace_patches(const PatchSet& patches, const Visibility& visibility,
                              const LightTraceOptions& options);

@@ -26,7 +26,7 @@ struct PatchAverageOptions {
 };
 
 // Solution::method = "pathtrace-<integrator>", walks = samples, steps = scattering events,
-// info: "rays", "spp", "rays_per_second", "rr_depth", "max_depth". Throws InputError when spp < 2.
+// info: "rays", "escapes" (path rays that hit nothing), "spp", "rays_per_second", "rr_depth", "max_depth". Throws InputError when spp < 2.
 Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visibility,
                                  const PatchAverageOptions& options);
 // The same on the surfaces `geometry` describes (visibility must trace the same surfaces).

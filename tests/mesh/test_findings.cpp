@@ -147,7 +147,7 @@ TEST_CASE("T-junctions are named at the T point, as a note, and are not non-mani
   CHECK(count_kind(mesh.findings, "non-manifold vertex") == 0);
 }
 
-TEST_CASE("closed shells: a closed room around open objects is closed; objects' outward faces on its planes are not the room",
+TEST_CASE("closed shells: a closed room around open objects is closed, and outward faces on its planes are not the room",
           "[mesh][findings]") {
   // Issue 11: a closed room with a table top modelled as one sheet was not a closed shell, so rays escaping it
   // through furniture bottoms lying on the floor were not reported.
