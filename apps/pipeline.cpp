@@ -310,15 +310,40 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
     list.push_back({{"where", groups[k].first}, {"escaped", groups[k].second}});
     if (k < 3) named += (k ? "; " : "") + groups[k].first + ": " + std::to_string(groups[k].second);
   }
+  // Of them, the rays from patches lying on a plane of the bounding box and facing out of it: an object's bottom
+  // on the room's floor, a back against its wall. No light reaches such a patch, so their escape loses none.
+  Vec3 lo = patches.points.empty() ? Vec3::Zero() : patches.points[0], hi = lo;
+  for (const Vec3& q : patches.points) {
+    lo = lo.cwiseMin(q);
+    hi = hi.cwiseMax(q);
+  }
+  const double tol = 1e-9 * (hi - lo).norm();
+  std::uint64_t hidden = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    bool out = false;
+    for (int a = 0; a < 3; ++a)
+      out = out || (std::abs(patches.centroid[i][a] - lo[a]) <= tol && patches.normal[i][a] < -0.999) ||
+            (std::abs(patches.centroid[i][a] - hi[a]) <= tol && patches.normal[i][a] > 0.999);
+    if (out) hidden += ff.escaped[i];
+  }
   summary.json()["escaped_by_group"] = list;
   summary.json()["patches_with_escaped_rays"] = sources;
+  summary.json()["escaped_from_hidden_faces"] = hidden;
+  const std::string harmless =
+      hidden == escaped ? " All of them left faces lying on the room's floor or walls and facing out of it (an "
+                          "object's bottom on the floor, a back against a wall), which no light reaches: harmless."
+      : hidden > 0 ? " " + std::to_string(hidden) + " of them left faces lying on the room's floor or walls and "
+                     "facing out of it (an object's bottom on the floor, a back against a wall), which no light "
+                     "reaches: harmless."
+                   : std::string();
   warn(summary, std::to_string(escaped) + " of " + std::to_string(rays) + " rays (" +
                     percent(double(escaped) / double(std::max<std::uint64_t>(rays, 1))) +
                     ") escaped although the scene's faces form a closed shell: they left " +
                     std::to_string(sources) + " patch(es) through a gap, from a face oriented outwards or from "
                     "inside a closed object, and their light is lost. Most from patch " + std::to_string(worst) + " (input face " +
                     std::to_string(patches.face[worst]) + face_context(patches.face[worst]) + "); by group: " +
-                    named + (groups.size() > 3 ? "; ..." : "") + " (escaped_by_group in --json, the escaped field)");
+                    named + (groups.size() > 3 ? "; ..." : "") + " (escaped_by_group in --json, the escaped field)." +
+                    harmless);
 }
 
 }  // namespace

@@ -304,6 +304,10 @@ def main():
     print("%d patches send rays out of the room (%s)" % (len(leaking), ", ".join(
         "%s on %s" % (row["patch"], materials[int(row["face"])]) for row in leaking[:12])))
     expect(hidden_ok, "solve: rays leave the closed room only from faces lying on its floor or walls, facing out")
+    escaped_rays = sum(int(row["escaped"]) for row in leaking)
+    expect(solve.get("escaped_from_hidden_faces") == escaped_rays and
+           (escaped_rays == 0 or "harmless" in escape_warnings[0]),
+           "solve: the warning says all %d escaped rays left hidden faces (harmless)" % escaped_rays)
 
     # --- compare: the walks against the direct solve ---
     r = run(radwalk, "compare", scene, "--max-edge", 1, "--rays-per-area", 2000, "--walks-per-patch", 20, "--runs",
