@@ -15,7 +15,8 @@ message when that is not possible), writes the room (make_bunny_room.py) into WO
              3 (--rays 16 gives +78, -99 and +10 %: the big walls' rows are then 16 rays). The test asserts only
              a gross bound, |mismatch| < 10 % (a lost factor, e.g. E without pi or light leaking out), not the
              estimate's precision (no variance is available from one run);
-  pathtrace  --spp 4: exit 0, every B finite and >= 0, the light's B >= its E.
+  pathtrace  --spp 4: exit 0, every B finite and >= 0, the light's B >= its E; and an image with the fitted
+             camera, which stands inside the room and frames the bunny (at least 90 % of its patch centres in view).
 Then runs `check` on every other OBJ model glmark2-data ships and prints what it says (glmark2-data 2023.01
 ships only bunny.obj as OBJ; its other models are .3ds and .jobj, which radwalk does not read).
 """
@@ -73,6 +74,25 @@ def rows(path):
         return list(csv.DictReader(f))
 
 
+def in_view(camera, points, aspect):
+    """The fraction of points in front of the pinhole camera and inside its image."""
+    p, look, up = camera["position"], camera["look_at"], camera["up"]
+    unit = lambda v: [x / math.sqrt(sum(y * y for y in v)) for x in v]
+    cross = lambda a, b: [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    f = unit([look[i] - p[i] for i in range(3)])
+    r = unit(cross(f, up))
+    u = cross(r, f)
+    tan_v = math.tan(math.radians(camera["fov_deg"]) / 2)
+    seen = 0
+    for q in points:
+        d = [q[i] - p[i] for i in range(3)]
+        z = sum(d[i] * f[i] for i in range(3))
+        if z > 0 and abs(sum(d[i] * r[i] for i in range(3))) <= z * tan_v * aspect and \
+                abs(sum(d[i] * u[i] for i in range(3))) <= z * tan_v:
+            seen += 1
+    return seen / max(len(points), 1)
+
+
 def main():
     radwalk, source_dir, work = sys.argv[1], sys.argv[2], sys.argv[3]
     ensure_bunny()
@@ -124,6 +144,16 @@ def main():
             B, E = float(row["B_" + c]), float(row["E_" + c])
             ok = ok and math.isfinite(B) and B >= 0 and (E == 0 or B >= E)
     expect(ok, "pathtrace: every B finite and >= 0, the light's B >= E")
+
+    # The fitted camera frames the bunny (apps/scene_camera.h: inside a closed room it looks at the objects).
+    r = run(radwalk, "pathtrace", scene, "--image", j("bunny.png"), "--width", "64", "--height", "48", "--spp", "4",
+            "--json", j("image.json"), "-q")
+    expect(r.returncode == 0, "pathtrace --image exits 0")
+    camera = json.load(open(j("image.json")))["camera"]
+    bunny = [[float(row[c]) for c in ("cx", "cy", "cz")] for row in rows(j("pathtrace.csv")) if int(row["face"]) >= 14]
+    seen = in_view(camera, bunny, 64 / 48)
+    print("camera %s: %.0f %% of the bunny's patch centres in the image" % (camera, 100 * seen))
+    expect(camera["source"] == "inside" and seen >= 0.9, "pathtrace: the fitted camera frames the bunny")
 
     others = sorted(p for p in glob.glob(os.path.join(MODELS, "*.obj")) if p != BUNNY)
     print("other OBJ models in glmark2-data: " + (", ".join(others) if others else "none"))
