@@ -89,14 +89,14 @@ def main():
             m = json.load(open(out))["measurement"]
             seconds.append(m["seconds"])
         m["seconds"] = sorted(seconds)[len(seconds) // 2]
-        var_t = m.get("var_theory") or [None] * 3
+        var_t = m.get("var_per_walk_theory") or [None] * 3
         exact = var_t[0] is not None and math.isfinite(var_t[0])
         var = var_t[0] if exact else m["var_per_walk"][0]
-        per_walk = m["seconds"] / (m["walks"] * (3 if method.startswith("importance") else 1))
+        per_walk = m["seconds"] / (m["walks_total"] * (3 if method.startswith("importance") else 1))
         efficiency = m["M"][0] ** 2 / (var * per_walk) if var > 0 else float("inf")
-        return dict(row, method=method, M_r=m["M"][0], se_r=m["se"][0], var_per_walk_r=var,
+        return dict(row, method=method, M_r=m["M"][0], se_r=m["M_se"][0], var_per_walk_r=var,
                     rel_var_per_walk_r=var / m["M"][0] ** 2, variance_exact=int(exact), seconds=m["seconds"],
-                    walks=m["walks"], seconds_per_walk=per_walk, efficiency=efficiency)
+                    walks=m["walks_total"], seconds_per_walk=per_walk, efficiency=efficiency)
 
     def sensor_file(patches):
         path = os.path.join(args.out, "sensor.csv")

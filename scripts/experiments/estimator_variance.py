@@ -72,12 +72,14 @@ def main():
         radwalk.write_vtp(out.path(f"{name}.vtp"), scene, fields,
                           {"estimators": ",".join(c.estimators), "walks_per_patch": walks, "runs": a.runs,
                            "seed": a.seed, "kernel": "matrix"})
-        js = {"scene": path, "max_edge": max_edge, "patches": len(scene), "rays": a.rays, "seed": a.seed,
+        js = {"scene": path, "max_edge": max_edge, "patches": len(scene), "rays_per_patch": a.rays, "seed": a.seed,
               "walks_per_patch": walks, "runs": a.runs, "timings_s": {**ff.timings, **c.timings},
-              "estimators": {m: {"runs": e.runs, "total_walks": e.walks, "steps": e.steps, "seconds": e.seconds,
+              "estimators": {m: {"runs": e.runs, "walks_total": e.walks_total,
+                                 "walks_per_estimate": e.walks_per_estimate, "steps": e.steps, "seconds": e.seconds,
                                  "mean_abs_z": e.mean_abs_z, "max_abs_z": e.max_abs_z,
-                                 "var_ratio": e.var_ratio if math.isfinite(e.var_ratio) else None,
-                                 "spread_ratio": e.spread_ratio if math.isfinite(e.spread_ratio) else None,
+                                 "var_over_theory": e.var_over_theory if math.isfinite(e.var_over_theory) else None,
+                                 "spread_over_se": e.spread_over_se if math.isfinite(e.spread_over_se) else None,
+                                 "mean_var_per_walk": e.mean_var_per_walk,
                                  "efficiency": e.efficiency} for m, e in c.estimators.items()}}
         with open(out.path(f"{name}.json"), "w") as f:
             json.dump(js, f, indent=1)

@@ -96,12 +96,12 @@ def sweep(rw, a, rows):
                                         theory=True, threads=a.threads)
                 Bw, var, vth = w.B[:, 0], w.var[:, 0], w.var_theory[:, 0]
                 lit = Bw > 0
-                row(f"gather-{est}", w, walk_length=w.steps / w.walks,
+                row(f"gather-{est}", w, walk_length=w.steps / w.walks_total,
                     walk_length_theory=rho / (1 - rho) if not open_ else math.nan,
                     var_rel=float(np.mean(var[lit] / Bw[lit] ** 2)),
                     var_rel_theory=float(np.mean(vth[lit] / Bw[lit] ** 2)),
                     variance_radius=w.info.get("variance_radius", math.nan),
-                    escapes_per_walk=w.info.get("escapes", 0) / w.walks)
+                    escapes_per_walk=w.info.get("escapes", 0) / w.walks_total)
             print(f"{scene_name} rho {rho:g}: " + ", ".join(
                 f"{x['method']} {x['status']}" + (f" ({int(x['iterations'])})" if x["method"] in ITERATIVE else "")
                 for x in rows if x["scene"] == scene_name and x["rho"] == rho), flush=True)

@@ -56,7 +56,7 @@ def test_random_walks_equal_the_cli(scene, ff, tmp_path, walk, estimator, count)
     result = radwalk.random_walk(scene, ff, method=f"{walk}-{estimator}", seed=SEED, **{n: count[1]})
     radwalk.write_csv(tmp_path / "py.csv", scene, {**ff.diagnostics, **result.fields})
     assert same_bytes(tmp_path / "cli.csv", tmp_path / "py.csv")
-    assert result.metadata["solution"]["walks"] == result.walks
+    assert result.metadata["solution"]["walks_total"] == result.walks_total
 
 
 def test_pathtrace_averages_equal_the_cli(scene, tmp_path):
