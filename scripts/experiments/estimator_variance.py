@@ -47,7 +47,7 @@ def scenes(scale):
 
 
 def main():
-    p = rwexp.parser("estimator_variance", __doc__.splitlines()[0], program=False)
+    p = rwexp.parser("estimator_variance", __doc__)
     p.add_argument("--runs", type=int, default=5, help="independent runs per estimator")
     p.add_argument("--rays", type=int, default=10000, help="rays per patch of the traced F")
     p.add_argument("--scale", type=int, default=1, help="multiplies the walks (and refines the Cornell box at >= 4)")

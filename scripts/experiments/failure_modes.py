@@ -263,7 +263,7 @@ def plot(rows, srows, rw):
 
 
 def main():
-    p = rwexp.parser("failure_modes", __doc__.splitlines()[0], program=False)
+    p = rwexp.parser("failure_modes", __doc__)
     p.add_argument("--max-edge", type=float, default=0.25, help="patch size of the box sweep")
     p.add_argument("--rays", type=int, default=4000, help="rays per patch of the box's F")
     p.add_argument("--walks", type=int, default=200, help="walks per patch in the sweep")

@@ -38,7 +38,7 @@ def walk_budget(walk, w, N):
 
 
 def main():
-    p = rwexp.parser("speed_accuracy", __doc__.splitlines()[0], program=False)
+    p = rwexp.parser("speed_accuracy", __doc__)
     p.add_argument("--max-edge", type=float, nargs="+", default=[100, 50], help="patch levels (mm)")
     p.add_argument("--ref-rays", type=int, default=100000, help="rays per patch of the reference F")
     p.add_argument("--scale", type=int, default=1,
@@ -47,7 +47,7 @@ def main():
     p.add_argument("--replot", action="store_true", help="only redraw the charts from OUT/speed_accuracy.csv")
     a = p.parse_args()
     if a.replot:
-        rows = rwexp.read_csv(os.path.join(a.out, "speed_accuracy.csv"))
+        rows = rwexp.read_table(os.path.join(a.out, "speed_accuracy.csv"))
         levels = sorted({r["max_edge"] for r in rows}, reverse=True)
         plot(rows, levels, rwexp.Folder(a.out))
         summary(rows, levels)
