@@ -58,12 +58,15 @@ class Folder:
 
 
 def read_table(path):
-    """A script's own CSV (write_csv) as a list of dicts, by numpy: numbers as float (empty cells NaN), text as
-    str. For redrawing charts; radwalk's outputs are not read back (the module returns them)."""
-    data = np.genfromtxt(path, delimiter=",", names=True, dtype=None, encoding="utf-8", missing_values="",
-                         filling_values=np.nan, autostrip=True)
-    data = np.atleast_1d(data)
-    return [{k: (v.item() if isinstance(v, np.generic) else v) for k, v in zip(data.dtype.names, row)} for row in data]
+    """A script's own CSV (write_csv) as a list of dicts, by the csv module: numbers as float (empty cells NaN),
+    text as str. For redrawing charts; radwalk's outputs are not read back (the module returns them)."""
+    def value(v):
+        try:
+            return float(v) if v != "" else math.nan
+        except ValueError:
+            return v
+    with open(path, newline="") as f:
+        return [{k: value(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
 def write_csv(path, rows, fields=None, digits=6):

@@ -136,7 +136,7 @@ def main():
                 record("A", s, "matrix", tol, "tol",
                        lambda: radwalk.solve(scene, F_ref, solver=s, tol=tol, max_iterations=100000000, threads=T))
         walks("A", F_ref, (0.0,), "matrix")
-        print(f"  panel A done", flush=True)
+        print("  panel A done", flush=True)
 
         # Panel B: from scratch.
         for rays in ray_budgets:
@@ -156,7 +156,7 @@ def main():
                    lambda: radwalk.pathtrace(scene, spp=w, seed=a.seed, threads=T).averages,
                    note="continuous solution: error includes the discretisation error", steps=0,
                    stage="patch_averages")
-        print(f"  panel B done", flush=True)
+        print("  panel B done", flush=True)
 
     fields = ["max_edge", "patches", "panel", "method", "kernel", "budget", "budget_unit", "repeats", "ff_seconds",
               "solve_seconds", "total_seconds", "total_min", "total_max", "error", "status", "iterations", "steps",
