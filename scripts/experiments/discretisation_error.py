@@ -100,13 +100,13 @@ def plot(rows, a, rays, spp):
     excess = np.array([r["discretisation"] for r in rows])
     fig, ax = plt.subplots(figsize=(6.4, 5.4))
     ax.fill_between(n, floor / 100, floor, color="0.85", step=None, zorder=0,
-                    label="noise floor (form factors + path tracer):\nbelow it a difference is not resolved")
-    ax.plot(n, measured, "o-", color="tab:blue", label="discrete - continuous (measured)")
+                    label="noise floor (form factors + path tracer)")
+    ax.plot(n, measured, "o-", color="tab:blue", label="measured: discrete - continuous")
     ok = excess > 0
-    ax.plot(n[ok], excess[ok], "s-", color="tab:red", label="discretisation error (measured - noise)")
+    ax.plot(n[ok], excess[ok], "s-", color="tab:red", label="discretisation error: sqrt(measured$^2$ - floor$^2$)")
     if (~ok).any():
         ax.plot(n[~ok], floor[~ok], "v", color="tab:red", mfc="white", ms=8, linestyle="none",
-                label="discretisation error not resolved (below the floor)")
+                label="not resolved (measured below the floor)")
     for x, y, r in zip(n, measured, rows):
         L = float(r["max_edge"])
         ax.annotate("input faces" if L == 0 else f"L = {L:g} {rwexp.length_unit(a.scene)}", (x, y),
