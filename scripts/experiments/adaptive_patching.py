@@ -153,12 +153,15 @@ def plot(results, out, scene):
         x = [float(r["patches"]) for r in rows]
         y = [max(float(r["error"]), noise / 10) for r in rows]  # an unresolved error is drawn at the band
         ax.plot(x, y, style, label=label, zorder=3)
-        for r, xi, yi in zip(rows, x, y):
+        for k, (r, xi, yi) in enumerate(zip(rows, x, y)):
             param = f"{float(r['param']):g}"
             if kind == "uniform" and float(r["param"]) == 0:
                 param = "faces"
+            # Uniform labels above the curve; adaptive ones alternately below and above, so neighbours do not
+            # overlap.
+            dy = 4 if kind == "uniform" else (-12 if k % 2 == 0 else 6)
             ax.annotate(f"{key}={param}" if param != "faces" else "input faces", (xi, yi),
-                        textcoords="offset points", xytext=(5, 3 if kind == "uniform" else -10), fontsize=8)
+                        textcoords="offset points", xytext=(3, dy), fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     errors = [float(r["error"]) for r in results if float(r["error"]) > 0]

@@ -189,10 +189,11 @@ def plot_scatter(data, rw):
         ax.plot([lo / 2, hi * 2], [lo / 2, hi * 2], "k-", lw=0.8, label="identity")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("theoretical per-walk variance ((W/m$^2$)$^2$)")
-        ax.set_ylabel("empirical per-walk variance ((W/m$^2$)$^2$)")
+        ax.set_xlabel("exact per-walk variance (units of B$^2$)")
+        ax.set_ylabel("empirical per-walk variance (units of B$^2$)")
         ax.set_title(f"{name}: {js['patches']} patches, {walks} walks/patch x runs", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
+        rwexp.log_ticks(ax)
         if zero:
             notes.append(f"{name}:\n  " + "\n  ".join(zero))
     axes.flat[0].legend(fontsize=8, loc="lower right")
@@ -200,7 +201,8 @@ def plot_scatter(data, rw):
         ax.axis("off")
     axes.flat[-1].text(0.0, 1.0, "Rows (patch, channel) not drawn on log axes\n(a zero variance):\n\n" +
                        "\n".join(notes), transform=axes.flat[-1].transAxes, fontsize=8, va="top", family="monospace")
-    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel")
+    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel "
+                 "(B in W per squared length unit of the scene: mm for the Cornell box)")
     rwexp.save(fig, rw.path("variance_scatter.png"))
 
 

@@ -128,8 +128,10 @@ def log_ticks(ax, x=True, y=True):
 
 
 def length_unit(scene):
-    """The unit of a scene's lengths for labels: mm for the Cornell box (its OBJ is in mm), else "units"."""
-    return "mm" if os.path.basename(str(scene)).startswith("cornell_box") else "units"
+    """The unit of a scene's lengths for labels: mm for the bundled Cornell box and the experiments' spot_room
+    (both modelled in mm), else "units"."""
+    name = os.path.basename(str(scene))
+    return "mm" if name.startswith(("cornell_box", "spot_room")) else "units"
 
 
 def save(fig, path):
