@@ -113,7 +113,8 @@ def table(rows, fields, title=None):
 
 def log_ticks(ax, x=True, y=True):
     """Readable ticks on log axes (call after setting the limits): plain numbers (1, 10, 0.01, 2, 5) at 1, 2, 5
-    times the decades when the axis spans under two decades, at the decades otherwise; minor ticks unlabelled."""
+    times the decades when the axis spans under two decades, at the decades otherwise (every second or third one
+    beyond seven decades); minor ticks unlabelled."""
     from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
 
     def label(v, _):
@@ -122,7 +123,8 @@ def log_ticks(ax, x=True, y=True):
         if on and axis.get_scale() == "log":
             decades = math.log10(max(limits) / min(limits))
             subs = (1.0, 2.0, 5.0) if decades < 2 else (1.0,)
-            axis.set_major_locator(LogLocator(base=10, subs=subs, numticks=15))
+            # At most about 7 labels on a wide axis (every second or third decade), so that they do not touch.
+            axis.set_major_locator(LogLocator(base=10, subs=subs, numticks=15 if decades <= 7 else 7))
             axis.set_major_formatter(FuncFormatter(label))
             axis.set_minor_formatter(NullFormatter())
 
