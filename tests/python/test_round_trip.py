@@ -81,3 +81,18 @@ def test_the_thread_count_does_not_change_the_result(scene, ff):
     one = radwalk.random_walk(scene, ff, walks_per_patch=400, seed=3, threads=1)
     two = radwalk.random_walk(scene, ff, walks_per_patch=400, seed=3, threads=2)
     assert np.array_equal(one.B, two.B) and np.array_equal(one.var, two.var)
+
+
+def test_metadata_uses_the_json_schema_of_the_cli(scene, ff, tmp_path):
+    """Result.metadata carries the CLI's "solution" object under the same keys (docs/json-schema.md, version 2)."""
+    import json
+    run_cli("solve", SCENE, *COMMON, "--solver", "gauss-seidel", "--json", tmp_path / "cli.json")
+    cli = json.load(open(tmp_path / "cli.json"))
+    result = radwalk.solve(scene, ff, solver="gauss-seidel")
+    assert result.metadata["schema_version"] == cli["schema_version"] == 2
+    py, js = result.metadata["solution"], cli["solution"]
+    assert set(py) == set(js) - {"mean_B"}  # mean_B: the CLI's summary line only
+    timed = {"seconds", "factor_seconds"}
+    assert {k: v for k, v in py.items() if k not in timed | {"info"}} == \
+           {k: v for k, v in js.items() if k not in timed | {"info", "mean_B"}}
+    assert "walks_total" in py and "walks" not in py
