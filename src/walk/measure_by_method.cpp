@@ -71,7 +71,6 @@ bool measure_needs_form_factors(const MeasureOptions& o) {
 
 Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                               const Response& response, const MeasureOptions& o) {
-  check_measure_options(o, problem.area.size());
   Measurement m;
   MeasureEstimate& est = m.estimate;
   m.deterministic = is_deterministic_measure(o.method);

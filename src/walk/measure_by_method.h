@@ -51,8 +51,9 @@ struct Measurement {
   double defensive = 0;              // importance walks: the alpha used
 };
 
-// M by options.method (checked with check_measure_options first). The ray kernel needs patches and visibility;
-// every other method problem.F. Throws NumericalError if an LU solve fails.
+// M by options.method; the caller has checked the options (check_measure_options: the one check, before any form
+// factor is traced). The ray kernel needs patches and visibility; every other method problem.F. Throws
+// NumericalError if an LU solve fails.
 Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                               const Response& response, const MeasureOptions& options);
 
