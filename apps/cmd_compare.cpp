@@ -1,5 +1,6 @@
 // radwalk compare SCENE --estimators LIST --walks-per-patch N --runs R --csv out.csv -o out.vtp: estimator variance
 // study.
+#include <cmath>
 #include <cstdio>
 #include <map>
 
@@ -88,16 +89,27 @@ int run_compare(const CompareCommand& command) {
   metadata.set_text("kernel", std::string(kernel_name(command.compare.walk.kernel)));
   metadata.set_integer("walks_per_patch", command.compare.walk.walks_per_patch);
   metadata.set_integer("runs", command.compare.runs);
+  // The budget and the seeds of the runs (run r uses seed + r), then one object per estimator.
+  nlohmann::json seeds = nlohmann::json::array();
+  for (int r = 0; r < command.compare.runs; ++r) seeds.push_back(command.scene.seed + static_cast<std::uint64_t>(r));
+  summary.json()["compare"] = {{"runs", command.compare.runs},
+                               {"walks_per_patch", command.compare.walk.walks_per_patch},
+                               {"kernel", std::string(kernel_name(command.compare.walk.kernel))},
+                               {"walk_seeds", seeds}};
+  const auto number = [](double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); };
   for (const auto& s : result.summary) {
     auto& j = summary.json()["estimators"][std::string(method_name(s.method))];
     j["runs"] = s.runs;
-    j["walks"] = s.walks;
+    j["walks_total"] = s.walks;
+    j["walks_per_estimate"] = s.walks_per_estimate;
     j["steps"] = s.steps;
     j["seconds"] = s.seconds;
-    j["mean_abs_z"] = s.mean_abs_z;
-    j["max_abs_z"] = s.max_abs_z;
-    j["var_ratio"] = s.var_ratio == s.var_ratio ? nlohmann::json(s.var_ratio) : nlohmann::json();
-    j["efficiency"] = s.efficiency;
+    j["mean_abs_z"] = number(s.mean_abs_z);
+    j["max_abs_z"] = number(s.max_abs_z);
+    j["var_over_theory"] = number(s.var_ratio);
+    j["spread_over_se"] = number(s.spread_ratio);
+    j["mean_var_per_walk"] = number(s.mean_var);
+    j["efficiency"] = number(s.efficiency);
   }
   SceneOptions outputs = command.scene;
   outputs.csv.clear();  // the compare CSV is the long-format table written above

@@ -76,11 +76,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     const SceneCamera fitted = fit_scene_camera(command.scene.scene, patches, command.camera, &visibility);
     const Camera& camera = fitted.camera;
     const Vec3 look_at = camera_focal_point(camera, patches);
-    summary.json()["camera"] = {{"position", {camera.position.x(), camera.position.y(), camera.position.z()}},
-                                {"look_at", {look_at.x(), look_at.y(), look_at.z()}},
-                                {"up", {camera.up.x(), camera.up.y(), camera.up.z()}},
-                                {"fov_deg", camera.vfov * 180.0 / kPi},
-                                {"source", fitted.source}};
+    summary.json()["camera"] = camera_json(fitted, patches, command.width, command.height);
     if (fitted.source == "inside" || fitted.source == "outside")
       note("camera " + fitted.source + " the scene (" + (fitted.source == "inside" ? "it is closed" : "it is open") +
            "), at " + number_text(camera.position.x()) + " " + number_text(camera.position.y()) + " " +
@@ -103,7 +99,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     }
     summary.add_timing("render", r.seconds);
     summary.json()["image"] = {{"file", command.image}, {"width", command.width}, {"height", command.height},
-                               {"spp", command.spp}, {"rays", r.rays}, {"seconds", r.seconds}};
+                               {"samples_per_pixel", command.spp}, {"rays_total", r.rays}, {"seconds", r.seconds}};
     std::printf("rendered %dx%d at %ld samples per pixel: %ld rays in %.2f s (%.2f Mrays/s)\n", command.width,
                 command.height, command.spp, r.rays, r.seconds, r.rays / std::max(r.seconds, 1e-9) / 1e6);
     if (std::all_of(r.mean.pixels.begin(), r.mean.pixels.end(), [](const Rgb& p) { return (p == 0).all(); }))

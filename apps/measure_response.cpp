@@ -1,142 +1,49 @@
 #include "apps/measure_response.h"
 
-#include <charconv>
-#include <sstream>
-#include <vector>
+#include <cmath>
 
-#include "core/did_you_mean.h"
-#include "core/error.h"
-#include "core/input_file.h"
+#include "pathtrace/camera_response.h"
+#include "solve/response_spec.h"
+#include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
-namespace {
 
-std::vector<std::string> split(const std::string& s, char sep) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(s);
-  while (std::getline(in, part, sep)) parts.push_back(part);
-  if (!s.empty() && s.back() == sep) parts.emplace_back();
-  return parts;
+Response camera_measure_response(const SceneCamera& fitted, int width, int height, const Visibility& visibility,
+                                 const PatchSet& patches) {
+  const PinholeCamera camera(fitted.camera, width, height);
+  const CameraResponse cr = camera_response(camera, visibility, patches, 4);
+  Response response{cr.R, "the camera view (" + std::to_string(width) + " x " + std::to_string(height) +
+                              " pixels, 4 x 4 film points each; M = mean pixel radiance)"};
+  check_response(response, patches.size());
+  return response;
 }
 
-bool whole_number(const std::string& s, long& value) {
-  const char* end = s.data() + s.size();
-  const auto r = std::from_chars(s.data(), end, value);
-  return r.ec == std::errc() && r.ptr == end && !s.empty();
+Response measure_response(const std::string& spec, const std::string& scene, const PatchSet& patches,
+                          const std::vector<std::int32_t>& group_of_patch, const std::vector<std::string>& groups,
+                          const std::vector<double>& camera_option, int width, int height, SceneCamera* fitted) {
+  if (spec != "camera") return parse_response(spec, patches, group_of_patch, groups, scene);
+  const EmbreeVisibility visibility(patches);
+  const SceneCamera camera = fit_scene_camera(scene, patches, camera_option, &visibility);
+  if (fitted) *fitted = camera;
+  return camera_measure_response(camera, width, height, visibility, patches);
 }
 
-// The name of an OBJ object or group in Mesh::groups' "object 'chair', group 'seat'" form: true if NAME is one
-// of the quoted names.
-bool group_has_name(const std::string& group, const std::string& name) {
-  return group.find("'" + name + "'") != std::string::npos;
-}
-
-Response select(const PatchSet& patches, const std::string& what, auto&& chosen) {
-  Response r{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patches.size())), what};
-  std::size_t count = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i)
-    if (chosen(i)) r.R(static_cast<Eigen::Index>(i)) = 1, ++count;
-  r.what = what + " (" + std::to_string(count) + (count == 1 ? " patch)" : " patches)");
-  return r;
-}
-
-Response from_csv(const std::string& spec, const std::string& file, const std::string& column,
-                  const PatchSet& patches) {
-  const std::string text = read_input_file(file);
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = split(line, ',');
-  long patch_col = -1, weight_col = -1;
-  for (std::size_t k = 0; k < header.size(); ++k) {
-    if (header[k] == "patch") patch_col = long(k);
-    if (header[k] == column) weight_col = long(k);
+nlohmann::json measurement_json(const Measurement& m, const Response& response, bool theory) {
+  const MeasureEstimate& est = m.estimate;
+  const auto rgb = [](const Rgb& v) {
+    nlohmann::json a = nlohmann::json::array();
+    for (int c = 0; c < 3; ++c) a.push_back(std::isfinite(v(c)) ? nlohmann::json(v(c)) : nlohmann::json());
+    return a;
+  };
+  nlohmann::json j = {{"method", est.method}, {"response", response.what}, {"M", rgb(est.M)}, {"seconds", est.seconds}};
+  if (!m.deterministic) {
+    j["M_se"] = rgb(est.se);
+    j["var_per_walk"] = rgb(est.var);
+    j["walks_total"] = est.walks;
+    j["steps"] = est.counters.steps;
+    if (est.var_theory.allFinite() || theory) j["var_per_walk_theory"] = rgb(est.var_theory);
   }
-  if (patch_col < 0) throw InputError(file + ":1: --response " + spec + ": the CSV has no 'patch' column");
-  if (weight_col < 0)
-    throw InputError(file + ":1: --response " + spec + ": no column '" + column + "'" +
-                     did_you_mean(column, header));
-  Response r{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patches.size())), "column '" + column + "' of " + file};
-  long line_number = 1;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = split(line, ',');
-    long patch = 0;
-    if (std::size_t(std::max(patch_col, weight_col)) >= cells.size() || !whole_number(cells[std::size_t(patch_col)], patch) ||
-        patch < 0 || std::size_t(patch) >= patches.size())
-      throw InputError(file + ":" + std::to_string(line_number) + ": --response " + spec +
-                       ": expected a patch number in [0, " + std::to_string(patches.size()) + ") and a weight");
-    const std::string& cell = cells[std::size_t(weight_col)];
-    double w = 0;
-    const auto res = std::from_chars(cell.data(), cell.data() + cell.size(), w);
-    if (res.ec != std::errc() || res.ptr != cell.data() + cell.size())
-      throw InputError(file + ":" + std::to_string(line_number) + ": --response " + spec + ": weight '" +
-                       printable(cell) + "' is not a number");
-    r.R(patch) = w;
-  }
-  return r;
-}
-
-}  // namespace
-
-Response parse_response(const std::string& spec, const Mesh& mesh, const PatchSet& patches) {
-  const std::size_t colon = spec.find(':');
-  const std::string kind = spec.substr(0, colon), rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
-  const std::vector<std::string> kinds = {"patches", "material", "group", "csv"};
-  if (colon == std::string::npos || rest.empty())
-    throw InputError("--response '" + printable(spec) +
-                     "': expected patches:I,J,..., material:NAME, group:NAME or csv:FILE:COLUMN");
-  Response r;
-  if (kind == "patches") {
-    std::vector<char> on(patches.size(), 0);
-    for (const std::string& p : split(rest, ',')) {
-      long i = 0;
-      if (!whole_number(p, i) || i < 0 || std::size_t(i) >= patches.size())
-        throw InputError("--response " + printable(spec) + ": '" + printable(p) + "' is not a patch in [0, " +
-                         std::to_string(patches.size()) + ")");
-      on[std::size_t(i)] = 1;
-    }
-    r = select(patches, "patches " + rest, [&](std::size_t i) { return on[i] != 0; });
-  } else if (kind == "material") {
-    std::vector<std::string> names;
-    int m = -1;
-    for (std::size_t k = 0; k < patches.materials.size(); ++k) {
-      names.push_back(patches.materials[k].name);
-      if (patches.materials[k].name == rest) m = int(k);
-    }
-    if (m < 0) throw InputError("--response " + printable(spec) + ": no material '" + printable(rest) + "'" + did_you_mean(rest, names));
-    r = select(patches, "material '" + rest + "'", [&](std::size_t i) { return patches.material[i] == m; });
-  } else if (kind == "group") {
-    std::vector<char> in_group(mesh.groups.size(), 0);
-    bool any = false;
-    for (std::size_t g = 0; g < mesh.groups.size(); ++g) any |= (in_group[g] = group_has_name(mesh.groups[g], rest));
-    if (!any)
-      throw InputError("--response " + printable(spec) + ": no OBJ object or group '" + printable(rest) + "' in " +
-                       mesh.path);
-    // PatchSet::face is the input face; the pieces of a repaired input face share its group.
-    std::vector<std::int32_t> group_of_input;
-    for (std::size_t f = 0; f < mesh.face_count() && f < mesh.face_group.size(); ++f) {
-      const auto input = static_cast<std::size_t>(mesh.source_face(f));
-      if (input >= group_of_input.size()) group_of_input.resize(input + 1, -1);
-      group_of_input[input] = mesh.face_group[f];
-    }
-    r = select(patches, "group '" + rest + "'", [&](std::size_t i) {
-      const auto f = static_cast<std::size_t>(patches.face[i]);
-      return f < group_of_input.size() && group_of_input[f] >= 0 && in_group[std::size_t(group_of_input[f])];
-    });
-  } else if (kind == "csv") {
-    const std::size_t last = rest.rfind(':');
-    if (last == std::string::npos || last == 0 || last + 1 == rest.size())
-      throw InputError("--response " + printable(spec) + ": expected csv:FILE:COLUMN");
-    r = from_csv(spec, rest.substr(0, last), rest.substr(last + 1), patches);
-  } else {
-    throw InputError("--response '" + printable(spec) + "': unknown kind '" + printable(kind) + "'" +
-                     did_you_mean(kind, kinds) + "; expected patches:, material:, group: or csv:");
-  }
-  check_response(r, patches.size());
-  return r;
+  return j;
 }
 
 }  // namespace radwalk::app

@@ -1,20 +1,35 @@
 #pragma once
-// The --response of `radwalk measure`: which patches a measurement M = <R, B>_A weighs (solve/measurement.h).
-//   patches:I,J,...         those patches (0-based), weight 1
-//   material:NAME           every patch of that material, weight 1
-//   group:NAME              every patch of the OBJ object or group NAME (`o NAME` / `g NAME`), weight 1
-//   csv:FILE:COLUMN         weight R_i from column COLUMN of a CSV with a `patch` column (as radwalk writes
-//                           them); patches the file does not list weigh 0
-// Unknown names get "did you mean"; an empty selection is an error.
+// What `radwalk measure` shares with radwalk.measure (the Python module compiles this file as the CLI does):
+// the response of a spec, `camera` (below) or any other by parse_response (solve/response_spec.h), and the JSON
+// "measurement" object. The camera response lives in apps, beside scene_camera.h, because it joins the path
+// tracer's camera_response with the solver's Response (no layer below apps has both).
+#include <nlohmann/json.hpp>
 #include <string>
 
+#include "apps/scene_camera.h"
 #include "mesh/mesh.h"
 #include "patch/patch_set.h"
 #include "solve/measurement.h"
+#include "visibility/visibility.h"
+#include "walk/measure_by_method.h"
 
 namespace radwalk::app {
 
-// Throws InputError with a one-line message naming the spec and what is wrong.
-Response parse_response(const std::string& spec, const Mesh& mesh, const PatchSet& patches);
+// R_i = f_i / (pi A_i), f_i the fraction of the film (width x height pixels, 4 x 4 film points each) that sees
+// patch i (pathtrace/camera_response.h): M is the view's mean pixel radiance. check_response holds.
+Response camera_measure_response(const SceneCamera& camera, int width, int height, const Visibility& visibility,
+                                 const PatchSet& patches);
+
+// The response of a spec: `camera` (the camera fitted as pathtrace's, fit_scene_camera with `camera_option`;
+// it is stored in *fitted when given) or any spec of parse_response.
+Response measure_response(const std::string& spec, const std::string& scene, const PatchSet& patches,
+                          const std::vector<std::int32_t>& group_of_patch, const std::vector<std::string>& groups,
+                          const std::vector<double>& camera_option, int width, int height,
+                          SceneCamera* fitted = nullptr);
+
+// The JSON "measurement" object (docs/json-schema.md): method, response (its words), M, seconds, and for the
+// Monte Carlo methods M_se, var_per_walk, walks_total, steps and var_per_walk_theory (when finite or asked for
+// with theory; null entries where infinite).
+nlohmann::json measurement_json(const Measurement& measurement, const Response& response, bool theory);
 
 }  // namespace radwalk::app

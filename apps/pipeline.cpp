@@ -376,7 +376,8 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
       back += ff.back_hits[i];
     }
     const double traced = double(std::max<std::uint64_t>(rays, 1));
-    summary.json()["rays"] = rays;
+    summary.json()["rays_total"] = rays;
+    if (options.rays_per_area <= 0) summary.json()["rays_per_patch"] = options.rays;
     summary.json()["rays_per_second"] = double(rays) / std::max(seconds, 1e-9);
     summary.json()["escaped_fraction"] = double(escaped) / traced;
     summary.json()["back_hit_fraction"] = double(back) / traced;

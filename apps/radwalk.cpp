@@ -25,6 +25,7 @@
 #include "core/did_you_mean.h"
 #include "core/error.h"
 #include "core/progress.h"
+#include "walk/measure_by_method.h"
 #include "walk/named_choice.h"
 
 using namespace radwalk;
@@ -461,8 +462,7 @@ int main(int argc, char** argv) {
                    "--camera, --width, --height)")
       ->required();
   {
-    std::vector<std::string> methods = {"direct", "adjoint-direct", "importance-gather", "importance-shoot"};
-    for (const std::string& m : walk_method_names()) methods.push_back(m);
+    const std::vector<std::string> methods = measure_method_names();
     measure_cmd
         ->add_option_function<std::string>(
             "--method",

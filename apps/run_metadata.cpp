@@ -46,7 +46,7 @@ VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
   const nlohmann::json& j = summary.json();
   VtpMetadata m;
   if (j.contains("run_id")) m.set_text("run_id", j["run_id"].get<std::string>());
-  m.set_text("radwalk_version", j.value("radwalk", std::string("unknown")));
+  m.set_text("radwalk_version", j.value("radwalk_version", std::string("unknown")));
   m.set_text("git_commit", git_describe());  // the JSON summary's git_describe (io/run_summary.h)
   m.set_text("command", j.value("command", std::string()));
   m.set_text("command_line", command_line(options.argv));
@@ -57,7 +57,7 @@ VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
   m.set_text("length_unit", "the scene file's unit (the bundled Cornell box: mm)");
   m.set_text("B_unit", "W per square length unit (W/m^2 for a scene in metres); radiance = B / pi");
   m.set_text("B_srgb", "round(255 sRGB(clamp(B / pi, 0, 1))) per channel, exposure 1 (as the path tracer's PNG)");
-  if (j.contains("rays")) m.set_integer("rays", std::llround(j["rays"].get<double>()));
+  if (j.contains("rays_total")) m.set_integer("rays", std::llround(j["rays_total"].get<double>()));
   if (j.contains("form_factors_file")) m.set_text("form_factors_file", j["form_factors_file"].get<std::string>());
   if (j.contains("timings_s"))
     for (const auto& [stage, seconds] : j["timings_s"].items()) m.set_real("seconds_" + key_of(stage), seconds.get<double>());
@@ -88,6 +88,20 @@ VtpMetadata solution_metadata(const Solution& s, const PatchSet& patches) {
     if (b2 > 0) m.set_real("B_se_relative_rms", std::sqrt(se2 / b2));
   }
   return m;
+}
+
+nlohmann::json camera_json(const SceneCamera& fitted, const PatchSet& patches, int width, int height) {
+  const Camera& c = fitted.camera;
+  const Vec3 look_at = camera_focal_point(c, patches);
+  const Vec3 d = c.direction.normalized();
+  return {{"position", {c.position.x(), c.position.y(), c.position.z()}},
+          {"look_at", {look_at.x(), look_at.y(), look_at.z()}},
+          {"direction", {d.x(), d.y(), d.z()}},
+          {"up", {c.up.x(), c.up.y(), c.up.z()}},
+          {"vertical_fov_deg", c.vfov * 180.0 / kPi},
+          {"width", width},
+          {"height", height},
+          {"source", fitted.source}};
 }
 
 }  // namespace radwalk::app

@@ -10,6 +10,7 @@
 //   B_se_relative_rms  sqrt(sum_i A_i sum_c B_se_ic^2 / sum_i A_i sum_c B_ic^2) (area-weighted RMS of B_se
 //                      relative to that of B)
 #include "apps/options.h"
+#include "apps/scene_camera.h"
 #include "core/digest.h"
 #include "core/solution.h"
 #include "io/run_summary.h"
@@ -35,5 +36,10 @@ std::string run_id_of(RunSummary& summary);
 VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary);
 
 VtpMetadata solution_metadata(const Solution& solution, const PatchSet& patches);
+
+// The JSON "camera" object of `pathtrace --image` and `measure --response camera` (docs/json-schema.md): the same
+// keys in both, position, look_at (camera_focal_point), direction (unit), up (3 numbers each, mesh units),
+// vertical_fov_deg, width and height (pixels of the image or the response's film) and source (SceneCamera).
+nlohmann::json camera_json(const SceneCamera& camera, const PatchSet& patches, int width, int height);
 
 }  // namespace radwalk::app

@@ -2,7 +2,7 @@
 """Efficiency of the six random-walk estimators on the cube as its reflectance rho grows.
 
 The form factors are traced once; each rho is set in memory (Scene.rho) and compared (radwalk.compare).
-Writes rho_sweep.csv: rho, method, efficiency (1 / (variance x seconds) of the pooled estimate), var_ratio.
+Writes rho_sweep.csv: rho, method, efficiency (1 / (variance x seconds) of the pooled estimate), var_over_theory.
 """
 import argparse
 import csv
@@ -26,8 +26,8 @@ for rho in (0.1, 0.3, 0.5, 0.7, 0.9):
     c = radwalk.compare(scene, ff, walks_per_patch=max(2, int(2000 * args.scale)), runs=3, seed=args.seed,
                         threads=args.threads)
     for name, e in c.estimators.items():
-        rows.append((rho, name, e.efficiency, e.var_ratio))
-        print(f"rho {rho:.1f}  {name:22s} efficiency {e.efficiency:11.4g}  var / var_theory {e.var_ratio:.3f}")
+        rows.append((rho, name, e.efficiency, e.var_over_theory))
+        print(f"rho {rho:.1f}  {name:22s} efficiency {e.efficiency:11.4g}  var / var_theory {e.var_over_theory:.3f}")
 
 with open(Path(args.out) / "rho_sweep.csv", "w", newline="") as f:
-    csv.writer(f).writerows([("rho", "method", "efficiency", "var_ratio"), *rows])
+    csv.writer(f).writerows([("rho", "method", "efficiency", "var_over_theory"), *rows])

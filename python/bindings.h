@@ -5,6 +5,8 @@
 //   form_factor_bindings.cpp  radwalk.form_factors -> FormFactors (F as a scipy.sparse.csr_matrix, diagnostics)
 //   solver_bindings.cpp       radwalk.solve -> Result (the deterministic solvers); the Result type
 //   walk_bindings.cpp         radwalk.random_walk, radwalk.compare, radwalk.exact_variance
+//   refine_bindings.cpp       radwalk.solve_adaptive -> AdaptiveResult (adaptive patching)
+//   measure_bindings.cpp      radwalk.measure -> Measurement (M = <R, B>_A by any method of `radwalk measure`)
 //   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
 //   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
 // Conventions: every computation releases the GIL and runs under ThreadLimit(threads) (0 = all cores); the
@@ -76,6 +78,8 @@ void bind_scene(py::module_& m);
 void bind_form_factors(py::module_& m);
 void bind_solvers(py::module_& m);
 void bind_walks(py::module_& m);
+void bind_refinement(py::module_& m);
+void bind_measure(py::module_& m);
 void bind_pathtrace(py::module_& m);
 void bind_writers(py::module_& m);
 

@@ -72,6 +72,8 @@ raise radwalk.NumericalError (an ArithmeticError). Progress lines go to stderr a
   bind_form_factors(m);
   bind_solvers(m);
   bind_walks(m);
+  bind_refinement(m);
+  bind_measure(m);
   bind_pathtrace(m);
   bind_writers(m);
 }

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "mesh/read_scene.h"
 #include "patch/patching.h"
+#include "solve/response_spec.h"
 
 namespace radwalk::python {
 namespace {
@@ -38,9 +39,7 @@ Scene load(const std::filesystem::path& file, double max_edge, bool strict) {
     read.strict = strict;
     Mesh mesh = load_scene(path, read);
     scene.patches = make_patches(mesh, max_edge);
-    scene.group.resize(scene.patches.size());
-    for (std::size_t i = 0; i < scene.patches.size(); ++i)
-      scene.group[i] = mesh.face_group[static_cast<std::size_t>(scene.patches.face[i])];
+    scene.group = patch_groups(mesh, scene.patches);  // through the input face of every (repaired) face
     scene.groups = mesh.groups;
     scene.warnings = mesh.warnings;
   }

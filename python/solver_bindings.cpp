@@ -4,6 +4,7 @@
 #include "bindings.h"
 #include "core/parallel.h"
 #include "io/run_summary.h"
+#include "io/run_summary.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
 
@@ -39,6 +40,7 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
 }  // namespace
 
 std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json run) {
+  run["schema_version"] = RunSummary::kSchemaVersion;  // the key names of docs/json-schema.md
   run["solution"] = solution_json(r.solution);
   run["scene"] = scene.path;
   run["max_edge"] = scene.max_edge;
@@ -54,7 +56,7 @@ B (N, 3): radiosity per patch and channel (W per unit length squared); B_se, var
 error, per-walk variance and exact per-walk variance (Monte Carlo results; None where not computed). These are
 read-only views of the C++ result (no copy) that keep it alive; np.array(r.B) gives a writable copy.
 method, status ("converged", "max-iterations", "diverged", "refused"), message, iterations, residual,
-residual_history, walks, steps, seconds, info: as the CLI's JSON "solution" object (a status other than
+residual_history, walks_total, steps, seconds, info: as the CLI's JSON "solution" object (a status other than
 "converged" is not an exception: the CLI's exit code 1 or 3).
 timings: stage -> seconds; metadata: the JSON the CLI writes for the run (its "solution" object, options, timings_s).
 fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp.)doc")
@@ -73,7 +75,7 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
         const auto& h = r.solution.residual_history;
         return py::array_t<double>(h.size(), h.data());
       })
-      .def_property_readonly("walks", [](const Result& r) { return r.solution.walks; })
+      .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; })
       .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; })
       .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; })
       .def_property_readonly("info", [](const Result& r) { return r.solution.info; })

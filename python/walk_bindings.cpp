@@ -80,7 +80,7 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
                         {"survival", std::string(survival_name(w.survival.rule))},
                         {"seed", seed},
                         {"threads", threads},
-                        {"total_walks", total_walks(w, scene.patches.size())}};
+                        {"walks_total", total_walks(w, scene.patches.size())}};
   if (is_gathering(w.method))
     run["walks_per_patch"] = w.walks_per_patch;
   else
@@ -170,10 +170,12 @@ void bind_walks(py::module_& m) {
 
 mean, var, var_theory, z (N, 3): average of the runs' estimates, per-walk variance averaged over the runs, exact
 per-walk variance (NaN where not computable), (mean - B_reference) / sqrt(var / walks); NaN for patches the method
-did not estimate. Summary (walk/walk_compare.h): runs, walks (over all runs), steps, seconds, mean_abs_z (about 0.80
-for an unbiased method with right error bars), max_abs_z, var_ratio (mean var / var_theory, about 1),
-spread_ratio (run-to-run spread over the predicted standard error, about 1; NaN for one run), mean_var,
-efficiency = walks / (mean_var x seconds).)doc")
+did not estimate. Summary (walk/walk_compare.h), named as the CLI's JSON "estimators" (docs/json-schema.md):
+runs, walks_total (over all runs and estimated patches), walks_per_estimate (behind each patch's pooled estimate:
+runs x walks_per_patch gathering, runs x particles shooting), steps, seconds, mean_abs_z (about 0.80 for an
+unbiased method with right error bars), max_abs_z, var_over_theory (mean var / var_theory, about 1),
+spread_over_se (run-to-run standard deviation over the predicted standard error, about 1; NaN for one run),
+mean_var_per_walk, efficiency = walks_per_estimate / (mean_var_per_walk x seconds).)doc")
       .def_property_readonly("method", [](const EstimatorComparison& e) { return std::string(method_name(e.summary.method)); })
       .def_property_readonly("mean", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().mean, self); })
       .def_property_readonly("var", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var, self); })
@@ -182,14 +184,15 @@ efficiency = walks / (mean_var x seconds).)doc")
       })
       .def_property_readonly("z", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().z, self); })
       .def_property_readonly("runs", [](const EstimatorComparison& e) { return e.summary.runs; })
-      .def_property_readonly("walks", [](const EstimatorComparison& e) { return e.summary.walks; })
+      .def_property_readonly("walks_total", [](const EstimatorComparison& e) { return e.summary.walks; })
+      .def_property_readonly("walks_per_estimate", [](const EstimatorComparison& e) { return e.summary.walks_per_estimate; })
       .def_property_readonly("steps", [](const EstimatorComparison& e) { return e.summary.steps; })
       .def_property_readonly("seconds", [](const EstimatorComparison& e) { return e.summary.seconds; })
       .def_property_readonly("mean_abs_z", [](const EstimatorComparison& e) { return e.summary.mean_abs_z; })
       .def_property_readonly("max_abs_z", [](const EstimatorComparison& e) { return e.summary.max_abs_z; })
-      .def_property_readonly("var_ratio", [](const EstimatorComparison& e) { return e.summary.var_ratio; })
-      .def_property_readonly("spread_ratio", [](const EstimatorComparison& e) { return e.summary.spread_ratio; })
-      .def_property_readonly("mean_var", [](const EstimatorComparison& e) { return e.summary.mean_var; })
+      .def_property_readonly("var_over_theory", [](const EstimatorComparison& e) { return e.summary.var_ratio; })
+      .def_property_readonly("spread_over_se", [](const EstimatorComparison& e) { return e.summary.spread_ratio; })
+      .def_property_readonly("mean_var_per_walk", [](const EstimatorComparison& e) { return e.summary.mean_var; })
       .def_property_readonly("efficiency", [](const EstimatorComparison& e) { return e.summary.efficiency; })
       .def("__repr__", [](const EstimatorComparison& e) {
         return "<radwalk.EstimatorComparison " + std::string(method_name(e.summary.method)) + ">";

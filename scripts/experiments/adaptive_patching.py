@@ -1,75 +1,61 @@
 #!/usr/bin/python3
 """Adaptive patching against uniform patching (default scene: the Cornell box): error against patch count.
 
-Meshes compared (same form-factor budget, --rays rays per patch, direct or Gauss-Seidel solve):
-  uniform   radwalk solve --max-edge L            for each L in --max-edges (0 = the 37 input faces)
-  adaptive  radwalk solve --refine TOL --refine-steps K   for each TOL in --tols, starting from the input faces
+Meshes compared (same form-factor budget, --rays rays per patch, seed S, direct or Gauss-Seidel solve), on the
+Python module radwalk (the scene read once per mesh, nothing written in between):
+  uniform   radwalk.solve(radwalk.load(scene, max_edge=L))       for each L in --max-edges (0 = the input faces)
+  adaptive  radwalk.solve_adaptive(input faces, refine_tol=TOL, steps=K)   for each TOL in --tols
+            (the CLI's `radwalk solve --refine TOL --refine-steps K`)
 
 Error measure (comparable across meshes): every solution is a piecewise-constant function on the surfaces. It is
 compared with the continuous solution on one common fine grid: the path tracer's patch averages B_ref on the
-uniform --max-edge L_ref patches (--ref-max-edge, --ref-spp samples per patch, with standard errors se). Each
+uniform --ref-max-edge L_ref patches (--ref-spp samples per patch, seed S + 1000, with standard errors se). Each
 fine cell takes the value of the mesh patch that contains its centroid (same input face; point-in-convex-polygon
 on the patch plane). Then
     raw^2   = sum_cells,c A (B_mesh - B_ref)^2 / sum A B_ref^2          (area-weighted, over cells and channels)
     noise^2 = sum_cells,c A se^2            / sum A B_ref^2          (the reference's own noise, expected in raw^2)
     error   = sqrt(max(raw^2 - noise^2, 0))                           (relative L2 error of the mesh's solution)
 so `error` is the relative L2 distance between the mesh's piecewise-constant radiosity and the true radiosity,
-resolved at the fine grid's scale; it includes the mesh's form-factor noise. Left out: cells hidden inside the
-blocks (B_ref = 0 in every channel) and the light's cells (E > 0: their B is E plus a little reflected light, and
-E would dominate the norm).
+resolved at the fine grid's scale; it includes the mesh's form-factor noise. Errors near `noise` are not resolved
+(the chart's grey band). Left out: cells hidden inside the blocks (B_ref = 0 in every channel) and the light's
+cells (E > 0: their B is E plus a little reflected light, and E would dominate the norm).
 
-Writes OUT/adaptive_patching.csv, OUT/adaptive_patching.png (log-log error against patches), the .vtp of every
-mesh (colour by B; the adaptive ones also carry the criterion's `jump` field) and commands.txt.
+Writes OUT/adaptive_patching.csv (raw data), OUT/adaptive_patching.png (log-log error against patches) and the
+.vtp of every mesh (colour by B; the adaptive ones also carry the criterion's `jump` field).
 Usage: /usr/bin/python3 scripts/experiments/adaptive_patching.py [--max-edges 0,200,100,50,35,25]
        [--tols 0.4,0.3,0.2,0.15] [--refine-steps 5] [--rays 10000] [--ref-max-edge 10] [--ref-spp 2048]
-       [--scale K] [--radwalk build/apps/radwalk] [--out results/adaptive_patching]
+       [--scale K] [--threads T] [--seed S] [--out results/adaptive_patching] [--replot]
 """
 import math
 import os
-import sys
 
 import numpy as np
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import rwexp  # noqa: E402
-from rwexp import plt  # noqa: E402
+import rwexp
+
+radwalk = rwexp.import_radwalk()
 
 
-def read_vtp_patches(path):
-    """Polygons (list of k x 3 arrays), input face and B (N x 3) of a radwalk .vtp."""
-    import vtk
-    from vtk.util.numpy_support import vtk_to_numpy
-
-    reader = vtk.vtkXMLPolyDataReader()
-    reader.SetFileName(path)
-    reader.Update()
-    poly = reader.GetOutput()
-    points = vtk_to_numpy(poly.GetPoints().GetData()).astype(float)
-    cells = poly.GetPolys()
-    offsets = vtk_to_numpy(cells.GetOffsetsArray())
-    connectivity = vtk_to_numpy(cells.GetConnectivityArray())
-    polygons = [points[connectivity[offsets[k]:offsets[k + 1]]] for k in range(len(offsets) - 1)]
-    data = poly.GetCellData()
-    face = vtk_to_numpy(data.GetArray("face")).astype(int)
-    B = vtk_to_numpy(data.GetArray("B")).astype(float).reshape(-1, 3)
-    return polygons, face, B
+def polygons(scene):
+    """The corners of every patch (k x 3 arrays, k = 3 or 4), from the Scene's points and corners."""
+    points, corners = scene.points, scene.corners
+    return [points[c[:3] if c[3] < 0 else c] for c in corners]
 
 
-def map_to_cells(polygons, face, B, cell_face, cell_centroid):
+def map_to_cells(patch_polygons, face, B, cell_face, cell_centroid):
     """B of the patch (same input face) containing each cell centroid; nearest patch centroid if none does."""
     out = np.full((len(cell_face), 3), np.nan)
     by_face = {}
     for k, f in enumerate(face):
-        by_face.setdefault(f, []).append(k)
+        by_face.setdefault(int(f), []).append(k)
     for f, patches in by_face.items():
         cells = np.nonzero(cell_face == f)[0]
         if len(cells) == 0:
             continue
         q = cell_centroid[cells]
         for k in patches:
-            P = polygons[k]
-            # Newell's normal: polygons may list T-junction points on their edges (collinear corners).
-            n = sum(np.cross(P[a], P[(a + 1) % len(P)]) for a in range(len(P)))
+            P = patch_polygons[k]
+            n = sum(np.cross(P[a], P[(a + 1) % len(P)]) for a in range(len(P)))  # Newell's normal
             size = np.linalg.norm(P - P.mean(axis=0), axis=1).max()
             inside = np.ones(len(q), dtype=bool)
             for a in range(len(P)):
@@ -79,98 +65,117 @@ def map_to_cells(polygons, face, B, cell_face, cell_centroid):
             out[cells[inside]] = B[k]
         missing = cells[np.isnan(out[cells, 0])]
         if len(missing):
-            centres = np.array([polygons[k].mean(axis=0) for k in patches])
+            centres = np.array([patch_polygons[k].mean(axis=0) for k in patches])
             d = np.linalg.norm(cell_centroid[missing][:, None, :] - centres[None, :, :], axis=2)
             out[missing] = B[np.array(patches)[d.argmin(axis=1)]]
     return out
 
 
+FIELDS = ["kind", "param", "patches", "solves", "ff_seconds", "solve_seconds", "error", "raw_error", "ref_noise",
+          "ref_max_edge", "stop"]
+
+
 def main():
-    p = rwexp.parser("adaptive_patching", __doc__.splitlines()[0])
+    p = rwexp.parser("adaptive_patching", __doc__)
     p.add_argument("--scene", default=os.path.join(rwexp.MESHES, "cornell_box.obj"))
     p.add_argument("--max-edges", default="0,200,100,50,35,25", help="uniform meshes (mm; 0 = input faces)")
-    p.add_argument("--tols", default="0.4,0.3,0.2,0.15", help="adaptive meshes: --refine TOL")
+    p.add_argument("--tols", default="0.4,0.3,0.2,0.15", help="adaptive meshes: refine_tol (--refine TOL)")
     p.add_argument("--refine-steps", type=int, default=5)
     p.add_argument("--max-patches", type=int, default=20000)
     p.add_argument("--rays", type=int, default=10000, help="form-factor rays per patch (every mesh)")
     p.add_argument("--ref-max-edge", type=float, default=10, help="reference grid (mm)")
     p.add_argument("--ref-spp", type=int, default=2048, help="path-tracer samples per reference cell")
-    p.add_argument("--scale", type=float, default=1, help="multiplies --rays and --ref-spp")
-    p.add_argument("--plot-only", action="store_true", help="redraw the chart from the CSV")
+    p.add_argument("--scale", type=float, default=1, help="multiplies --rays and --ref-spp (default 1)")
+    p.add_argument("--replot", action="store_true", help="redraw the chart from OUT/adaptive_patching.csv")
     a = p.parse_args()
-    out_csv = os.path.join(a.out, "adaptive_patching.csv")
-    if a.plot_only:
-        plot(rwexp.read_csv(out_csv), a.out, a.scene)
+    out = rwexp.Folder(a.out)
+    if a.replot:
+        plot(rwexp.read_table(out.path("adaptive_patching.csv")), out, a.scene)
         return
-    rw = rwexp.Radwalk(a.radwalk, a.out, a.threads)
-    rays = str(int(a.rays * a.scale))
+    rays = max(1, round(a.rays * a.scale))
+    ref_spp = max(2, round(a.ref_spp * a.scale))
 
     # Reference: path-traced averages on the fine grid.
-    ref_csv = rw.path("reference.csv")
-    ref = rw.run(["pathtrace", a.scene, "--max-edge", a.ref_max_edge, "--spp", int(a.ref_spp * a.scale),
-                  "--seed", a.seed + 1000, "--csv", ref_csv], rw.path("reference.json"))
-    rows = rwexp.read_csv(ref_csv)
-    cell_face = np.array([r["face"] for r in rows], dtype=int)
-    cell_area = np.array([r["area"] for r in rows])
-    cell_centroid = np.array([[r["cx"], r["cy"], r["cz"]] for r in rows])
-    B_ref = np.array([[r["B_r"], r["B_g"], r["B_b"]] for r in rows])
-    se_ref = np.array([[r["B_se_r"], r["B_se_g"], r["B_se_b"]] for r in rows])
-    E_ref = np.array([[r["E_r"], r["E_g"], r["E_b"]] for r in rows])
-    keep = (B_ref > 0).any(axis=1) & (E_ref == 0).all(axis=1)  # not hidden inside a block, not the light
-    w = cell_area[keep][:, None]
+    ref_scene = radwalk.load(a.scene, max_edge=a.ref_max_edge)
+    print(f"reference: {len(ref_scene)} cells, {ref_spp} samples each ...", flush=True)
+    ref = radwalk.pathtrace(ref_scene, spp=ref_spp, seed=a.seed + 1000, threads=a.threads).averages
+    radwalk.write_csv(out.path("reference.csv"), ref_scene, ref.fields)
+    cell_face, cell_centroid = np.asarray(ref_scene.face), np.asarray(ref_scene.centroids)
+    B_ref, se_ref = np.asarray(ref.B), np.asarray(ref.B_se)
+    keep = (B_ref > 0).any(axis=1) & (np.asarray(ref_scene.E) == 0).all(axis=1)  # not hidden, not the light
+    w = np.asarray(ref_scene.areas)[keep][:, None]
     norm = float(np.sum(w * B_ref[keep] ** 2))
     noise2 = float(np.sum(w * se_ref[keep] ** 2)) / norm
-    print(f"reference: {len(rows)} cells ({int((~keep).sum())} hidden or emitting), {ref['wall']:.1f} s, "
-          f"relative noise {math.sqrt(noise2):.4f}")
+    print(f"reference: {int((~keep).sum())} cells hidden or emitting, {ref.seconds:.1f} s, relative noise "
+          f"{math.sqrt(noise2):.4f}", flush=True)
 
-    def measure(kind, param, args):
-        name = f"{kind}_{param}"
-        vtp = rw.path(name + ".vtp")
-        r = rw.run(["solve", a.scene, "--rays", rays, "--seed", a.seed, "-o", vtp] + args, rw.path(name + ".json"))
-        polygons, face, B = read_vtp_patches(vtp)
-        mapped = map_to_cells(polygons, face, B, cell_face, cell_centroid)
+    def row(kind, param, scene, result, ff_seconds, solves, stop, extra_fields):
+        mapped = map_to_cells(polygons(scene), np.asarray(scene.face), np.asarray(result.B), cell_face,
+                              cell_centroid)
         raw2 = float(np.sum(w * (mapped[keep] - B_ref[keep]) ** 2)) / norm
-        js = r["json"]
-        row = dict(kind=kind, param=param, patches=len(polygons), solves=len(js.get("refine", {}).get("steps", [1])),
-                   seconds=r["wall"], error=math.sqrt(max(raw2 - noise2, 0.0)), raw_error=math.sqrt(raw2),
-                   ref_noise=math.sqrt(noise2), stop=js.get("refine", {}).get("stop_reason", ""))
-        print(rwexp.table([row], list(row.keys())).splitlines()[-1])
-        return row
+        radwalk.write_vtp(out.path(f"{kind}_{param}.vtp"), scene, {**extra_fields, **result.fields},
+                          {"kind": kind, "param": str(param), "rays_per_patch": rays, "seed": a.seed})
+        r = dict(kind=kind, param=param, patches=len(scene), solves=solves, ff_seconds=ff_seconds,
+                 solve_seconds=result.seconds, error=math.sqrt(max(raw2 - noise2, 0.0)), raw_error=math.sqrt(raw2),
+                 ref_noise=math.sqrt(noise2), ref_max_edge=a.ref_max_edge, stop=stop)
+        print(rwexp.table([r], FIELDS).splitlines()[-1], flush=True)
+        return r
 
     results = []
+    print(rwexp.table([], FIELDS))
     for L in a.max_edges.split(","):
-        results.append(measure("uniform", L, ["--max-edge", L]))
+        scene = radwalk.load(a.scene, max_edge=float(L))
+        ff = radwalk.form_factors(scene, rays=rays, seed=a.seed, threads=a.threads)
+        s = radwalk.solve(scene, ff, threads=a.threads)
+        results.append(row("uniform", L, scene, s, ff.timings["form_factors"], 1, "", {}))
+    base = radwalk.load(a.scene)
     for tol in a.tols.split(","):
-        results.append(measure("adaptive", tol, ["--refine", tol, "--refine-steps", a.refine_steps,
-                                                 "--max-patches", a.max_patches]))
-    fields = ["kind", "param", "patches", "solves", "seconds", "error", "raw_error", "ref_noise", "stop"]
-    rwexp.write_csv(out_csv, results, fields)
-    print(f"wrote {out_csv}")
-    print(rwexp.table(results, fields, "relative L2 error of B against the path-traced fine grid"))
-    plot(results, a.out, a.scene)
+        ad = radwalk.solve_adaptive(base, refine_tol=float(tol), steps=a.refine_steps, max_patches=a.max_patches,
+                                    rays=rays, seed=a.seed, threads=a.threads)
+        results.append(row("adaptive", tol, ad.scene, ad.result, ad.result.timings["form_factors"], len(ad.steps),
+                           ad.stop_reason, {"jump": ad.jump}))
+    rwexp.write_csv(out.path("adaptive_patching.csv"), results, FIELDS)
+    print(f"wrote {out.path('adaptive_patching.csv')}")
+    plot(results, out, a.scene)
 
 
 def plot(results, out, scene):
+    plt = rwexp.plt
     fig, ax = plt.subplots(figsize=(6.4, 4.6))
-    for kind, style, label, key in (("uniform", "o-", "uniform --max-edge L (mm)", "L"),
-                                    ("adaptive", "s-", "adaptive --refine TOL", "TOL")):
+    noise = float(results[0]["ref_noise"])
+    n_all = [float(r["patches"]) for r in results]
+    ax.axhspan(1e-9, noise, color="0.85", zorder=0, label=f"below the reference's noise ({noise:.3f})")
+    for kind, style, label, key in (("uniform", "o-", f"uniform patches, max edge L ({rwexp.length_unit(scene)})", "L"),
+                                    ("adaptive", "s-", "adaptive (--refine TOL)", "TOL")):
         rows = sorted((r for r in results if r["kind"] == kind), key=lambda r: float(r["patches"]))
         if not rows:
             continue
         x = [float(r["patches"]) for r in rows]
-        y = [float(r["error"]) for r in rows]
-        ax.plot(x, y, style, label=label)
-        for r, xi, yi in zip(rows, x, y):
-            param = r["param"] if isinstance(r["param"], str) else f"{r['param']:g}"
-            ax.annotate(f"{key}={param}", (xi, yi), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        y = [max(float(r["error"]), noise / 10) for r in rows]  # an unresolved error is drawn at the band
+        ax.plot(x, y, style, label=label, zorder=3)
+        for k, (r, xi, yi) in enumerate(zip(rows, x, y)):
+            param = f"{float(r['param']):g}"
+            if kind == "uniform" and float(r["param"]) == 0:
+                param = "faces"
+            # Uniform labels above the curve; adaptive ones alternately below and above, so neighbours do not
+            # overlap.
+            dy = 4 if kind == "uniform" else (-12 if k % 2 == 0 else 6)
+            ax.annotate(f"{key}={param}" if param != "faces" else "input faces", (xi, yi),
+                        textcoords="offset points", xytext=(3, dy), fontsize=8)
     ax.set_xscale("log")
     ax.set_yscale("log")
+    errors = [float(r["error"]) for r in results if float(r["error"]) > 0]
+    ax.set_ylim(min(noise / 2, min(errors) / 1.5), max(errors + [noise]) * 1.6)
+    ax.set_xlim(min(n_all) / 1.4, max(n_all) * 1.6)
+    rwexp.log_ticks(ax)
     ax.set_xlabel("patches (final mesh)")
-    ax.set_ylabel("relative L2 error of B (against path-traced fine grid)")
-    ax.set_title(f"{os.path.basename(scene)}: adaptive against uniform patching")
+    ax.set_ylabel("relative L2 error of B")
+    ax.set_title(f"{os.path.basename(scene)}: adaptive against uniform patching\nerror against path-traced "
+                 f"{float(results[0]['ref_max_edge']):g} {rwexp.length_unit(scene)} cells, reference noise removed",
+                 fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    rwexp.save(fig, os.path.join(out, "adaptive_patching.png"))
+    ax.legend(fontsize=8, loc="upper right")
+    rwexp.save(fig, out.path("adaptive_patching.png"))
 
 
 if __name__ == "__main__":

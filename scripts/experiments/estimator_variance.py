@@ -47,16 +47,16 @@ def scenes(scale):
 
 
 def main():
-    p = rwexp.parser("estimator_variance", __doc__.splitlines()[0], program=False)
+    p = rwexp.parser("estimator_variance", __doc__)
     p.add_argument("--runs", type=int, default=5, help="independent runs per estimator")
     p.add_argument("--rays", type=int, default=10000, help="rays per patch of the traced F")
-    p.add_argument("--scale", type=int, default=1, help="multiplies the walks (and refines the Cornell box at >= 4)")
+    p.add_argument("--scale", type=float, default=1, help="multiplies the walks (and refines the Cornell box at >= 4)")
     a = p.parse_args()
     os.makedirs(a.out, exist_ok=True)
     out = rwexp.Folder(a.out)
     data = {}
     for name, path, max_edge, walks in scenes(a.scale):
-        walks *= a.scale
+        walks = max(2, int(walks * a.scale))
         scene = radwalk.load(path, max_edge=max_edge)
         ff = radwalk.form_factors(scene, rays=a.rays, seed=a.seed, threads=a.threads)
         c = radwalk.compare(scene, ff, walks_per_patch=walks, runs=a.runs, seed=a.seed, kernel="matrix",
@@ -72,12 +72,14 @@ def main():
         radwalk.write_vtp(out.path(f"{name}.vtp"), scene, fields,
                           {"estimators": ",".join(c.estimators), "walks_per_patch": walks, "runs": a.runs,
                            "seed": a.seed, "kernel": "matrix"})
-        js = {"scene": path, "max_edge": max_edge, "patches": len(scene), "rays": a.rays, "seed": a.seed,
+        js = {"scene": path, "max_edge": max_edge, "patches": len(scene), "rays_per_patch": a.rays, "seed": a.seed,
               "walks_per_patch": walks, "runs": a.runs, "timings_s": {**ff.timings, **c.timings},
-              "estimators": {m: {"runs": e.runs, "total_walks": e.walks, "steps": e.steps, "seconds": e.seconds,
+              "estimators": {m: {"runs": e.runs, "walks_total": e.walks_total,
+                                 "walks_per_estimate": e.walks_per_estimate, "steps": e.steps, "seconds": e.seconds,
                                  "mean_abs_z": e.mean_abs_z, "max_abs_z": e.max_abs_z,
-                                 "var_ratio": e.var_ratio if math.isfinite(e.var_ratio) else None,
-                                 "spread_ratio": e.spread_ratio if math.isfinite(e.spread_ratio) else None,
+                                 "var_over_theory": e.var_over_theory if math.isfinite(e.var_over_theory) else None,
+                                 "spread_over_se": e.spread_over_se if math.isfinite(e.spread_over_se) else None,
+                                 "mean_var_per_walk": e.mean_var_per_walk,
                                  "efficiency": e.efficiency} for m, e in c.estimators.items()}}
         with open(out.path(f"{name}.json"), "w") as f:
             json.dump(js, f, indent=1)
@@ -187,10 +189,11 @@ def plot_scatter(data, rw):
         ax.plot([lo / 2, hi * 2], [lo / 2, hi * 2], "k-", lw=0.8, label="identity")
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("theoretical per-walk variance ((W/m$^2$)$^2$)")
-        ax.set_ylabel("empirical per-walk variance ((W/m$^2$)$^2$)")
+        ax.set_xlabel("exact per-walk variance (units of B$^2$)")
+        ax.set_ylabel("empirical per-walk variance (units of B$^2$)")
         ax.set_title(f"{name}: {js['patches']} patches, {walks} walks/patch x runs", fontsize=10)
         ax.grid(True, which="both", alpha=0.3)
+        rwexp.log_ticks(ax)
         if zero:
             notes.append(f"{name}:\n  " + "\n  ".join(zero))
     axes.flat[0].legend(fontsize=8, loc="lower right")
@@ -198,35 +201,64 @@ def plot_scatter(data, rw):
         ax.axis("off")
     axes.flat[-1].text(0.0, 1.0, "Rows (patch, channel) not drawn on log axes\n(a zero variance):\n\n" +
                        "\n".join(notes), transform=axes.flat[-1].transAxes, fontsize=8, va="top", family="monospace")
-    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel")
+    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel "
+                 "(B in W per squared length unit of the scene: mm for the Cornell box)")
     rwexp.save(fig, rw.path("variance_scatter.png"))
 
 
 def plot_ratios(ratio_rows, rw):
+    """One panel per pair of methods: the efficiency ratio per scene as a dot (measured: filled; with the exact
+    variances: open) on a log axis; an infinite ratio (the second method has zero variance) is a right-pointing triangle at the panel's right edge, a zero ratio a left-pointing one at its
+    left edge, an undefined one (both zero) the word n/a."""
     scenes_ = list(dict.fromkeys(r["scene"] for r in ratio_rows))
-    labels = [p[0] for p in PAIRS]
-    fig, ax = plt.subplots(figsize=(13, 6))
-    width = 0.8 / len(scenes_)
     cmap = plt.get_cmap("tab10")
-    for k, s in enumerate(scenes_):
-        rows = [r for r in ratio_rows if r["scene"] == s]
-        x = np.arange(len(labels)) + (k - (len(scenes_) - 1) / 2) * width
-        emp = [r["efficiency_ratio"] for r in rows]
-        th = [r["efficiency_ratio_theory"] for r in rows]
-        ax.bar(x, [min(max(v, 1e-6), 1e12) if not math.isnan(v) else 1e-6 for v in emp], width, color=cmap(k), label=s,
-               alpha=0.8)
-        ax.scatter(x, [min(max(v, 1e-6), 1e12) for v in th], color="k", marker="_", s=120, zorder=3,
-                   label="theory (exact variance, measured seconds)" if k == 0 else None)
-    ax.axhline(1, color="k", lw=0.8)
-    ax.set_yscale("log")
-    ax.set_xticks(np.arange(len(labels)))
-    ax.set_xticklabels(labels, fontsize=9)
-    ax.set_ylabel("efficiency ratio first / second (1)\n(> 1: first method wins)")
-    ax.set_title("Efficiency ratios: efficiency = 1 / (mean pooled-estimate variance x seconds)\n"
-                 "(bars clipped to [1e-6, 1e12] where a method has zero variance)", fontsize=10)
-    ax.legend(fontsize=8, ncol=2)
-    ax.grid(True, axis="y", which="both", alpha=0.3)
-    rwexp.save(fig, rw.path("efficiency_ratios.png"))
+    finite = [v for r in ratio_rows for v in (r["efficiency_ratio"], r["efficiency_ratio_theory"])
+              if math.isfinite(v) and v > 0]
+    lo, hi = min(finite) / 10, max(finite) * 10
+    fig, axes = plt.subplots(len(PAIRS), 1, figsize=(8.5, 1.25 + 1.35 * len(PAIRS)), sharex=True)
+    for ax, (label, first, second) in zip(axes, PAIRS):
+        rows = {r["scene"]: r for r in ratio_rows if r["ratio"] == label}
+        for k, name in enumerate(scenes_):
+            r = rows.get(name)
+            if r is None:
+                continue
+            y = len(scenes_) - 1 - k
+            for key, filled, dy in (("efficiency_ratio", True, 0.12), ("efficiency_ratio_theory", False, -0.12)):
+                v = r[key]
+                style = dict(color=cmap(k), mfc=cmap(k) if filled else "white", ms=7, linestyle="none")
+                if math.isnan(v):
+                    ax.text(lo * 1.3, y + dy, "n/a", fontsize=7, va="center", color=cmap(k))
+                elif v == math.inf:
+                    ax.plot([hi / 1.3], [y + dy], ">", **style)
+                    if filled:
+                        ax.text(hi / 1.8, y, "infinite", fontsize=7, va="center", ha="right", color=cmap(k))
+                elif v <= 0:
+                    ax.plot([lo * 1.3], [y + dy], "<", **style)
+                    if filled:
+                        ax.text(lo * 1.8, y, "0", fontsize=7, va="center", ha="left", color=cmap(k))
+                else:
+                    ax.plot([v], [y + dy], "o", **style)
+        ax.axvline(1, color="k", lw=0.8)
+        ax.set_yticks(range(len(scenes_)))
+        ax.set_yticklabels(list(reversed(scenes_)), fontsize=8)
+        ax.set_ylim(-0.6, len(scenes_) - 0.4)
+        ax.set_title(f"{label}: efficiency of {first} / {second}", fontsize=9, loc="left")
+        ax.grid(True, axis="x", which="major", alpha=0.3)
+        ax.set_xscale("log")
+    axes[-1].set_xlim(lo, hi)
+    rwexp.log_ticks(axes[-1], y=False)
+    axes[-1].set_xlabel("efficiency ratio (> 1: the first method wins); efficiency = 1 / (pooled variance x seconds)")
+    from matplotlib.lines import Line2D
+    fig.legend([Line2D([], [], marker="o", color="0.3", linestyle="none"),
+                Line2D([], [], marker="o", color="0.3", mfc="white", linestyle="none"),
+                Line2D([], [], marker=">", color="0.3", linestyle="none"),
+                Line2D([], [], marker="<", color="0.3", linestyle="none")],
+               ["measured", "exact variances, measured seconds", "infinite (second: zero variance)",
+                "0 (first: zero variance)"], loc="upper center", ncol=4, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.94))
+    fig.savefig(rw.path("efficiency_ratios.png"), dpi=110)
+    plt.close(fig)
+    print(f"wrote {rw.path('efficiency_ratios.png')}")
 
 
 if __name__ == "__main__":

@@ -96,12 +96,12 @@ def sweep(rw, a, rows):
                                         theory=True, threads=a.threads)
                 Bw, var, vth = w.B[:, 0], w.var[:, 0], w.var_theory[:, 0]
                 lit = Bw > 0
-                row(f"gather-{est}", w, walk_length=w.steps / w.walks,
+                row(f"gather-{est}", w, walk_length=w.steps / w.walks_total,
                     walk_length_theory=rho / (1 - rho) if not open_ else math.nan,
                     var_rel=float(np.mean(var[lit] / Bw[lit] ** 2)),
                     var_rel_theory=float(np.mean(vth[lit] / Bw[lit] ** 2)),
                     variance_radius=w.info.get("variance_radius", math.nan),
-                    escapes_per_walk=w.info.get("escapes", 0) / w.walks)
+                    escapes_per_walk=w.info.get("escapes", 0) / w.walks_total)
             print(f"{scene_name} rho {rho:g}: " + ", ".join(
                 f"{x['method']} {x['status']}" + (f" ({int(x['iterations'])})" if x["method"] in ITERATIVE else "")
                 for x in rows if x["scene"] == scene_name and x["rho"] == rho), flush=True)
@@ -177,7 +177,7 @@ def slivers(rw, a):
 
 
 def plot(rows, srows, rw):
-    fig, axes = plt.subplots(2, 2, figsize=(14, 10.5))
+    fig, axes = plt.subplots(2, 3, figsize=(18, 10.5))
     x_of = lambda rho: 1 / (1 - rho)  # noqa: E731
     styles = {"closed": "-", "open": "--"}
     colors = {"jacobi": "tab:gray", "gauss-seidel": "tab:brown", "southwell": "tab:olive", "direct": "k",
@@ -209,19 +209,28 @@ def plot(rows, srows, rw):
     for scene in ("closed", "open"):
         sel = sorted([r for r in rows if r["scene"] == scene and r["method"] == "direct"], key=lambda r: r["rho"])
         ax.plot([x_of(r["rho"]) for r in sel], [r["condition"] for r in sel], styles[scene], color="k", marker="s",
-                ms=4, label=f"condition number kappa_inf, {scene}")
-        sel = sorted([r for r in rows if r["scene"] == scene and r["method"] == "gather-collision"],
-                     key=lambda r: r["rho"])
-        ax.plot([x_of(r["rho"]) for r in sel], [r["walk_length"] for r in sel], styles[scene], color="tab:orange",
-                marker="o", ms=4, label=f"mean walk length (steps/walk), {scene}")
-    ax.plot(x_of(rr), (1 + rr) / (1 - rr), "k:", lw=1, label="(1 + rho) / (1 - rho)")
-    ax.plot(x_of(rr), rr / (1 - rr), ":", color="tab:orange", lw=1, label="rho / (1 - rho)")
+                ms=4, label=f"kappa_inf(I - rho F), {scene} box")
+    ax.plot(x_of(rr), (1 + rr) / (1 - rr), ":", color="tab:red", lw=1.5, label="(1 + rho) / (1 - rho)")
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("1 / (1 - rho)")
-    ax.set_ylabel("condition number (1), steps per walk (1)")
-    ax.set_title("Conditioning and random-walk length")
-    ax.legend(fontsize=7.5)
+    ax.set_ylabel("condition number kappa_inf (1)")
+    ax.set_title("Conditioning of the direct solve")
+    ax.legend(fontsize=8)
+
+    ax = axes[0, 2]
+    for scene in ("closed", "open"):
+        sel = sorted([r for r in rows if r["scene"] == scene and r["method"] == "gather-collision"],
+                     key=lambda r: r["rho"])
+        ax.plot([x_of(r["rho"]) for r in sel], [r["walk_length"] for r in sel], styles[scene], color="tab:orange",
+                marker="o", ms=4, label=f"mean steps per walk, {scene} box")
+    ax.plot(x_of(rr), rr / (1 - rr), ":", color="tab:red", lw=1.5, label="rho / (1 - rho)")
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("1 / (1 - rho)")
+    ax.set_ylabel("steps per walk (1)")
+    ax.set_title("Random-walk length (gather-collision)")
+    ax.legend(fontsize=8)
 
     ax = axes[1, 0]
     for scene in ("closed", "open"):
@@ -239,43 +248,51 @@ def plot(rows, srows, rw):
     ax.set_title("Random-walk variance (a walk's cost grows like 1/(1-rho) on top)")
     ax.legend(fontsize=7.5)
 
-    ax = axes[1, 1]
-    s = [r for r in srows if "reciprocity_rms" in r]
+    s = [r for r in srows if isinstance(r.get("reciprocity_rms"), float) and math.isfinite(r["reciprocity_rms"])]
     w = [r["width"] for r in s]
+    ax = axes[1, 1]
     ax.plot(w, [r["reciprocity_rms"] for r in s], "o-", color="tab:red", label="RMS reciprocity error of the pair")
-    ax.plot(w, [r["F01_rel_spread"] for r in s], "s-", color="tab:blue",
-            label="relative spread of F(emitter -> sliver) over seeds")
-    ax.plot(w, [r["F01_rel_binomial"] for r in s], "b:", label="binomial sqrt((1 - F) / (n F))")
-    ax.plot(w, [r["F10_rel_spread"] for r in s], "^-", color="tab:green",
-            label="relative spread of F(sliver -> emitter)")
-    ax.set_xscale("log")
-    ax.set_yscale("log")
-    ax.set_xlabel("receiver width w (unit length; emitter 1 x 1 at distance 1)")
     ax.set_ylabel("relative error (1)")
-    ax.set_title(f"Sliver patches ({int(s[0]['rays'])} rays per patch, {int(s[0]['seeds'])} seeds)")
-    ax.legend(fontsize=7.5)
-    ax.grid(True, which="both", alpha=0.3)
-    for ax in axes.flat[:3]:
+    ax.set_title(f"Sliver patches: reciprocity ({int(s[0]['rays'])} rays per patch)")
+    ax = axes[1, 2]
+    pos = lambda v: v if v > 0 else math.nan  # noqa: E731  (a zero spread, every seed alike, is off the log axis)
+    ax.plot(w, [pos(r["F01_rel_spread"]) for r in s], "s-", color="tab:blue",
+            label=f"F(emitter -> sliver), spread over {int(s[0]['seeds'])} seeds")
+    ax.plot(w, [r["F01_rel_binomial"] for r in s], "b:", label="binomial prediction sqrt((1 - F) / (n F))")
+    ax.plot(w, [pos(r["F10_rel_spread"]) for r in s], "^-", color="tab:green",
+            label="F(sliver -> emitter), spread over seeds")
+    ax.set_ylabel("relative standard deviation (1)")
+    ax.set_title("Sliver patches: form-factor noise")
+    for ax in axes[1, 1:]:
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("receiver width w (emitter 1 x 1 at distance 1)")
+        ax.legend(fontsize=8)
+    for ax in axes.flat:
         ax.grid(True, which="both", alpha=0.3)
+        rwexp.log_ticks(ax)
     fig.suptitle("Where methods fail: unit box with uniform rho (closed, and open with one wall removed), "
                  "sliver patches")
     rwexp.save(fig, rw.path("failure_modes.png"))
 
 
 def main():
-    p = rwexp.parser("failure_modes", __doc__.splitlines()[0], program=False)
+    p = rwexp.parser("failure_modes", __doc__)
     p.add_argument("--max-edge", type=float, default=0.25, help="patch size of the box sweep")
     p.add_argument("--rays", type=int, default=4000, help="rays per patch of the box's F")
     p.add_argument("--walks", type=int, default=200, help="walks per patch in the sweep")
     p.add_argument("--sliver-rays", type=int, default=10000)
     p.add_argument("--sliver-seeds", type=int, default=10)
-    p.add_argument("--scale", type=int, default=1, help="multiplies walks, rays and seeds")
+    p.add_argument("--scale", type=float, default=1, help="multiplies walks, rays and seeds (default 1)")
+    p.add_argument("--replot", action="store_true", help="redraw the chart from OUT/failure_modes.csv, slivers.csv")
     a = p.parse_args()
-    a.walks *= a.scale
-    a.rays *= a.scale
-    a.sliver_seeds *= a.scale
-    os.makedirs(a.out, exist_ok=True)
     rw = rwexp.Folder(a.out)
+    if a.replot:
+        plot(rwexp.read_table(rw.path("failure_modes.csv")), rwexp.read_table(rw.path("slivers.csv")), rw)
+        return
+    a.walks = max(2, int(a.walks * a.scale))
+    a.rays = max(1, int(a.rays * a.scale))
+    a.sliver_seeds = max(2, int(a.sliver_seeds * a.scale))
     rows = []
     sweep(rw, a, rows)
     fields = ["scene", "rho", "method", "exit_code", "status", "iterations", "budget", "iterations_unlimited",

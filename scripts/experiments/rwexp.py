@@ -1,20 +1,16 @@
-"""Shared helpers of the radwalk experiments: import the radwalk Python module (import_radwalk); find and run the
-radwalk program (Radwalk) and read CSV tables (read_csv), for adaptive_patching.py, the one script not yet on the
-module, and for redrawing charts from a script's own CSV; write CSV tables, and set up matplotlib (Agg backend,
-no display needed).
+"""Shared helpers of the radwalk experiments: import the radwalk Python module (import_radwalk), the options every
+script shares (parser), tables (write_csv, read_table for redrawing a chart from a script's own CSV, table for the
+terminal), statistics of repeats (median_spread) and chart conventions (matplotlib's Agg backend, no display
+needed; log_ticks, infinite_marker, save).
 
-Every experiment script takes --out DIR (default: results/<experiment>/ under the current directory), --threads
-and --seed; those that run the program also --radwalk PATH (default: $RADWALK, else build/apps/radwalk under the
-repository root)."""
+Every experiment script runs on the module (no radwalk program, no files read back) and takes --out DIR (default:
+results/<experiment>/ under the current directory), --threads, --seed and --scale."""
 
 import argparse
 import csv
-import json
 import math
 import os
-import subprocess
 import sys
-import time
 
 import matplotlib
 
@@ -41,81 +37,36 @@ def import_radwalk():
     return radwalk
 
 
-def parser(experiment, description, program=True):
-    """argparse parser with the options every experiment shares (--radwalk only for those that run the program)."""
-    p = argparse.ArgumentParser(description=description)
-    if program:
-        p.add_argument("--radwalk", default=os.environ.get("RADWALK", os.path.join(REPO, "build", "apps", "radwalk")),
-                       help="radwalk program (default: $RADWALK, else build/apps/radwalk)")
+def parser(experiment, description):
+    """argparse parser with the options every experiment shares; the script adds --scale and its own."""
+    p = argparse.ArgumentParser(description=description, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--out", default=os.path.join("results", experiment), help="results folder")
-    p.add_argument("--threads", type=int, default=2, help="threads per radwalk run (default 2)")
+    p.add_argument("--threads", type=int, default=2, help="threads (default 2; 0 = all cores)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default 1)")
     return p
 
 
 class Folder:
-    """A results folder (for redrawing charts without running radwalk)."""
+    """A results folder (made when missing)."""
 
     def __init__(self, out):
         self.out = out
-
-    def path(self, *parts):
-        return os.path.join(self.out, *parts)
-
-
-class Radwalk:
-    """Runs the radwalk program; every call's command line is logged to OUT/commands.txt."""
-
-    def __init__(self, exe, out, threads):
-        self.exe = os.path.abspath(exe)
-        if not os.access(self.exe, os.X_OK):
-            sys.exit(f"radwalk program not found at {self.exe} (build it, or pass --radwalk / set RADWALK)")
-        self.out = out
-        self.threads = threads
         os.makedirs(out, exist_ok=True)
-        self.log = open(os.path.join(out, "commands.txt"), "w")
 
     def path(self, *parts):
         return os.path.join(self.out, *parts)
 
-    def run(self, args, json_file=None, ok_codes=(0,)):
-        """Runs `radwalk -q ARGS --threads T [--json FILE]`. Returns a dict: rc, stderr, wall (s), json (or None)."""
-        cmd = [self.exe, "-q"] + [str(a) for a in args] + ["--threads", str(self.threads)]
-        if json_file:
-            cmd += ["--json", json_file]
-            if os.path.exists(json_file):
-                os.remove(json_file)
-        self.log.write(" ".join(cmd) + "\n")
-        self.log.flush()
-        t0 = time.perf_counter()
-        r = subprocess.run(cmd, capture_output=True, text=True)
-        wall = time.perf_counter() - t0
-        if r.returncode not in ok_codes:
-            sys.exit(f"radwalk failed (exit {r.returncode}): {' '.join(cmd)}\n{r.stderr}")
-        js = None
-        if json_file and os.path.exists(json_file):
-            with open(json_file) as f:
-                js = json.load(f)
-        return {"rc": r.returncode, "stderr": r.stderr.strip(), "wall": wall, "json": js}
 
-
-def read_csv(path):
-    """Rows of a CSV as dicts; numeric-looking values become float, empty cells NaN; the run_id column (the run
-    that wrote the file, hexadecimal digits) stays text."""
-    rows = []
+def read_table(path):
+    """A script's own CSV (write_csv) as a list of dicts, by the csv module: numbers as float (empty cells NaN),
+    text as str. For redrawing charts; radwalk's outputs are not read back (the module returns them)."""
+    def value(v):
+        try:
+            return float(v) if v != "" else math.nan
+        except ValueError:
+            return v
     with open(path, newline="") as f:
-        for row in csv.DictReader(f):
-            out = {}
-            for k, v in row.items():
-                if k == "run_id":
-                    out[k] = v
-                    continue
-                try:
-                    out[k] = float(v) if v != "" else math.nan
-                except ValueError:
-                    out[k] = v
-            rows.append(out)
-    return rows
+        return [{k: value(v) for k, v in row.items()} for row in csv.DictReader(f)]
 
 
 def write_csv(path, rows, fields=None, digits=6):
@@ -134,6 +85,12 @@ def fmt(v, digits=6):
     return v
 
 
+def median_spread(values):
+    """Median and the (min, max) of repeated measurements (timings: at least 3 repeats, README convention)."""
+    v = np.asarray(values, dtype=float)
+    return float(np.median(v)), float(v.min()), float(v.max())
+
+
 def rms_relative_error(B, B_ref):
     """RMS over (patch, channel) pairs with B_ref > 0 of (B - B_ref) / B_ref; NaN entries of B count as errors
     of 1 (a patch a method did not estimate is 100 % wrong)."""
@@ -147,11 +104,36 @@ def table(rows, fields, title=None):
     """Aligned text table for the terminal."""
     cells = [[fmt(r.get(k, "")) if not isinstance(r.get(k), float) else f"{r[k]:.4g}" for k in fields]
              for r in rows]
-    widths = [max(len(k), *(len(str(c[i])) for c in cells)) for i, k in enumerate(fields)]
+    widths = [max([len(k)] + [len(str(c[i])) for c in cells]) for i, k in enumerate(fields)]
     lines = [title] if title else []
     lines.append("  ".join(k.rjust(w) for k, w in zip(fields, widths)))
     lines += ["  ".join(str(c).rjust(w) for c, w in zip(row, widths)) for row in cells]
     return "\n".join(lines)
+
+
+def log_ticks(ax, x=True, y=True):
+    """Readable ticks on log axes (call after setting the limits): plain numbers (1, 10, 0.01, 2, 5) at 1, 2, 5
+    times the decades when the axis spans under two decades, at the decades otherwise (every second or third one
+    beyond seven decades); minor ticks unlabelled."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    def label(v, _):
+        return f"{v:g}" if 1e-3 <= v < 1e5 else f"1e{int(round(math.log10(v)))}"
+    for on, axis, limits in ((x, ax.xaxis, ax.get_xlim()), (y, ax.yaxis, ax.get_ylim())):
+        if on and axis.get_scale() == "log":
+            decades = math.log10(max(limits) / min(limits))
+            subs = (1.0, 2.0, 5.0) if decades < 2 else (1.0,)
+            # At most about 7 labels on a wide axis (every second or third decade), so that they do not touch.
+            axis.set_major_locator(LogLocator(base=10, subs=subs, numticks=15 if decades <= 7 else 7))
+            axis.set_major_formatter(FuncFormatter(label))
+            axis.set_minor_formatter(NullFormatter())
+
+
+def length_unit(scene):
+    """The unit of a scene's lengths for labels: mm for the bundled Cornell box and the experiments' spot_room
+    (both modelled in mm), else "units"."""
+    name = os.path.basename(str(scene))
+    return "mm" if name.startswith(("cornell_box", "spot_room")) else "units"
 
 
 def save(fig, path):

@@ -91,7 +91,7 @@ nlohmann::json solution_json(const Solution& s) {
   nlohmann::json history = nlohmann::json::array();
   for (double r : s.residual_history) history.push_back(number(r));
   j["residual_history"] = history;
-  j["walks"] = s.walks;
+  j["walks_total"] = s.walks;
   j["steps"] = s.steps;
   j["seconds"] = s.seconds;
   j["info"] = solution_info_json(s.info);

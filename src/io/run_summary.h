@@ -18,7 +18,7 @@ namespace radwalk {
 class RunSummary {
  public:
   // Version of the layout documented in docs/json-schema.md; raised whenever a key changes meaning or type.
-  static constexpr int kSchemaVersion = 1;
+  static constexpr int kSchemaVersion = 2;
 
   RunSummary(std::string command, const std::vector<std::string>& arguments);
 
@@ -45,7 +45,7 @@ nlohmann::json library_versions();
 const char* git_describe();
 
 // A solver's result (deterministic, random walk or path tracer) as the summary's "solution" object: method,
-// status, message, iterations, residual (null when not computed), residual_history, walks, steps, seconds and
+// status, message, iterations, residual (null when not computed), residual_history, walks_total, steps, seconds and
 // info (solution_info_json).
 nlohmann::json solution_json(const Solution& solution);
 

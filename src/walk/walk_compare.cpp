@@ -99,6 +99,7 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
     sum.method = method;
     sum.runs = options.runs;
     sum.walks = count * options.runs * (gather ? static_cast<long>(targets.size()) : 1);
+    sum.walks_per_estimate = count * options.runs;
     sum.steps = steps;
     sum.seconds = seconds;
     double z_abs = 0, ratio = 0, spread = 0, var_total = 0;

@@ -53,7 +53,8 @@ struct CompareRow {
 struct CompareSummary {
   WalkMethod method = WalkMethod::gather_collision;
   int runs = 0;
-  long walks = 0, steps = 0;
+  long walks = 0, steps = 0;  // walks in total (all runs, all estimated patches), destination samples
+  long walks_per_estimate = 0;  // walks behind each patch's pooled estimate (as CompareRow::walks)
   double seconds = 0;
   double mean_abs_z = 0, max_abs_z = 0;
   double var_ratio = 0;      // mean over rows of var / var_theory (NaN if no theory)

@@ -111,8 +111,10 @@ TEST_CASE("radwalk solve: the furnace gives B = E / (1 - rho) = 2 pi on every pa
   CHECK(j["schema_version"].is_number_integer());
   CHECK(j["git_describe"].is_string());
   CHECK(j["seed"] == 1);
-  CHECK(j["rays"].is_number_integer());
-  CHECK(j["rays"] == 24 * 200);
+  CHECK(j["schema_version"] == 2);
+  CHECK(j["rays_total"].is_number_integer());
+  CHECK(j["rays_total"] == 24 * 200);  // total vs per patch: the key names which
+  CHECK(j["rays_per_patch"] == 200);
   CHECK(j["solution"]["info"]["factorisations"].is_number_integer());
   CHECK(j["solution"]["info"]["dense"].is_boolean());
   for (const auto& [key, value] : j.items()) CHECK(key.find(' ') == std::string::npos);
@@ -202,4 +204,36 @@ TEST_CASE("radwalk: no output overwrites an input or another output", "[cli]") {
   const Run same = run("solve " + cube + " -o " + (dir / "s.vtp").string() + " --paraview-state " +
                        (dir / "s.py").string() + " --csv " + (dir / "s.csv").string());
   CHECK(same.exit_code == 0);
+}
+
+TEST_CASE("radwalk compare --json: total walks, walks per estimate, the run seeds, spread and mean variance (schema 2)",
+          "[cli]") {
+  const fs::path json = scratch() / "compare.json";
+  const Run r = run("compare " + source("meshes/cube.obj") + " --rays 200 --estimators gather-collision,shoot-absorption"
+                    " --walks-per-patch 30 --runs 3 --seed 7 -q --json " + json.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  std::ifstream js(json);
+  const auto j = nlohmann::json::parse(js);
+  CHECK(j["schema_version"] == 2);
+  CHECK(j["seed"] == 7);
+  CHECK(j["compare"]["runs"] == 3);
+  CHECK(j["compare"]["walks_per_patch"] == 30);
+  CHECK(j["compare"]["kernel"] == "matrix");
+  CHECK(j["compare"]["walk_seeds"] == nlohmann::json::array({7, 8, 9}));
+  const auto n = j["patches"].get<long>();
+  const auto& g = j["estimators"]["gather-collision"];
+  CHECK(g["walks_per_estimate"] == 3 * 30);      // R x walks per patch
+  CHECK(g["walks_total"] == 3 * 30 * n);        // over every estimated patch
+  const auto& s = j["estimators"]["shoot-absorption"];
+  CHECK(s["walks_per_estimate"] == 3 * 30 * n);  // every particle scores every patch
+  CHECK(s["walks_total"] == 3 * 30 * n);
+  for (const auto* e : {&g, &s}) {
+    for (const char* key : {"runs", "steps", "seconds", "mean_abs_z", "max_abs_z", "var_over_theory", "spread_over_se",
+                            "mean_var_per_walk", "efficiency"})
+      CHECK(e->contains(key));
+    for (const char* old : {"walks", "var_ratio"}) CHECK_FALSE(e->contains(old));
+    CHECK((*e)["spread_over_se"].get<double>() > 0);
+    CHECK((*e)["mean_var_per_walk"].get<double>() > 0);
+  }
 }

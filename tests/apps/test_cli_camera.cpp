@@ -32,7 +32,7 @@ TEST_CASE("pathtrace: a closed room is rendered from inside with the default cam
   CHECK(r.out.find("is black") == std::string::npos);
   const auto j = read_json(json);
   CHECK(j["camera"]["source"] == "inside");
-  CHECK(j["camera"]["fov_deg"].get<double>() == Approx(60));
+  CHECK(j["camera"]["vertical_fov_deg"].get<double>() == Approx(60));
   for (const double x : vec(j["camera"]["position"])) {  // inside the unit cube
     CHECK(x > 0);
     CHECK(x < 1);
@@ -50,7 +50,7 @@ TEST_CASE("pathtrace: an open scene is framed from outside, every corner of its 
   const auto j = read_json(json);
   CHECK(j["camera"]["source"] == "outside");
   const auto p = vec(j["camera"]["position"]), t = vec(j["camera"]["look_at"]);
-  const double half = 0.5 * j["camera"]["fov_deg"].get<double>() * M_PI / 180;
+  const double half = 0.5 * j["camera"]["vertical_fov_deg"].get<double>() * M_PI / 180;
   double axis[3], n = 0;
   for (int k = 0; k < 3; ++k) {
     axis[k] = t[k] - p[k];
@@ -90,4 +90,25 @@ TEST_CASE("pathtrace: an image with every pixel black is warned about (a scene w
   const auto c = read_json(cb)["camera"];
   CHECK(c["source"] == "cornell_box");
   CHECK(vec(c["position"]) == std::array<double, 3>{278, 273, -800});
+}
+
+TEST_CASE("measure --response camera: the JSON camera has the keys of pathtrace's (schema 2)", "[cli][camera]") {
+  const fs::path mj = scratch() / "measure_cam.json", pj = scratch() / "pathtrace_cam.json";
+  const std::string cube = source("meshes/cube.obj");
+  const Run m = run("measure " + cube + " --response camera --method shoot-collision --walks 200 --width 16 "
+                    "--height 8 --rays 100 -q --json " + mj.string());
+  const Run p = run("pathtrace " + cube + " --image " + (scratch() / "cam.png").string() +
+                    " --spp 2 --width 16 --height 8 -q --json " + pj.string());
+  INFO(m.out << p.out);
+  REQUIRE(m.exit_code == 0);
+  REQUIRE(p.exit_code == 0);
+  const auto a = read_json(mj)["camera"], b = read_json(pj)["camera"];
+  for (const char* key : {"position", "look_at", "direction", "up", "vertical_fov_deg", "width", "height", "source"}) {
+    INFO(key);
+    REQUIRE(a.contains(key));
+    CHECK(a[key] == b[key]);  // the same default camera, the same film size
+  }
+  CHECK(a.size() == b.size());
+  CHECK(a["width"] == 16);
+  CHECK(a["height"] == 8);
 }

@@ -26,7 +26,7 @@ Measured measured(const std::string& args) {
   Measured m{};
   for (int c = 0; c < 3; ++c) {
     m.M[c] = j["measurement"]["M"][c].get<double>();
-    m.se[c] = j["measurement"].contains("se") ? j["measurement"]["se"][c].get<double>() : 0.0;
+    m.se[c] = j["measurement"].contains("M_se") ? j["measurement"]["M_se"][c].get<double>() : 0.0;
   }
   return m;
 }

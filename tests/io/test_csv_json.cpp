@@ -105,7 +105,7 @@ TEST_CASE("solution JSON: counts are integers, flags booleans, non-finite number
   CHECK(j["method"] == "direct");
   CHECK(j["status"] == "converged");
   CHECK(j["iterations"].is_number_integer());
-  CHECK(j["walks"] == 1000);
+  CHECK(j["walks_total"] == 1000);
   CHECK(j["residual"].is_null());  // not computed
   CHECK(j["residual_history"][0] == 0.5);
   CHECK(j["residual_history"][1].is_null());

@@ -56,7 +56,7 @@ def test_random_walks_equal_the_cli(scene, ff, tmp_path, walk, estimator, count)
     result = radwalk.random_walk(scene, ff, method=f"{walk}-{estimator}", seed=SEED, **{n: count[1]})
     radwalk.write_csv(tmp_path / "py.csv", scene, {**ff.diagnostics, **result.fields})
     assert same_bytes(tmp_path / "cli.csv", tmp_path / "py.csv")
-    assert result.metadata["solution"]["walks"] == result.walks
+    assert result.metadata["solution"]["walks_total"] == result.walks_total
 
 
 def test_pathtrace_averages_equal_the_cli(scene, tmp_path):
@@ -81,3 +81,18 @@ def test_the_thread_count_does_not_change_the_result(scene, ff):
     one = radwalk.random_walk(scene, ff, walks_per_patch=400, seed=3, threads=1)
     two = radwalk.random_walk(scene, ff, walks_per_patch=400, seed=3, threads=2)
     assert np.array_equal(one.B, two.B) and np.array_equal(one.var, two.var)
+
+
+def test_metadata_uses_the_json_schema_of_the_cli(scene, ff, tmp_path):
+    """Result.metadata carries the CLI's "solution" object under the same keys (docs/json-schema.md, version 2)."""
+    import json
+    run_cli("solve", SCENE, *COMMON, "--solver", "gauss-seidel", "--json", tmp_path / "cli.json")
+    cli = json.load(open(tmp_path / "cli.json"))
+    result = radwalk.solve(scene, ff, solver="gauss-seidel")
+    assert result.metadata["schema_version"] == cli["schema_version"] == 2
+    py, js = result.metadata["solution"], cli["solution"]
+    assert set(py) == set(js) - {"mean_B"}  # mean_B: the CLI's summary line only
+    timed = {"seconds", "factor_seconds"}
+    assert {k: v for k, v in py.items() if k not in timed | {"info"}} == \
+           {k: v for k, v in js.items() if k not in timed | {"info", "mean_B"}}
+    assert "walks_total" in py and "walks" not in py

@@ -72,3 +72,20 @@ def test_F_is_a_float32_csr_view_without_a_copy():
     assert np.allclose(np.asarray(a.sum(axis=1)).ravel(), 1, atol=1e-5)
     del ff  # the views keep the C++ matrix alive
     assert np.isfinite(a.data).all()
+
+
+def test_groups_follow_the_input_face_through_repairs(tmp_path):
+    # A pentagon (triangulated into three faces by the reader: a repair) between two quads: the patches of the
+    # third input face must get its own group, not that of the reader's third (repaired) face.
+    obj = tmp_path / "groups.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 1.5 0\n"
+                   "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                   "g first\nf 1 2 3 4\ng pentagon\nf 1 2 3 5 4\ng last\nf 6 7 8 9\n")
+    import warnings
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        scene = radwalk.load(str(obj))
+    names = [scene.groups[g] for g in scene.group]
+    by_face = {int(f): {n for n, ff in zip(names, scene.face) if ff == f} for f in set(scene.face)}
+    assert {f: len(v) for f, v in by_face.items()} == {0: 1, 1: 1, 2: 1}
+    assert "first" in by_face[0].pop() and "pentagon" in by_face[1].pop() and "last" in by_face[2].pop()

@@ -1,0 +1,153 @@
+// radwalk.measure: one measurement M = <R, B>_A by any method of `radwalk measure` (walk/measure_by_method.h),
+// with the response of a spec (apps/measure_response.h, as the CLI's --response) or of a numpy array of weights.
+#include <limits>
+#include <memory>
+
+#include "apps/measure_response.h"
+#include "apps/run_metadata.h"
+#include "bindings.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "io/run_summary.h"
+#include "solve/problem.h"
+#include "visibility/embree_visibility.h"
+#include "walk/measure_by_method.h"
+
+namespace radwalk::python {
+namespace {
+
+struct MeasureResult {
+  Measurement measurement;
+  Response response;
+  std::map<std::string, double> timings;
+  std::string metadata;  // JSON: the CLI's "measurement" object, with "importance" and "camera" where it has them
+};
+
+py::array_t<double> rgb_array(const Rgb& v) {
+  py::array_t<double> a(3);
+  for (int c = 0; c < 3; ++c) a.mutable_at(c) = v(c);
+  return a;
+}
+
+Response response_of(const Scene& scene, const py::object& response, const std::vector<double>& camera, int width,
+                     int height, nlohmann::json& metadata) {
+  if (!camera.empty() && camera.size() != 10)
+    throw InputError("camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
+  if (py::isinstance<py::str>(response)) {
+    const std::string spec = response.cast<std::string>();
+    app::SceneCamera fitted;
+    py::gil_scoped_release release;
+    Response r = app::measure_response(spec, scene.path, scene.patches, scene.group, scene.groups, camera, width,
+                                       height, &fitted);
+    if (spec == "camera") metadata["camera"] = app::camera_json(fitted, scene.patches, width, height);
+    return r;
+  }
+  const auto w = response.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  Response r{Eigen::VectorXd(static_cast<Eigen::Index>(w.size())), "weights given in Python"};
+  std::copy(w.data(), w.data() + w.size(), r.R.data());
+  check_response(r, scene.patches.size());
+  return r;
+}
+
+MeasureResult measure(const Scene& scene, const py::object& response, const py::object& F, const std::string& method,
+                      long walks, const std::string& kernel, const std::string& survival, double survival_constant,
+                      int importance_sweeps, double defensive, bool theory, const std::vector<double>& camera,
+                      int width, int height, long rays, std::uint64_t seed, int threads) {
+  MeasureOptions o;
+  o.method = method;
+  o.walks = walks;
+  o.walk.kernel = parse_walk_kernel(kernel);
+  o.walk.survival.rule = parse_survival_rule(survival);
+  o.walk.survival.constant = survival_constant;
+  o.walk.seed = seed;
+  o.importance_sweeps = importance_sweeps;
+  o.defensive = defensive;
+  o.theory = theory;
+  MeasureResult r;
+  nlohmann::json metadata;
+  r.response = response_of(scene, response, camera, width, height, metadata);
+  check_measure_options(o, scene.patches.size());  // before any form factor is traced, as the CLI
+  const auto n = static_cast<Eigen::Index>(scene.patches.size());
+  SparseF f = measure_needs_form_factors(o) ? form_factor_matrix(F, scene, rays, seed, threads, r.timings)
+                                            : SparseF(n, n);
+  {
+    py::gil_scoped_release release;
+    ThreadLimit limit(threads);
+    const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
+    std::unique_ptr<EmbreeVisibility> visibility;
+    if (!measure_needs_form_factors(o)) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
+    r.measurement = measure_by_method(problem, &scene.patches, visibility.get(), r.response, o);
+  }
+  r.timings["measure"] = r.measurement.estimate.seconds;
+  metadata["measurement"] = app::measurement_json(r.measurement, r.response, theory);
+  if (is_importance_measure(method))
+    metadata["importance"] = {{"source", r.measurement.importance_source},
+                              {"sweeps", importance_sweeps},
+                              {"defensive", r.measurement.defensive}};
+  metadata["schema_version"] = RunSummary::kSchemaVersion;
+  metadata["scene"] = scene.path;
+  metadata["max_edge"] = scene.max_edge;
+  metadata["patches"] = scene.patches.size();
+  metadata["seed"] = seed;
+  metadata["threads"] = threads;
+  metadata["timings_s"] = r.timings;
+  r.metadata = metadata.dump();
+  return r;
+}
+
+}  // namespace
+
+void bind_measure(py::module_& m) {
+  py::class_<MeasureResult>(m, "Measurement", R"doc(What measure() returns: M = <R, B>_A per channel and its error bar.
+
+M, M_se, var_per_walk, var_per_walk_theory: (3,) arrays (per channel): the estimate (W for a response of weight
+1; the mean pixel radiance for response="camera"), its standard error, the sample variance of one walk's score and
+the exact one (NaN where not computed, +inf where infinite); deterministic methods have M_se = var_per_walk = 0.
+walks_total (walks or particles in all; per channel for importance walks), steps, seconds, method, response (what
+R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI's JSON "measurement" object (and
+"importance", "camera" where the CLI writes them), same keys (docs/json-schema.md).)doc")
+      .def_property_readonly("M", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.M); })
+      .def_property_readonly("M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); })
+      .def_property_readonly("var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); })
+      .def_property_readonly("var_per_walk_theory",
+                             [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var_theory); })
+      .def_property_readonly("walks_total", [](const MeasureResult& r) { return r.measurement.estimate.walks; })
+      .def_property_readonly("steps", [](const MeasureResult& r) { return r.measurement.estimate.counters.steps; })
+      .def_property_readonly("seconds", [](const MeasureResult& r) { return r.measurement.estimate.seconds; })
+      .def_property_readonly("method", [](const MeasureResult& r) { return r.measurement.estimate.method; })
+      .def_property_readonly("deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; })
+      .def_property_readonly("response", [](const MeasureResult& r) { return r.response.what; })
+      .def_property_readonly("R", [](const MeasureResult& r) {
+        return py::array_t<double>(r.response.R.size(), r.response.R.data());
+      })
+      .def_readonly("timings", &MeasureResult::timings)
+      .def_property_readonly("metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); })
+      .def("__repr__", [](const MeasureResult& r) {
+        return "<radwalk.Measurement " + r.measurement.estimate.method + " over " + r.response.what + ">";
+      });
+
+  m.def("measure_methods", &measure_method_names,
+        "The methods of measure(): direct, adjoint-direct, importance-gather, importance-shoot and the walk methods.");
+  m.def("measure", &measure, py::arg("scene"), py::arg("response"), py::arg("F") = py::none(),
+        py::arg("method") = "adjoint-direct", py::arg("walks") = 100000, py::arg("kernel") = "matrix",
+        py::arg("survival") = "analog", py::arg("survival_constant") = 0.5, py::arg("importance_sweeps") = -1,
+        py::arg("defensive") = -1.0, py::arg("theory") = false, py::arg("camera") = std::vector<double>{},
+        py::arg("width") = 256, py::arg("height") = 256, py::arg("rays") = 1000, py::arg("seed") = 1,
+        py::arg("threads") = 0,
+        R"doc(One measurement M = <R, B>_A = sum_i A_i R_i B_i per channel, with its standard error: a Measurement.
+
+As `radwalk measure SCENE --response RESPONSE --method METHOD --walks WALKS ...` (same seed, same M):
+response: a spec as the CLI's --response ("patches:0,3", "material:white", "group:desk", "csv:FILE:COLUMN",
+  "camera": the mean pixel radiance of the view of `camera` (10 numbers as pathtrace's, empty: the scene's
+  own), width x height pixels) or an (N,) array of weights R_i >= 0.
+method: one of measure_methods(): "direct" (<R, B> from the LU solve), "adjoint-direct" (<Y, E> from the adjoint
+  solve), a walk method of walk_methods() (gathering methods walk from the sensor, shooting ones from the
+  sources; kernel "matrix" or "ray", survival as random_walk), "importance-gather" / "importance-shoot"
+  (importance-driven walks; importance_sweeps -1: the exact importance (zero variance), K >= 0: K Jacobi sweeps;
+  defensive: the analog fraction alpha, -1: 0 exact, 0.1 swept).
+walks: walks or particles in all (per channel for the importance walks); theory: also the exact per-walk variance
+  (matrix kernel, N <= 2000). F: a FormFactors, a scipy.sparse matrix, or None (estimated with rays and seed).
+Raises radwalk.InputError for a bad response, method or option (the CLI's message).)doc");
+}
+
+}  // namespace radwalk::python

@@ -1,0 +1,165 @@
+#include "solve/response_spec.h"
+
+#include <charconv>
+#include <sstream>
+
+#include "core/did_you_mean.h"
+#include "core/error.h"
+#include "core/input_file.h"
+
+namespace radwalk {
+namespace {
+
+// The pieces of s between separators (an empty last piece after a trailing separator).
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(s);
+  while (std::getline(in, part, sep)) parts.push_back(part);
+  if (!s.empty() && s.back() == sep) parts.emplace_back();
+  return parts;
+}
+
+bool whole_number(const std::string& s, long& value) {
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, value);
+  return r.ec == std::errc() && r.ptr == end && !s.empty();
+}
+
+bool real_number(const std::string& s, double& value) {
+  const char* end = s.data() + s.size();
+  const auto r = std::from_chars(s.data(), end, value);
+  return r.ec == std::errc() && r.ptr == end && !s.empty();
+}
+
+// A line without its trailing '\r' (a CRLF file).
+std::string chomp(std::string line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  return line;
+}
+
+// The name of an OBJ object or group in Mesh::groups' "object 'chair', group 'seat'" form: true if NAME is one
+// of the quoted names.
+bool group_has_name(const std::string& group, const std::string& name) {
+  return group.find("'" + name + "'") != std::string::npos;
+}
+
+template <class Chosen>
+Response select(const PatchSet& patches, const std::string& what, Chosen&& chosen) {
+  Response r{Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patches.size())), what};
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (chosen(i)) r.R(static_cast<Eigen::Index>(i)) = 1, ++count;
+  r.what = what + " (" + std::to_string(count) + (count == 1 ? " patch)" : " patches)");
+  return r;
+}
+
+}  // namespace
+
+std::vector<std::int32_t> patch_groups(const Mesh& mesh, const PatchSet& patches) {
+  std::vector<std::int32_t> group_of_input;
+  for (std::size_t f = 0; f < mesh.face_count() && f < mesh.face_group.size(); ++f) {
+    const auto input = static_cast<std::size_t>(mesh.source_face(f));
+    if (input >= group_of_input.size()) group_of_input.resize(input + 1, -1);
+    group_of_input[input] = mesh.face_group[f];
+  }
+  std::vector<std::int32_t> group(patches.size(), -1);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const auto f = static_cast<std::size_t>(patches.face[i]);
+    if (f < group_of_input.size()) group[i] = group_of_input[f];
+  }
+  return group;
+}
+
+Eigen::VectorXd response_from_csv(const std::string& text, const std::string& file, const std::string& column,
+                                  const std::string& spec, std::size_t patch_count) {
+  std::istringstream in(text);
+  std::string line;
+  std::getline(in, line);
+  const std::vector<std::string> header = split(chomp(line), ',');
+  long patch_col = -1, weight_col = -1;
+  for (std::size_t k = 0; k < header.size(); ++k) {
+    if (header[k] == "patch") patch_col = long(k);
+    if (header[k] == column) weight_col = long(k);
+  }
+  if (patch_col < 0) throw InputError(file + ":1: --response " + spec + ": the CSV has no 'patch' column");
+  if (weight_col < 0)
+    throw InputError(file + ":1: --response " + spec + ": no column '" + printable(column) + "'" +
+                     did_you_mean(column, header));
+  Eigen::VectorXd R = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patch_count));
+  long line_number = 1;
+  while (std::getline(in, line)) {
+    ++line_number;
+    line = chomp(line);
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = split(line, ',');
+    const std::string where = file + ":" + std::to_string(line_number) + ": --response " + spec + ": ";
+    long patch = 0;
+    if (std::size_t(std::max(patch_col, weight_col)) >= cells.size() ||
+        !whole_number(cells[std::size_t(patch_col)], patch) || patch < 0 || std::size_t(patch) >= patch_count)
+      throw InputError(where + "expected a patch number in [0, " + std::to_string(patch_count) + ") and a weight");
+    const std::string& cell = cells[std::size_t(weight_col)];
+    double w = 0;
+    if (!real_number(cell, w)) throw InputError(where + "weight '" + printable(cell) + "' is not a number");
+    R(patch) = w;
+  }
+  return R;
+}
+
+Response parse_response(const std::string& spec, const PatchSet& patches, const std::vector<std::int32_t>& group_of_patch,
+                        const std::vector<std::string>& groups, const std::string& scene) {
+  const std::size_t colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon), rest = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  const std::vector<std::string> kinds = {"patches", "material", "group", "csv"};
+  if (colon == std::string::npos || rest.empty())
+    throw InputError("--response '" + printable(spec) +
+                     "': expected patches:I,J,..., material:NAME, group:NAME or csv:FILE:COLUMN");
+  Response r;
+  if (kind == "patches") {
+    std::vector<char> on(patches.size(), 0);
+    for (const std::string& p : split(rest, ',')) {
+      long i = 0;
+      if (!whole_number(p, i) || i < 0 || std::size_t(i) >= patches.size())
+        throw InputError("--response " + printable(spec) + ": '" + printable(p) + "' is not a patch in [0, " +
+                         std::to_string(patches.size()) + ")");
+      on[std::size_t(i)] = 1;
+    }
+    r = select(patches, "patches " + rest, [&](std::size_t i) { return on[i] != 0; });
+  } else if (kind == "material") {
+    std::vector<std::string> names;
+    int m = -1;
+    for (std::size_t k = 0; k < patches.materials.size(); ++k) {
+      names.push_back(patches.materials[k].name);
+      if (patches.materials[k].name == rest) m = int(k);
+    }
+    if (m < 0)
+      throw InputError("--response " + printable(spec) + ": no material '" + printable(rest) + "'" +
+                       did_you_mean(rest, names));
+    r = select(patches, "material '" + rest + "'", [&](std::size_t i) { return patches.material[i] == m; });
+  } else if (kind == "group") {
+    std::vector<char> in_group(groups.size(), 0);
+    bool any = false;
+    for (std::size_t g = 0; g < groups.size(); ++g) any |= (in_group[g] = group_has_name(groups[g], rest));
+    if (!any)
+      throw InputError("--response " + printable(spec) + ": no OBJ object or group '" + printable(rest) + "' in " +
+                       scene);
+    r = select(patches, "group '" + rest + "'", [&](std::size_t i) {
+      const std::int32_t g = i < group_of_patch.size() ? group_of_patch[i] : -1;
+      return g >= 0 && std::size_t(g) < in_group.size() && in_group[std::size_t(g)];
+    });
+  } else if (kind == "csv") {
+    const std::size_t last = rest.rfind(':');
+    if (last == std::string::npos || last == 0 || last + 1 == rest.size())
+      throw InputError("--response " + printable(spec) + ": expected csv:FILE:COLUMN");
+    const std::string file = rest.substr(0, last), column = rest.substr(last + 1);
+    r = {response_from_csv(read_input_file(file), file, column, spec, patches.size()),
+         "column '" + column + "' of " + file};
+  } else {
+    throw InputError("--response '" + printable(spec) + "': unknown kind '" + printable(kind) + "'" +
+                     did_you_mean(kind, kinds) + "; expected patches:, material:, group: or csv:");
+  }
+  check_response(r, patches.size());
+  return r;
+}
+
+}  // namespace radwalk

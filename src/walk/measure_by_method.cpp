@@ -1,0 +1,105 @@
+#include "walk/measure_by_method.h"
+
+#include <algorithm>
+
+#include "core/did_you_mean.h"
+#include "core/error.h"
+#include "core/timer.h"
+#include "solve/direct_solver.h"
+
+namespace radwalk {
+namespace {
+
+WalkOptions walk_options(const MeasureOptions& o) {
+  WalkOptions w = o.walk;
+  w.method = parse_walk_method(o.method);
+  w.walks_per_patch = w.particles = o.walks;
+  return w;
+}
+
+PatchRgb direct_B(const RadiosityProblem& problem) {
+  const Solution s = DirectSolver(problem).solve(problem);
+  if (s.status != SolveStatus::converged) throw NumericalError(s.message);
+  return s.B;
+}
+
+PatchRgb adjoint_Y(const RadiosityProblem& problem, const Response& response) {
+  const Solution Y = solve_adjoint_direct(problem, response);
+  if (Y.status != SolveStatus::converged) throw NumericalError(Y.message);
+  return Y.B;
+}
+
+}  // namespace
+
+std::vector<std::string> measure_method_names() {
+  std::vector<std::string> names = {"direct", "adjoint-direct", "importance-gather", "importance-shoot"};
+  for (const std::string& m : walk_method_names()) names.push_back(m);
+  return names;
+}
+
+bool is_deterministic_measure(const std::string& method) { return method == "direct" || method == "adjoint-direct"; }
+
+bool is_importance_measure(const std::string& method) {
+  return method == "importance-gather" || method == "importance-shoot";
+}
+
+void check_measure_options(const MeasureOptions& o, std::size_t patch_count) {
+  const bool deterministic = is_deterministic_measure(o.method), importance = is_importance_measure(o.method);
+  if (!deterministic && !importance) {
+    const std::vector<std::string> names = measure_method_names();
+    if (std::find(names.begin(), names.end(), o.method) == names.end()) {
+      std::string list;
+      for (const std::string& m : names) list += (list.empty() ? "" : ", ") + m;
+      throw InputError("--method: unknown value '" + printable(o.method) + "'" + did_you_mean(o.method, names) +
+                       "; choose from " + list);
+    }
+    check_walk_options(walk_options(o), patch_count);
+  } else if (o.walks < 1 && importance) {
+    throw InputError("--walks must be at least 1 (got " + std::to_string(o.walks) + ")");
+  }
+  const bool needs_lu = deterministic || (importance && o.importance_sweeps < 0);
+  if (needs_lu && patch_count > static_cast<std::size_t>(kDenseMaxPatches))
+    throw InputError("--method " + o.method + (importance ? " with the exact importance" : "") + " needs an LU of " +
+                     std::to_string(patch_count) + " patches (at most " + std::to_string(kDenseMaxPatches) +
+                     "): use a walk method (e.g. --method gather-expected-value --kernel ray, no F stored) or " +
+                     (importance ? "--importance-sweeps K" : "importance walks with --importance-sweeps K"));
+}
+
+bool measure_needs_form_factors(const MeasureOptions& o) {
+  return is_deterministic_measure(o.method) || is_importance_measure(o.method) || o.walk.kernel != WalkKernel::ray;
+}
+
+Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                              const Response& response, const MeasureOptions& o) {
+  Measurement m;
+  MeasureEstimate& est = m.estimate;
+  m.deterministic = is_deterministic_measure(o.method);
+  Timer timer;
+  if (o.method == "direct") {
+    est.M = measure(problem.area, response.R, direct_B(problem));
+    est.se = est.var = Rgb::Zero();
+  } else if (o.method == "adjoint-direct") {
+    est.M = adjoint_measure(problem.area, adjoint_Y(problem, response), problem.E);
+    est.se = est.var = Rgb::Zero();
+  } else if (is_importance_measure(o.method)) {
+    const bool sensor = o.method == "importance-gather";
+    const bool exact = o.importance_sweeps < 0;
+    const PatchRgb g = exact ? (sensor ? direct_B(problem) : adjoint_Y(problem, response))
+                             : (sensor ? partial_radiosity(problem, o.importance_sweeps)
+                                       : partial_importance(problem, response, o.importance_sweeps));
+    m.defensive = o.defensive >= 0 ? o.defensive : exact ? 0.0 : 0.1;
+    m.importance_source = exact ? "direct" : "jacobi";
+    est = measure_importance(problem, response,
+                             sensor ? ImportanceDirection::from_sensor : ImportanceDirection::from_sources, g,
+                             m.defensive, o.walks, o.walk.seed, o.theory);
+  } else {
+    const bool ray = o.walk.kernel == WalkKernel::ray;
+    est = measure_random_walk(problem, ray ? patches : nullptr, ray ? visibility : nullptr, walk_options(o), response,
+                              o.walks, o.theory && !ray);
+  }
+  if (m.deterministic) est.seconds = timer.seconds();
+  est.method = o.method;
+  return m;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,90 @@
+// The response specs of `radwalk measure --response` (solve/response_spec.h): the CSV reader on radwalk's own
+// CSVs and on every malformed row, patches, materials and groups, and the one-line refusals.
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "core/error.h"
+#include "patch/patch_builder.h"
+#include "solve/response_spec.h"
+#include "support/box_scenes.h"
+
+using namespace radwalk;
+
+namespace {
+
+// The message of the InputError f throws ("" if none).
+template <class F>
+std::string refusal(F&& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("response_from_csv: the weights of a column by the patch column", "[solve][response]") {
+  // A CSV as radwalk writes it (a run_id column last, numbers in %.12g), rows in any order, a blank line.
+  const std::string text =
+      "patch,face,B_r,run_id\n"
+      "2,1,0.25,d2db41ed9183ff0e\n"
+      "0,0,1.5e-3,d2db41ed9183ff0e\n"
+      "\n";
+  const Eigen::VectorXd R = response_from_csv(text, "b.csv", "B_r", "csv:b.csv:B_r", 4);
+  REQUIRE(R.size() == 4);
+  CHECK(R(0) == 1.5e-3);
+  CHECK(R(1) == 0);  // not listed: weight 0
+  CHECK(R(2) == 0.25);
+  CHECK(R(3) == 0);
+  // CRLF line ends (a file edited on Windows) read the same.
+  const Eigen::VectorXd crlf =
+      response_from_csv("patch,w\r\n2,0.25\r\n0,1.5e-3\r\n", "b.csv", "w", "csv:b.csv:w", 4);
+  CHECK(crlf == (Eigen::VectorXd(4) << 1.5e-3, 0, 0.25, 0).finished());
+}
+
+TEST_CASE("response_from_csv: every malformed row is a one-line refusal naming file and line", "[solve][response]") {
+  const auto refused = [](const std::string& text, const std::string& column) {
+    return refusal([&] { response_from_csv(text, "w.csv", column, "csv:w.csv:" + column, 3); });
+  };
+  CHECK(refused("face,w\n0,1\n", "w") == "w.csv:1: --response csv:w.csv:w: the CSV has no 'patch' column");
+  CHECK(refused("patch,weight\n0,1\n", "weigth").find("w.csv:1: --response csv:w.csv:weigth: no column 'weigth'") == 0);
+  CHECK(refused("patch,weight\n0,1\n", "weigth").find("did you mean 'weight'") != std::string::npos);
+  const std::string bad_patch = "expected a patch number in [0, 3) and a weight";
+  CHECK(refused("patch,w\n0,1\n3,1\n", "w") == "w.csv:3: --response csv:w.csv:w: " + bad_patch);   // out of range
+  CHECK(refused("patch,w\n-1,1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);       // negative
+  CHECK(refused("patch,w\n1.5,1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);      // not whole
+  CHECK(refused("patch,w\n1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);          // short row
+  CHECK(refused("patch,w\n1,abc\n", "w") == "w.csv:2: --response csv:w.csv:w: weight 'abc' is not a number");
+  CHECK(refused("patch,w\n1,\n", "w") == "w.csv:2: --response csv:w.csv:w: weight '' is not a number");  // NaN cell
+  CHECK(refused("patch,w\n1,2x\n", "w") == "w.csv:2: --response csv:w.csv:w: weight '2x' is not a number");
+}
+
+TEST_CASE("parse_response: patches, materials and groups", "[solve][response]") {
+  PatchBuilder b;
+  b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  const int red = b.add_material("red", Rgb(0.5, 0.1, 0.1));
+  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, 0);
+  PatchSet p = b.build();
+  p.material[3] = red;
+  const std::vector<std::string> groups = {"group 'caps'", "object 'box', group 'walls'"};
+  const std::vector<std::int32_t> group_of_patch = {1, 1, 0, 0, 1, -1};
+  const auto parse = [&](const std::string& spec) { return parse_response(spec, p, group_of_patch, groups, "box.obj"); };
+
+  const Response two = parse("patches:0,4");
+  CHECK(two.R == (Eigen::VectorXd(6) << 1, 0, 0, 0, 1, 0).finished());
+  CHECK(two.what == "patches 0,4 (2 patches)");
+  CHECK(parse("material:red").R == (Eigen::VectorXd(6) << 0, 0, 0, 1, 0, 0).finished());
+  CHECK(parse("material:red").what == "material 'red' (1 patch)");
+  CHECK(parse("group:caps").R == (Eigen::VectorXd(6) << 0, 0, 1, 1, 0, 0).finished());
+  CHECK(parse("group:box").R == (Eigen::VectorXd(6) << 1, 1, 0, 0, 1, 0).finished());  // the object's name too
+
+  const auto refused = [&](const std::string& spec) { return refusal([&] { parse(spec); }); };
+  CHECK(refused("patches:6") == "--response patches:6: '6' is not a patch in [0, 6)");
+  CHECK(refused("material:rde").find("did you mean 'red'") != std::string::npos);
+  CHECK(refused("group:lid") == "--response group:lid: no OBJ object or group 'lid' in box.obj");
+  CHECK(refused("sensor:1").find("unknown kind 'sensor'") != std::string::npos);
+  CHECK(refused("patches") == "--response 'patches': expected patches:I,J,..., material:NAME, group:NAME or csv:FILE:COLUMN");
+  CHECK(refused("csv:w.csv") == "--response csv:w.csv: expected csv:FILE:COLUMN");
+}
