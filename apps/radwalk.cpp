@@ -599,7 +599,8 @@ int main(int argc, char** argv) {
 
   for (const auto& [o, cmd] : {std::pair{&check, check_cmd}, std::pair{&patch.scene, patch_cmd},
                                std::pair{&ff.scene, ff_cmd}, std::pair{&solve.scene, solve_cmd},
-                               std::pair{&compare.scene, compare_cmd}, std::pair{&pt.scene, pt_cmd}})
+                               std::pair{&compare.scene, compare_cmd}, std::pair{&pt.scene, pt_cmd},
+                               std::pair{&measure.scene, measure_cmd}})
     if (*cmd) o->run_options = canonical_options(cmd);
 
   try {

@@ -301,3 +301,21 @@ TEST_CASE("P2: kill -9 during a CLI output write leaves the old file, and the ne
   check_old_or_complete(csv);
   CHECK(file_text(csv) != "old\n");
 }
+
+TEST_CASE("measure's run id follows its options: another method or response is another run", "[cli][run_id]") {
+  const fs::path dir = scratch() / "measure_ids";
+  fs::create_directories(dir);
+  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 300 --rays 200 --seed 1";
+  const auto id = [&](const std::string& args) {
+    const fs::path json = dir / "m.json";
+    const Run r = run("measure " + scene + " " + args + " --json " + json.string());
+    INFO(args << " -> " << r.out);
+    REQUIRE(r.exit_code == 0);
+    return run_id_in(json);
+  };
+  const std::string base = id("--response material:white --method direct");
+  CHECK(!base.empty());
+  CHECK(id("--response material:white --method direct") == base);
+  CHECK(id("--response material:white --method adjoint-direct") != base);
+  CHECK(id("--response material:red --method direct") != base);
+}
