@@ -36,7 +36,10 @@ namespace py = pybind11;
 struct Scene {
   std::string path;
   double max_edge = 0;
+  double max_area = 0;
   bool strict = false;
+  bool two_sided = false;    // every material two-sided (the CLI's --two-sided)
+  bool contact_cut = false;  // faces cut along the footprints of objects standing on them (--contact-cut)
   PatchSet patches;
   std::vector<std::int32_t> group;    // per patch: the group index of its input face, -1 outside any
   std::vector<std::string> groups;    // "object 'chair', group 'seat'"

@@ -77,7 +77,10 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
   for (std::size_t i = 0; i < scene.patches.size(); ++i) group_of_face[scene.patches.face[i]] = scene.group[i];
   a.scene.path = scene.path;
   a.scene.max_edge = scene.max_edge;
+  a.scene.max_area = scene.max_area;
   a.scene.strict = scene.strict;
+  a.scene.two_sided = scene.two_sided;
+  a.scene.contact_cut = scene.contact_cut;
   a.scene.groups = scene.groups;
   a.scene.patches = std::move(refined.patches);
   a.scene.group.resize(a.scene.patches.size());

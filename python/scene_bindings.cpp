@@ -6,6 +6,7 @@
 #include "bindings.h"
 #include "core/error.h"
 #include "mesh/read_scene.h"
+#include "patch/contact.h"
 #include "patch/patching.h"
 #include "solve/response_spec.h"
 
@@ -30,7 +31,8 @@ py::array_t<T> view(const T* data, std::size_t n, std::size_t columns, std::size
 void assign(py::object target, py::object values) { py::module_::import("numpy").attr("copyto")(target, values); }
 
 // Reads, validates and patches the scene as every CLI command does (load_scene, make_patches).
-Scene load(const std::filesystem::path& file, double max_edge, bool strict) {
+Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
+           bool contact_cut) {
   const std::string path = file.string();
   Scene scene;
   {
@@ -38,14 +40,24 @@ Scene load(const std::filesystem::path& file, double max_edge, bool strict) {
     ReadOptions read;
     read.strict = strict;
     Mesh mesh = load_scene(path, read);
-    scene.patches = make_patches(mesh, max_edge);
+    // As the CLI's load_patches (apps/pipeline.cpp): contacts cut only when asked and when faces are split, then
+    // the per-face split, then a back patch for every two-sided face.
+    if (contact_cut && (max_edge > 0 || max_area > 0)) mesh = cut_along_contacts(mesh, find_contacts(mesh));
+    PatchingOptions patching;
+    patching.max_edge = max_edge;
+    patching.max_area = max_area;
+    scene.patches = make_patches(mesh, patching);
+    add_back_sides(scene.patches, two_sided);
     scene.group = patch_groups(mesh, scene.patches);  // through the input face of every (repaired) face
     scene.groups = mesh.groups;
     scene.warnings = mesh.warnings;
   }
   scene.path = path;
   scene.max_edge = max_edge;
+  scene.max_area = max_area;
   scene.strict = strict;
+  scene.two_sided = two_sided;
+  scene.contact_cut = contact_cut;
   for (const std::string& w : scene.warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
   return scene;
 }
@@ -91,7 +103,10 @@ Per-patch numpy arrays are views of the C++ arrays (no copy; they keep the Scene
 Per material: set_material(name, rho=..., Ke=...), which acts as the same scene with an edited MTL.)doc")
       .def_readonly("path", &Scene::path)
       .def_readonly("max_edge", &Scene::max_edge)
+      .def_readonly("max_area", &Scene::max_area)
       .def_readonly("strict", &Scene::strict)
+      .def_readonly("two_sided", &Scene::two_sided)
+      .def_readonly("contact_cut", &Scene::contact_cut)
       .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, one line each (as the CLI's).")
       .def_readonly("groups", &Scene::groups, "Group names, indexed by Scene.group.")
       .def_property_readonly("materials", [](const Scene& s) { return s.patches.materials; },
@@ -172,12 +187,18 @@ set_radiometry_from_materials), so per-patch edits of rho or E made before are r
                std::to_string(s.patches.materials.size()) + " materials>";
       });
 
-  m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("strict") = false,
+  m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0,
+        py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = false,
         R"doc(Reads, validates and patches a scene (OBJ with MTL, or PLY): a Scene.
 
 max_edge: split faces until no patch edge is longer than this (mesh units); 0 keeps the input faces (patch i is
   input face i), as the CLI's --max-edge.
+max_area: also split faces until no patch is larger than this (mesh units squared), as --max-area.
 strict: refuse what validation would repair (the CLI's --strict).
+two_sided: every material two-sided (a front and a back patch per face), as --two-sided; materials with
+  `radwalk_two_sided 1` in their MTL block are two-sided either way.
+contact_cut: cut the faces that objects stand on along their footprints before splitting (only when max_edge or
+  max_area splits faces), as --contact-cut.
 Repairs are reported as UserWarnings and kept in Scene.warnings; refusals raise radwalk.InputError (a
 ValueError) with the CLI's one-line message ("FILE:LINE: face F: what is wrong").)doc");
 }
