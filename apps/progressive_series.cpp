@@ -1,5 +1,7 @@
 #include "apps/progressive_series.h"
 
+#include "core/distributed.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -37,8 +39,9 @@ ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
   const std::regex stale("step_[0-9]{4,}\\.vtp");
-  for (const auto& entry : fs::directory_iterator(dir_))
-    if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
+  if (distributed::is_root())  // over MPI only rank 0 writes the series (core/distributed.h)
+    for (const auto& entry : fs::directory_iterator(dir_))
+      if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
   pvd_ = (fs::path(dir_) / pvd_name).string();
 }
 
