@@ -19,6 +19,7 @@ namespace radwalk::distributed {
 namespace {
 
 int g_rank = 0, g_size = 1;
+std::uint64_t g_received = 0;  // bytes_received()
 
 #ifdef RADWALK_MPI
 bool g_mpi = false;  // MPI_Init was called by the Session
@@ -56,6 +57,7 @@ void print_captured() {
 }  // namespace
 
 int rank() { return g_rank; }
+std::uint64_t bytes_received() { return g_received; }
 int size() { return g_size; }
 
 bool built_with_mpi() {
@@ -107,6 +109,7 @@ std::vector<Range> weighted_blocks(const std::vector<double>& weights) {
 void broadcast_bytes(void* data, std::size_t bytes) {
   if (g_size == 1) return;
   auto* p = static_cast<char*>(data);
+  if (g_rank != 0) g_received += bytes;
   for (std::size_t at = 0; at < bytes; at += kPiece)
     MPI_Bcast(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, 0, g_work);
 }
@@ -119,6 +122,8 @@ void allgather_in_place(void* data, std::size_t elem_size, const std::vector<Ran
   MPI_Type_contiguous(static_cast<int>(elem_size), MPI_BYTE, &element);
   MPI_Type_commit(&element);
   std::vector<int> counts, displacements;
+  for (std::size_t k = 0; k < ranges.size(); ++k)
+    if (static_cast<int>(k) != g_rank) g_received += ranges[k].size() * elem_size;
   for (const Range& r : ranges) {
     RADWALK_CHECK(r.end <= std::size_t{0x7fffffff});  // element counts fit an MPI int
     counts.push_back(static_cast<int>(r.size()));
@@ -155,6 +160,7 @@ std::vector<char> receive_from(int r) {
   unsigned long long n = 0;
   MPI_Recv(&n, 1, MPI_UNSIGNED_LONG_LONG, r, 1, g_work, MPI_STATUS_IGNORE);
   std::vector<char> bytes(static_cast<std::size_t>(n));
+  g_received += bytes.size();
   for (std::size_t at = 0; at < bytes.size(); at += kPiece)
     MPI_Recv(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE, r, 2, g_work,
              MPI_STATUS_IGNORE);

@@ -57,6 +57,8 @@ void send_to_root(const std::vector<char>& bytes);
 std::vector<char> receive_from(int r);
 // The largest value over all ranks.
 double max_over_ranks(double value);
+// The bytes this rank has received from other ranks so far (every collective and message above; not collective).
+std::uint64_t bytes_received();
 
 // Typed forms.
 template <class T>

@@ -129,18 +129,31 @@ struct ShootPart {
 };
 
 // A ShootPart as bytes and back, for the distributed ordered reduce (core/distributed.h): every rank's parts are
-// combined on rank 0 in chunk order. N rows are known to both sides.
+// combined on rank 0 in chunk order. Only the rows a particle scored on are sent (row index, then its sum and sum2),
+// so the bytes grow with the scores of the chunk, not with N; the rows not sent are zero, as they were.
 void save_shoot_part(const ShootPart& part, distributed::ByteWriter& out) {
-  out.put_bytes(part.sum.data(), sizeof(double) * static_cast<std::size_t>(part.sum.size()));
-  out.put_bytes(part.sum2.data(), sizeof(double) * static_cast<std::size_t>(part.sum2.size()));
+  std::uint64_t rows = 0;
+  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) rows += (part.sum.row(k) != 0).any() || (part.sum2.row(k) != 0).any();
+  out.put(rows);
+  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) {
+    if (!(part.sum.row(k) != 0).any() && !(part.sum2.row(k) != 0).any()) continue;
+    out.put(static_cast<std::uint64_t>(k));
+    out.put_bytes(part.sum.row(k).data(), 3 * sizeof(double));  // PatchRgb is row-major
+    out.put_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
+  }
   out.put(part.counters);
 }
 ShootPart load_shoot_part(distributed::ByteReader& in, Eigen::Index N) {
   ShootPart part;
-  part.sum.resize(N, 3);
-  part.sum2.resize(N, 3);
-  in.get_bytes(part.sum.data(), sizeof(double) * static_cast<std::size_t>(part.sum.size()));
-  in.get_bytes(part.sum2.data(), sizeof(double) * static_cast<std::size_t>(part.sum2.size()));
+  part.sum.setZero(N, 3);
+  part.sum2.setZero(N, 3);
+  const auto rows = in.get<std::uint64_t>();
+  for (std::uint64_t r = 0; r < rows; ++r) {
+    const auto k = static_cast<Eigen::Index>(in.get<std::uint64_t>());
+    RADWALK_CHECK(k >= 0 && k < N);  // a row of the sender's part
+    in.get_bytes(part.sum.row(k).data(), 3 * sizeof(double));
+    in.get_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
+  }
   part.counters = in.get<WalkCounters>();
   return part;
 }
