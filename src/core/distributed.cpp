@@ -68,39 +68,34 @@ bool built_with_mpi() {
 #endif
 }
 
-Range block(std::size_t n, int r) {
-  const auto R = static_cast<std::size_t>(g_size), k = static_cast<std::size_t>(r);
-  // The first n mod R ranks take one item more.
+Range block(std::size_t n, int r, int ranks) {
+  const auto R = static_cast<std::size_t>(ranks), k = static_cast<std::size_t>(r);
   const std::size_t base = n / R, extra = n % R;
   const std::size_t lo = base * k + std::min(k, extra);
   return {lo, lo + base + (k < extra ? 1 : 0)};
 }
 
-std::vector<Range> all_blocks(std::size_t n) {
+std::vector<Range> all_blocks(std::size_t n, int ranks) {
   std::vector<Range> out;
-  for (int r = 0; r < g_size; ++r) out.push_back(block(n, r));
+  for (int r = 0; r < ranks; ++r) out.push_back(block(n, r, ranks));
   return out;
 }
 
-std::vector<Range> weighted_blocks(const std::vector<double>& weights) {
+std::vector<Range> weighted_blocks(const std::vector<double>& weights, int ranks) {
   const std::size_t n = weights.size();
   double total = 0;
   for (double w : weights) total += w;
-  if (!(total > 0)) return all_blocks(n);  // nothing to weigh: equal blocks
-  std::vector<std::size_t> starts(static_cast<std::size_t>(g_size) + 1, n);
+  if (!(total > 0)) return all_blocks(n, ranks);  // nothing to weigh: equal blocks
+  std::vector<std::size_t> starts(static_cast<std::size_t>(ranks) + 1, n);
   starts[0] = 0;
   double before = 0;  // sum of weights[0 .. i)
   int r = 1;
-  for (std::size_t i = 0; i < n && r < g_size; ++i) {
-    while (r < g_size && before >= total * r / g_size) starts[static_cast<std::size_t>(r++)] = i;
+  for (std::size_t i = 0; i < n && r < ranks; ++i) {
+    while (r < ranks && before >= total * r / ranks) starts[static_cast<std::size_t>(r++)] = i;
     before += weights[i];
   }
   std::vector<Range> out;
-  for (int k = 0; k < g_size; ++k) {
-    const std::size_t b = std::min(starts[static_cast<std::size_t>(k)], n);
-    const std::size_t e = std::max(b, std::min(starts[static_cast<std::size_t>(k) + 1], n));
-    out.push_back({b, e});
-  }
+  for (int k = 0; k < ranks; ++k) out.push_back({starts[static_cast<std::size_t>(k)], starts[static_cast<std::size_t>(k) + 1]});
   return out;
 }
 

@@ -38,12 +38,16 @@ struct Range {
   std::size_t size() const { return end - begin; }
 };
 
-// Block partition of [0, n): rank r gets [n r / R, n (r + 1) / R) (sizes differ by at most one).
-Range block(std::size_t n, int r);
+// Block partition of [0, n) over `ranks` ranks: consecutive blocks whose sizes differ by at most one (the first
+// n mod ranks take one more). Not collective; block(n, r) is for this run's size().
+Range block(std::size_t n, int r, int ranks);
+inline Range block(std::size_t n, int r) { return block(n, r, size()); }
 inline Range my_block(std::size_t n) { return block(n, rank()); }
-// Contiguous blocks of [0, weights.size()) with about equal total weight each (e.g. rays per row): rank r's block
-// begins at the first item whose preceding weights sum to at least W r / R (W the total). Not collective.
-std::vector<Range> weighted_blocks(const std::vector<double>& weights);
+// Contiguous blocks of [0, weights.size()) with about equal total weight each (e.g. rays per row): block r begins
+// at the first item whose preceding weights sum to at least W r / ranks (W the total; equal blocks when W is 0), so
+// each block's weight is within the largest single weight of W / ranks. Not collective.
+std::vector<Range> weighted_blocks(const std::vector<double>& weights, int ranks);
+inline std::vector<Range> weighted_blocks(const std::vector<double>& weights) { return weighted_blocks(weights, size()); }
 
 // Raw collectives on bytes (count elements of elem_size bytes each; counts of any size).
 // Broadcast `bytes` bytes at data from rank 0 to every rank.
@@ -86,7 +90,8 @@ std::vector<T> allgather_concat(const std::vector<T>& mine) {
   return out;
 }
 // The blocks of every rank for n items (block(n, r) for r = 0 .. R-1). Not collective.
-std::vector<Range> all_blocks(std::size_t n);
+std::vector<Range> all_blocks(std::size_t n, int ranks);
+inline std::vector<Range> all_blocks(std::size_t n) { return all_blocks(n, size()); }
 
 // Serialisation of work items' results into bytes (plain values and arrays of doubles), for the ordered reduce.
 class ByteWriter {

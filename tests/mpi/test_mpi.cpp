@@ -224,7 +224,7 @@ TEST_CASE("over MPI bad input on every rank is one line and exit 2 for the whole
   CHECK_FALSE(fs::exists(dir / "B.csv"));
 }
 
-TEST_CASE("over MPI an input error on one rank alone ends the job with exit 2, not a hang", "[mpi]") {
+TEST_CASE("over MPI an input error on one rank alone ends the job with exit 2 and no hang", "[mpi]") {
   // MPMD: rank 0 runs a good command and waits in the first collective for rank 1, whose scene is missing. Rank 1
   // waits Session::kErrorWaitSeconds (10 s) for the others to end too, then says why and aborts the job.
   const std::string good = "solve " + kScene + "--rays 200 --solver random-walk --walk shoot --particles 20000 -q";
