@@ -213,7 +213,10 @@ int Session::finish(int code) {
   MPI_Request request;
   MPI_Iallreduce(mine, all, 2, MPI_INT, MPI_MAX, g_control, &request);
   if (code == 0) {
-    MPI_Wait(&request, MPI_STATUS_IGNORE);  // the others are still working: wait as long as they take
+    // The others may still be working (rank 0 writing the outputs): wait as long as they take, without spinning
+    // a core that they may share.
+    for (int done = 0; !done; std::this_thread::sleep_for(std::chrono::milliseconds(1)))
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
   } else {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(kErrorWaitSeconds);
     for (int done = 0;;) {
