@@ -85,7 +85,7 @@ void ProgressiveSeries::add(long iteration, const PatchRgb& B) {
     std::vector<std::pair<long, std::string>> thinned;
     for (std::size_t k = 0; k < kept_.size(); ++k) {
       if (k % 2 == 1) thinned.push_back(kept_[k]);
-      else fs::remove(kept_[k].second);
+      else if (distributed::is_root()) fs::remove(kept_[k].second);
     }
     kept_ = std::move(thinned);
     stride_ *= 2;
@@ -97,7 +97,8 @@ std::size_t ProgressiveSeries::finish() {
     write(last_iteration_, last_B_);
   std::vector<std::pair<double, std::string>> steps;
   for (std::size_t k = 0; k < kept_.size(); ++k) {
-    fs::rename(kept_[k].second, fs::path(dir_) / step_name(k));
+    if (distributed::is_root())  // the other ranks' files were not written (core/atomic_write.h)
+      fs::rename(kept_[k].second, fs::path(dir_) / step_name(k));
     steps.emplace_back(double(kept_[k].first), step_name(k));
   }
   write_pvd(pvd_, steps);

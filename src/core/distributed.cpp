@@ -11,6 +11,8 @@
 #include <thread>
 
 #ifdef RADWALK_MPI
+#define OMPI_SKIP_MPICXX 1  // the C interface only
+#define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 #endif
 
