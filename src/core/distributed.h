@@ -49,7 +49,7 @@ inline Range my_block(std::size_t n) { return block(n, rank()); }
 std::vector<Range> weighted_blocks(const std::vector<double>& weights, int ranks);
 inline std::vector<Range> weighted_blocks(const std::vector<double>& weights) { return weighted_blocks(weights, size()); }
 
-// Raw collectives on bytes (count elements of elem_size bytes each; counts of any size).
+// Raw collectives on bytes (count elements of elem_size bytes each; fewer than 2^31 elements per rank, any size).
 // Broadcast `bytes` bytes at data from rank 0 to every rank.
 void broadcast_bytes(void* data, std::size_t bytes);
 // In place: rank r has filled elements [ranges[r].begin, ranges[r].end) of data; afterwards every rank has all.
@@ -166,7 +166,8 @@ void distributed_ordered_reduce(std::size_t chunks, std::size_t in_flight, Map&&
 }
 
 // The processes of a run: MPI_Init when launched by an MPI launcher (in an MPI build), nothing otherwise. On ranks
-// other than 0, stderr goes to a private temporary file (only rank 0 prints progress, notes, warnings, errors).
+// other than 0, stdout goes to /dev/null and stderr to a private temporary file (only rank 0 prints progress,
+// notes, warnings, errors and the summary lines; a rank's last line is kept for finish).
 // One per program, made first in main.
 class Session {
  public:
