@@ -12,6 +12,7 @@
 #include <fstream>
 
 #include "core/digest.h"
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/timer.h"
@@ -452,6 +453,8 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
     note("wrote " + options.csv);
   }
   summary.add_timing("write", timer.seconds());
+  if (distributed::size() > 1)  // over MPI only (docs/json-schema.md): rank 0's traffic
+    summary.json()["mpi"] = {{"ranks", distributed::size()}, {"rank0_bytes_received", distributed::bytes_received()}};
   if (!options.json.empty()) {
     summary.write(options.json);
     note("wrote " + options.json);

@@ -1,5 +1,7 @@
 #include "apps/progressive_series.h"
 
+#include "core/distributed.h"
+
 #include <cstdio>
 #include <filesystem>
 #include <regex>
@@ -37,8 +39,9 @@ ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
   fs::create_directories(dir_, ec);
   if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
   const std::regex stale("step_[0-9]{4,}\\.vtp");
-  for (const auto& entry : fs::directory_iterator(dir_))
-    if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
+  if (distributed::is_root())  // over MPI only rank 0 writes the series (core/distributed.h)
+    for (const auto& entry : fs::directory_iterator(dir_))
+      if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
   pvd_ = (fs::path(dir_) / pvd_name).string();
 }
 
@@ -82,7 +85,7 @@ void ProgressiveSeries::add(long iteration, const PatchRgb& B) {
     std::vector<std::pair<long, std::string>> thinned;
     for (std::size_t k = 0; k < kept_.size(); ++k) {
       if (k % 2 == 1) thinned.push_back(kept_[k]);
-      else fs::remove(kept_[k].second);
+      else if (distributed::is_root()) fs::remove(kept_[k].second);
     }
     kept_ = std::move(thinned);
     stride_ *= 2;
@@ -94,7 +97,8 @@ std::size_t ProgressiveSeries::finish() {
     write(last_iteration_, last_B_);
   std::vector<std::pair<double, std::string>> steps;
   for (std::size_t k = 0; k < kept_.size(); ++k) {
-    fs::rename(kept_[k].second, fs::path(dir_) / step_name(k));
+    if (distributed::is_root())  // the other ranks' files were not written (core/atomic_write.h)
+      fs::rename(kept_[k].second, fs::path(dir_) / step_name(k));
     steps.emplace_back(double(kept_[k].first), step_name(k));
   }
   write_pvd(pvd_, steps);

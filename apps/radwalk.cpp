@@ -23,6 +23,7 @@
 #include "apps/output_files.h"
 #include "apps/pipeline.h"
 #include "core/did_you_mean.h"
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "walk/measure_by_method.h"
@@ -289,7 +290,19 @@ void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
                   "--direct-light: shadow rays per receiving patch (default particles / (2 x patches))");
 }
 
+namespace {
+int run_main(int argc, char** argv);
+}  // namespace
+
+// Over MPI (mpirun -np R radwalk ...) every rank runs the command; the Session ends the run with one exit code for
+// the job (core/distributed.h). A plain run is one process.
 int main(int argc, char** argv) {
+  distributed::Session session(argc, argv);
+  return session.finish(run_main(argc, argv));
+}
+
+namespace {
+int run_main(int argc, char** argv) {
   CLI::App app{
       "radwalk: solve the radiosity equation B = E + diag(rho) F B on a mesh and compare the solvers.\n"
       "Scene units are the mesh's; Kd = reflectance rho, Ke = emitted radiance, E = pi * Ke (W/m^2).",
@@ -640,3 +653,4 @@ int main(int argc, char** argv) {
   }
   return 0;
 }
+}  // namespace

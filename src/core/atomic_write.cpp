@@ -1,4 +1,5 @@
 #include "core/atomic_write.h"
+#include "core/distributed.h"
 
 #include <array>
 #include <atomic>
@@ -151,7 +152,11 @@ void require_output_directory(const std::string& path) {
 PendingFile::PendingFile(const std::string& path) : path_(path), target_(output_target(path)) {
   require_output_directory(path);
   const fs::path t(target_);
-  remove_stale_temporaries(t);
+  // Over MPI only rank 0 writes: the other ranks write into a temporary of their own that commit() removes
+  // (core/distributed.h), so every rank runs the same code and fails alike. They leave the target's directory alone
+  // (on another node rank 0's process id looks dead).
+  discard_ = !distributed::is_root();
+  if (!discard_) remove_stale_temporaries(t);
   // The extension stays last, for writers that look at it.
   std::string name = ".";
   name += t.filename().string();
@@ -160,7 +165,7 @@ PendingFile::PendingFile(const std::string& path) : path_(path), target_(output_
   name += '-';
   name += std::to_string(g_counter++);
   name += t.extension().string();
-  temporary_ = (t.parent_path() / name).string();
+  temporary_ = ((discard_ ? fs::temp_directory_path() : t.parent_path()) / name).string();
   // Registered before it exists: a signal between creating and registering would leave it behind (found by the
   // CLI test that kills radwalk as soon as the temporary appears). Unlinking a name not yet created is harmless.
   slot_ = register_pending(temporary_);
@@ -206,6 +211,11 @@ void PendingFile::write_via_path(const std::function<void(const std::string&)>& 
 
 void PendingFile::commit() {
   if (!written_) throw InternalError(path_ + ": commit before write");
+  if (discard_) {  // a rank other than 0 (see the constructor)
+    ::unlink(temporary_.c_str());
+    committed_ = true;
+    return;
+  }
   sync_path(temporary_, O_RDONLY);
   std::error_code ec;
   fs::rename(temporary_, target_, ec);

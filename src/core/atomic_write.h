@@ -15,6 +15,8 @@
 // (the handler that was there before, or the default: the program dies of the signal; an ignored signal stays
 // ignored); after a kill -9 the next PendingFile for the same target removes temporaries left by dead processes.
 // Every failure is an InputError naming the target.
+// Over MPI (core/distributed.h) only rank 0 writes: on the other ranks the temporary is in the system's temporary
+// directory and commit() removes it, after the same checks of the target.
 #include <functional>
 #include <iosfwd>
 #include <memory>
@@ -54,6 +56,7 @@ class PendingFile {
  private:
   std::string path_, target_, temporary_;
   bool written_ = false, committed_ = false;
+  bool discard_ = false;  // over MPI on a rank other than 0: written to a temporary file and removed on commit()
   int slot_ = -1;  // in the signal-cleanup registry
 };
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -174,6 +175,33 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
   return r;
 }
 
+// Consecutive rows' entries (CSR inner indices and values) traced together.
+struct RowBlock {
+  std::vector<std::int32_t> cols;
+  std::vector<float> values;
+};
+
+// Over MPI: every rank traced the rows of its block (row_blocks[rank]); afterwards every rank has every row's
+// counts and entries, each from the rank that traced it, so F is the one a single process estimates, bit for bit.
+void share_rows(const std::vector<distributed::Range>& row_blocks, std::vector<std::uint32_t>& nnz, FormFactors& out,
+                std::vector<RowBlock>& blocks) {
+  distributed::share_blocks(nnz, row_blocks);
+  distributed::share_blocks(out.escaped, row_blocks);
+  distributed::share_blocks(out.back_hits, row_blocks);
+  RowBlock mine;
+  for (RowBlock& b : blocks) {
+    mine.cols.insert(mine.cols.end(), b.cols.begin(), b.cols.end());
+    mine.values.insert(mine.values.end(), b.values.begin(), b.values.end());
+    b = RowBlock{};
+  }
+  RowBlock all;
+  all.cols = distributed::allgather_concat(mine.cols);
+  mine.cols = {};
+  all.values = distributed::allgather_concat(mine.values);
+  blocks.clear();
+  blocks.push_back(std::move(all));
+}
+
 }  // namespace
 
 std::uint32_t ray_count(const FormFactorOptions& options, double area) {
@@ -202,19 +230,20 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
 
   // Blocks of consecutive rows with at most kBlockRays rays (or one row): trace into a working buffer with room
   // for n_i entries per row, then copy each row's runs into the block's compact arrays.
-  struct Block {
-    std::vector<std::int32_t> cols;
-    std::vector<float> values;
-  };
-  std::vector<Block> blocks;
+  std::vector<RowBlock> blocks;
   std::vector<std::uint32_t> nnz(N);
   std::vector<std::size_t> offset(N + 1);
   std::vector<std::int32_t> buf_cols;
   std::vector<std::uint32_t> buf_counts;
-  Progress progress("form factors", N);
-  for (std::size_t first = 0; first < N;) {
+  // Over MPI each rank traces a block of rows with about equal rays (core/distributed.h); with one process, all.
+  const std::vector<distributed::Range> row_blocks = distributed::weighted_blocks(
+      distributed::size() == 1 ? std::vector<double>() : std::vector<double>(out.rays.begin(), out.rays.end()));
+  const distributed::Range mine =
+      distributed::size() == 1 ? distributed::Range{0, N} : row_blocks[static_cast<std::size_t>(distributed::rank())];
+  Progress progress("form factors", mine.size());
+  for (std::size_t first = mine.begin; first < mine.end;) {
     std::size_t last = first, total = 0;
-    while (last < N && (last == first || total + std::min<std::size_t>(out.rays[last], N) <= kBlockRays)) {
+    while (last < mine.end && (last == first || total + std::min<std::size_t>(out.rays[last], N) <= kBlockRays)) {
       offset[last] = total;
       total += std::min<std::size_t>(out.rays[last++], N);  // a row has at most N non-zeros
     }
@@ -231,7 +260,7 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
       }
       progress.advance(e - b);
     });
-    Block block;
+    RowBlock block;
     std::size_t block_nnz = 0;
     for (std::size_t i = first; i < last; ++i) block_nnz += nnz[i];
     block.cols.resize(block_nnz);
@@ -249,6 +278,7 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   progress.finish();
   buf_cols = {};
   buf_counts = {};
+  if (distributed::size() > 1) share_rows(row_blocks, nnz, out, blocks);
 
   // CSR: outer index by prefix sums of the row lengths, then the blocks in order (each freed once copied).
   std::size_t total_nnz = 0;
@@ -265,7 +295,7 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
     std::copy(block.cols.begin(), block.cols.end(), out.F.innerIndexPtr() + at);
     std::copy(block.values.begin(), block.values.end(), out.F.valuePtr() + at);
     at += block.cols.size();
-    block = Block{};
+    block = RowBlock{};
   }
   return out;
 }

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -39,13 +40,17 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const std::size_t n = patches.size();
   const auto blocks = static_cast<std::size_t>((options.spp + kBlock - 1) / kBlock);
   std::vector<Partial> parts(n * blocks);
+  // Over MPI each rank traces a block of the work items (their own streams), then all share them.
+  const std::vector<distributed::Range> ranges = distributed::all_blocks(parts.size());
+  const distributed::Range mine = ranges[static_cast<std::size_t>(distributed::rank())];
   std::optional<Progress> progress;
-  if (options.progress) progress.emplace("path tracing patches", parts.size());
+  if (options.progress) progress.emplace("path tracing patches", mine.size());
 
   // Samples: x uniform on the patch, then an irradiance estimate at x.
   parallel_for(
-      parts.size(),
-      [&](std::size_t item) {
+      mine.size(),
+      [&](std::size_t local) {
+        const std::size_t item = mine.begin + local;
         const std::size_t i = item / blocks;
         const long s0 = static_cast<long>(item % blocks) * kBlock;
         const long s1 = std::min(options.spp, s0 + kBlock);
@@ -64,6 +69,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
       },
       1);
   if (progress) progress->finish();
+  distributed::share_blocks(parts, ranges);
 
   // Combine blocks in order; unbiased per-sample variance.
   Solution sol;

@@ -3,6 +3,7 @@
 #include <optional>
 #include <string>
 
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -26,12 +27,16 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
 
   // One work item per image row; per-row counters are summed in row order.
   std::vector<PathCounters> row_counters(static_cast<std::size_t>(options.height));
+  // Over MPI each rank renders a block of rows (pixels have their own streams), then all share them.
+  const std::vector<distributed::Range> rows = distributed::all_blocks(static_cast<std::size_t>(options.height));
+  const distributed::Range mine = rows[static_cast<std::size_t>(distributed::rank())];
   std::optional<Progress> progress;
-  if (options.progress) progress.emplace("rendering", static_cast<std::size_t>(options.height));
+  if (options.progress) progress.emplace("rendering", mine.size());
   const double m = static_cast<double>(options.spp);
   parallel_for(
-      static_cast<std::size_t>(options.height),
-      [&](std::size_t row) {
+      mine.size(),
+      [&](std::size_t local) {
+        const std::size_t row = mine.begin + local;
         const int py = static_cast<int>(row);
         PathCounters& counters = row_counters[row];
         for (int px = 0; px < options.width; ++px) {
@@ -52,6 +57,14 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
       },
       1);
   if (progress) progress->finish();
+  if (distributed::size() > 1) {
+    distributed::share_blocks(row_counters, rows);
+    std::vector<distributed::Range> pixels;  // the rows' pixels
+    const auto w = static_cast<std::size_t>(options.width);
+    for (const distributed::Range& r : rows) pixels.push_back({r.begin * w, r.end * w});
+    distributed::share_blocks(result.mean.pixels, pixels);
+    distributed::share_blocks(result.se.pixels, pixels);
+  }
   for (const auto& c : row_counters) {
     result.rays += c.rays;
     result.vertices += c.vertices;

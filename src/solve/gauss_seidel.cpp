@@ -6,6 +6,7 @@
 
 #include "core/timer.h"
 #include "solve/convergence.h"
+#include "solve/distributed_sweeps.h"
 #include "solve/residual.h"
 
 namespace radwalk {
@@ -30,11 +31,18 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
     return s;
   }
 
+  // Over MPI a rank sweeps its block of rows in order, using the other blocks' B of the previous sweep, then the
+  // ranks exchange their rows (distributed_sweeps.h): block Gauss-Seidel within a rank, Jacobi between ranks.
+  // The splitting is then M = D - L_b (L_b: the strict lower triangle of H inside the diagonal blocks), and the
+  // residual r(B^k) = M (B^{k+1} - B^k) takes the lower sum over j in the own block only: still exact.
+  const std::vector<distributed::Range> blocks = sweep_row_blocks(p.F);
+  const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
+  const auto first = Eigen::Index(mine.begin), end = Eigen::Index(mine.end);
   run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {
     // One sweep in patch order; r accumulates max_i |r_ic(B^k)| / scale_c.
     double r = 0;
     bool finite = true;
-    for (Eigen::Index i = 0; i < n; ++i) {
+    for (Eigen::Index i = first; i < end; ++i) {
       double s0 = 0, s1 = 0, s2 = 0, l0 = 0, l1 = 0, l2 = 0;
       for (SparseF::InnerIterator it(p.F, i); it; ++it) {
         const auto j = it.col();
@@ -43,7 +51,7 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
         s0 += f * B(j, 0);
         s1 += f * B(j, 1);
         s2 += f * B(j, 2);
-        if (j < i) {
+        if (j < i && j >= first) {
           l0 += f * dB(j, 0);
           l1 += f * dB(j, 1);
           l2 += f * dB(j, 2);
@@ -59,7 +67,8 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
         r = std::max(r, ri);
       }
     }
-    return finite ? r : std::numeric_limits<double>::infinity();
+    exchange_rows(B, blocks);
+    return distributed::max_over_ranks(finite ? r : std::numeric_limits<double>::infinity());
   });
   s.seconds = timer.seconds();
   return s;

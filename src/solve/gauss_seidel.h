@@ -8,6 +8,10 @@
 // B^k. Stops when it is <= tol and returns B^{k+1} with its own residual computed exactly.
 // For H >= 0 with radius(H) < 1 it converges at least as fast as Jacobi (Stein-Rosenberg); checked before
 // iterating and watched while iterating (convergence.h). Sequential. iterations = sweeps.
+// Over MPI (distributed_sweeps.h) rank r sweeps its block of rows [a_r, b_r) so, with B_j of the previous sweep
+// for j outside the block, and the ranks exchange their rows after each sweep: block Gauss-Seidel within a rank,
+// Jacobi between ranks (the lower sums above run over a_r <= j < i, which keeps the residual exact for that
+// splitting). Its rate lies between Jacobi's and Gauss-Seidel's (docs/scaling.md, "Over MPI").
 #include "solve/problem.h"
 #include "core/solution.h"
 #include "solve/solve_options.h"

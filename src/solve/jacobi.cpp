@@ -7,6 +7,7 @@
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "solve/convergence.h"
+#include "solve/distributed_sweeps.h"
 #include "solve/residual.h"
 
 namespace radwalk {
@@ -20,7 +21,6 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
   const StabilityCheck check = check_stability(p, options, s.method, 1.0);
   record_stability(check, s);
 
-  const auto n = std::size_t(p.size());
   const PatchRgb D = system_diagonal(p);
   const Rgb scale = residual_scale(p.E);
   PatchRgb B = p.E / D, next(B.rows(), 3);
@@ -30,13 +30,16 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
     return s;
   }
 
+  // Over MPI a rank sweeps its block of rows, then the ranks exchange them (distributed_sweeps.h).
+  const std::vector<distributed::Range> blocks = sweep_row_blocks(p.F);
+  const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
   run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {
     // One sweep; the largest |r_ic| / scale_c of B^k comes out of it.
     const double r = deterministic_reduce(
-        n, 256, 0.0,
+        mine.size(), 256, 0.0,
         [&](std::size_t b, std::size_t e) {
           double worst = 0;
-          for (std::size_t k = b; k < e; ++k) {
+          for (std::size_t k = mine.begin + b; k < mine.begin + e; ++k) {
             const auto i = Eigen::Index(k);
             double s0 = 0, s1 = 0, s2 = 0;
             for (SparseF::InnerIterator it(p.F, i); it; ++it) {
@@ -57,8 +60,9 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
           return worst;
         },
         [](double a, double b) { return std::isnan(a) || std::isnan(b) ? a + b : std::max(a, b); });
+    exchange_rows(next, blocks);
     std::swap(B, next);
-    return r;
+    return distributed::max_over_ranks(r);
   });
   s.seconds = timer.seconds();
   return s;

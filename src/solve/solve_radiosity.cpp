@@ -1,5 +1,6 @@
 #include "solve/solve_radiosity.h"
 
+#include "core/distributed.h"
 #include "core/error.h"
 
 namespace radwalk {
@@ -16,6 +17,13 @@ const long kAutoDirectMaxPatches = 2000;
 Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options) {
   check_options(options);
   const std::string& name = options.solver;
+  // Over MPI the LU is not distributed: every rank would factorise the whole system (core/distributed.h). Above
+  // the size where it costs about a second it is refused.
+  if (name == "direct" && distributed::size() > 1 && long(p.size()) > kAutoDirectMaxPatches)
+    throw InputError("--solver direct: " + std::to_string(p.size()) + " patches > " +
+                     std::to_string(kAutoDirectMaxPatches) +
+                     ": the direct solve is not distributed over MPI ranks (each would factorise the whole system); "
+                     "use --solver gauss-seidel or jacobi, whose sweeps are split over the ranks, or run one process");
   if (name == "direct") return solve_direct(p, options);
   if (name == "jacobi") return solve_jacobi(p, options);
   if (name == "gauss-seidel") return solve_gauss_seidel(p, options);

@@ -10,6 +10,7 @@
 #include <tuple>
 
 #include "core/check.h"
+#include "core/distributed.h"
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -82,9 +83,13 @@ RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, l
   const std::size_t chunks_per_patch = layout.per_patch;
   std::vector<Moments> parts(m * chunks_per_patch);
   std::vector<WalkCounters> part_counters(parts.size());
+  // Over MPI each rank runs a block of the chunks (their walks have their own streams), then all share them.
+  const std::vector<distributed::Range> blocks = distributed::all_blocks(parts.size());
+  const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
   parallel_for(
-      parts.size(),
-      [&](std::size_t c) {
+      mine.size(),
+      [&](std::size_t local) {
+        const std::size_t c = mine.begin + local;
         const std::size_t i = targets[c / chunks_per_patch];
         const long begin = static_cast<long>(c % chunks_per_patch) * chunk;
         const long end = std::min(walks, begin + chunk);
@@ -95,6 +100,8 @@ RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, l
         if (progress) progress->advance(1);
       },
       1);
+  distributed::share_blocks(parts, blocks);
+  distributed::share_blocks(part_counters, blocks);
   // Merge per patch in chunk order.
   const auto N = static_cast<Eigen::Index>(kernel.size());
   RunResult r;
@@ -120,6 +127,36 @@ struct ShootPart {
   PatchRgb sum, sum2;
   WalkCounters counters;
 };
+
+// A ShootPart as bytes and back, for the distributed ordered reduce (core/distributed.h): every rank's parts are
+// combined on rank 0 in chunk order. Only the rows a particle scored on are sent (row index, then its sum and sum2),
+// so the bytes grow with the scores of the chunk, not with N; the rows not sent are zero, as they were.
+void save_shoot_part(const ShootPart& part, distributed::ByteWriter& out) {
+  std::uint64_t rows = 0;
+  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) rows += (part.sum.row(k) != 0).any() || (part.sum2.row(k) != 0).any();
+  out.put(rows);
+  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) {
+    if (!(part.sum.row(k) != 0).any() && !(part.sum2.row(k) != 0).any()) continue;
+    out.put(static_cast<std::uint64_t>(k));
+    out.put_bytes(part.sum.row(k).data(), 3 * sizeof(double));  // PatchRgb is row-major
+    out.put_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
+  }
+  out.put(part.counters);
+}
+ShootPart load_shoot_part(distributed::ByteReader& in, Eigen::Index N) {
+  ShootPart part;
+  part.sum.setZero(N, 3);
+  part.sum2.setZero(N, 3);
+  const auto rows = in.get<std::uint64_t>();
+  for (std::uint64_t r = 0; r < rows; ++r) {
+    const auto k = static_cast<Eigen::Index>(in.get<std::uint64_t>());
+    RADWALK_CHECK(k >= 0 && k < N);  // a row of the sender's part
+    in.get_bytes(part.sum.row(k).data(), 3 * sizeof(double));
+    in.get_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
+  }
+  part.counters = in.get<WalkCounters>();
+  return part;
+}
 
 // The scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting sort).
 template <class Score>
@@ -207,8 +244,9 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   if (source.power > 0) {
     const long chunk = shoot_chunk(particles);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
-    // At most two chunks' sums per thread in memory (each is N x 3 twice).
-    ordered_reduce(
+    // At most two chunks' sums per thread in memory (each is N x 3 twice). Over MPI: ranks take blocks of chunks,
+    // rank 0 combines all in chunk order (core/distributed.h); solve() broadcasts the result.
+    distributed::distributed_ordered_reduce(
         chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
         [&](std::size_t c) {
           const long begin = static_cast<long>(c) * chunk;
@@ -227,7 +265,8 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
           sum += part.sum;
           sum2 += part.sum2;
           r.counters += part.counters;
-        });
+        },
+        save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, N); });
   }
   // B = E + mean Y; per-particle variance from the power sums (clamped at 0 against rounding).
   const double n = static_cast<double>(particles);
@@ -284,7 +323,7 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
       if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
       else if (progress) progress->advance(1);
   }
-  ordered_reduce(
+  distributed::distributed_ordered_reduce(  // over MPI: as in run_shoot
       chunks.size(), 2 * static_cast<std::size_t>(std::max(1, active_threads())),
       [&](std::size_t c) {
         const Chunk& ch = chunks[c];
@@ -306,7 +345,8 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
         const int rep = chunks[c++].rep;
         Bs[static_cast<std::size_t>(rep)] += part.sum / static_cast<double>(replicate_particles(options, rep));
         r.counters += part.counters;
-      });
+      },
+      save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, N); });
   r.B = PatchRgb::Zero(N, 3);
   for (const PatchRgb& B : Bs) r.B += B;
   r.B /= static_cast<double>(R);
@@ -315,6 +355,18 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
   r.se = (spread / (static_cast<double>(R) * (R - 1))).sqrt();
   r.var = r.se.square() * static_cast<double>(options.particles);
   return r;
+}
+
+// Over MPI: rank 0 holds the combined result (distributed_ordered_reduce); every rank gets it.
+void share_run_result(RunResult& r) {
+  if (distributed::size() == 1) return;
+  for (PatchRgb* a : {&r.B, &r.var, &r.se}) {
+    std::uint64_t rows = static_cast<std::uint64_t>(a->rows());
+    distributed::broadcast_bytes(&rows, sizeof rows);
+    a->resize(static_cast<Eigen::Index>(rows), 3);
+    distributed::broadcast_bytes(a->data(), sizeof(double) * static_cast<std::size_t>(a->size()));
+  }
+  distributed::broadcast_bytes(&r.counters, sizeof r.counters);
 }
 
 // The one dispatch from the method to its estimator (walk_estimators.h).
@@ -417,6 +469,7 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     const RayKernel kernel(problem, *patches, *visibility, std::move(p));
     r = run(kernel, problem, options, progress, direct);
   }
+  share_run_result(r);  // over MPI: rank 0's result on every rank
   sol.seconds = timer.seconds();
   if (own_progress) own_progress->finish();
   sol.B = std::move(r.B);

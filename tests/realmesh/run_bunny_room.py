@@ -82,7 +82,7 @@ def in_view(camera, points, aspect):
     f = unit([look[i] - p[i] for i in range(3)])
     r = unit(cross(f, up))
     u = cross(r, f)
-    tan_v = math.tan(math.radians(camera["fov_deg"]) / 2)
+    tan_v = math.tan(math.radians(camera["vertical_fov_deg"]) / 2)
     seen = 0
     for q in points:
         d = [q[i] - p[i] for i in range(3)]

@@ -172,7 +172,7 @@ def in_view(camera, points, aspect):
     n = math.sqrt(sum(x * x for x in r))
     r = [x / n for x in r]
     u = [r[1] * f[2] - r[2] * f[1], r[2] * f[0] - r[0] * f[2], r[0] * f[1] - r[1] * f[0]]
-    tan_v = math.tan(math.radians(camera["fov_deg"]) / 2)
+    tan_v = math.tan(math.radians(camera["vertical_fov_deg"]) / 2)
     seen = 0
     for q in points:
         d = [q[i] - p[i] for i in range(3)]
@@ -364,7 +364,7 @@ def main():
         reader.Update()
         poly = reader.GetOutput()
         c = render_vtp.fit_camera(poly, poly.GetCellData().GetArray("B"))
-        vtp_camera = {"position": c[0:3], "look_at": c[3:6], "up": c[6:9], "fov_deg": c[9]}
+        vtp_camera = {"position": c[0:3], "look_at": c[3:6], "up": c[6:9], "vertical_fov_deg": c[9]}
         seen = in_view(vtp_camera, furniture, 1.0)
         print("render_vtp.py camera %s: %.0f %% of the furniture's patch centres in the image" % (vtp_camera, 100 * seen))
         expect(seen >= 0.5, "render_vtp.py: the fitted camera frames the furniture (at least half its patches)")
