@@ -49,21 +49,21 @@ int run_compare(const CompareCommand& command) {
     rows.reserve(result.rows.size());
     for (const CompareRow& r : result.rows)
       rows.push_back({std::to_string(r.patch), std::string(method_name(r.method)), kChannel[r.channel], csv_number(r.mean), csv_number(r.var),
-                      csv_number(r.var_theory), csv_number(r.z), std::to_string(r.walks), std::to_string(r.steps),
+                      csv_number(r.var_se), csv_number(r.var_theory), csv_number(r.z), std::to_string(r.walks), std::to_string(r.steps),
                       csv_number(r.seconds), csv_number(r.efficiency)});
     write_csv_table(command.scene.csv,
-                    {"patch", "estimator", "channel", "mean", "var", "var_theory", "z", "walks", "steps", "seconds",
-                     "efficiency"},
+                    {"patch", "estimator", "channel", "mean", "var", "var_se", "var_theory", "z", "walks", "steps",
+                     "seconds", "efficiency"},
                     rows, run_id_of(summary));
     note("wrote " + command.scene.csv);
   }
 
-  // VTK: per method, fields mean_<m>, var_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference;
+  // VTK: per method, fields mean_<m>, var_<m>, var_se_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference;
   // <m> is the estimator's name with underscores for hyphens (ParaView's Calculator reads '-' as minus), the
   // original names listed in the field data.
   std::vector<CellField> fields = {rgb_field("B_reference", reference.B)};
   const auto n = static_cast<Eigen::Index>(patches.size());
-  std::map<std::string, std::array<PatchRgb, 4>> per_method;
+  std::map<std::string, std::array<PatchRgb, 5>> per_method;
   for (const CompareRow& r : result.rows) {
     auto [it, fresh] = per_method.try_emplace(std::string(method_name(r.method)));
     if (fresh)
@@ -72,6 +72,7 @@ int run_compare(const CompareCommand& command) {
     it->second[1](r.patch, r.channel) = r.var;
     it->second[2](r.patch, r.channel) = r.var_theory;
     it->second[3](r.patch, r.channel) = r.z;
+    it->second[4](r.patch, r.channel) = r.var_se;
   }
   VtpMetadata metadata;
   std::string names, arrays;
@@ -79,6 +80,7 @@ int run_compare(const CompareCommand& command) {
     const std::string m = paraview_name(method);
     fields.push_back(rgb_field("mean_" + m, a[0]));
     fields.push_back(rgb_field("var_" + m, a[1]));
+    fields.push_back(rgb_field("var_se_" + m, a[4]));
     fields.push_back(rgb_field("var_theory_" + m, a[2]));
     fields.push_back(rgb_field("z_" + m, a[3]));
     names += (names.empty() ? "" : ",") + method;

@@ -18,7 +18,7 @@ namespace {
 // The per-method part of a comparison: its summary and its per-patch arrays (NaN where it estimated nothing).
 struct EstimatorComparison {
   CompareSummary summary;
-  PatchRgb mean, var, var_theory, z;
+  PatchRgb mean, var, var_se, var_theory, z;
 };
 
 struct Comparison {
@@ -126,7 +126,7 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
   for (const CompareSummary& s : result.summary) {
     EstimatorComparison e;
     e.summary = s;
-    e.mean = e.var = e.var_theory = e.z = PatchRgb::Constant(n, 3, nan);
+    e.mean = e.var = e.var_se = e.var_theory = e.z = PatchRgb::Constant(n, 3, nan);
     c.names.emplace_back(method_name(s.method));
     c.estimators.push_back(std::move(e));
     walks_seconds += s.seconds;
@@ -136,6 +136,7 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
       if (c.estimators[k].summary.method == row.method) {
         c.estimators[k].mean(row.patch, row.channel) = row.mean;
         c.estimators[k].var(row.patch, row.channel) = row.var;
+        c.estimators[k].var_se(row.patch, row.channel) = row.var_se;
         c.estimators[k].var_theory(row.patch, row.channel) = row.var_theory;
         c.estimators[k].z(row.patch, row.channel) = row.z;
       }
@@ -168,7 +169,8 @@ void bind_walks(py::module_& m) {
   py::class_<EstimatorComparison>(m, "EstimatorComparison",
                                   R"doc(One method of a compare(): per-patch arrays and its summary.
 
-mean, var, var_theory, z (N, 3): average of the runs' estimates, per-walk variance averaged over the runs, exact
+mean, var, var_se, var_theory, z (N, 3): average of the runs' estimates, per-walk variance averaged over the runs,
+its standard error from the spread of the runs' variances (NaN for one run), exact
 per-walk variance (NaN where not computable), (mean - B_reference) / sqrt(var / walks); NaN for patches the method
 did not estimate. Summary (walk/walk_compare.h), named as the CLI's JSON "estimators" (docs/json-schema.md):
 runs, walks_total (over all runs and estimated patches), walks_per_estimate (behind each patch's pooled estimate:
@@ -179,6 +181,7 @@ mean_var_per_walk, efficiency = walks_per_estimate / (mean_var_per_walk x second
       .def_property_readonly("method", [](const EstimatorComparison& e) { return std::string(method_name(e.summary.method)); })
       .def_property_readonly("mean", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().mean, self); })
       .def_property_readonly("var", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var, self); })
+      .def_property_readonly("var_se", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var_se, self); })
       .def_property_readonly("var_theory", [](py::object self) {
         return rgb_view(self.cast<const EstimatorComparison&>().var_theory, self);
       })
@@ -220,7 +223,7 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
       .def_property_readonly("rows", [](const Comparison& c) {
         const std::size_t n = c.rows.size();
         py::array_t<std::int64_t> patch(n), channel(n), walks(n), steps(n);
-        py::array_t<double> mean(n), var(n), var_theory(n), z(n), seconds(n), efficiency(n);
+        py::array_t<double> mean(n), var(n), var_se(n), var_theory(n), z(n), seconds(n), efficiency(n);
         py::list estimator;
         for (std::size_t i = 0; i < n; ++i) {
           const CompareRow& r = c.rows[i];
@@ -230,6 +233,7 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
           steps.mutable_at(i) = r.steps;
           mean.mutable_at(i) = r.mean;
           var.mutable_at(i) = r.var;
+          var_se.mutable_at(i) = r.var_se;
           var_theory.mutable_at(i) = r.var_theory;
           z.mutable_at(i) = r.z;
           seconds.mutable_at(i) = r.seconds;
@@ -242,6 +246,7 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
         d["channel"] = channel;
         d["mean"] = mean;
         d["var"] = var;
+        d["var_se"] = var_se;
         d["var_theory"] = var_theory;
         d["z"] = z;
         d["walks"] = walks;

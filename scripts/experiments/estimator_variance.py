@@ -68,7 +68,8 @@ def main():
         fields = {"B_reference": c.B_reference}
         for m, e in c.estimators.items():
             k = m.replace("-", "_")
-            fields.update({f"mean_{k}": e.mean, f"var_{k}": e.var, f"var_theory_{k}": e.var_theory, f"z_{k}": e.z})
+            fields.update({f"mean_{k}": e.mean, f"var_{k}": e.var, f"var_se_{k}": e.var_se, f"var_theory_{k}": e.var_theory,
+                           f"z_{k}": e.z})
         radwalk.write_vtp(out.path(f"{name}.vtp"), scene, fields,
                           {"estimators": ",".join(c.estimators), "walks_per_patch": walks, "runs": a.runs,
                            "seed": a.seed, "kernel": "matrix"})
@@ -101,19 +102,27 @@ def main():
             def ratio(x, y):
                 return x / y if y > 0 else (math.inf if x > 0 else math.nan)
 
+            def relative_se(rows):  # of mean_pooled(rows, "var"), from the runs' spread of each row's variance
+                m = mean_pooled(rows, "var")
+                se = math.sqrt(sum((r["var_se"] / r["walks"]) ** 2 for r in rows if math.isfinite(r["var_se"])))
+                return se / len(rows) / m if m > 0 else math.nan
+
             v_emp = ratio(mean_pooled(A, "var"), mean_pooled(B, "var"))
             v_th = ratio(mean_pooled(A, "var_theory"), mean_pooled(B, "var_theory"))
             cost = B[0]["seconds"] / A[0]["seconds"]
             e_emp = 1 / v_emp * cost if v_emp > 0 else math.inf
             e_th = 1 / v_th * cost if v_th > 0 else math.inf
+            # The two methods ran independently: relative errors add in quadrature (seconds taken as exact).
+            rel = math.hypot(relative_se(A), relative_se(B))
             ratio_rows.append(dict(scene=name, ratio=label, variance_ratio=v_emp, variance_ratio_theory=v_th,
+                                   ratio_relative_se=rel,
                                    efficiency_ratio=e_emp, efficiency_ratio_theory=e_th,
                                    seconds_first=A[0]["seconds"], seconds_second=B[0]["seconds"],
                                    steps_first=A[0]["steps"], steps_second=B[0]["steps"]))
         checks(name, by, js, check_rows)
 
     fields = ["scene", "ratio", "variance_ratio", "variance_ratio_theory", "efficiency_ratio",
-              "efficiency_ratio_theory", "seconds_first", "seconds_second", "steps_first", "steps_second"]
+              "efficiency_ratio_theory", "ratio_relative_se", "seconds_first", "seconds_second", "steps_first", "steps_second"]
     rwexp.write_csv(out.path("ratios.csv"), ratio_rows, fields)
     print(rwexp.table(ratio_rows, fields[:6], "\nvariance_ratio: mean over (patch, channel) of the pooled-estimate "
                       "variance var/walks, first / second; efficiency_ratio: efficiency first / second;\n"
@@ -173,6 +182,7 @@ def plot_scatter(data, rw):
         zero = []
         for m in METHODS:
             pts = [(r["var_theory"], r["var"]) for r in rows if r["estimator"] == m]
+            se = {(r["var_theory"], r["var"]): r["var_se"] for r in rows if r["estimator"] == m}
             pos = [(t, e) for t, e in pts if t > 0 and e > 0]
             if len(pos) < len(pts):
                 zt = [(t, e) for t, e in pts if not (t > 0 and e > 0)]
@@ -186,6 +196,11 @@ def plot_scatter(data, rw):
             t, e = zip(*pos)
             lo, hi = min(lo, *t, *e), max(hi, *t, *e)
             ax.scatter(t, e, s=14, color=colors[m], marker=markers[m], alpha=0.6, label=m)
+            # 2 standard errors of each empirical variance (the spread of the runs' variances), clipped at the
+            # axis' floor where the bar would reach 0 on a log axis.
+            err = [2 * se[p] if math.isfinite(se[p]) else 0.0 for p in pos]
+            ax.errorbar(t, e, yerr=[[min(d, v * 0.95) for d, v in zip(err, e)], err], fmt="none",
+                        ecolor=colors[m], elinewidth=0.6, alpha=0.5)
         ax.plot([lo / 2, hi * 2], [lo / 2, hi * 2], "k-", lw=0.8, label="identity")
         ax.set_xscale("log")
         ax.set_yscale("log")
@@ -201,8 +216,9 @@ def plot_scatter(data, rw):
         ax.axis("off")
     axes.flat[-1].text(0.0, 1.0, "Rows (patch, channel) not drawn on log axes\n(a zero variance):\n\n" +
                        "\n".join(notes), transform=axes.flat[-1].transAxes, fontsize=8, va="top", family="monospace")
-    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel "
-                 "(B in W per squared length unit of the scene: mm for the Cornell box)")
+    fig.suptitle("Empirical against exact per-walk (per-particle) variance, every patch and channel, matrix kernel\n"
+                 "(B in W per squared length unit of the scene: mm for the Cornell box); bars: 2 standard errors "
+                 "from the runs' spread")
     rwexp.save(fig, rw.path("variance_scatter.png"))
 
 
@@ -238,6 +254,10 @@ def plot_ratios(ratio_rows, rw):
                         ax.text(lo * 1.8, y, "0", fontsize=7, va="center", ha="left", color=cmap(k))
                 else:
                     ax.plot([v], [y + dy], "o", **style)
+                    r2 = 2 * r["ratio_relative_se"]
+                    if filled and math.isfinite(r2) and r2 > 0:  # 2 standard errors of the measured ratio
+                        ax.errorbar([v], [y + dy], xerr=[[v - v / (1 + r2)], [v * r2]], fmt="none",
+                                    ecolor=cmap(k), elinewidth=1)
         ax.axvline(1, color="k", lw=0.8)
         ax.set_yticks(range(len(scenes_)))
         ax.set_yticklabels(list(reversed(scenes_)), fontsize=8)
@@ -253,9 +273,9 @@ def plot_ratios(ratio_rows, rw):
                 Line2D([], [], marker="o", color="0.3", mfc="white", linestyle="none"),
                 Line2D([], [], marker=">", color="0.3", linestyle="none"),
                 Line2D([], [], marker="<", color="0.3", linestyle="none")],
-               ["measured", "exact variances, measured seconds", "infinite (second: zero variance)",
-                "0 (first: zero variance)"], loc="upper center", ncol=4, fontsize=8, frameon=False)
-    fig.tight_layout(rect=(0, 0, 1, 0.94))
+               ["measured (bar: 2 standard errors)", "exact variances, measured seconds", "infinite (second: zero variance)",
+                "0 (first: zero variance)"], loc="upper center", ncol=2, fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0, 1, 0.92))
     fig.savefig(rw.path("efficiency_ratios.png"), dpi=110)
     plt.close(fig)
     print(f"wrote {rw.path('efficiency_ratios.png')}")

@@ -75,7 +75,8 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
                        static_cast<std::size_t>(options.runs) * walk_work_items(wo, N));
     // R runs: pooled estimates, variances and the run-to-run spread.
     PatchRgb sum_B = PatchRgb::Zero(n_rows, 3), sum_B2 = PatchRgb::Zero(n_rows, 3);
-    PatchRgb sum_var = PatchRgb::Zero(n_rows, 3), sum_se = PatchRgb::Zero(n_rows, 3);
+    PatchRgb sum_var = PatchRgb::Zero(n_rows, 3), sum_var2 = PatchRgb::Zero(n_rows, 3),
+             sum_se = PatchRgb::Zero(n_rows, 3);
     long steps = 0;
     double seconds = 0;
     for (int r = 0; r < options.runs; ++r) {
@@ -85,6 +86,7 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
       sum_B += s.B;
       sum_B2 += s.B * s.B;
       sum_var += s.var;
+      sum_var2 += s.var * s.var;
       sum_se += s.B_se;
       steps += s.steps;
       seconds += s.seconds;
@@ -113,6 +115,8 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
         row.channel = c;
         row.mean = sum_B(i, c) / R;
         row.var = sum_var(i, c) / R;
+        // The runs' variances are R independent estimates of the same per-walk variance: their spread is var's error.
+        row.var_se = R > 1 ? std::sqrt(std::max(0.0, sum_var2(i, c) / R - row.var * row.var) / (R - 1)) : kNaN;
         row.var_theory = var_theory.rows() ? var_theory(i, c) : kNaN;
         const double se = std::sqrt(row.var / static_cast<double>(walks));
         // z of the pooled estimate; a zero-variance method is exact up to rounding (z = 0) or infinitely wrong.

@@ -7,6 +7,7 @@
 // method and channel (long format):
 //   mean        average of the R estimates of B
 //   var         per-walk (per-particle) variance, averaged over the runs
+//   var_se      standard error of var from the spread of the R runs' variances, sd_r(var_r) / sqrt(R); NaN for R = 1
 //   var_theory  walk_variance.h (matrix kernel, N <= kMaxTheoryPatches), NaN otherwise
 //   z           (mean - B_ref) / sqrt(var / walks): a unit normal if the method is unbiased and its variance
 //               right; NaN without a reference
@@ -45,7 +46,7 @@ struct CompareRow {
   int patch = 0;
   WalkMethod method = WalkMethod::gather_collision;
   int channel = 0;
-  double mean = 0, var = 0, var_theory = 0, z = 0;
+  double mean = 0, var = 0, var_se = 0, var_theory = 0, z = 0;
   long walks = 0, steps = 0;
   double seconds = 0, efficiency = 0;
 };

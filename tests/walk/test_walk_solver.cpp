@@ -136,3 +136,37 @@ TEST_CASE("compare tabulates every method against the reference", "[walk][compar
   const std::string table = format_compare_summary(r.summary);
   for (const std::string& m : walk_method_names()) CHECK(table.find(m) != std::string::npos);
 }
+
+TEST_CASE("compare's var_se is the spread of the runs' per-walk variances over sqrt(R)", "[walk][compare]") {
+  const RadiosityProblem p = test::mixed_cube();
+  CompareOptions o;
+  o.methods = {WalkMethod::gather_collision, WalkMethod::shoot_collision};
+  o.runs = 4;
+  o.walk.walks_per_patch = 500;
+  o.walk.seed = 11;
+  const CompareResult r = compare_random_walks(p, nullptr, nullptr, o);
+  for (const WalkMethod method : o.methods) {
+    // The same runs by hand: run k has seed 11 + k and, shooting, walks_per_patch x patches particles.
+    WalkOptions w = o.walk;
+    w.method = method;
+    w.particles = o.walk.walks_per_patch * static_cast<long>(p.size());
+    std::vector<PatchRgb> vars;
+    for (int k = 0; k < o.runs; ++k) {
+      w.seed = o.walk.seed + static_cast<std::uint64_t>(k);
+      vars.push_back(solve_random_walk(p, nullptr, nullptr, w).var);
+    }
+    for (const CompareRow& row : r.rows) {
+      if (row.method != method) continue;
+      double m = 0, m2 = 0;
+      for (const PatchRgb& v : vars) {
+        m += v(row.patch, row.channel) / o.runs;
+        m2 += v(row.patch, row.channel) * v(row.patch, row.channel) / o.runs;
+      }
+      INFO(method_name(method) << " patch " << row.patch << " channel " << row.channel);
+      CHECK(row.var == Approx(m).epsilon(1e-12));
+      CHECK(row.var_se == Approx(std::sqrt(std::max(0.0, m2 - m * m) / (o.runs - 1))).epsilon(1e-9).margin(1e-300));
+    }
+  }
+  o.runs = 1;
+  for (const CompareRow& row : compare_random_walks(p, nullptr, nullptr, o).rows) CHECK(std::isnan(row.var_se));
+}
