@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "core/check.h"
 #include "core/error.h"
@@ -115,11 +119,46 @@ RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, l
   return r;
 }
 
-// Per-chunk sums of the per-particle scores Y_j and Y_j^2 (radiosity units).
+// One chunk's sums of the per-particle scores Y_j and Y_j^2 (radiosity units) over the patches j its particles
+// scored on, by increasing j: a part of O(work) size, not O(N), in a plain layout (vectors of PODs) that can be
+// sent between processes. Its value depends only on the chunk's particles.
+struct ShootEntry {
+  std::uint64_t patch;
+  double sum[3], sum2[3];
+};
 struct ShootPart {
-  PatchRgb sum, sum2;
+  std::vector<ShootEntry> entries;  // patch increasing, each patch once
   WalkCounters counters;
 };
+
+// Adds a part's sums into the N x 3 totals: row j += the entry of j (its sum divided by `divisor`) (rows without an entry are unchanged,
+// which is what adding a dense part's zero rows did, bit for bit).
+void add_part(const ShootPart& part, PatchRgb& sum, PatchRgb* sum2, double divisor = 1.0) {
+  for (const ShootEntry& e : part.entries) {
+    const auto row = static_cast<Eigen::Index>(e.patch);
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      sum(row, c) += e.sum[c] / divisor;  // x / 1 = x exactly
+      if (sum2) (*sum2)(row, c) += e.sum2[c];
+    }
+  }
+}
+
+// Dense per-thread scratch for shoot_particles, reused by every chunk the thread runs and left zero after each:
+// one particle's power per patch (`current`, touched rows in `touched`) and the chunk's sums (`sum`, `sum2`,
+// touched rows in `rows`). Allocated once per thread (O(N) per thread, not per chunk).
+struct ShootScratch {
+  std::vector<Rgb> current, sum, sum2;
+  std::vector<char> in_particle, in_chunk;
+  std::vector<std::uint32_t> touched, rows;
+  explicit ShootScratch(std::size_t n)
+      : current(n, Rgb::Zero()), sum(n, Rgb::Zero()), sum2(n, Rgb::Zero()), in_particle(n, 0), in_chunk(n, 0) {}
+};
+using ShootScratches = tbb::enumerable_thread_specific<std::unique_ptr<ShootScratch>>;
+ShootScratch& scratch_of(ShootScratches& scratches, std::size_t n) {
+  std::unique_ptr<ShootScratch>& s = scratches.local();
+  if (!s) s = std::make_unique<ShootScratch>(n);
+  return *s;
+}
 
 // The scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting sort).
 template <class Score>
@@ -134,41 +173,40 @@ std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count
 
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
-// order) and then summed the same way, so the sums do not depend on the lane count.
+// order) and then summed the same way, so the sums do not depend on the lane count. Work and the part's size are
+// O(steps of the chunk) (plus a sort of the touched rows), whatever N.
 // make(w) returns particle w (0 .. count-1) of the chunk, born.
 template <class Estimator, TransitionKernel K, class Make>
-ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, Make&& make) {
+ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, ShootScratch& s,
+                          Make&& make) {
   using Particle = typename Estimator::template Particle<K>;
-  const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
-  part.sum.setZero(N, 3);
-  part.sum2.setZero(N, 3);
   struct Score {
     std::uint32_t particle, j;  // particle - begin, patch
     Rgb power;
   };
-  // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the sums
-  // by flush once the particle is done.
-  std::vector<Rgb> current(kernel.size(), Rgb::Zero());
-  std::vector<char> touched_flag(kernel.size(), 0);
-  std::vector<std::size_t> touched;
+  // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the
+  // chunk's sums by flush once the particle is done.
   auto accumulate = [&](std::size_t j, const Rgb& power) {
-    if (!touched_flag[j]) {
-      touched_flag[j] = 1;
-      touched.push_back(j);
+    if (!s.in_particle[j]) {
+      s.in_particle[j] = 1;
+      s.touched.push_back(static_cast<std::uint32_t>(j));
     }
-    current[j] += power;
+    s.current[j] += power;
   };
   auto flush = [&] {
-    for (std::size_t j : touched) {
-      const auto row = static_cast<Eigen::Index>(j);
-      const Rgb Y = current[j] / area(row);
-      part.sum.row(row) += Y.transpose();
-      part.sum2.row(row) += (Y * Y).transpose();
-      current[j] = Rgb::Zero();
-      touched_flag[j] = 0;
+    for (std::uint32_t j : s.touched) {
+      const Rgb Y = s.current[j] / area(static_cast<Eigen::Index>(j));
+      if (!s.in_chunk[j]) {
+        s.in_chunk[j] = 1;
+        s.rows.push_back(j);
+      }
+      s.sum[j] += Y;
+      s.sum2[j] += Y * Y;
+      s.current[j] = Rgb::Zero();
+      s.in_particle[j] = 0;
     }
-    touched.clear();
+    s.touched.clear();
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.
@@ -188,10 +226,26 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
         },
         [](std::size_t, const Particle&) {}, part.counters);
     scores = sort_by_particle(std::move(scores), count);
-    for (std::size_t s = 0; s < scores.size(); flush())
-      for (const std::uint32_t w = scores[s].particle; s < scores.size() && scores[s].particle == w; ++s)
-        accumulate(scores[s].j, scores[s].power);
+    for (std::size_t k = 0; k < scores.size(); flush())
+      for (const std::uint32_t w = scores[k].particle; k < scores.size() && scores[k].particle == w; ++k)
+        accumulate(scores[k].j, scores[k].power);
   }
+  // The chunk's rows by increasing patch, moved out of the scratch (left zero).
+  std::sort(s.rows.begin(), s.rows.end());
+  part.entries.resize(s.rows.size());
+  for (std::size_t k = 0; k < s.rows.size(); ++k) {
+    const std::uint32_t j = s.rows[k];
+    ShootEntry& e = part.entries[k];
+    e.patch = j;
+    for (int c = 0; c < 3; ++c) {
+      e.sum[c] = s.sum[j][c];
+      e.sum2[c] = s.sum2[j][c];
+    }
+    s.sum[j] = Rgb::Zero();
+    s.sum2[j] = Rgb::Zero();
+    s.in_chunk[j] = 0;
+  }
+  s.rows.clear();
   return part;
 }
 
@@ -207,7 +261,8 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   if (source.power > 0) {
     const long chunk = shoot_chunk(particles);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
-    // At most two chunks' sums per thread in memory (each is N x 3 twice).
+    // Parts are O(chunk work); the dense scratch is one per thread.
+    ShootScratches scratches;
     ordered_reduce(
         chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
         [&](std::size_t c) {
@@ -218,14 +273,13 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
             return typename Estimator::template Particle<K>(kernel, tables, source,
                                                             streams.stream(static_cast<std::uint64_t>(begin) + w));
           };
-          ShootPart part =
-              shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin), make);
+          ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin),
+                                                      scratch_of(scratches, kernel.size()), make);
           if (progress) progress->advance(1);
           return part;
         },
         [&](const ShootPart& part) {
-          sum += part.sum;
-          sum2 += part.sum2;
+          add_part(part, sum, &sum2);
           r.counters += part.counters;
         });
   }
@@ -284,6 +338,7 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
       if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
       else if (progress) progress->advance(1);
   }
+  ShootScratches scratches;
   ordered_reduce(
       chunks.size(), 2 * static_cast<std::size_t>(std::max(1, active_threads())),
       [&](std::size_t c) {
@@ -297,14 +352,15 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
                                                           streams.stream(static_cast<std::uint64_t>(particle)),
                                                           emission.first_uniforms(particle, j));
         };
-        ShootPart part =
-            shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin), make);
+        ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin),
+                                                    scratch_of(scratches, kernel.size()), make);
         if (progress) progress->advance(1);
         return part;
       },
       [&, c = std::size_t{0}](const ShootPart& part) mutable {
         const int rep = chunks[c++].rep;
-        Bs[static_cast<std::size_t>(rep)] += part.sum / static_cast<double>(replicate_particles(options, rep));
+        add_part(part, Bs[static_cast<std::size_t>(rep)], nullptr,
+                 static_cast<double>(replicate_particles(options, rep)));
         r.counters += part.counters;
       });
   r.B = PatchRgb::Zero(N, 3);
