@@ -200,17 +200,21 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   int sort_passes = 0;
   for (std::size_t v = N; v > 0; v >>= 8) ++sort_passes;
 
-  // Blocks of consecutive rows with at most kBlockRays rays (or one row): trace into a working buffer with room
-  // for n_i entries per row, then copy each row's runs into the block's compact arrays.
-  struct Block {
-    std::vector<std::int32_t> cols;
-    std::vector<float> values;
-  };
-  std::vector<Block> blocks;
+  // F's arrays are reserved once for the most non-zeros the rays can give, sum_i min(n_i, N) (capped at the
+  // 32-bit index range): memory the rows never reach is never touched, so it costs address space only, and F
+  // is never copied (a copy would double the peak). Blocks of consecutive rows with at most kBlockRays rays (or
+  // one row) are traced into a working buffer with room for min(n_i, N) entries per row, and each row's runs
+  // are then appended to F's arrays.
+  std::size_t bound = 0;
+  for (std::size_t i = 0; i < N; ++i) bound += std::min<std::size_t>(out.rays[i], N);
+  const auto kMaxNonZeros = std::size_t(std::numeric_limits<std::int32_t>::max());
+  out.F.resize(Eigen::Index(N), Eigen::Index(N));
+  out.F.data().reserve(Eigen::Index(std::min(bound, kMaxNonZeros)));
   std::vector<std::uint32_t> nnz(N);
   std::vector<std::size_t> offset(N + 1);
   std::vector<std::int32_t> buf_cols;
   std::vector<std::uint32_t> buf_counts;
+  std::size_t at = 0;  // non-zeros in F so far
   Progress progress("form factors", N);
   for (std::size_t first = 0; first < N;) {
     std::size_t last = first, total = 0;
@@ -231,42 +235,28 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
       }
       progress.advance(e - b);
     });
-    Block block;
     std::size_t block_nnz = 0;
     for (std::size_t i = first; i < last; ++i) block_nnz += nnz[i];
-    block.cols.resize(block_nnz);
-    block.values.resize(block_nnz);
-    for (std::size_t i = first, k = 0; i < last; ++i) {
+    if (at + block_nnz > kMaxNonZeros)
+      throw InputError(locate(ps.source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
+    out.F.resizeNonZeros(Eigen::Index(at + block_nnz));  // within the reservation: no reallocation
+    std::int32_t* cols = out.F.innerIndexPtr();
+    float* values = out.F.valuePtr();
+    for (std::size_t i = first; i < last; ++i) {
       const double inv_n = 1.0 / out.rays[i];
-      for (std::uint32_t q = 0; q < nnz[i]; ++q, ++k) {
-        block.cols[k] = buf_cols[offset[i] + q];
-        block.values[k] = float(buf_counts[offset[i] + q] * inv_n);
+      for (std::uint32_t q = 0; q < nnz[i]; ++q, ++at) {
+        cols[at] = buf_cols[offset[i] + q];
+        values[at] = float(buf_counts[offset[i] + q] * inv_n);
       }
     }
-    blocks.push_back(std::move(block));
     first = last;
   }
   progress.finish();
-  buf_cols = {};
-  buf_counts = {};
 
-  // CSR: outer index by prefix sums of the row lengths, then the blocks in order (each freed once copied).
-  std::size_t total_nnz = 0;
-  for (auto c : nnz) total_nnz += c;
-  if (total_nnz > std::size_t(std::numeric_limits<std::int32_t>::max()))
-    throw InputError(locate(ps.source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
-  out.F.resize(Eigen::Index(N), Eigen::Index(N));
-  out.F.resizeNonZeros(Eigen::Index(total_nnz));
+  // CSR outer index by prefix sums of the row lengths.
   std::int32_t* outer = out.F.outerIndexPtr();
   outer[0] = 0;
   for (std::size_t i = 0; i < N; ++i) outer[i + 1] = outer[i] + std::int32_t(nnz[i]);
-  std::size_t at = 0;
-  for (auto& block : blocks) {
-    std::copy(block.cols.begin(), block.cols.end(), out.F.innerIndexPtr() + at);
-    std::copy(block.values.begin(), block.values.end(), out.F.valuePtr() + at);
-    at += block.cols.size();
-    block = Block{};
-  }
   return out;
 }
 
