@@ -143,15 +143,18 @@ void add_part(const ShootPart& part, PatchRgb& sum, PatchRgb* sum2, double divis
   }
 }
 
-// Dense per-thread scratch for shoot_particles, reused by every chunk the thread runs and left zero after each:
-// one particle's power per patch (`current`, touched rows in `touched`) and the chunk's sums (`sum`, `sum2`,
-// touched rows in `rows`). Allocated once per thread (O(N) per thread, not per chunk).
+// Dense per-thread scratch for shoot_particles, reused by every chunk the thread runs and left zero after each.
+// Per patch, in one record (one or two cache lines per score at large N, not five): one particle's power
+// (`current`), the chunk's sums (`sum`, `sum2`) and whether the patch is in the particle's and the chunk's
+// touched lists (`touched`, `rows`). Allocated once per thread (O(N) per thread, not per chunk).
+struct ScratchRow {
+  Rgb current = Rgb::Zero(), sum = Rgb::Zero(), sum2 = Rgb::Zero();
+  bool in_particle = false, in_chunk = false;
+};
 struct ShootScratch {
-  std::vector<Rgb> current, sum, sum2;
-  std::vector<char> in_particle, in_chunk;
+  std::vector<ScratchRow> row;
   std::vector<std::uint32_t> touched, rows;
-  explicit ShootScratch(std::size_t n)
-      : current(n, Rgb::Zero()), sum(n, Rgb::Zero()), sum2(n, Rgb::Zero()), in_particle(n, 0), in_chunk(n, 0) {}
+  explicit ShootScratch(std::size_t n) : row(n) {}
 };
 using ShootScratches = tbb::enumerable_thread_specific<std::unique_ptr<ShootScratch>>;
 ShootScratch& scratch_of(ShootScratches& scratches, std::size_t n) {
@@ -188,23 +191,25 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
   // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the
   // chunk's sums by flush once the particle is done.
   auto accumulate = [&](std::size_t j, const Rgb& power) {
-    if (!s.in_particle[j]) {
-      s.in_particle[j] = 1;
+    ScratchRow& row = s.row[j];
+    if (!row.in_particle) {
+      row.in_particle = true;
       s.touched.push_back(static_cast<std::uint32_t>(j));
     }
-    s.current[j] += power;
+    row.current += power;
   };
   auto flush = [&] {
     for (std::uint32_t j : s.touched) {
-      const Rgb Y = s.current[j] / area(static_cast<Eigen::Index>(j));
-      if (!s.in_chunk[j]) {
-        s.in_chunk[j] = 1;
+      ScratchRow& row = s.row[j];
+      const Rgb Y = row.current / area(static_cast<Eigen::Index>(j));
+      if (!row.in_chunk) {
+        row.in_chunk = true;
         s.rows.push_back(j);
       }
-      s.sum[j] += Y;
-      s.sum2[j] += Y * Y;
-      s.current[j] = Rgb::Zero();
-      s.in_particle[j] = 0;
+      row.sum += Y;
+      row.sum2 += Y * Y;
+      row.current = Rgb::Zero();
+      row.in_particle = false;
     }
     s.touched.clear();
   };
@@ -235,15 +240,16 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
   part.entries.resize(s.rows.size());
   for (std::size_t k = 0; k < s.rows.size(); ++k) {
     const std::uint32_t j = s.rows[k];
+    ScratchRow& row = s.row[j];
     ShootEntry& e = part.entries[k];
     e.patch = j;
     for (int c = 0; c < 3; ++c) {
-      e.sum[c] = s.sum[j][c];
-      e.sum2[c] = s.sum2[j][c];
+      e.sum[c] = row.sum[c];
+      e.sum2[c] = row.sum2[c];
     }
-    s.sum[j] = Rgb::Zero();
-    s.sum2[j] = Rgb::Zero();
-    s.in_chunk[j] = 0;
+    row.sum = Rgb::Zero();
+    row.sum2 = Rgb::Zero();
+    row.in_chunk = false;
   }
   s.rows.clear();
   return part;
