@@ -151,9 +151,16 @@ struct ScratchRow {
   Rgb current = Rgb::Zero(), sum = Rgb::Zero(), sum2 = Rgb::Zero();
   bool in_particle = false, in_chunk = false;
 };
+// One score of a particle in a lockstep batch, recorded to be summed in particle order.
+struct ShootScore {
+  std::uint32_t particle, j;  // particle - begin, patch
+  Rgb power;
+};
 struct ShootScratch {
   std::vector<ScratchRow> row;
   std::vector<std::uint32_t> touched, rows;
+  std::vector<ShootScore> scores, sorted;  // reused buffers of the lockstep path (no fresh pages per chunk)
+  std::vector<std::size_t> first;
   explicit ShootScratch(std::size_t n) : row(n) {}
 };
 using ShootScratches = tbb::enumerable_thread_specific<std::unique_ptr<ShootScratch>>;
@@ -163,15 +170,15 @@ ShootScratch& scratch_of(ShootScratches& scratches, std::size_t n) {
   return *s;
 }
 
-// The scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting sort).
-template <class Score>
-std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count) {
-  std::vector<std::size_t> first(count + 1, 0);
-  for (const Score& s : scores) ++first[s.particle + 1];
+// `sorted` = the scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting
+// sort; `first` is its work array).
+void sort_by_particle(const std::vector<ShootScore>& scores, std::size_t count, std::vector<ShootScore>& sorted,
+                      std::vector<std::size_t>& first) {
+  first.assign(count + 1, 0);
+  for (const ShootScore& s : scores) ++first[s.particle + 1];
   for (std::size_t w = 0; w < count; ++w) first[w + 1] += first[w];
-  std::vector<Score> sorted(scores.size());
-  for (const Score& s : scores) sorted[first[s.particle]++] = s;
-  return sorted;
+  sorted.resize(scores.size());
+  for (const ShootScore& s : scores) sorted[first[s.particle]++] = s;
 }
 
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
@@ -184,10 +191,6 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
                           Make&& make) {
   using Particle = typename Estimator::template Particle<K>;
   ShootPart part;
-  struct Score {
-    std::uint32_t particle, j;  // particle - begin, patch
-    Rgb power;
-  };
   // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the
   // chunk's sums by flush once the particle is done.
   auto accumulate = [&](std::size_t j, const Rgb& power) {
@@ -220,8 +223,8 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
         [&](std::size_t, const Particle&) { flush(); }, part.counters);
   } else {
     // Lanes: scores recorded with their particle, then taken particle by particle in order.
-    std::vector<Score> scores;
-    scores.reserve(4 * count);
+    std::vector<ShootScore>& scores = s.scores;
+    scores.clear();
     run_lockstep(
         kernel, count, K::kLanes, make,
         [&](Particle& particle, std::size_t w, PatchIndex j) {
@@ -230,14 +233,15 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
           });
         },
         [](std::size_t, const Particle&) {}, part.counters);
-    scores = sort_by_particle(std::move(scores), count);
+    sort_by_particle(scores, count, s.sorted, s.first);
+    const std::vector<ShootScore>& sorted = s.sorted;
     // The scratch records of the scores ahead are asked for early (a hint: at large N each is a cache miss).
     constexpr std::size_t kAhead = 16;
-    for (std::size_t k = 0; k < std::min(kAhead, scores.size()); ++k) __builtin_prefetch(&s.row[scores[k].j]);
-    for (std::size_t k = 0; k < scores.size(); flush())
-      for (const std::uint32_t w = scores[k].particle; k < scores.size() && scores[k].particle == w; ++k) {
-        if (k + kAhead < scores.size()) __builtin_prefetch(&s.row[scores[k + kAhead].j]);
-        accumulate(scores[k].j, scores[k].power);
+    for (std::size_t k = 0; k < std::min(kAhead, sorted.size()); ++k) __builtin_prefetch(&s.row[sorted[k].j]);
+    for (std::size_t k = 0; k < sorted.size(); flush())
+      for (const std::uint32_t w = sorted[k].particle; k < sorted.size() && sorted[k].particle == w; ++k) {
+        if (k + kAhead < sorted.size()) __builtin_prefetch(&s.row[sorted[k + kAhead].j]);
+        accumulate(sorted[k].j, sorted[k].power);
       }
   }
   // The chunk's rows by increasing patch, moved out of the scratch (left zero).

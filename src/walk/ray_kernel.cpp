@@ -148,11 +148,8 @@ void RayKernel::sample(std::span<const SampleRequest> requests, std::span<PatchI
       const PatchIndex j = out[base + r];
       if (j < 0) continue;
       const auto k = static_cast<std::size_t>(j);
-      const char* sampler = reinterpret_cast<const char*>(&samplers_[k]);
-      __builtin_prefetch(sampler);
-      __builtin_prefetch(sampler + sizeof(PatchSampler) - 1);
+      __builtin_prefetch(&samplers_[k]);
       __builtin_prefetch(&tables_.rho[k]);
-      __builtin_prefetch(&tables_.p[k]);
     }
     counters.steps += static_cast<long>(m);
   }
