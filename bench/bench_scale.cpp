@@ -13,7 +13,9 @@
 //                 before and after the walks and the path tracer, the better rate kept
 //   shoot walks   solve_random_walk shoot-collision, ray kernel, --particles particles (F not stored)
 //   gather walks  solve_random_walk gather-collision, ray kernel, --walks walks from each of --targets patches
-//                 spread over the scene (a subset, so the walks' work does not grow with N)
+//                 spread over the scene (defaults: every patch, max(2, 4e6 / N) walks each, so about 4 M walks
+//                 at every N and the solve's O(N) set-up, the ray kernel's per-patch records, is paid once
+//                 over a run of realistic size)
 //   path tracer   estimate_patch_averages (mis), --spp samples per patch on every patch
 //   form factors  estimate_form_factors, --ff-rays rays per patch (skipped above --ff-max patches)
 //   gauss-seidel  solve_gauss_seidel on that F to 1e-6 (sweeps printed)
@@ -98,7 +100,7 @@ std::vector<double> parse_sizes(const std::string& s) {
 int main(int argc, char** argv) {
   std::string scene = bench::default_scene(), out_dir = std::filesystem::temp_directory_path().string();
   std::vector<double> sizes = {1e4, 1e5, 1e6};
-  long particles = 1 << 20, walks = 64, targets = 4096, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
+  long particles = 1 << 20, walks = 0, targets = 0, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
   double ff_max = 2e6;
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string k = argv[a], v = argv[a + 1];
@@ -179,9 +181,10 @@ int main(int argc, char** argv) {
       WalkOptions o;
       o.method = WalkMethod::gather_collision;
       o.kernel = WalkKernel::ray;
-      o.walks_per_patch = walks;
-      const std::size_t m = std::min<std::size_t>(N, std::size_t(targets));
-      for (std::size_t k = 0; k < m; ++k) o.patches.push_back(int(k * N / m));
+      const std::size_t m = targets > 0 ? std::min<std::size_t>(N, std::size_t(targets)) : N;
+      o.walks_per_patch = walks > 0 ? walks : std::max<long>(2, long(4e6 / double(m)));
+      if (m < N)
+        for (std::size_t k = 0; k < m; ++k) o.patches.push_back(int(k * N / m));
       Solution sol;
       const Stage s = stage("gather walks", [&] { sol = solve_random_walk(walk_problem, &ps, vis.get(), o); });
       gather_rate = double(sol.steps) / s.cpu;
