@@ -143,32 +143,25 @@ void add_part(const ShootPart& part, PatchRgb& sum, PatchRgb* sum2, double divis
   }
 }
 
-// Dense per-thread scratch for shoot_particles, reused by every chunk the thread runs and left zero after each.
-// Per patch, in one record (one or two cache lines per score at large N, not five): one particle's power
-// (`current`), the chunk's sums (`sum`, `sum2`) and whether the patch is in the particle's and the chunk's
-// touched lists (`touched`, `rows`). Allocated once per thread (O(N) per thread, not per chunk).
-struct ScratchRow {
-  Rgb current = Rgb::Zero(), sum = Rgb::Zero(), sum2 = Rgb::Zero();
-  bool in_particle = false, in_chunk = false;
-};
 // One score of a particle in a lockstep batch, recorded to be summed in particle order.
 struct ShootScore {
   std::uint32_t particle, j;  // particle - begin, patch
   Rgb power;
 };
-struct ShootScratch {
-  std::vector<ScratchRow> row;
-  std::vector<std::uint32_t> touched, rows;
-  std::vector<ShootScore> scores, sorted;  // reused buffers of the lockstep path (no fresh pages per chunk)
-  std::vector<std::size_t> first;
-  explicit ShootScratch(std::size_t n) : row(n) {}
+// A patch and a power or a per-particle score Y_j.
+struct PatchValue {
+  std::uint32_t patch;
+  Rgb value;
 };
-using ShootScratches = tbb::enumerable_thread_specific<std::unique_ptr<ShootScratch>>;
-ShootScratch& scratch_of(ShootScratches& scratches, std::size_t n) {
-  std::unique_ptr<ShootScratch>& s = scratches.local();
-  if (!s) s = std::make_unique<ShootScratch>(n);
-  return *s;
-}
+// Per-thread buffers of shoot_particles, reused by every chunk the thread runs (no fresh pages per chunk); all
+// O(work of one chunk), none O(N).
+struct ShootScratch {
+  std::vector<ShootScore> scores, sorted;  // the lockstep path's scores, as recorded and by particle
+  std::vector<std::size_t> first;          // counting-sort offsets
+  std::vector<PatchValue> touched;         // one particle's power per patch, in first-touch order
+  std::vector<PatchValue> Y, Y_sorted;     // the chunk's Y_j, particle by particle, then by patch (stable)
+};
+using ShootScratches = tbb::enumerable_thread_specific<ShootScratch>;
 
 // `sorted` = the scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting
 // sort; `first` is its work array).
@@ -183,37 +176,29 @@ void sort_by_particle(const std::vector<ShootScore>& scores, std::size_t count, 
 
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
-// order) and then summed the same way, so the sums do not depend on the lane count. Work and the part's size are
-// O(steps of the chunk) (plus a sort of the touched rows), whatever N.
+// order) and then summed the same way, so the sums do not depend on the lane count. Each finished particle
+// appends its Y_j (its power per patch over A_j) to the chunk's list; the list is then sorted by patch, stably, so
+// that each patch's Y_j are summed in particle order, the order a dense per-patch accumulator would add them in
+// (the same bits). Work and memory O(steps of the chunk) (plus a sort), whatever N.
 // make(w) returns particle w (0 .. count-1) of the chunk, born.
 template <class Estimator, TransitionKernel K, class Make>
 ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, ShootScratch& s,
                           Make&& make) {
   using Particle = typename Estimator::template Particle<K>;
   ShootPart part;
-  // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the
-  // chunk's sums by flush once the particle is done.
+  s.Y.clear();
+  // One particle's power per patch, summed in scoring order (a particle scores on few patches: a linear search).
   auto accumulate = [&](std::size_t j, const Rgb& power) {
-    ScratchRow& row = s.row[j];
-    if (!row.in_particle) {
-      row.in_particle = true;
-      s.touched.push_back(static_cast<std::uint32_t>(j));
-    }
-    row.current += power;
+    const auto patch = static_cast<std::uint32_t>(j);
+    for (PatchValue& t : s.touched)
+      if (t.patch == patch) {
+        t.value += power;
+        return;
+      }
+    s.touched.push_back({patch, power});
   };
   auto flush = [&] {
-    for (std::uint32_t j : s.touched) {
-      ScratchRow& row = s.row[j];
-      const Rgb Y = row.current / area(static_cast<Eigen::Index>(j));
-      if (!row.in_chunk) {
-        row.in_chunk = true;
-        s.rows.push_back(j);
-      }
-      row.sum += Y;
-      row.sum2 += Y * Y;
-      row.current = Rgb::Zero();
-      row.in_particle = false;
-    }
+    for (const PatchValue& t : s.touched) s.Y.push_back({t.patch, Rgb(t.value / area(static_cast<Eigen::Index>(t.patch)))});
     s.touched.clear();
   };
   if constexpr (K::kLanes == 1) {
@@ -235,32 +220,30 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
         [](std::size_t, const Particle&) {}, part.counters);
     sort_by_particle(scores, count, s.sorted, s.first);
     const std::vector<ShootScore>& sorted = s.sorted;
-    // The scratch records of the scores ahead are asked for early (a hint: at large N each is a cache miss).
-    constexpr std::size_t kAhead = 16;
-    for (std::size_t k = 0; k < std::min(kAhead, sorted.size()); ++k) __builtin_prefetch(&s.row[sorted[k].j]);
     for (std::size_t k = 0; k < sorted.size(); flush())
-      for (const std::uint32_t w = sorted[k].particle; k < sorted.size() && sorted[k].particle == w; ++k) {
-        if (k + kAhead < sorted.size()) __builtin_prefetch(&s.row[sorted[k + kAhead].j]);
+      for (const std::uint32_t w = sorted[k].particle; k < sorted.size() && sorted[k].particle == w; ++k)
         accumulate(sorted[k].j, sorted[k].power);
-      }
   }
-  // The chunk's rows by increasing patch, moved out of the scratch (left zero).
-  std::sort(s.rows.begin(), s.rows.end());
-  part.entries.resize(s.rows.size());
-  for (std::size_t k = 0; k < s.rows.size(); ++k) {
-    const std::uint32_t j = s.rows[k];
-    ScratchRow& row = s.row[j];
-    ShootEntry& e = part.entries[k];
+  // The chunk's sums per patch, by increasing patch: each patch's Y_j in particle order (a stable sort).
+  s.Y_sorted.assign(s.Y.begin(), s.Y.end());
+  std::stable_sort(s.Y_sorted.begin(), s.Y_sorted.end(),
+                   [](const PatchValue& x, const PatchValue& y) { return x.patch < y.patch; });
+  for (std::size_t k = 0; k < s.Y_sorted.size();) {
+    const std::uint32_t j = s.Y_sorted[k].patch;
+    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+    for (; k < s.Y_sorted.size() && s.Y_sorted[k].patch == j; ++k) {
+      const Rgb& Y = s.Y_sorted[k].value;
+      sum += Y;
+      sum2 += Y * Y;
+    }
+    ShootEntry e;
     e.patch = j;
     for (int c = 0; c < 3; ++c) {
-      e.sum[c] = row.sum[c];
-      e.sum2[c] = row.sum2[c];
+      e.sum[c] = sum[c];
+      e.sum2[c] = sum2[c];
     }
-    row.sum = Rgb::Zero();
-    row.sum2 = Rgb::Zero();
-    row.in_chunk = false;
+    part.entries.push_back(e);
   }
-  s.rows.clear();
   return part;
 }
 
@@ -276,7 +259,7 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   if (source.power > 0) {
     const long chunk = shoot_chunk(particles);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
-    // Parts are O(chunk work); the dense scratch is one per thread.
+    // Parts and per-thread buffers are O(chunk work), never O(N).
     ShootScratches scratches;
     ordered_reduce(
         chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
@@ -289,7 +272,7 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
                                                             streams.stream(static_cast<std::uint64_t>(begin) + w));
           };
           ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin),
-                                                      scratch_of(scratches, kernel.size()), make);
+                                                      scratches.local(), make);
           if (progress) progress->advance(1);
           return part;
         },
@@ -368,7 +351,7 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
                                                           emission.first_uniforms(particle, j));
         };
         ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin),
-                                                    scratch_of(scratches, kernel.size()), make);
+                                                    scratches.local(), make);
         if (progress) progress->advance(1);
         return part;
       },
