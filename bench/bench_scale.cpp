@@ -24,7 +24,7 @@
 // The ratios: rays per CPU second of the shooting walks, the gathering walks and the path tracer over raw
 // Embree's, measured in the same run (CPU seconds: meaningful on a shared machine).
 // Usage: bench_scale [--sizes 1e4,1e5,1e6] [--scene PATH] [--particles P] [--walks W] [--targets T] [--spp S]
-//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--out DIR]
+//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--out DIR]   (--spp 0: no path tracer)
 #include <sys/resource.h>
 #include <time.h>
 
@@ -191,7 +191,8 @@ int main(int argc, char** argv) {
       std::printf("  %ld rays\n", sol.steps);
     }
     Solution pt;
-    {
+    pt.B = PatchRgb::Zero(static_cast<Eigen::Index>(N), 3);
+    if (spp > 0) {  // --spp 0: no path tracer
       PatchAverageOptions o;
       o.spp = spp;
       o.progress = false;
