@@ -1,4 +1,4 @@
-// radwalk formfactors SCENE [--rays N | --rays-per-area D] -o F.mtx [--csv] [--vtp] [--json]
+// radwalk formfactors SCENE [--rays N | --rays-per-area D] -o F.mtx|F.npz [--csv] [--vtp] [--json]
 #include <algorithm>
 #include <cstdio>
 
@@ -6,7 +6,7 @@
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
 #include "core/timer.h"
-#include "formfactor/matrix_market.h"
+#include "formfactor/form_factor_file.h"
 
 namespace radwalk::app {
 
@@ -16,7 +16,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
   if (!command.mtx.empty()) {
     Timer timer;
-    write_matrix_market(command.mtx, ff.F, run_id_of(summary));
+    write_form_factors(command.mtx, ff.F, run_id_of(summary));  // .npz or .mtx
     summary.add_timing("write_matrix", timer.seconds());
     note("wrote " + command.mtx);
   }

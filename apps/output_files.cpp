@@ -20,7 +20,7 @@ const Format kFormats[] = {
     {OutputFile::vtp_or_obj, "VTK XML PolyData or OBJ (+ .mtl)", {".vtp", ".obj"}},
     {OutputFile::csv, "CSV", {".csv"}},
     {OutputFile::json, "a JSON summary", {".json"}},
-    {OutputFile::matrix_market, "a Matrix Market matrix", {".mtx"}},
+    {OutputFile::matrix_market, "a Matrix Market (.mtx) or binary CSR (.npz) matrix", {".mtx", ".npz"}},
     {OutputFile::image, "a PNG (sRGB) or OpenEXR (linear) image", {".png", ".exr"}},
 };
 

@@ -18,6 +18,7 @@
 #include "core/timer.h"
 #include "core/parallel.h"
 #include "formfactor/form_factor_diagnostics.h"
+#include "formfactor/form_factor_file.h"
 #include "formfactor/matrix_market.h"
 #include "formfactor/reciprocity.h"
 #include "io/csv_writer.h"
@@ -354,7 +355,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
   FormFactors ff;
   Timer timer;
   if (!options.form_factors.empty()) {
-    ff.F = read_matrix_market(options.form_factors, patches.size());
+    ff.F = read_form_factors(options.form_factors, patches.size());  // .npz (mapped) or .mtx
     summary.add_timing("read_form_factors", timer.seconds());
     summary.json()["form_factors_file"] = options.form_factors;
   } else {

@@ -206,7 +206,7 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
       ->capture_default_str();
   auto* file =
       cmd->add_option("--form-factors", o.form_factors,
-                      "Read F from a Matrix Market file (from 'radwalk formfactors') instead of tracing")
+                      "Read F from a file of 'radwalk formfactors' instead of tracing: FILE.mtx (Matrix Market) or FILE.npz (binary CSR, memory-mapped)")
           ->check(CLI::ExistingFile);
   file->excludes(rays)->excludes(density);
   cmd->add_flag("--reciprocity", o.reciprocity,
@@ -330,7 +330,7 @@ int run_main(int argc, char** argv) {
   auto* ff_cmd = app.add_subcommand("formfactors", "Estimate form factors F by cosine-weighted ray shooting");
   add_scene_options(ff_cmd, ff.scene);
   add_form_factor_options(ff_cmd, ff.ff);
-  ff_cmd->add_option("-o,--output", ff.mtx, "Write F as Matrix Market, FILE.mtx (row i = patch i, 1-based)")
+  ff_cmd->add_option("-o,--output", ff.mtx, "Write F as FILE.mtx (Matrix Market text, row i = patch i, 1-based) or FILE.npz (binary CSR as scipy.sparse.save_npz, 0-based; fast to read)")
       ->check(output_file(OutputFile::matrix_market));
   ff_cmd->add_option("--vtp", ff.diagnostics_vtp, "Write per-patch diagnostics as .vtp")
       ->check(output_file(OutputFile::vtp));

@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config
   libeigen3-dev libembree-dev libopenmesh-dev libvtk9-dev catch2 libtbb-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libboost-dev libopenexr-dev python3-matplotlib
+  nlohmann-json3-dev libtinyobjloader-dev libpng-dev zlib1g-dev libboost-dev libopenexr-dev python3-matplotlib python3-scipy
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest  # the Python module (python/)
   openmpi-bin libopenmpi-dev  # MPI runs (src/core/distributed.h) and the mpi test label (tests/mpi)
   clang libclang-rt-14-dev llvm-14  # the fuzz harnesses (tests/fuzz): libFuzzer, sanitizer runtimes, symbolizer

@@ -9,7 +9,8 @@
 //   row_std_error[i]     = sqrt(max_j F_ij (1 - F_ij) / n_i): the largest binomial standard error of an entry of
 //                          row i, an upper bound for the stratified estimator's (see form_factors.h)
 //                          (empty when no ray counts are given)
-// Cost: O(nnz) time and one transposed copy of F (about 8 bytes per non-zero).
+// Cost: O(nnz log(row length)) time (F_ji found by binary search in row j, whose columns increase) and 1 byte
+// per patch besides the outputs: no transposed copy of F.
 #include <cstdint>
 #include <vector>
 

@@ -175,31 +175,23 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
   return r;
 }
 
-// Consecutive rows' entries (CSR inner indices and values) traced together.
-struct RowBlock {
-  std::vector<std::int32_t> cols;
-  std::vector<float> values;
-};
-
-// Over MPI: every rank traced the rows of its block (row_blocks[rank]); afterwards every rank has every row's
-// counts and entries, each from the rank that traced it, so F is the one a single process estimates, bit for bit.
+// Over MPI: every rank traced the rows of its block (row_blocks[rank]) into the first `at` entries of F's
+// arrays; afterwards every rank has every row's counts and entries, each from the rank that traced it, in row
+// order, so F is the one a single process estimates, bit for bit.
 void share_rows(const std::vector<distributed::Range>& row_blocks, std::vector<std::uint32_t>& nnz, FormFactors& out,
-                std::vector<RowBlock>& blocks) {
+                std::size_t at, const std::string& source) {
   distributed::share_blocks(nnz, row_blocks);
   distributed::share_blocks(out.escaped, row_blocks);
   distributed::share_blocks(out.back_hits, row_blocks);
-  RowBlock mine;
-  for (RowBlock& b : blocks) {
-    mine.cols.insert(mine.cols.end(), b.cols.begin(), b.cols.end());
-    mine.values.insert(mine.values.end(), b.values.begin(), b.values.end());
-    b = RowBlock{};
-  }
-  RowBlock all;
-  all.cols = distributed::allgather_concat(mine.cols);
-  mine.cols = {};
-  all.values = distributed::allgather_concat(mine.values);
-  blocks.clear();
-  blocks.push_back(std::move(all));
+  const std::vector<std::int32_t> cols =
+      distributed::allgather_concat(std::vector<std::int32_t>(out.F.innerIndexPtr(), out.F.innerIndexPtr() + at));
+  const std::vector<float> values =
+      distributed::allgather_concat(std::vector<float>(out.F.valuePtr(), out.F.valuePtr() + at));
+  if (cols.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+    throw InputError(locate(source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
+  out.F.resizeNonZeros(Eigen::Index(cols.size()));
+  std::copy(cols.begin(), cols.end(), out.F.innerIndexPtr());
+  std::copy(values.begin(), values.end(), out.F.valuePtr());
 }
 
 }  // namespace
@@ -228,13 +220,21 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   int sort_passes = 0;
   for (std::size_t v = N; v > 0; v >>= 8) ++sort_passes;
 
-  // Blocks of consecutive rows with at most kBlockRays rays (or one row): trace into a working buffer with room
-  // for n_i entries per row, then copy each row's runs into the block's compact arrays.
-  std::vector<RowBlock> blocks;
+  // F's arrays are reserved once for the most non-zeros the rays can give, sum_i min(n_i, N) (capped at the
+  // 32-bit index range): memory the rows never reach is never touched, so it costs address space only, and F
+  // is never copied (a copy would double the peak). Blocks of consecutive rows with at most kBlockRays rays (or
+  // one row) are traced into a working buffer with room for min(n_i, N) entries per row, and each row's runs
+  // are then appended to F's arrays.
+  std::size_t bound = 0;
+  for (std::size_t i = 0; i < N; ++i) bound += std::min<std::size_t>(out.rays[i], N);
+  const auto kMaxNonZeros = std::size_t(std::numeric_limits<std::int32_t>::max());
+  out.F.resize(Eigen::Index(N), Eigen::Index(N));
+  out.F.data().reserve(Eigen::Index(std::min(bound, kMaxNonZeros)));
   std::vector<std::uint32_t> nnz(N);
   std::vector<std::size_t> offset(N + 1);
   std::vector<std::int32_t> buf_cols;
   std::vector<std::uint32_t> buf_counts;
+  std::size_t at = 0;  // non-zeros in F so far (of this rank's rows, over MPI)
   // Over MPI each rank traces a block of rows with about equal rays (core/distributed.h); with one process, all.
   const std::vector<distributed::Range> row_blocks = distributed::weighted_blocks(
       distributed::size() == 1 ? std::vector<double>() : std::vector<double>(out.rays.begin(), out.rays.end()));
@@ -260,43 +260,31 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
       }
       progress.advance(e - b);
     });
-    RowBlock block;
     std::size_t block_nnz = 0;
     for (std::size_t i = first; i < last; ++i) block_nnz += nnz[i];
-    block.cols.resize(block_nnz);
-    block.values.resize(block_nnz);
-    for (std::size_t i = first, k = 0; i < last; ++i) {
+    if (at + block_nnz > kMaxNonZeros)
+      throw InputError(locate(ps.source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
+    out.F.resizeNonZeros(Eigen::Index(at + block_nnz));  // within the reservation: no reallocation
+    std::int32_t* cols = out.F.innerIndexPtr();
+    float* values = out.F.valuePtr();
+    for (std::size_t i = first; i < last; ++i) {
       const double inv_n = 1.0 / out.rays[i];
-      for (std::uint32_t q = 0; q < nnz[i]; ++q, ++k) {
-        block.cols[k] = buf_cols[offset[i] + q];
-        block.values[k] = float(buf_counts[offset[i] + q] * inv_n);
+      for (std::uint32_t q = 0; q < nnz[i]; ++q, ++at) {
+        cols[at] = buf_cols[offset[i] + q];
+        values[at] = float(buf_counts[offset[i] + q] * inv_n);
       }
     }
-    blocks.push_back(std::move(block));
     first = last;
   }
   progress.finish();
   buf_cols = {};
   buf_counts = {};
-  if (distributed::size() > 1) share_rows(row_blocks, nnz, out, blocks);
+  if (distributed::size() > 1) share_rows(row_blocks, nnz, out, at, ps.source);
 
-  // CSR: outer index by prefix sums of the row lengths, then the blocks in order (each freed once copied).
-  std::size_t total_nnz = 0;
-  for (auto c : nnz) total_nnz += c;
-  if (total_nnz > std::size_t(std::numeric_limits<std::int32_t>::max()))
-    throw InputError(locate(ps.source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
-  out.F.resize(Eigen::Index(N), Eigen::Index(N));
-  out.F.resizeNonZeros(Eigen::Index(total_nnz));
+  // CSR outer index by prefix sums of the row lengths.
   std::int32_t* outer = out.F.outerIndexPtr();
   outer[0] = 0;
   for (std::size_t i = 0; i < N; ++i) outer[i + 1] = outer[i] + std::int32_t(nnz[i]);
-  std::size_t at = 0;
-  for (auto& block : blocks) {
-    std::copy(block.cols.begin(), block.cols.end(), out.F.innerIndexPtr() + at);
-    std::copy(block.values.begin(), block.values.end(), out.F.valuePtr() + at);
-    at += block.cols.size();
-    block = RowBlock{};
-  }
   return out;
 }
 

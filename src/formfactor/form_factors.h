@@ -19,8 +19,9 @@
 // Reproducible: patch i uses the stream (seed, form_factor_row, i) only (core/rng.h), so F is bit-identical for any thread count.
 // Rays leave through spawn_ray (visibility/ray_offset.h). Parallel over patches (core/parallel.h); rows are
 // assembled into CSR without a global sort or lock: each row's hits are sorted into (j, count) runs in place,
-// then rows are copied at prefix-sum offsets. Memory: about 8 bytes per non-zero of F plus a working buffer of
-// at most 16 M rays (8 bytes per ray).
+// then appended to F's arrays, reserved once (never copied). Memory: 8 bytes per non-zero of F (resident; the
+// reservation for sum_i min(n_i, N) non-zeros costs address space only) plus a working buffer of at most 16 M
+// rays (8 bytes per ray).
 #include <cstdint>
 #include <vector>
 

@@ -2,12 +2,16 @@
 
 #include <algorithm>
 #include <functional>
+#include <memory>
 #include <cmath>
 #include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <vector>
+
+#include <tbb/enumerable_thread_specific.h>
 
 #include "core/check.h"
 #include "core/distributed.h"
@@ -122,90 +126,104 @@ RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, l
   return r;
 }
 
-// Per-chunk sums of the per-particle scores Y_j and Y_j^2 (radiosity units).
+// One chunk's sums of the per-particle scores Y_j and Y_j^2 (radiosity units) over the patches j its particles
+// scored on, by increasing j: a part of O(work) size, not O(N), in a plain layout (vectors of PODs) that can be
+// sent between processes. Its value depends only on the chunk's particles.
+struct ShootEntry {
+  std::uint64_t patch;
+  double sum[3], sum2[3];
+};
 struct ShootPart {
-  PatchRgb sum, sum2;
+  std::vector<ShootEntry> entries;  // patch increasing, each patch once
   WalkCounters counters;
 };
 
 // A ShootPart as bytes and back, for the distributed ordered reduce (core/distributed.h): every rank's parts are
-// combined on rank 0 in chunk order. Only the rows a particle scored on are sent (row index, then its sum and sum2),
-// so the bytes grow with the scores of the chunk, not with N; the rows not sent are zero, as they were.
+// combined on rank 0 in chunk order. The part is sparse already (the rows its particles scored on), so the bytes
+// grow with the scores of the chunk, not with N.
 void save_shoot_part(const ShootPart& part, distributed::ByteWriter& out) {
-  std::uint64_t rows = 0;
-  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) rows += (part.sum.row(k) != 0).any() || (part.sum2.row(k) != 0).any();
-  out.put(rows);
-  for (Eigen::Index k = 0; k < part.sum.rows(); ++k) {
-    if (!(part.sum.row(k) != 0).any() && !(part.sum2.row(k) != 0).any()) continue;
-    out.put(static_cast<std::uint64_t>(k));
-    out.put_bytes(part.sum.row(k).data(), 3 * sizeof(double));  // PatchRgb is row-major
-    out.put_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
-  }
+  out.put(static_cast<std::uint64_t>(part.entries.size()));
+  out.put_bytes(part.entries.data(), part.entries.size() * sizeof(ShootEntry));
   out.put(part.counters);
 }
-ShootPart load_shoot_part(distributed::ByteReader& in, Eigen::Index N) {
+ShootPart load_shoot_part(distributed::ByteReader& in, std::uint64_t N) {
   ShootPart part;
-  part.sum.setZero(N, 3);
-  part.sum2.setZero(N, 3);
-  const auto rows = in.get<std::uint64_t>();
-  for (std::uint64_t r = 0; r < rows; ++r) {
-    const auto k = static_cast<Eigen::Index>(in.get<std::uint64_t>());
-    RADWALK_CHECK(k >= 0 && k < N);  // a row of the sender's part
-    in.get_bytes(part.sum.row(k).data(), 3 * sizeof(double));
-    in.get_bytes(part.sum2.row(k).data(), 3 * sizeof(double));
-  }
+  part.entries.resize(in.get<std::uint64_t>());
+  in.get_bytes(part.entries.data(), part.entries.size() * sizeof(ShootEntry));
+  for (const ShootEntry& e : part.entries) RADWALK_CHECK(e.patch < N);  // a row of the sender's part
   part.counters = in.get<WalkCounters>();
   return part;
 }
 
-// The scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting sort).
-template <class Score>
-std::vector<Score> sort_by_particle(std::vector<Score> scores, std::size_t count) {
-  std::vector<std::size_t> first(count + 1, 0);
-  for (const Score& s : scores) ++first[s.particle + 1];
+// Adds a part's sums into the N x 3 totals: row j += the entry of j (its sum divided by `divisor`) (rows without an entry are unchanged,
+// which is what adding a dense part's zero rows did, bit for bit).
+void add_part(const ShootPart& part, PatchRgb& sum, PatchRgb* sum2, double divisor = 1.0) {
+  for (const ShootEntry& e : part.entries) {
+    const auto row = static_cast<Eigen::Index>(e.patch);
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      sum(row, c) += e.sum[c] / divisor;  // x / 1 = x exactly
+      if (sum2) (*sum2)(row, c) += e.sum2[c];
+    }
+  }
+}
+
+// One score of a particle in a lockstep batch, recorded to be summed in particle order.
+struct ShootScore {
+  std::uint32_t particle, j;  // particle - begin, patch
+  Rgb power;
+};
+// A patch and a power or a per-particle score Y_j.
+struct PatchValue {
+  std::uint32_t patch;
+  Rgb value;
+};
+// Per-thread buffers of shoot_particles, reused by every chunk the thread runs (no fresh pages per chunk); all
+// O(work of one chunk), none O(N).
+struct ShootScratch {
+  std::vector<ShootScore> scores, sorted;  // the lockstep path's scores, as recorded and by particle
+  std::vector<std::size_t> first;          // counting-sort offsets
+  std::vector<PatchValue> touched;         // one particle's power per patch, in first-touch order
+  std::vector<PatchValue> Y, Y_sorted;     // the chunk's Y_j, particle by particle, then by patch (stable)
+};
+using ShootScratches = tbb::enumerable_thread_specific<ShootScratch>;
+
+// `sorted` = the scores sorted by particle (0 .. count-1), each particle's in their recorded order (a counting
+// sort; `first` is its work array).
+void sort_by_particle(const std::vector<ShootScore>& scores, std::size_t count, std::vector<ShootScore>& sorted,
+                      std::vector<std::size_t>& first) {
+  first.assign(count + 1, 0);
+  for (const ShootScore& s : scores) ++first[s.particle + 1];
   for (std::size_t w = 0; w < count; ++w) first[w + 1] += first[w];
-  std::vector<Score> sorted(scores.size());
-  for (const Score& s : scores) sorted[first[s.particle]++] = s;
-  return sorted;
+  sorted.resize(scores.size());
+  for (const ShootScore& s : scores) sorted[first[s.particle]++] = s;
 }
 
 // Particles [begin, end), K::kLanes of them in lockstep. With one lane each particle's scores are summed per
 // patch as it finishes; with more, they are recorded, put in particle order (each particle's in its own step
-// order) and then summed the same way, so the sums do not depend on the lane count.
+// order) and then summed the same way, so the sums do not depend on the lane count. Each finished particle
+// appends its Y_j (its power per patch over A_j) to the chunk's list; the list is then sorted by patch, stably, so
+// that each patch's Y_j are summed in particle order, the order a dense per-patch accumulator would add them in
+// (the same bits). Work and memory O(steps of the chunk) (plus a sort), whatever N.
 // make(w) returns particle w (0 .. count-1) of the chunk, born.
 template <class Estimator, TransitionKernel K, class Make>
-ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, Make&& make) {
+ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::size_t count, ShootScratch& s,
+                          Make&& make) {
   using Particle = typename Estimator::template Particle<K>;
-  const auto N = static_cast<Eigen::Index>(kernel.size());
   ShootPart part;
-  part.sum.setZero(N, 3);
-  part.sum2.setZero(N, 3);
-  struct Score {
-    std::uint32_t particle, j;  // particle - begin, patch
-    Rgb power;
-  };
-  // One particle's score per patch, Y_j, gathered sparsely (touched patches) by accumulate and added to the sums
-  // by flush once the particle is done.
-  std::vector<Rgb> current(kernel.size(), Rgb::Zero());
-  std::vector<char> touched_flag(kernel.size(), 0);
-  std::vector<std::size_t> touched;
+  s.Y.clear();
+  // One particle's power per patch, summed in scoring order (a particle scores on few patches: a linear search).
   auto accumulate = [&](std::size_t j, const Rgb& power) {
-    if (!touched_flag[j]) {
-      touched_flag[j] = 1;
-      touched.push_back(j);
-    }
-    current[j] += power;
+    const auto patch = static_cast<std::uint32_t>(j);
+    for (PatchValue& t : s.touched)
+      if (t.patch == patch) {
+        t.value += power;
+        return;
+      }
+    s.touched.push_back({patch, power});
   };
   auto flush = [&] {
-    for (std::size_t j : touched) {
-      const auto row = static_cast<Eigen::Index>(j);
-      const Rgb Y = current[j] / area(row);
-      part.sum.row(row) += Y.transpose();
-      part.sum2.row(row) += (Y * Y).transpose();
-      current[j] = Rgb::Zero();
-      touched_flag[j] = 0;
-    }
-    touched.clear();
+    for (const PatchValue& t : s.touched) s.Y.push_back({t.patch, Rgb(t.value / area(static_cast<Eigen::Index>(t.patch)))});
+    s.touched.clear();
   };
   if constexpr (K::kLanes == 1) {
     // One lane: particles run to the end in order, each flushed at once.
@@ -214,8 +232,8 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
         [&](std::size_t, const Particle&) { flush(); }, part.counters);
   } else {
     // Lanes: scores recorded with their particle, then taken particle by particle in order.
-    std::vector<Score> scores;
-    scores.reserve(4 * count);
+    std::vector<ShootScore>& scores = s.scores;
+    scores.clear();
     run_lockstep(
         kernel, count, K::kLanes, make,
         [&](Particle& particle, std::size_t w, PatchIndex j) {
@@ -224,10 +242,31 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
           });
         },
         [](std::size_t, const Particle&) {}, part.counters);
-    scores = sort_by_particle(std::move(scores), count);
-    for (std::size_t s = 0; s < scores.size(); flush())
-      for (const std::uint32_t w = scores[s].particle; s < scores.size() && scores[s].particle == w; ++s)
-        accumulate(scores[s].j, scores[s].power);
+    sort_by_particle(scores, count, s.sorted, s.first);
+    const std::vector<ShootScore>& sorted = s.sorted;
+    for (std::size_t k = 0; k < sorted.size(); flush())
+      for (const std::uint32_t w = sorted[k].particle; k < sorted.size() && sorted[k].particle == w; ++k)
+        accumulate(sorted[k].j, sorted[k].power);
+  }
+  // The chunk's sums per patch, by increasing patch: each patch's Y_j in particle order (a stable sort).
+  s.Y_sorted.assign(s.Y.begin(), s.Y.end());
+  std::stable_sort(s.Y_sorted.begin(), s.Y_sorted.end(),
+                   [](const PatchValue& x, const PatchValue& y) { return x.patch < y.patch; });
+  for (std::size_t k = 0; k < s.Y_sorted.size();) {
+    const std::uint32_t j = s.Y_sorted[k].patch;
+    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+    for (; k < s.Y_sorted.size() && s.Y_sorted[k].patch == j; ++k) {
+      const Rgb& Y = s.Y_sorted[k].value;
+      sum += Y;
+      sum2 += Y * Y;
+    }
+    ShootEntry e;
+    e.patch = j;
+    for (int c = 0; c < 3; ++c) {
+      e.sum[c] = sum[c];
+      e.sum2[c] = sum2[c];
+    }
+    part.entries.push_back(e);
   }
   return part;
 }
@@ -244,8 +283,9 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   if (source.power > 0) {
     const long chunk = shoot_chunk(particles);
     const auto chunks = static_cast<std::size_t>((particles + chunk - 1) / chunk);
-    // At most two chunks' sums per thread in memory (each is N x 3 twice). Over MPI: ranks take blocks of chunks,
-    // rank 0 combines all in chunk order (core/distributed.h); solve() broadcasts the result.
+    // Parts and per-thread buffers are O(chunk work), never O(N). Over MPI: ranks take blocks of chunks, rank 0
+    // combines all in chunk order (core/distributed.h); solve() broadcasts the result.
+    ShootScratches scratches;
     distributed::distributed_ordered_reduce(
         chunks, 2 * static_cast<std::size_t>(std::max(1, active_threads())),
         [&](std::size_t c) {
@@ -256,17 +296,16 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
             return typename Estimator::template Particle<K>(kernel, tables, source,
                                                             streams.stream(static_cast<std::uint64_t>(begin) + w));
           };
-          ShootPart part =
-              shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin), make);
+          ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(end - begin),
+                                                      scratches.local(), make);
           if (progress) progress->advance(1);
           return part;
         },
         [&](const ShootPart& part) {
-          sum += part.sum;
-          sum2 += part.sum2;
+          add_part(part, sum, &sum2);
           r.counters += part.counters;
         },
-        save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, N); });
+        save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, static_cast<std::uint64_t>(N)); });
   }
   // B = E + mean Y; per-particle variance from the power sums (clamped at 0 against rounding).
   const double n = static_cast<double>(particles);
@@ -323,6 +362,7 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
       if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
       else if (progress) progress->advance(1);
   }
+  ShootScratches scratches;
   distributed::distributed_ordered_reduce(  // over MPI: as in run_shoot
       chunks.size(), 2 * static_cast<std::size_t>(std::max(1, active_threads())),
       [&](std::size_t c) {
@@ -336,17 +376,18 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
                                                           streams.stream(static_cast<std::uint64_t>(particle)),
                                                           emission.first_uniforms(particle, j));
         };
-        ShootPart part =
-            shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin), make);
+        ShootPart part = shoot_particles<Estimator>(kernel, problem.area, static_cast<std::size_t>(ch.end - ch.begin),
+                                                    scratches.local(), make);
         if (progress) progress->advance(1);
         return part;
       },
       [&, c = std::size_t{0}](const ShootPart& part) mutable {
         const int rep = chunks[c++].rep;
-        Bs[static_cast<std::size_t>(rep)] += part.sum / static_cast<double>(replicate_particles(options, rep));
+        add_part(part, Bs[static_cast<std::size_t>(rep)], nullptr,
+                 static_cast<double>(replicate_particles(options, rep)));
         r.counters += part.counters;
       },
-      save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, N); });
+      save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, static_cast<std::uint64_t>(N)); });
   r.B = PatchRgb::Zero(N, 3);
   for (const PatchRgb& B : Bs) r.B += B;
   r.B /= static_cast<double>(R);

@@ -90,7 +90,7 @@ TEST_CASE("radwalk: an output whose extension does not match what is written is 
   };
   for (const Case& c : std::vector<Case>{
            {"solve " + missing + " -o out.png", "out.png: the file written is VTK XML PolyData, so its name must end in .vtp"},
-           {"formfactors " + missing + " -o F.csv", "F.csv: the file written is a Matrix Market matrix, so its name must end in .mtx"},
+           {"formfactors " + missing + " -o F.csv", "F.csv: the file written is a Matrix Market (.mtx) or binary CSR (.npz) matrix, so its name must end in .mtx or .npz"},
            {"formfactors " + missing + " --vtp d.csv", "d.csv: the file written is VTK XML PolyData"},
            {"solve " + missing + " --csv B.txt", "B.txt: the file written is CSV, so its name must end in .csv"},
            {"check " + missing + " --json S.txt", "S.txt: the file written is a JSON summary, so its name must end in .json"},

@@ -1,0 +1,20 @@
+#pragma once
+// A form-factor file, its format chosen by the extension: ".npz" is binary CSR (npz.h: scipy.sparse.load_npz
+// reads it, radwalk maps it), anything else Matrix Market text (matrix_market.h, for interchange).
+#include <cstddef>
+#include <string>
+
+#include "formfactor/sparse_f.h"
+
+namespace radwalk {
+
+// True when `path` names an .npz file (by its extension).
+bool is_npz_path(const std::string& path);
+
+// write_npz or write_matrix_market by the extension of `path`.
+void write_form_factors(const std::string& path, const SparseF& F, const std::string& run_id = "");
+
+// read_npz or read_matrix_market by the extension of `path`; InputError as they refuse.
+SparseF read_form_factors(const std::string& path, std::size_t expected_n);
+
+}  // namespace radwalk

@@ -1,0 +1,39 @@
+#pragma once
+// Form-factor matrices as binary CSR in the .npz layout of scipy.sparse.save_npz(path, F, compressed=False), so
+// that numpy and scipy read them directly (scipy.sparse.load_npz) and radwalk reads them back by memory mapping.
+//
+// The file is a zip archive (ZIP64 records, so members may exceed 4 GiB) whose members are stored, not
+// compressed, each a .npy array (format version 1.0, little endian, C order):
+//   indices.npy  int32 '<i4', shape (nnz,)   column j of each non-zero, row by row, increasing within a row
+//   indptr.npy   int32 '<i4', shape (N + 1,) row i's non-zeros are indices[indptr[i] .. indptr[i+1])
+//   data.npy     float32 '<f4', shape (nnz,) F_ij (row i = patch i, column j = patch j, both 0-based)
+//   shape.npy    int64 '<i8', shape (2,)     (N, N)
+//   format.npy   bytes '|S3', shape ()       b'csr'
+//   run_id.npy   bytes '|S16', shape ()      the run id (apps/run_metadata.h), when given; scipy ignores it
+// Each member's array data starts at a multiple of 64 bytes of the file (the zip "extra" field pads the local
+// header), so a reader may map the arrays in place. Members carry their CRC-32 (zlib) as zip requires.
+//
+// Read: the file is memory-mapped (no parse, one pass of checks and one copy into the CSR). Accepted besides
+// what write_npz writes: indices and indptr as int64 ('<i8'), data as float64 ('<f8', rounded to float),
+// format as '<U3', any member order, npy format versions 1, 2 and 3; other members are ignored. Refused with one
+// InputError "FILE: what" (the file and the member): not a zip archive or truncated (end record missing,
+// a member past the end of the file), compressed members (save with compressed=False), a missing member, a
+// .npy header that is malformed or of another dtype or shape, Fortran order, a format other than csr, a shape
+// that is not N x N for the expected patch count (or above the 32-bit index range), indptr not starting at 0,
+// decreasing, or not ending at nnz, column indices out of range or not strictly increasing within a row
+// (unsorted or duplicate: call F.sum_duplicates() first), values not finite or outside [0, 1], and rows
+// summing above kMaxRowSum (matrix_market.h). The CRC is not checked (every value is checked instead).
+#include <cstddef>
+#include <string>
+
+#include "formfactor/sparse_f.h"
+
+namespace radwalk {
+
+// Writes F atomically (core/atomic_write.h) as described above; run_id: when not empty, the run_id.npy member.
+void write_npz(const std::string& path, const SparseF& F, const std::string& run_id = "");
+
+// Reads an .npz form-factor file of an expected_n x expected_n matrix; InputError as described above.
+SparseF read_npz(const std::string& path, std::size_t expected_n);
+
+}  // namespace radwalk
