@@ -405,8 +405,11 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     direct = [&](std::uint64_t, WalkCounters&) { return exact_direct_light(problem); };
   else if (options.direct_light)
     direct = [&](std::uint64_t rep, WalkCounters& counters) {
-      DirectLight d = estimate_direct_light(problem, *patches, *visibility, shadow_rays / options.replicates,
-                                            options.seed, rep);
+      DirectLight d = options.direct_sampled
+                          ? estimate_direct_light(problem, *patches, *visibility, shadow_rays / options.replicates,
+                                                  options.seed, rep)
+                          : estimate_visible_direct_light(problem, *patches, *visibility,
+                                                          shadow_rays / options.replicates, options.seed, rep);
       counters.steps += d.rays;
       return std::move(d.D);
     };

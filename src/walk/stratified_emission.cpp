@@ -21,9 +21,9 @@ StratifiedEmission::StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd&
   std::vector<double> phi(N, 0.0);
   for (std::size_t j = 0; j < N; ++j) {
     const auto row = static_cast<Eigen::Index>(j);
-    if ((S.row(row) < 0).any() || area(row) < 0)
-      throw InputError("stratified emission: patch " + std::to_string(j) + " has a negative source or area");
-    phi[j] = area(row) * S.row(row).sum();
+    if (!S.row(row).isFinite().all() || area(row) < 0)
+      throw InputError("stratified emission: patch " + std::to_string(j) + " has a non-finite source or a negative area");
+    phi[j] = area(row) * S.row(row).abs().sum();
     power_ += phi[j];
   }
   first_.assign(N + 1, 0);

@@ -68,6 +68,8 @@ struct WalkOptions {
   bool direct_light = false;    // sobol: the first bounce from the emitters computed apart (direct_light.h)
   long shadow_rays = 0;         // direct_light, ray kernel: shadow samples per receiving patch over all replicates
                                 // (0: particles / (2 N), at least 16 per replicate)
+  bool direct_sampled = false;  // direct_light, ray kernel: point-to-point shadow rays (estimate_direct_light)
+                                // instead of the point-to-polygon form factors x visibility (the default)
 };
 
 // The one check of WalkOptions: InputError with a one-line message on a count below 2 (of the method's
