@@ -57,7 +57,7 @@ namespace {
 
 // The form-factor route with emitter columns: the share of each patch's rays that are shadow samples of the
 // emitter columns (the rest are cosine rays).
-constexpr double kShadowFraction = 0.25;
+double g_shadow_fraction = 0.25;  // --shadow-fraction
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -73,6 +73,7 @@ struct Method {
   WalkOptions options;
   bool form_factor_route = false;
   double shadow_fraction = 0;
+  bool sobol = false;  // FormFactorOptions::sobol for the cosine rays
 };
 
 std::vector<Method> methods() {
@@ -97,8 +98,12 @@ std::vector<Method> methods() {
   Method ff{"formfactors+direct-solve", {}, true, 0.0};
   m.push_back(ff);
   ff.name = "formfactors emitter-cols+direct-solve";
-  ff.shadow_fraction = kShadowFraction;
+  ff.shadow_fraction = g_shadow_fraction;
   m.push_back(ff);
+  ff.name = "formfactors sobol+emitter-cols+direct-solve";
+  ff.sobol = true;
+  m.push_back(ff);
+
   return m;
 }
 
@@ -191,7 +196,7 @@ Run run_once(const RadiosityProblem& problem, const PatchSet& patches, const Vis
 
 // The form-factor route at `rays` rays in all: R = rays / N per patch, a share f of them shadow samples of the
 // emitter columns, then the direct solve. Rays counted: the cosine rays and the shadow rays traced.
-Run run_form_factor_route(const PatchSet& patches, const Visibility& vis, double rays, double f,
+Run run_form_factor_route(const PatchSet& patches, const Visibility& vis, double rays, double f, bool sobol,
                           std::uint64_t seed, const PatchRgb& ref, const std::vector<char>& mask) {
   const Timer wall;
   const double c0 = cpu_seconds();
@@ -199,6 +204,7 @@ Run run_form_factor_route(const PatchSet& patches, const Visibility& vis, double
   const double R = rays / N;
   FormFactorOptions fo;
   fo.seed = seed;
+  fo.sobol = sobol;
   fo.rays_per_patch = std::max(16L, long(R * (1 - f)));
   double traced = N * double(fo.rays_per_patch);
   SparseF F;
@@ -261,6 +267,7 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[a], "--scene") && a + 1 < argc) scene = argv[++a];
     else if (!std::strcmp(argv[a], "--methods") && a + 1 < argc) only = argv[++a];
     else if (!std::strcmp(argv[a], "--ref-particles") && a + 1 < argc) ref_particles = std::atol(argv[++a]);
+    else if (!std::strcmp(argv[a], "--shadow-fraction") && a + 1 < argc) g_shadow_fraction = std::atof(argv[++a]);
     else if (!std::strcmp(argv[a], "--threads") && a + 1 < argc) threads = std::max(1, std::atoi(argv[++a]));
     else if (!std::strcmp(argv[a], "--budgets") && a + 1 < argc) {
       budget_list.clear();
@@ -351,7 +358,7 @@ int main(int argc, char** argv) {
         for (int r = 0; r < repeat; ++r) {
           o.seed = std::uint64_t(r + 1);
           const Run run = m.form_factor_route
-                              ? run_form_factor_route(patches, vis, budget, m.shadow_fraction, o.seed, ref, mask)
+                              ? run_form_factor_route(patches, vis, budget, m.shadow_fraction, m.sobol, o.seed, ref, mask)
                               : run_once(problem, patches, vis, o, ref, mask);
           e.push_back(run.e);
           rays.push_back(run.rays);
