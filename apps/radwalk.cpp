@@ -209,6 +209,12 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
   file->excludes(rays)->excludes(density);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
+  cmd->add_flag("--sobol-rays", o.sobol_rays,
+                "Cosine rays from randomised Sobol points (stratified in origin and direction together)");
+  cmd->add_option("--emitter-columns", o.emitter_samples,
+                  "Each F_ie to an emitter e from M shadow samples per patch: the exact point-to-polygon form factor "
+                  "corrected for occlusion (exact where unoccluded), replacing the cosine rays' count")
+      ->check(kPositive);
 }
 
 // Runs f, which converts a name with one of the walk layer's parsers, turning its InputError (the valid names and
@@ -282,10 +288,11 @@ void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
                   "--sampler sobol: independent randomisations; the standard errors come from their spread")
       ->capture_default_str();
   cmd->add_flag("--direct-light", walk.direct_light,
-                "--sampler sobol: the first bounce from the emitters by shadow rays (exact from F on the matrix "
-                "kernel); the particles carry the indirect light only");
+                "--sampler sobol: the first bounce from the emitters apart (ray kernel: exact point-to-polygon form "
+                "factors corrected for occlusion by shadow rays; matrix kernel: exact from F); the particles carry "
+                "the indirect light only");
   cmd->add_option("--shadow-rays", walk.shadow_rays,
-                  "--direct-light: shadow rays per receiving patch (default particles / (2 x patches))");
+                  "--direct-light: shadow samples per receiving patch (default particles / (2 x patches))");
 }
 
 int main(int argc, char** argv) {
