@@ -95,6 +95,8 @@ std::vector<Method> methods() {
   add("shoot-collision sobol", "shoot-collision", WalkSampler::sobol, false);
   add("shoot-collision sobol+direct", "shoot-collision", WalkSampler::sobol, true, true);
   add("shoot-collision sobol+visible", "shoot-collision", WalkSampler::sobol, true, false);
+  add("stochastic-jacobi", "shoot-collision", WalkSampler::jacobi, false);
+  add("stochastic-jacobi+visible", "shoot-collision", WalkSampler::jacobi, true, false);
   Method ff{"formfactors+direct-solve", {}, true, 0.0};
   m.push_back(ff);
   ff.name = "formfactors emitter-cols+direct-solve";

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rng.h"
 #include "core/sobol.h"
 #include "core/types.h"
 
@@ -25,8 +26,10 @@ namespace radwalk {
 class StratifiedEmission {
  public:
   // S and area of the N patches, n >= 1 particles. Throws InputError on a non-finite S or a negative area.
+  // `domain`: the stream domain of the shifts and the offset (emission_shift for the Sobol shooting; the
+  // stochastic Jacobi iterations use their own, stochastic_jacobi.h).
   StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd& area, long n, std::uint64_t seed,
-                     std::uint64_t replicate);
+                     std::uint64_t replicate, StreamDomain domain = StreamDomain::emission_shift);
 
   double power() const { return power_; }  // Phi (0: nothing to shoot)
   long particles() const { return n_; }

@@ -39,11 +39,16 @@ WalkKernel parse_walk_kernel(std::string_view name);
 //           sources systematically and first rays from randomised Sobol points (stratified_emission.h); with
 //           direct_light the first bounce is computed apart (direct_light.h) and the particles carry the
 //           indirect light only. Standard errors come from the spread of the replicates.
-enum class WalkSampler { random, sobol };
+//   jacobi  stochastic Jacobi (shoot-collision only; stochastic_jacobi.h): bounce by bounce, each bounce's power
+//           re-shot by stratified emission with rays in proportion to it; replicates as sobol; with direct_light
+//           the first shot is the direct light.
+enum class WalkSampler { random, sobol, jacobi };
 
-inline constexpr std::array<NamedChoice<WalkSampler>, 2> kWalkSamplers = {{
+inline constexpr std::array<NamedChoice<WalkSampler>, 3> kWalkSamplers = {{
     {WalkSampler::random, "random", "independent particles, pseudo-random"},
     {WalkSampler::sobol, "sobol", "stratified emission, randomised Sobol first rays, replicates for the error bars"},
+    {WalkSampler::jacobi, "jacobi",
+     "stochastic Jacobi: each bounce re-shot by stratified emission, rays in proportion to its power"},
 }};
 static_assert(in_enum_order(kWalkSamplers));
 
