@@ -27,7 +27,7 @@ def main(path, patches, out):
     X = lambda r: L + (math.log10(r) - x0) / (x1 - x0) * (W - L - R)
     Y = lambda e: T + (y1 - math.log10(e)) / (y1 - y0) * (H - T - B)
     colours = ["#888", "#bbb", "#a6761d", "#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#66a61e", "#e6ab02",
-               "#1f78b4"]
+               "#1f78b4", "#b15928", "#6a3d9a"]
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="11">',
            f'<rect width="{W}" height="{H}" fill="white"/>']
     for k in range(5, 8):
