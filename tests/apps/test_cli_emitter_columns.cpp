@@ -23,7 +23,7 @@ std::string text_of(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("--sobol-rays and --emitter-columns: run, report, thread-independent, refused when not positive",
+TEST_CASE("the form-factor options sobol-rays and emitter-columns run, report, are thread-independent, refuse M <= 0",
           "[cli][formfactor]") {
   const fs::path dir = scratch_dir("emitter_columns");
   const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 200 --rays 200";
