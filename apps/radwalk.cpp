@@ -285,11 +285,11 @@ void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
   add_walk_choice(cmd, "--sampler", walk.sampler, parse_walk_sampler, sampler_name(walk.sampler),
                   "Shooting particles: " + walk_choices_help(kWalkSamplers));
   cmd->add_option("--replicates", walk.replicates,
-                  "--sampler sobol: independent randomisations; the standard errors come from their spread")
+                  "--sampler sobol or jacobi: independent randomisations; the standard errors come from their spread")
       ->capture_default_str();
   cmd->add_flag("--direct-light", walk.direct_light,
-                "--sampler sobol: the first bounce from the emitters apart (ray kernel: exact point-to-polygon form "
-                "factors corrected for occlusion by shadow rays; matrix kernel: exact from F); the particles carry "
+                "--sampler sobol or jacobi: the first bounce from the emitters apart (ray kernel: exact point-to-polygon "
+                "form factors corrected for occlusion by shadow rays; matrix kernel: exact from F); the particles carry "
                 "the indirect light only");
   cmd->add_option("--shadow-rays", walk.shadow_rays,
                   "--direct-light: shadow samples per receiving patch (default particles / (2 x patches))");
