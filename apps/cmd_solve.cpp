@@ -10,6 +10,7 @@
 #include "apps/run_metadata.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "formfactor/emitter_form_factors.h"
 #include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
 #include "solve/problem.h"
@@ -70,8 +71,11 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
     o.rays_per_area = command.ff.rays_per_area;
     o.min_rays = command.ff.min_rays;
     o.seed = command.scene.seed;
+    o.sobol = command.ff.sobol_rays;
     const EmbreeVisibility visibility(p);
-    FormFactors ff = estimate_form_factors(p, visibility, o);
+    FormFactors ff = command.ff.emitter_samples > 0
+                         ? estimate_emitter_form_factors(p, visibility, o, command.ff.emitter_samples).form_factors
+                         : estimate_form_factors(p, visibility, o);
     if (command.ff.reciprocity) enforce_reciprocity(ff.F, p.area);
     return ff;
   };

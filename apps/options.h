@@ -43,6 +43,9 @@ struct FormFactorCliOptions {
   long min_rays = 16;
   std::string form_factors;    // --form-factors F.mtx: read instead of estimating
   bool reciprocity = false;    // --reciprocity: average A_i F_ij and A_j F_ji
+  bool sobol_rays = false;     // --sobol-rays: randomised Sobol cosine rays (FormFactorOptions::sobol)
+  long emitter_samples = 0;    // --emitter-columns M: the emitter columns from M shadow samples per patch
+                               // (formfactor/emitter_form_factors.h); 0: from the cosine rays
 };
 
 struct PatchCommand {

@@ -17,6 +17,7 @@
 #include "core/input_file.h"
 #include "core/timer.h"
 #include "core/parallel.h"
+#include "formfactor/emitter_form_factors.h"
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factor_file.h"
 #include "formfactor/matrix_market.h"
@@ -364,11 +365,21 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     o.rays_per_area = options.rays_per_area;
     o.min_rays = options.min_rays;
     o.seed = scene.seed;
+    o.sobol = options.sobol_rays;
     ThreadLimit limit(scene.threads);
     const EmbreeVisibility visibility(patches);
     summary.add_timing("embree_scene", timer.seconds());
     timer.reset();
-    ff = estimate_form_factors(patches, visibility, o);
+    if (options.emitter_samples > 0) {
+      EmitterFormFactors ef = estimate_emitter_form_factors(patches, visibility, o, options.emitter_samples);
+      summary.json()["emitter_columns"] = ef.emitter_columns;
+      summary.json()["emitter_shadow_rays"] = ef.shadow_rays;
+      note("form factors: " + std::to_string(ef.emitter_columns) + " emitter columns from " +
+           std::to_string(ef.shadow_rays) + " shadow rays");
+      ff = std::move(ef.form_factors);
+    } else {
+      ff = estimate_form_factors(patches, visibility, o);
+    }
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);
     std::uint64_t rays = 0, escaped = 0, back = 0;

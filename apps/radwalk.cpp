@@ -211,6 +211,12 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
   file->excludes(rays)->excludes(density);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
+  cmd->add_flag("--sobol-rays", o.sobol_rays,
+                "Cosine rays from randomised Sobol points (stratified in origin and direction together)");
+  cmd->add_option("--emitter-columns", o.emitter_samples,
+                  "Each F_ie to an emitter e from M shadow samples per patch: the exact point-to-polygon form factor "
+                  "corrected for occlusion (exact where unoccluded), replacing the cosine rays' count")
+      ->check(kPositive);
 }
 
 // Runs f, which converts a name with one of the walk layer's parsers, turning its InputError (the valid names and
@@ -281,13 +287,14 @@ void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
   add_walk_choice(cmd, "--sampler", walk.sampler, parse_walk_sampler, sampler_name(walk.sampler),
                   "Shooting particles: " + walk_choices_help(kWalkSamplers));
   cmd->add_option("--replicates", walk.replicates,
-                  "--sampler sobol: independent randomisations; the standard errors come from their spread")
+                  "--sampler sobol or jacobi: independent randomisations; the standard errors come from their spread")
       ->capture_default_str();
   cmd->add_flag("--direct-light", walk.direct_light,
-                "--sampler sobol: the first bounce from the emitters by shadow rays (exact from F on the matrix "
-                "kernel); the particles carry the indirect light only");
+                "--sampler sobol or jacobi: the first bounce from the emitters apart (ray kernel: exact point-to-polygon "
+                "form factors corrected for occlusion by shadow rays; matrix kernel: exact from F); the particles carry "
+                "the indirect light only");
   cmd->add_option("--shadow-rays", walk.shadow_rays,
-                  "--direct-light: shadow rays per receiving patch (default particles / (2 x patches))");
+                  "--direct-light: shadow samples per receiving patch (default particles / (2 x patches))");
 }
 
 namespace {

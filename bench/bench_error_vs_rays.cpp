@@ -21,7 +21,7 @@
 // Then, per method, the rays needed for e = 0.8 % and 0.3 % (log-log interpolation between the measured
 // budgets; ">" when beyond the largest).
 // Usage: bench_error_vs_rays [--quick] [--repeat R] [--max-edge H[,H...]] [--csv PATH] [--ref-particles N]
-//                            [--scene PATH] [--methods SUBSTRING]   (default meshes/cornell_box.obj of the current directory, run from
+//                            [--scene PATH] [--methods A,B,...] [--threads T] [--budgets B1,B2,...]   (default meshes/cornell_box.obj of the current directory, run from
 //                            the source tree, else the one next to the bench sources)
 //   default --max-edge 100,50 (328 and 975 patches on today's patching), --csv bench_error_vs_rays.csv.
 #include <time.h>
@@ -34,13 +34,16 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <optional>
 #include <vector>
 
 #include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "formfactor/emitter_form_factors.h"
 #include "mesh/read_scene.h"
 #include "patch/patching.h"
+#include "solve/direct_solver.h"
 #include "solve/problem.h"
 #include "visibility/embree_visibility.h"
 #include "visibility/ray_packet.h"
@@ -52,26 +55,37 @@ using radwalk::bench::cpu_seconds;
 
 namespace {
 
+// The form-factor route with emitter columns: the share of each patch's rays that are shadow samples of the
+// emitter columns (the rest are cosine rays).
+double g_shadow_fraction = 0.25;  // --shadow-fraction
+
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// One method of the table: its walk options (count filled per budget).
+// One method of the table: a random-walk method with its walk options (count filled per budget), or the
+// form-factor route (F from R rays per patch, then the direct solve), with a fraction of R spent on the emitter
+// columns (formfactor/emitter_form_factors.h; 0: cosine rays only).
 struct Method {
   std::string name;
   WalkOptions options;
+  bool form_factor_route = false;
+  double shadow_fraction = 0;
+  bool sobol = false;  // FormFactorOptions::sobol for the cosine rays
 };
 
 std::vector<Method> methods() {
   std::vector<Method> m;
-  auto add = [&](const std::string& name, const std::string& walk, WalkSampler sampler, bool direct) {
+  auto add = [&](const std::string& name, const std::string& walk, WalkSampler sampler, bool direct,
+                 bool sampled = false) {
     Method x{name, {}};
     x.options.method = parse_walk_method(walk);
     x.options.kernel = WalkKernel::ray;
     x.options.sampler = sampler;
     x.options.direct_light = direct;
+    x.options.direct_sampled = sampled;
     m.push_back(x);
   };
   add("gather-collision", "gather-collision", WalkSampler::random, false);
@@ -79,7 +93,19 @@ std::vector<Method> methods() {
   add("shoot-absorption", "shoot-absorption", WalkSampler::random, false);
   add("shoot-collision", "shoot-collision", WalkSampler::random, false);
   add("shoot-collision sobol", "shoot-collision", WalkSampler::sobol, false);
-  add("shoot-collision sobol+direct", "shoot-collision", WalkSampler::sobol, true);
+  add("shoot-collision sobol+direct", "shoot-collision", WalkSampler::sobol, true, true);
+  add("shoot-collision sobol+visible", "shoot-collision", WalkSampler::sobol, true, false);
+  add("stochastic-jacobi", "shoot-collision", WalkSampler::jacobi, false);
+  add("stochastic-jacobi+visible", "shoot-collision", WalkSampler::jacobi, true, false);
+  Method ff{"formfactors+direct-solve", {}, true, 0.0};
+  m.push_back(ff);
+  ff.name = "formfactors emitter-cols+direct-solve";
+  ff.shadow_fraction = g_shadow_fraction;
+  m.push_back(ff);
+  ff.name = "formfactors sobol+emitter-cols+direct-solve";
+  ff.sobol = true;
+  m.push_back(ff);
+
   return m;
 }
 
@@ -170,6 +196,42 @@ Run run_once(const RadiosityProblem& problem, const PatchSet& patches, const Vis
   return {error_of(s.B, ref, problem.area, mask), double(s.steps), c, w};
 }
 
+// The form-factor route at `rays` rays in all: R = rays / N per patch, a share f of them shadow samples of the
+// emitter columns, then the direct solve. Rays counted: the cosine rays and the shadow rays traced.
+Run run_form_factor_route(const PatchSet& patches, const Visibility& vis, double rays, double f, bool sobol,
+                          std::uint64_t seed, const PatchRgb& ref, const std::vector<char>& mask) {
+  const Timer wall;
+  const double c0 = cpu_seconds();
+  const double N = double(patches.size());
+  const double R = rays / N;
+  FormFactorOptions fo;
+  fo.seed = seed;
+  fo.sobol = sobol;
+  fo.rays_per_patch = std::max(16L, long(R * (1 - f)));
+  double traced = N * double(fo.rays_per_patch);
+  SparseF F;
+  if (f > 0) {
+    EmitterFormFactors ef = estimate_emitter_form_factors(patches, vis, fo, std::max(1L, long(R * f)));
+    traced += double(ef.shadow_rays);
+    F = std::move(ef.form_factors.F);
+  } else {
+    F = estimate_form_factors(patches, vis, fo).F;
+  }
+  const RadiosityProblem p = make_problem(patches, std::move(F));
+  const Solution s = solve_direct(p);
+  const double c = cpu_seconds() - c0, w = wall.seconds();
+  return {s.B.rows() ? error_of(s.B, ref, p.area, mask) : 1.0, traced, c, w};
+}
+
+// --methods A,B,...: the methods whose name contains one of the comma-separated parts (empty: all).
+bool selected(const std::string& name, const std::string& only) {
+  if (only.empty()) return true;
+  std::stringstream ss(only);
+  for (std::string part; std::getline(ss, part, ',');)
+    if (!part.empty() && name.find(part) != std::string::npos) return true;
+  return false;
+}
+
 // Rays for the error target by log-log interpolation of the median curve (budgets ascending).
 std::string rays_for(const std::vector<double>& rays, const std::vector<double>& err, double target) {
   char buf[64];
@@ -195,7 +257,9 @@ int main(int argc, char** argv) {
   std::vector<double> max_edges = {100, 50};
   std::string csv_path = "bench_error_vs_rays.csv";
   long ref_particles = 0;
-  std::string only;  // --methods SUBSTRING: only the methods whose name contains it
+  std::string only;  // --methods A,B,...: only the methods whose name contains one of the parts
+  int threads = 0;   // --threads T: at most T threads (0: all)
+  std::vector<double> budget_list;  // --budgets B1,B2,...: the ray budgets (default below)
   std::string scene = std::filesystem::exists("meshes/cornell_box.obj") ? "meshes/cornell_box.obj"
                                                                          : bench::default_scene();
   for (int a = 1; a < argc; ++a) {
@@ -205,14 +269,24 @@ int main(int argc, char** argv) {
     else if (!std::strcmp(argv[a], "--scene") && a + 1 < argc) scene = argv[++a];
     else if (!std::strcmp(argv[a], "--methods") && a + 1 < argc) only = argv[++a];
     else if (!std::strcmp(argv[a], "--ref-particles") && a + 1 < argc) ref_particles = std::atol(argv[++a]);
+    else if (!std::strcmp(argv[a], "--shadow-fraction") && a + 1 < argc) g_shadow_fraction = std::atof(argv[++a]);
+    else if (!std::strcmp(argv[a], "--threads") && a + 1 < argc) threads = std::max(1, std::atoi(argv[++a]));
+    else if (!std::strcmp(argv[a], "--budgets") && a + 1 < argc) {
+      budget_list.clear();
+      std::stringstream ss(argv[++a]);
+      for (std::string b; std::getline(ss, b, ',');) budget_list.push_back(std::atof(b.c_str()));
+    }
     else if (!std::strcmp(argv[a], "--max-edge") && a + 1 < argc) {
       max_edges.clear();
       std::stringstream ss(argv[++a]);
       for (std::string h; std::getline(ss, h, ',');) max_edges.push_back(std::atof(h.c_str()));
     }
   }
-  const std::vector<double> budgets =
+  std::vector<double> budgets =
       quick ? std::vector<double>{1e5, 4e5, 1.6e6} : std::vector<double>{1e5, 4e5, 1.6e6, 6.4e6};
+  if (!budget_list.empty()) budgets = budget_list;
+  std::optional<ThreadLimit> limit;
+  if (threads > 0) limit.emplace(threads);
   if (ref_particles == 0) ref_particles = quick ? 8'000'000 : 40'000'000;
   std::ofstream csv(csv_path);
   csv << "patches,method,budget,seed,rays,cpu_seconds,wall_seconds,error,raw_embree_rays_per_cpu_second\n";
@@ -267,22 +341,27 @@ int main(int argc, char** argv) {
     };
     std::vector<Curve> curves;
     for (Method m : methods()) {
-      if (m.name.find(only) == std::string::npos) continue;
+      if (!selected(m.name, only)) continue;
       // Pilot: rays per particle (walk).
-      WalkOptions pilot = m.options;
-      set_budget(pilot, 2e5, 1.0, N);
-      pilot.seed = 999;
-      const Solution ps = solve_random_walk(problem, &patches, &vis, pilot);
-      const double per_unit = double(ps.steps) / double(total_walks(pilot, N));
+      double per_unit = 1;
+      if (!m.form_factor_route) {
+        WalkOptions pilot = m.options;
+        set_budget(pilot, 2e5, 1.0, N);
+        pilot.seed = 999;
+        const Solution ps = solve_random_walk(problem, &patches, &vis, pilot);
+        per_unit = double(ps.steps) / double(total_walks(pilot, N));
+      }
       Curve curve{m.name, {}, {}};
       for (const double budget : budgets) {
-        if (is_gathering(m.options.method) && budget > 1.7e6) continue;  // far behind: skip the long runs
+        if (!m.form_factor_route && is_gathering(m.options.method) && budget > 1.7e6) continue;  // far behind: skip the long runs
         WalkOptions o = m.options;
         set_budget(o, budget, per_unit, N);
         std::vector<double> e, rays, cpu, wall;
         for (int r = 0; r < repeat; ++r) {
           o.seed = std::uint64_t(r + 1);
-          const Run run = run_once(problem, patches, vis, o, ref, mask);
+          const Run run = m.form_factor_route
+                              ? run_form_factor_route(patches, vis, budget, m.shadow_fraction, m.sobol, o.seed, ref, mask)
+                              : run_once(problem, patches, vis, o, ref, mask);
           e.push_back(run.e);
           rays.push_back(run.rays);
           cpu.push_back(run.cpu);

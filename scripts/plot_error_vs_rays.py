@@ -22,11 +22,12 @@ def main(path, patches, out):
     for (method, budget), rs in sorted(runs.items(), key=lambda kv: kv[0][1]):
         curves.setdefault(method, []).append(
             (statistics.median(r for r, _ in rs), statistics.median(e for _, e in rs)))
-    W, H, L, R, T, B = 640, 420, 70, 230, 20, 50
-    x0, x1, y0, y1 = math.log10(5e4), math.log10(1e7), math.log10(0.2), math.log10(200)
+    W, H, L, R, T, B = 800, 420, 70, 290, 20, 50
+    x0, x1, y0, y1 = math.log10(5e4), math.log10(1e7), math.log10(0.1), math.log10(200)
     X = lambda r: L + (math.log10(r) - x0) / (x1 - x0) * (W - L - R)
     Y = lambda e: T + (y1 - math.log10(e)) / (y1 - y0) * (H - T - B)
-    colours = ["#888", "#bbb", "#a6761d", "#1b9e77", "#7570b3", "#d95f02"]
+    colours = ["#888", "#bbb", "#a6761d", "#1b9e77", "#7570b3", "#d95f02", "#e7298a", "#66a61e", "#e6ab02",
+               "#1f78b4", "#b15928", "#6a3d9a"]
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="11">',
            f'<rect width="{W}" height="{H}" fill="white"/>']
     for k in range(5, 8):
@@ -35,7 +36,7 @@ def main(path, patches, out):
             if 5e4 <= r <= 1e7:
                 svg.append(f'<line x1="{X(r):.1f}" y1="{T}" x2="{X(r):.1f}" y2="{H - B}" stroke="#eee"/>')
                 svg.append(f'<text x="{X(r):.1f}" y="{H - B + 14}" text-anchor="middle">{r:.0e}</text>')
-    for e in (0.3, 0.8, 1, 3, 10, 30, 100):
+    for e in (0.1, 0.3, 0.8, 1, 3, 10, 30, 100):
         style = 'stroke="#c00" stroke-dasharray="4 3"' if e in (0.3, 0.8) else 'stroke="#eee"'
         svg.append(f'<line x1="{L}" y1="{Y(e):.1f}" x2="{W - R}" y2="{Y(e):.1f}" {style}/>')
         svg.append(f'<text x="{L - 6}" y="{Y(e) + 4:.1f}" text-anchor="end">{e:g} %</text>')

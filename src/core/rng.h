@@ -37,6 +37,11 @@ enum class StreamDomain : std::uint64_t {
   sobol_particle = 11,     // Sobol shooting, the particles' later draws: a = replicate r, b = particle index w
   measure_walk = 12,   // estimators of a measurement M = <R, B> (walk/measure_walks.h): a = 0, b = walk index
   importance_walk = 13,  // importance-driven walks (walk/importance_walk.h): a = channel c, b = walk index
+  visible_direct_light = 14,  // direct light by point-to-polygon form factors (walk/direct_light.h): a = receiving
+                              // patch j, b = replicate r << 32 | emitter rank k
+  emitter_form_factor = 15,   // emitter columns of F (formfactor/emitter_form_factors.h): a = row i, b = emitter e
+  jacobi_shift = 16,          // stochastic Jacobi (walk/stochastic_jacobi.h): a = source patch j (2^47: the birth
+                              // offset; 2^46 + w: ray w's draws on the matrix kernel), b = replicate r << 32 | k
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

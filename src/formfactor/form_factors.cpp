@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/sobol.h"
 #include "patch/patch_point_sampler.h"
 #include "visibility/ray_offset.h"
 
@@ -114,11 +115,14 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
   const PatchPointSampler sampler(ps, i);
   const PatchRayOffset offset = patch_ray_offset(ps, i, eps);
   RowResult r;
+  SobolShift shift;  // options.sobol: the row's digital shift
+  if (opt.sobol)
+    for (auto& w : shift.word) w = rng.next_u32();
 
   // Step 1: strata. m^2 jittered strata per square (m <= kMaxStrataSide), origin strata paired with direction
   // strata by a random permutation.
   const std::uint32_t m =
-      opt.stratified ? std::min<std::uint32_t>(std::uint32_t(std::sqrt(double(n))), kMaxStrataSide) : 0;
+      opt.stratified && !opt.sobol ? std::min<std::uint32_t>(std::uint32_t(std::sqrt(double(n))), kMaxStrataSide) : 0;
   const std::uint32_t strata = m * m;
   const double inv_m = m ? 1.0 / m : 0.0;
   s.permutation.resize(strata);
@@ -137,7 +141,13 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
     const std::size_t b = std::min<std::size_t>(kBatch, n - base);
     for (std::size_t k = 0; k < b; ++k) {
       const std::uint32_t ray = base + std::uint32_t(k);
-      double u1 = uniform(), u2 = uniform(), u3 = uniform(), u4 = uniform();
+      double u1, u2, u3, u4;
+      if (opt.sobol) {
+        const auto u = sobol_point(ray, shift);
+        u1 = u[0], u2 = u[1], u3 = u[2], u4 = u[3];
+      } else {
+        u1 = uniform(), u2 = uniform(), u3 = uniform(), u4 = uniform();
+      }
       if (ray < strata) {
         const std::uint32_t o = s.permutation[ray];
         u1 = std::min(((o >> 16) + u1) * inv_m, kBelowOne);

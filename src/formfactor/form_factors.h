@@ -37,6 +37,10 @@ struct FormFactorOptions {
   long min_rays = 16;
   std::uint64_t seed = 1;
   bool stratified = true;
+  // Randomised Sobol points instead of the strata: ray r of row i takes Sobol point r (core/sobol.h: (u1, u2) the
+  // origin, (u3, u4) the cosine direction) with a digital shift of four words drawn first from the row's stream;
+  // unbiased (each shifted point is uniform), stratified in all four dimensions together.
+  bool sobol = false;
 };
 
 struct FormFactors {

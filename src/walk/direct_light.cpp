@@ -8,6 +8,8 @@
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/sobol.h"
+#include "formfactor/point_polygon_form_factor.h"
+#include "formfactor/visible_form_factor.h"
 #include "visibility/ray_offset.h"
 
 namespace radwalk {
@@ -88,6 +90,45 @@ DirectLight estimate_direct_light(const RadiosityProblem& problem, const PatchSe
         }
         if (!batch.empty()) trace();
         out.D.row(row) = (problem.rho.row(row).transpose() * sum / static_cast<double>(samples_per_patch)).transpose();
+      },
+      1);
+  for (long n : rays) out.rays += n;
+  return out;
+}
+
+DirectLight estimate_visible_direct_light(const RadiosityProblem& problem, const PatchSet& patches,
+                                          const Visibility& visibility, long samples_per_patch, std::uint64_t seed,
+                                          std::uint64_t replicate) {
+  const std::size_t N = patches.size();
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK(samples_per_patch >= 1);
+  DirectLight out;
+  out.D.setZero(static_cast<Eigen::Index>(N), 3);
+  std::vector<std::size_t> emitter;
+  for (std::size_t e = 0; e < N; ++e)
+    if (problem.E.row(static_cast<Eigen::Index>(e)).maxCoeff() > 0) emitter.push_back(e);
+  if (emitter.empty()) return out;
+  const VisibleFormFactor visible(patches, visibility);
+  std::vector<long> rays(N, 0);
+  parallel_for(
+      N,
+      [&](std::size_t j) {
+        const auto row = static_cast<Eigen::Index>(j);
+        if (!(problem.rho.row(row).maxCoeff() > 0)) return;
+        std::vector<std::size_t> seen;  // emitter ranks
+        for (std::size_t k = 0; k < emitter.size(); ++k)
+          if (emitter[k] != j && patch_may_see(patches, j, emitter[k])) seen.push_back(k);
+        if (seen.empty()) return;
+        const long M = std::max<long>(1, samples_per_patch / static_cast<long>(seen.size()));
+        Rgb irradiance = Rgb::Zero();  // sum_e E_e F_je
+        for (std::size_t k : seen) {
+          Rng rng = stream(seed, StreamDomain::visible_direct_light, j, replicate << 32 | k);
+          SobolShift shift;
+          for (auto& w : shift.word) w = rng.next_u32();
+          const double F = visible.estimate(j, emitter[k], M, shift, rays[j]);
+          irradiance += F * problem.E.row(static_cast<Eigen::Index>(emitter[k])).transpose();
+        }
+        out.D.row(row) = (problem.rho.row(row).transpose() * irradiance).transpose();
       },
       1);
   for (long n : rays) out.rays += n;

@@ -16,6 +16,16 @@
 // hit is at t >= |y - x| (1 - 1e-5) - 4 eps (y itself, up to rounding) or nothing (a ray slipping between two
 // emitter patches' shared edge).
 // Matrix kernel (F stored): D = rho .* (F E) exactly, no rays.
+//
+// Exact where unoccluded (estimate_visible_direct_light, what --direct-light uses on the ray kernel unless
+// WalkOptions::direct_sampled): D_j = rho_j sum_e E_e F_je with each F_je from formfactor/visible_form_factor.h
+// (Lambert's point-to-polygon form factor at Sobol points of j, one shadow ray per point correcting for
+// occlusion; docs/theory/point_polygon_form_factor.md). The M samples of receiver j are split evenly over the
+// emitters it may see (patch_may_see), at least 1 each; emitter rank k of replicate r takes the shift of stream
+// (seed, visible_direct_light, j, r << 32 | k). Unbiased; zero variance on a receiver that sees every emitter
+// whole, so the noise is left in penumbrae and a receiver next to an emitter has no singularity. A receiver in
+// full shadow gets 0 in expectation only, so D_j may come out slightly negative there (the shooting sources
+// take |D|, stratified_emission.h).
 #include "core/types.h"
 #include "patch/patch_set.h"
 #include "solve/problem.h"
@@ -33,6 +43,12 @@ struct DirectLight {
 DirectLight estimate_direct_light(const RadiosityProblem& problem, const PatchSet& patches,
                                   const Visibility& visibility, long samples_per_patch, std::uint64_t seed,
                                   std::uint64_t replicate);
+
+// The estimate exact where unoccluded, above: M = samples_per_patch (>= 1) per receiving patch, replicate r;
+// patches run in parallel, the result independent of the thread count.
+DirectLight estimate_visible_direct_light(const RadiosityProblem& problem, const PatchSet& patches,
+                                          const Visibility& visibility, long samples_per_patch, std::uint64_t seed,
+                                          std::uint64_t replicate);
 
 // D = rho .* (F E) from problem.F (N x N).
 PatchRgb exact_direct_light(const RadiosityProblem& problem);

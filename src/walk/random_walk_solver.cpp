@@ -27,6 +27,7 @@
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
 #include "walk/direct_light.h"
+#include "walk/stochastic_jacobi.h"
 #include "walk/stratified_emission.h"
 
 namespace radwalk {
@@ -414,6 +415,16 @@ void share_run_result(RunResult& r) {
 template <TransitionKernel K>
 RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options, Progress* progress,
               const DirectLightOf& direct) {
+  if (options.sampler == WalkSampler::jacobi) {
+    JacobiResult j = run_stochastic_jacobi(kernel, problem, options, direct);
+    if (progress) progress->advance(static_cast<std::size_t>(options.replicates));
+    RunResult r;
+    r.B = std::move(j.B);
+    r.se = std::move(j.se);
+    r.var = r.se.square() * static_cast<double>(options.particles);
+    r.counters = j.counters;
+    return r;
+  }
   return with_estimator(options.method, [&](auto method) {
     using Method = decltype(method);
     using Estimator = typename Method::Estimator;
@@ -498,8 +509,11 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     direct = [&](std::uint64_t, WalkCounters&) { return exact_direct_light(problem); };
   else if (options.direct_light)
     direct = [&](std::uint64_t rep, WalkCounters& counters) {
-      DirectLight d = estimate_direct_light(problem, *patches, *visibility, shadow_rays / options.replicates,
-                                            options.seed, rep);
+      DirectLight d = options.direct_sampled
+                          ? estimate_direct_light(problem, *patches, *visibility, shadow_rays / options.replicates,
+                                                  options.seed, rep)
+                          : estimate_visible_direct_light(problem, *patches, *visibility,
+                                                          shadow_rays / options.replicates, options.seed, rep);
       counters.steps += d.rays;
       return std::move(d.D);
     };
@@ -524,7 +538,7 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     sol.info["walks_per_patch"] = static_cast<double>(options.walks_per_patch);
   else
     sol.info["particles"] = static_cast<double>(options.particles);
-  if (options.sampler == WalkSampler::sobol) sol.info["replicates"] = options.replicates;
+  if (options.sampler != WalkSampler::random) sol.info["replicates"] = options.replicates;
   if (options.direct_light && options.kernel == WalkKernel::ray)
     sol.info["shadow_rays_per_patch"] = static_cast<double>(shadow_rays / options.replicates * options.replicates);
   double power = 0;
@@ -536,8 +550,8 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   msg << sol.method << " (" << kernel_name(options.kernel) << " kernel, survival "
       << survival_name(options.survival.rule) << "): "
       << (gather ? options.walks_per_patch : options.particles) << (gather ? " walks per patch" : " particles");
-  if (options.sampler == WalkSampler::sobol)
-    msg << ", sobol sampler, " << options.replicates << " replicates"
+  if (options.sampler != WalkSampler::random)
+    msg << ", " << sampler_name(options.sampler) << " sampler, " << options.replicates << " replicates"
         << (options.direct_light ? ", direct light apart" : "");
   if (!gather) {
     const Reach reach = shooting_reach(problem, sol.B);
@@ -585,6 +599,7 @@ std::size_t walk_work_items(const WalkOptions& options, std::size_t patch_count)
     const std::size_t m = options.patches.empty() ? patch_count : options.patches.size();
     return m * gather_layout(m, options.walks_per_patch).per_patch;
   }
+  if (options.sampler == WalkSampler::jacobi) return static_cast<std::size_t>(options.replicates);
   if (options.sampler == WalkSampler::sobol) {
     std::size_t items = 0;
     for (int r = 0; r < options.replicates; ++r) {

@@ -11,7 +11,7 @@
 namespace radwalk {
 
 StratifiedEmission::StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd& area, long n, std::uint64_t seed,
-                                       std::uint64_t replicate)
+                                       std::uint64_t replicate, StreamDomain domain)
     : n_(n) {
   RADWALK_CHECK(n >= 1);
   const auto N = static_cast<std::size_t>(S.rows());
@@ -21,16 +21,16 @@ StratifiedEmission::StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd&
   std::vector<double> phi(N, 0.0);
   for (std::size_t j = 0; j < N; ++j) {
     const auto row = static_cast<Eigen::Index>(j);
-    if ((S.row(row) < 0).any() || area(row) < 0)
-      throw InputError("stratified emission: patch " + std::to_string(j) + " has a negative source or area");
-    phi[j] = area(row) * S.row(row).sum();
+    if (!S.row(row).isFinite().all() || area(row) < 0)
+      throw InputError("stratified emission: patch " + std::to_string(j) + " has a non-finite source or a negative area");
+    phi[j] = area(row) * S.row(row).abs().sum();
     power_ += phi[j];
   }
   first_.assign(N + 1, 0);
   W0_.assign(N, Rgb::Zero());
   shift_.resize(N);
   if (!(power_ > 0)) return;
-  const double U = stream(seed, StreamDomain::emission_shift, std::uint64_t{1} << 47, replicate).uniform();
+  const double U = stream(seed, domain, std::uint64_t{1} << 47, replicate).uniform();
   double cdf = 0;
   for (std::size_t j = 0; j < N; ++j) {
     first_[j] = std::clamp(static_cast<long>(std::ceil(static_cast<double>(n) * cdf - U)), 0L, n);
@@ -38,7 +38,7 @@ StratifiedEmission::StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd&
     if (phi[j] > 0) {
       const double pi = phi[j] / power_;
       W0_[j] = area(static_cast<Eigen::Index>(j)) * S.row(static_cast<Eigen::Index>(j)).transpose() / pi;
-      Rng rng = stream(seed, StreamDomain::emission_shift, j, replicate);
+      Rng rng = stream(seed, domain, j, replicate);
       for (auto& w : shift_[j].word) w = rng.next_u32();
     }
   }

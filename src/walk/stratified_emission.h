@@ -4,7 +4,8 @@
 // a randomised Sobol sequence (core/sobol.h) for their first ray.
 //
 // Source radiosity S (the emission E, or the direct light D when it is computed apart: direct_light.h), power
-// Phi_j = A_j sum_c S_jc, pi_j = Phi_j / Phi, cdf_j = sum_{k<j} pi_k. Replicate r draws one offset U in [0, 1)
+// Phi_j = A_j sum_c |S_jc| (a source may be negative in places: an unbiased estimate of the direct light in
+// full shadow, direct_light.h; its particles then carry negative weights), pi_j = Phi_j / Phi, cdf_j = sum_{k<j} pi_k. Replicate r draws one offset U in [0, 1)
 // (the first draw of stream (seed, emission_shift, 2^47, r)); particle w = 0 .. n-1 is born on the patch j with
 // cdf_j <= (w + U) / n < cdf_{j+1}, so patch j gets first_{j+1} - first_j particles, first_j = ceil(n cdf_j - U)
 // (clamped to [0, n]): floor or ceil of n pi_j, and exactly n pi_j in expectation over U. Each carries the weight
@@ -16,6 +17,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/rng.h"
 #include "core/sobol.h"
 #include "core/types.h"
 
@@ -23,9 +25,11 @@ namespace radwalk {
 
 class StratifiedEmission {
  public:
-  // S and area of the N patches, n >= 1 particles. Throws InputError on a negative S or area.
+  // S and area of the N patches, n >= 1 particles. Throws InputError on a non-finite S or a negative area.
+  // `domain`: the stream domain of the shifts and the offset (emission_shift for the Sobol shooting; the
+  // stochastic Jacobi iterations use their own, stochastic_jacobi.h).
   StratifiedEmission(const PatchRgb& S, const Eigen::VectorXd& area, long n, std::uint64_t seed,
-                     std::uint64_t replicate);
+                     std::uint64_t replicate, StreamDomain domain = StreamDomain::emission_shift);
 
   double power() const { return power_; }  // Phi (0: nothing to shoot)
   long particles() const { return n_; }

@@ -28,6 +28,9 @@ WalkOptions method_options(const CompareOptions& options, WalkMethod method, std
     wo.sampler = WalkSampler::random;
     wo.direct_light = false;
   }
+  // Stochastic Jacobi scores every arrival (shoot-collision only): the other shooting estimators run with the
+  // Sobol sampler, its nearest (the same stratified emission and replicates).
+  if (wo.sampler == WalkSampler::jacobi && method != WalkMethod::shoot_collision) wo.sampler = WalkSampler::sobol;
   wo.particles = options.walk.walks_per_patch *
                  static_cast<long>(options.walk.patches.empty() ? patch_count : options.walk.patches.size());
   wo.progress = false;

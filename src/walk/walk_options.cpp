@@ -18,9 +18,11 @@ void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
   if (gather && options.sampler != WalkSampler::random)
     throw InputError("random walk: --sampler " + std::string(sampler_name(options.sampler)) +
                      " is for shooting methods (--walk shoot); gathering walks use --sampler random");
-  if (options.direct_light && options.sampler != WalkSampler::sobol)
-    throw InputError("random walk: --direct-light needs --sampler sobol (and a shooting method)");
-  if (options.sampler == WalkSampler::sobol) {
+  if (options.direct_light && options.sampler == WalkSampler::random)
+    throw InputError("random walk: --direct-light needs --sampler sobol or jacobi (and a shooting method)");
+  if (options.sampler == WalkSampler::jacobi && options.method != WalkMethod::shoot_collision)
+    throw InputError("random walk: --sampler jacobi scores every arrival (use --walk shoot --estimator collision)");
+  if (options.sampler != WalkSampler::random) {
     if (options.replicates < 2)
       throw InputError("random walk: --replicates " + std::to_string(options.replicates) +
                        " (need at least 2 for a standard error)");

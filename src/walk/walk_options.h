@@ -39,11 +39,16 @@ WalkKernel parse_walk_kernel(std::string_view name);
 //           sources systematically and first rays from randomised Sobol points (stratified_emission.h); with
 //           direct_light the first bounce is computed apart (direct_light.h) and the particles carry the
 //           indirect light only. Standard errors come from the spread of the replicates.
-enum class WalkSampler { random, sobol };
+//   jacobi  stochastic Jacobi (shoot-collision only; stochastic_jacobi.h): bounce by bounce, each bounce's power
+//           re-shot by stratified emission with rays in proportion to it; replicates as sobol; with direct_light
+//           the first shot is the direct light.
+enum class WalkSampler { random, sobol, jacobi };
 
-inline constexpr std::array<NamedChoice<WalkSampler>, 2> kWalkSamplers = {{
+inline constexpr std::array<NamedChoice<WalkSampler>, 3> kWalkSamplers = {{
     {WalkSampler::random, "random", "independent particles, pseudo-random"},
     {WalkSampler::sobol, "sobol", "stratified emission, randomised Sobol first rays, replicates for the error bars"},
+    {WalkSampler::jacobi, "jacobi",
+     "stochastic Jacobi: each bounce re-shot by stratified emission, rays in proportion to its power"},
 }};
 static_assert(in_enum_order(kWalkSamplers));
 
@@ -68,6 +73,8 @@ struct WalkOptions {
   bool direct_light = false;    // sobol: the first bounce from the emitters computed apart (direct_light.h)
   long shadow_rays = 0;         // direct_light, ray kernel: shadow samples per receiving patch over all replicates
                                 // (0: particles / (2 N), at least 16 per replicate)
+  bool direct_sampled = false;  // direct_light, ray kernel: point-to-point shadow rays (estimate_direct_light)
+                                // instead of the point-to-polygon form factors x visibility (the default)
 };
 
 // The one check of WalkOptions: InputError with a one-line message on a count below 2 (of the method's

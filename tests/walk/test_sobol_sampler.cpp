@@ -133,7 +133,15 @@ TEST_CASE("stratified emission gives each source patch floor or ceil of n pi_j p
       }
       CHECK(total == n);
     }
-  CHECK_THROWS_AS(StratifiedEmission(-S, area, 10, 1, 0), InputError);
+  // A signed source (the direct light's unbiased estimate can be negative in full shadow): births by |S|, the
+  // weights keep the sign.
+  const StratifiedEmission plus(S, area, 100, 1, 0), minus(-S, area, 100, 1, 0);
+  CHECK(plus.first() == minus.first());
+  for (std::size_t j = 0; j < 5; ++j) CHECK((minus.weight(j) == -plus.weight(j)).all());
+  PatchRgb bad = S;
+  bad(2, 1) = std::nan("");
+  CHECK_THROWS_AS(StratifiedEmission(bad, area, 10, 1, 0), InputError);
+  CHECK_THROWS_AS(StratifiedEmission(S, -area, 10, 1, 0), InputError);
 }
 
 TEST_CASE("the Sobol sampler is unbiased against the exact solutions of the cube and the two squares", "[walk][sobol][ray]") {
@@ -143,13 +151,17 @@ TEST_CASE("the Sobol sampler is unbiased against the exact solutions of the cube
     WalkKernel kernel;
     WalkMethod method;
     bool direct;
+    bool sampled = false;  // the direct light by point-to-point shadow rays (else point-to-polygon x visibility)
   };
-  // The cube (emitters sharing edges with receivers: no direct light apart, see two_squares) and the two squares.
+  // The cube (emitters sharing edges with receivers: the direct light apart only exact where unoccluded, the
+  // point-to-point shadow rays' variance is infinite there, see two_squares) and the two squares.
   const std::vector<Config> cube_configs = {{WalkKernel::ray, WalkMethod::shoot_collision, false},
                                             {WalkKernel::ray, WalkMethod::shoot_absorption, false},
+                                            {WalkKernel::ray, WalkMethod::shoot_collision, true},
                                             {WalkKernel::matrix, WalkMethod::shoot_collision, true}};
   const std::vector<Config> squares_configs = {{WalkKernel::ray, WalkMethod::shoot_collision, false},
                                                {WalkKernel::ray, WalkMethod::shoot_collision, true},
+                                               {WalkKernel::ray, WalkMethod::shoot_collision, true, true},
                                                {WalkKernel::ray, WalkMethod::shoot_absorption, true},
                                                {WalkKernel::ray, WalkMethod::shoot_survival, true}};
   const double t_crit = t_critical(
@@ -169,6 +181,7 @@ TEST_CASE("the Sobol sampler is unbiased against the exact solutions of the cube
       o.kernel = c.kernel;
       o.sampler = WalkSampler::sobol;
       o.direct_light = c.direct;
+      o.direct_sampled = c.sampled;
       o.particles = 4000;
       o.shadow_rays = 256;
       const auto N = Eigen::Index(patches.size());
@@ -183,7 +196,8 @@ TEST_CASE("the Sobol sampler is unbiased against the exact solutions of the cube
       const PatchRgb mean = sum / K, se = ((sum2 / K - mean.square()) * (double(K) / (K - 1)) / K).max(0).sqrt();
       test::ZTable table((cube ? std::to_string(faces.size()) + " faces, " : std::string("two squares, ")) +
                              std::string(kernel_name(c.kernel)) + " " +
-                             std::string(method_name(c.method)) + (c.direct ? " sobol+direct" : " sobol"),
+                             std::string(method_name(c.method)) +
+                             (c.direct ? (c.sampled ? " sobol+direct (shadow rays)" : " sobol+direct") : " sobol"),
                          t_crit);
       for (Eigen::Index i = 0; i < N; ++i)
         for (int ch = 0; ch < 3; ++ch) table.add_patch(i, ch, "B", mean(i, ch), se(i, ch), B(i, ch));
@@ -214,6 +228,35 @@ TEST_CASE("the direct light by shadow rays is unbiased for rho F E on the two sq
   for (Eigen::Index i = 0; i < 2; ++i)
     for (int ch = 0; ch < 3; ++ch) table.add_patch(i, ch, "D", mean(i, ch), se(i, ch), D(i, ch));
   table.check(&patches);
+}
+
+TEST_CASE("the direct light exact where unoccluded is unbiased for rho F E on the two squares and the cube",
+          "[walk][sobol][ray]") {
+  const TwoSquares squares = two_squares();
+  const RadiosityProblem cube = test::mixed_cube();
+  const PatchSet cube_patches = test::cube_patches(cube);
+  constexpr int K = 40;
+  const double t_crit = t_critical(z_critical(sidak(1e-3, (2 + 6) * 3)), K - 1);
+  for (const bool on_cube : {false, true}) {
+    const RadiosityProblem& p = on_cube ? cube : squares.problem;
+    const PatchSet& patches = on_cube ? cube_patches : squares.patches;
+    const BruteForceVisibility visibility(patches);
+    const PatchRgb D = exact_direct_light(p);
+    const auto N = Eigen::Index(patches.size());
+    PatchRgb sum = PatchRgb::Zero(N, 3), sum2 = PatchRgb::Zero(N, 3);
+    for (int k = 0; k < K; ++k) {
+      const DirectLight d = estimate_visible_direct_light(p, patches, visibility, 32, 7, std::uint64_t(k));
+      CHECK(d.rays > 0);
+      sum += d.D;
+      sum2 += d.D.square();
+    }
+    const PatchRgb mean = sum / K, se = ((sum2 / K - mean.square()) * (double(K) / (K - 1)) / K).max(0).sqrt();
+    test::ZTable table(std::string(on_cube ? "cube" : "two squares") + ": direct light, 32 samples per patch",
+                       t_crit, test::ZeroVariance::exact);
+    for (Eigen::Index i = 0; i < N; ++i)
+      for (int ch = 0; ch < 3; ++ch) table.add_patch(i, ch, "D", mean(i, ch), se(i, ch), D(i, ch));
+    table.check(&patches);
+  }
 }
 
 TEST_CASE("replicate standard errors cover: the 95 % interval holds the exact B in 95 % of solves",

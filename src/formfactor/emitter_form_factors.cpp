@@ -1,0 +1,96 @@
+#include "formfactor/emitter_form_factors.h"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "formfactor/point_polygon_form_factor.h"
+#include "formfactor/visible_form_factor.h"
+
+namespace radwalk {
+
+EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
+                                                 const FormFactorOptions& options, long shadow_samples_per_patch) {
+  if (shadow_samples_per_patch < 1)
+    throw InputError("form factors: shadow samples per patch must be >= 1, got " +
+                     std::to_string(shadow_samples_per_patch));
+  EmitterFormFactors out;
+  out.form_factors = estimate_form_factors(patches, visibility, options);
+  const std::size_t N = patches.size();
+  std::vector<std::size_t> emitters;
+  std::vector<std::int32_t> column_of(N, -1);  // emitter rank of a patch, -1 for a non-emitter
+  for (std::size_t e = 0; e < N; ++e)
+    if (patches.E[e].maxCoeff() > 0) {
+      column_of[e] = static_cast<std::int32_t>(emitters.size());
+      emitters.push_back(e);
+    }
+  out.emitter_columns = emitters.size();
+  if (emitters.empty()) return out;
+  const std::size_t m = emitters.size();
+  // The replaced entries, row by row (N x m), and the rays per row.
+  std::vector<double> value(N * m, 0.0);
+  std::vector<long> rays(N, 0);
+  const VisibleFormFactor visible(patches, visibility);
+  parallel_for(
+      N,
+      [&](std::size_t i) {
+        // The columns this row can see at all (some corner of i strictly in front of e's plane and some corner of
+        // e strictly in front of i's plane: otherwise F(x -> e) = 0 for every x of i), the samples split evenly
+        // over them.
+        std::vector<std::size_t> seen;
+        for (std::size_t k = 0; k < m; ++k) {
+          const std::size_t e = emitters[k];
+          if (e == i) continue;
+          if (patch_may_see(patches, i, e)) seen.push_back(k);
+        }
+        if (seen.empty()) return;
+        const long M = std::max<long>(1, shadow_samples_per_patch / static_cast<long>(seen.size()));
+        for (std::size_t k : seen) {
+          Rng rng = stream(options.seed, StreamDomain::emitter_form_factor, i, emitters[k]);
+          SobolShift shift;
+          for (auto& w : shift.word) w = rng.next_u32();
+          value[i * m + k] = std::max(0.0, visible.estimate(i, emitters[k], M, shift, rays[i]));
+        }
+      },
+      1);
+  for (long r : rays) out.shadow_rays += r;
+  // Rebuild the CSR: each row keeps its non-emitter entries and takes its emitter entries from `value`
+  // (columns stay sorted: a merge of the two sorted lists).
+  const SparseF& F = out.form_factors.F;
+  std::vector<std::int32_t> outer(N + 1, 0), inner;
+  std::vector<float> values;
+  inner.reserve(static_cast<std::size_t>(F.nonZeros()) + N);
+  values.reserve(inner.capacity());
+  for (std::size_t i = 0; i < N; ++i) {
+    const auto row = static_cast<Eigen::Index>(i);
+    std::size_t k = 0;  // next emitter column to insert
+    auto insert_emitters_below = [&](std::size_t limit) {
+      for (; k < m && emitters[k] < limit; ++k)
+        if (value[i * m + k] > 0) {
+          inner.push_back(static_cast<std::int32_t>(emitters[k]));
+          values.push_back(static_cast<float>(value[i * m + k]));
+        }
+    };
+    for (SparseF::InnerIterator it(F, row); it; ++it) {
+      const auto j = static_cast<std::size_t>(it.col());
+      insert_emitters_below(j);
+      if (column_of[j] >= 0) continue;  // the cosine rays' estimate of an emitter entry: replaced
+      inner.push_back(static_cast<std::int32_t>(j));
+      values.push_back(it.value());
+    }
+    insert_emitters_below(N);
+    outer[i + 1] = static_cast<std::int32_t>(inner.size());
+  }
+  SparseF G(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(N));
+  G.resizeNonZeros(static_cast<Eigen::Index>(inner.size()));
+  std::copy(outer.begin(), outer.end(), G.outerIndexPtr());
+  std::copy(inner.begin(), inner.end(), G.innerIndexPtr());
+  std::copy(values.begin(), values.end(), G.valuePtr());
+  out.form_factors.F = std::move(G);
+  return out;
+}
+
+}  // namespace radwalk
