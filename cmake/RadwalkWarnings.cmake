@@ -40,7 +40,7 @@ function(radwalk_add_test name)
   if(RADWALK_SANITIZE)
     set(env "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/tests/lsan.supp:print_suppressions=0")
   endif()
-  catch_discover_tests(${name} TEST_SPEC "~[slow]~[.]" PROPERTIES TIMEOUT 600 ENVIRONMENT "${env}")
-  catch_discover_tests(${name} TEST_SPEC "[slow]" TEST_PREFIX "slow: " PROPERTIES TIMEOUT 3600 LABELS slow
+  catch_discover_tests(${name} TEST_SPEC "~[slow]~[.]" EXTRA_ARGS --warn NoTests PROPERTIES TIMEOUT 600 ENVIRONMENT "${env}")
+  catch_discover_tests(${name} TEST_SPEC "[slow]" TEST_PREFIX "slow: " EXTRA_ARGS --warn NoTests PROPERTIES TIMEOUT 3600 LABELS slow
                        ENVIRONMENT "${env}")
 endfunction()

@@ -81,7 +81,7 @@ pid_t dead_pid() {
 
 }  // namespace
 
-TEST_CASE("outputs are written through symbolic links; devices, FIFOs and directories are refused", "[io][fault]") {
+TEST_CASE("outputs are written through symbolic links, devices, FIFOs and directories are refused", "[io][fault]") {
   // D2: --csv /dev/null (as root) replaced /dev/null with a regular file; a symlink was replaced by a file.
   const fs::path dir = fresh_dir("targets");
   write_atomically((dir / "real.csv").string(), [](std::ostream& o) { o << "old\n"; });
@@ -107,7 +107,7 @@ TEST_CASE("outputs are written through symbolic links; devices, FIFOs and direct
   CHECK_THROWS_WITH(require_output_directory((dir / "folder.csv").string()), Catch::Contains("a directory"));
 }
 
-TEST_CASE("files committed together appear together; an abandoned one leaves the old file", "[io][fault]") {
+TEST_CASE("files committed together appear together, an abandoned one leaves the old file", "[io][fault]") {
   const fs::path dir = fresh_dir("together");
   write_atomically((dir / "a.obj").string(), [](std::ostream& o) { o << "old obj\n"; });
   write_atomically((dir / "a.mtl").string(), [](std::ostream& o) { o << "old mtl\n"; });
@@ -134,7 +134,7 @@ TEST_CASE("files committed together appear together; an abandoned one leaves the
   CHECK(entries(dir) == 2);
 }
 
-TEST_CASE("SIGTERM removes pending temporaries; temporaries of dead processes are cleaned up", "[io][fault]") {
+TEST_CASE("SIGTERM removes pending temporaries, temporaries of dead processes are cleaned up", "[io][fault]") {
   // P2: kill -9 / SIGTERM / SIGHUP left .tmp-PID-* files (up to 16 MB each, accumulating).
   const fs::path dir = fresh_dir("signals");
   for (int sig : {SIGTERM, SIGHUP, SIGINT}) {

@@ -69,7 +69,7 @@ TEST_CASE("progress: a long single work item still leaves its done line", "[prog
   CHECK(out.written[0] == "radwalk: LU factorisations done in 30 s\n");
 }
 
-TEST_CASE("progress: disabled prints nothing; in place redraws one line", "[progress]") {
+TEST_CASE("progress: disabled prints nothing, in place redraws one line", "[progress]") {
   FakeOutput out;
   {
     ProgressOutput o = out.lines(1);

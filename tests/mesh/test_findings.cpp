@@ -179,7 +179,7 @@ TEST_CASE("closed shells: a closed room around open objects is closed, and outwa
   CHECK_FALSE(is_closed_shell(object));
 }
 
-TEST_CASE("closed shells: a cube is closed, with or without a T-junction; an open box is not", "[mesh][findings]") {
+TEST_CASE("closed shells: a cube is closed, with or without a T-junction, an open box is not", "[mesh][findings]") {
   const std::vector<Vec3> cube = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
   const std::vector<std::array<std::int32_t, 4>> sides = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4},
                                                           {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
@@ -200,7 +200,7 @@ TEST_CASE("closed shells: a cube is closed, with or without a T-junction; an ope
   CHECK(cover.closed());
 }
 
-TEST_CASE("a bent quad whose area is ambiguous is split along the better diagonal; --strict refuses it",
+TEST_CASE("a bent quad whose area is ambiguous is split along the better diagonal, --strict refuses it",
           "[mesh][findings]") {
   // The fuzz finding: 0.74 % of its width off its plane, but triangulations of 34435.5 and 34422.1 and a vector
   // area of 33988.3 (its patches added up to 34057).

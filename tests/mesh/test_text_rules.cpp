@@ -71,7 +71,7 @@ TEST_CASE("names with spaces are read whole by newmtl and by usemtl alike", "[me
   CHECK_THROWS_WITH(square_with_material(dir, "red", "red paint"), Catch::Contains("unknown material 'red'"));
 }
 
-TEST_CASE("lines end at LF, CRLF or a lone CR; a BOM is skipped; a trailing backslash continues", "[mesh][read]") {
+TEST_CASE("lines end at LF, CRLF or a lone CR, a BOM is skipped, a trailing backslash continues", "[mesh][read]") {
   CHECK(statement_lines("a\nb\r\nc\rd") == std::vector<long>{1, 2, 3, 4});
   CHECK(statement_lines("\xEF\xBB\xBFv 1 2 3\n") == std::vector<long>{1});
   CHECK(split_tokens("\xEF\xBB\xBF" "v 1 2 3").size() == 4);  // the BOM is removed by for_each_line only

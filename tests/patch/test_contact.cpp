@@ -156,7 +156,7 @@ TEST_CASE("contacts: a block on a floor is found and the floor cut into the foot
   }
 }
 
-TEST_CASE("contacts: walls around a floor are no contact; a plate lying on it is one", "[patch][contact]") {
+TEST_CASE("contacts: walls around a floor are no contact, a plate lying on it is one", "[patch][contact]") {
   const Mesh m = block_on_floor(false, true, true);
   const auto contacts = find_contacts(m);
   REQUIRE(contacts.size() == 2);

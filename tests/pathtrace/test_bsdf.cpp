@@ -131,7 +131,7 @@ TEST_CASE("microfacet: sample weight equals f cos / pdf, f is reciprocal, albedo
   }
 }
 
-TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance; dielectric R + T = 1",
+TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance, dielectric R + T = 1",
           "[bsdf][statistical]") {
   const Vec3 wo = direction(0.7, 0.5);
   const Mirror mirror(Rgb::Ones());
@@ -176,7 +176,7 @@ TEST_CASE("delta lobes: mirror and conductor reflect with their reflectance; die
     }
 }
 
-TEST_CASE("materials map to models; is_diffuse_scene", "[bsdf]") {
+TEST_CASE("materials map to models, is_diffuse_scene", "[bsdf]") {
   Material m;
   m.Kd = Rgb(0.5, 0.4, 0.3);
   CHECK(make_bsdf(m, m.Kd).is_diffuse());

@@ -59,7 +59,7 @@ TEST_CASE("on_iterate: Southwell every iterate_every shots, plus the last shot",
   CHECK_THROWS_AS(solve_recording(p, o, calls), InputError);
 }
 
-TEST_CASE("on_iterate: unset costs nothing and changes nothing; the direct solver never calls it", "[solve]") {
+TEST_CASE("on_iterate: unset costs nothing and changes nothing, the direct solver never calls it", "[solve]") {
   const RadiosityProblem p = make_synthetic_problem(100, 64, 7);
   SolveOptions o;
   o.solver = "gauss-seidel";
