@@ -398,6 +398,9 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.walk.theory,
                       "Also compute the exact per-walk variance (dense; small scenes)");
+  solve_cmd->add_flag("--control-variate", solve.walk.control_variate,
+                      "Gathering, matrix kernel: walk B - c from the shifted source E - c (1 - rho F 1), c = the "
+                      "ambient radiosity sum A E / sum A (1 - rho F 1), and add c back (docs/theory/control_variate.md)");
   add_sampler_options(solve_cmd, solve.walk);
   // The method from --walk and --estimator; the walk count that the method does not read is refused.
   solve_cmd->callback([&solve, &walk_direction, &walk_estimator, walks_per_patch, particles] {

@@ -26,6 +26,7 @@
 #include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
 #include "walk/walk_variance.h"
+#include "walk/control_variate.h"
 #include "walk/direct_light.h"
 #include "walk/stochastic_jacobi.h"
 #include "walk/stratified_emission.h"
@@ -497,6 +498,19 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     }
   }
 
+  // The constant control variate (control_variate.h): the walks estimate B - c from the shifted source.
+  std::optional<RadiosityProblem> shifted;
+  ControlVariate cv;
+  if (options.control_variate) {
+    if (!F_stored)
+      throw InputError("random walk: --control-variate needs the row sums of F, so F stored (--kernel matrix)");
+    cv = constant_control_variate(problem);
+    shifted = problem;
+    shifted->E = cv.E_shifted;
+    for (int c = 0; c < 3; ++c) sol.info[std::string("control_variate_") + "rgb"[c]] = cv.c(c);
+  }
+  const RadiosityProblem& walked = shifted ? *shifted : problem;
+
   std::optional<Progress> own_progress;
   if (!progress && options.progress)
     progress = &own_progress.emplace("random walks (" + sol.method + ")", walk_work_items(options, N));
@@ -518,12 +532,13 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
       return std::move(d.D);
     };
   if (options.kernel == WalkKernel::matrix) {
-    const MatrixKernel kernel(problem, std::move(p), direction_of(options.method));
-    r = run(kernel, problem, options, progress, direct);
+    const MatrixKernel kernel(walked, std::move(p), direction_of(options.method));
+    r = run(kernel, walked, options, progress, direct);
   } else {
-    const RayKernel kernel(problem, *patches, *visibility, std::move(p));
-    r = run(kernel, problem, options, progress, direct);
+    const RayKernel kernel(walked, *patches, *visibility, std::move(p));
+    r = run(kernel, walked, options, progress, direct);
   }
+  if (shifted) r.B.rowwise() += cv.c.transpose();  // B = c + B'; B' 's variance is B's
   share_run_result(r);  // over MPI: rank 0's result on every rank
   sol.seconds = timer.seconds();
   if (own_progress) own_progress->finish();
@@ -578,7 +593,7 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
     else if (N > kMaxTheoryPatches)
       msg << "; exact variance skipped (" << N << " patches > " << kMaxTheoryPatches << ")";
     else
-      sol.var_theory = theoretical_variance(problem, options, dense_radiosity(problem));
+      sol.var_theory = theoretical_variance(walked, options, dense_radiosity(walked));
   }
   sol.message = msg.str();
   sol.status = SolveStatus::converged;

@@ -18,6 +18,8 @@ void check_walk_options(const WalkOptions& options, std::size_t patch_count) {
   if (gather && options.sampler != WalkSampler::random)
     throw InputError("random walk: --sampler " + std::string(sampler_name(options.sampler)) +
                      " is for shooting methods (--walk shoot); gathering walks use --sampler random");
+  if (options.control_variate && !gather)
+    throw InputError("random walk: --control-variate is for gathering methods (--walk gather)");
   if (options.direct_light && options.sampler == WalkSampler::random)
     throw InputError("random walk: --direct-light needs --sampler sobol or jacobi (and a shooting method)");
   if (options.sampler == WalkSampler::jacobi && options.method != WalkMethod::shoot_collision)

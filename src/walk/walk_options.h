@@ -67,6 +67,7 @@ struct WalkOptions {
   Survival survival;
   bool theory = false;          // also fill Solution::var_theory (matrix kernel, N <= kMaxTheoryPatches)
   bool progress = false;        // a progress line on stderr over the walks (core/progress.h)
+  bool control_variate = false; // gathering, F stored: walk B - c from the shifted source (control_variate.h)
   // Shooting only (refused for gathering unless at their defaults):
   WalkSampler sampler = WalkSampler::random;
   int replicates = 4;           // sobol: independent randomisations, >= 2 (the error bars' degrees of freedom + 1)
