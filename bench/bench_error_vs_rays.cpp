@@ -281,6 +281,14 @@ int main(int argc, char** argv) {
       std::stringstream ss(argv[++a]);
       for (std::string h; std::getline(ss, h, ',');) max_edges.push_back(std::atof(h.c_str()));
     }
+    else {
+      std::fprintf(stderr,
+                   "bench_error_vs_rays: unknown option or missing value '%s'; options: --quick, --repeat N, --csv FILE, "
+                   "--scene OBJ, --methods A,B, --ref-particles N, --shadow-fraction F, --threads T, --budgets B1,B2, "
+                   "--max-edge H1,H2\n",
+                   argv[a]);
+      return 2;
+    }
   }
   std::vector<double> budgets =
       quick ? std::vector<double>{1e5, 4e5, 1.6e6} : std::vector<double>{1e5, 4e5, 1.6e6, 6.4e6};
