@@ -269,6 +269,7 @@ ShootPart shoot_particles(const K& kernel, const Eigen::VectorXd& area, std::siz
   }
   // The chunk's sums per patch, by increasing patch: each patch's Y_j in particle order (a stable sort).
   sort_by_patch(s.Y, s.Y_sorted, kernel.size());
+  part.entries.reserve(s.Y.size());  // at most one entry per Y
   for (std::size_t k = 0; k < s.Y.size();) {
     const std::uint32_t j = s.Y[k].patch;
     Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
