@@ -101,17 +101,7 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   j["stop_reason"] = result.stop_reason;
   double ff_seconds = 0, solve_seconds = 0, refine_seconds = 0;
   for (const RefineStep& s : result.steps) {
-    j["steps"].push_back({{"step", s.step},
-                          {"patches", s.patches},
-                          {"marked", s.marked},
-                          {"split", s.split},
-                          {"max_jump", s.max_jump},
-                          {"method", s.method},
-                          {"iterations", s.iterations},
-                          {"form_factor_seconds", s.form_factor_seconds},
-                          {"solve_seconds", s.solve_seconds},
-                          {"refine_seconds", s.refine_seconds},
-                          {"seconds", s.seconds}});
+    j["steps"].push_back(refine_step_json(s));
     ff_seconds += s.form_factor_seconds;
     solve_seconds += s.solve_seconds;
     refine_seconds += s.refine_seconds;

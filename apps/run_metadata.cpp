@@ -104,4 +104,18 @@ nlohmann::json camera_json(const SceneCamera& fitted, const PatchSet& patches, i
           {"source", fitted.source}};
 }
 
+nlohmann::json refine_step_json(const RefineStep& s) {
+  return {{"step", s.step},
+          {"patches", s.patches},
+          {"marked", s.marked},
+          {"split", s.split},
+          {"max_jump", s.max_jump},
+          {"method", s.method},
+          {"iterations", s.iterations},
+          {"form_factor_seconds", s.form_factor_seconds},
+          {"solve_seconds", s.solve_seconds},
+          {"refine_seconds", s.refine_seconds},
+          {"seconds", s.seconds}};
+}
+
 }  // namespace radwalk::app

@@ -16,6 +16,7 @@
 #include "io/run_summary.h"
 #include "io/vtp_metadata.h"
 #include "patch/patch_set.h"
+#include "solve/adaptive_refinement.h"
 
 namespace radwalk::app {
 
@@ -41,5 +42,10 @@ VtpMetadata solution_metadata(const Solution& solution, const PatchSet& patches)
 // keys in both, position, look_at (camera_focal_point), direction (unit), up (3 numbers each, mesh units),
 // vertical_fov_deg, width and height (pixels of the image or the response's film) and source (SceneCamera).
 nlohmann::json camera_json(const SceneCamera& camera, const PatchSet& patches, int width, int height);
+
+// One step of adaptive refinement as the JSON's refine.steps[k] (docs/json-schema.md), for `solve --refine` and
+// radwalk.solve_adaptive alike: step, patches, marked, split, max_jump, method, iterations and the seconds of its
+// form factors, solve, refinement and in all.
+nlohmann::json refine_step_json(const RefineStep& step);
 
 }  // namespace radwalk::app

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <unordered_map>
 
+#include "apps/run_metadata.h"
 #include "bindings.h"
 #include "core/parallel.h"
 #include "formfactor/reciprocity.h"
@@ -24,20 +25,6 @@ struct AdaptiveResult {
   std::vector<RefineStep> steps;
   std::string stop_reason;
 };
-
-nlohmann::json step_json(const RefineStep& s) {
-  return {{"step", s.step},
-          {"patches", s.patches},
-          {"marked", s.marked},
-          {"split", s.split},
-          {"max_jump", s.max_jump},
-          {"method", s.method},
-          {"iterations", s.iterations},
-          {"form_factor_seconds", s.form_factor_seconds},
-          {"solve_seconds", s.solve_seconds},
-          {"refine_seconds", s.refine_seconds},
-          {"seconds", s.seconds}};
-}
 
 AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int steps, long max_patches,
                                  double floor_fraction, double noise_z, const std::string& solver, double tol,
@@ -101,7 +88,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
                            {"stop_reason", a.stop_reason},
                            {"steps", nlohmann::json::array()}};
   for (const RefineStep& s : a.steps) {
-    refine["steps"].push_back(step_json(s));
+    refine["steps"].push_back(app::refine_step_json(s));
     ff_seconds += s.form_factor_seconds;
     solve_seconds += s.solve_seconds;
     refine_seconds += s.refine_seconds;
@@ -133,7 +120,7 @@ scene: a Scene of the final (refined) patches, each keeping its input face, grou
       .def_property_readonly("jump", [](const AdaptiveResult& a) { return py::array_t<double>(a.jump.size(), a.jump.data()); })
       .def_property_readonly("steps", [](const AdaptiveResult& a) {
         py::list l;
-        for (const RefineStep& s : a.steps) l.append(json_to_python(step_json(s).dump()));
+        for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));
         return l;
       })
       .def_readonly("stop_reason", &AdaptiveResult::stop_reason)
