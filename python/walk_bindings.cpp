@@ -55,10 +55,11 @@ SparseF walk_form_factors(const py::object& F, const Scene& scene, WalkKernel ke
 Result random_walk(const Scene& scene, const py::object& F, const std::string& method, const std::string& kernel,
                    long walks_per_patch, long particles, std::uint64_t seed, const std::string& survival,
                    double survival_constant, bool theory, const std::vector<int>& patches, long rays, int threads,
-                   bool progress) {
+                   bool progress, bool control_variate) {
   WalkOptions w = walk_options(method, kernel, walks_per_patch, particles, seed, survival, survival_constant, patches);
   w.theory = theory;
   w.progress = progress;
+  w.control_variate = control_variate;
   check_walk_options(w, scene.patches.size());  // before any form factor is traced, as the CLI
   Result r;
   SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings);
@@ -262,6 +263,7 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
         py::arg("particles") = 1000, py::arg("seed") = 1, py::arg("survival") = "analog",
         py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
         py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
+        py::arg("control_variate") = false,
         R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
 
 method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): "gather-absorption",
@@ -273,6 +275,8 @@ F: a FormFactors, a scipy.sparse matrix, or None (estimated with `rays` and `see
 survival: "analog", "max" or "constant" (with survival_constant), the roulette rule; theory: also the exact
   per-walk variance var_theory (matrix kernel, N <= 2000); patches: gathering only, the patches to estimate
   (empty: all; the others are NaN); seed: as the CLI's --seed (same seed, same B for any thread count).
+control_variate: gathering, matrix kernel: walk B - c from the shifted source and add the constant c back, as the
+  CLI's --control-variate (docs/theory/control_variate.md).
 Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count.)doc");
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),

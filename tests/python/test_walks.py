@@ -1,10 +1,11 @@
 """random_walk, compare, exact_variance and pathtrace through the module: names from the one method table,
 results against the direct solve as hypothesis tests."""
 import numpy as np
+import pytest
 from scipy.stats import norm
 
 import radwalk
-from conftest import mesh
+from conftest import mesh, run_cli, without_run_id
 
 ALPHA = 1e-3  # family-wise significance level of each test below (Sidak over its checks)
 
@@ -48,3 +49,21 @@ def test_pathtrace_renders_an_image_as_a_float_array():
     r = radwalk.pathtrace(scene, spp=4, image=True, width=16, height=12, averages=False)
     assert r.image.shape == (12, 16, 3) and r.image_se.shape == (12, 16, 3)
     assert np.isfinite(r.image).all() and r.averages is None
+
+
+def test_control_variate_equals_the_cli(tmp_path):
+    """random_walk(control_variate=True) is the CLI's --control-variate: the same CSV byte for byte."""
+    common = ["--max-edge", 0.5, "--rays", 300, "--seed", 4]
+    run_cli("solve", mesh("cube.obj"), *common, "--solver", "random-walk", "--walk", "gather", "--estimator",
+            "expected-value", "--walks-per-patch", 500, "--control-variate", "--csv", tmp_path / "cli.csv")
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    ff = radwalk.form_factors(scene, rays=300, seed=4)
+    walk = radwalk.random_walk(scene, ff, method="gather-expected-value", walks_per_patch=500, seed=4,
+                               control_variate=True)
+    radwalk.write_csv(tmp_path / "py.csv", scene, {**ff.diagnostics, **walk.fields})
+    cli = without_run_id(open(tmp_path / "cli.csv", "rb").read())
+    assert cli == without_run_id(open(tmp_path / "py.csv", "rb").read())
+    plain = radwalk.random_walk(scene, ff, method="gather-expected-value", walks_per_patch=500, seed=4)
+    assert not np.array_equal(plain.B, walk.B)  # the flag changes the walks
+    with pytest.raises(radwalk.InputError, match="gathering"):
+        radwalk.random_walk(scene, ff, method="shoot-collision", control_variate=True)
