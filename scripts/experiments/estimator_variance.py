@@ -182,7 +182,7 @@ def plot_scatter(data, rw):
         zero = []
         for m in METHODS:
             pts = [(r["var_theory"], r["var"]) for r in rows if r["estimator"] == m]
-            se = {(r["var_theory"], r["var"]): r["var_se"] for r in rows if r["estimator"] == m}
+            pos_se = [r["var_se"] for r in rows if r["estimator"] == m and r["var_theory"] > 0 and r["var"] > 0]
             pos = [(t, e) for t, e in pts if t > 0 and e > 0]
             if len(pos) < len(pts):
                 zt = [(t, e) for t, e in pts if not (t > 0 and e > 0)]
@@ -198,7 +198,7 @@ def plot_scatter(data, rw):
             ax.scatter(t, e, s=14, color=colors[m], marker=markers[m], alpha=0.6, label=m)
             # 2 standard errors of each empirical variance (the spread of the runs' variances), clipped at the
             # axis' floor where the bar would reach 0 on a log axis.
-            err = [2 * se[p] if math.isfinite(se[p]) else 0.0 for p in pos]
+            err = [2 * se if math.isfinite(se) else 0.0 for se in pos_se]
             ax.errorbar(t, e, yerr=[[min(d, v * 0.95) for d, v in zip(err, e)], err], fmt="none",
                         ecolor=colors[m], elinewidth=0.6, alpha=0.5)
         ax.plot([lo / 2, hi * 2], [lo / 2, hi * 2], "k-", lw=0.8, label="identity")

@@ -1,6 +1,7 @@
 #include "formfactor/form_factors.h"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -193,15 +194,16 @@ void share_rows(const std::vector<distributed::Range>& row_blocks, std::vector<s
   distributed::share_blocks(nnz, row_blocks);
   distributed::share_blocks(out.escaped, row_blocks);
   distributed::share_blocks(out.back_hits, row_blocks);
-  const std::vector<std::int32_t> cols =
-      distributed::allgather_concat(std::vector<std::int32_t>(out.F.innerIndexPtr(), out.F.innerIndexPtr() + at));
-  const std::vector<float> values =
-      distributed::allgather_concat(std::vector<float>(out.F.valuePtr(), out.F.valuePtr() + at));
-  if (cols.size() > std::size_t(std::numeric_limits<std::int32_t>::max()))
+  // Straight from F's arrays (no copy into a vector first), then back into them.
+  const std::vector<char> cols = distributed::allgather_concat_bytes(out.F.innerIndexPtr(), at, sizeof(std::int32_t));
+  const std::vector<char> values = distributed::allgather_concat_bytes(out.F.valuePtr(), at, sizeof(float));
+  const std::size_t nnz_all = cols.size() / sizeof(std::int32_t);
+  if (nnz_all > std::size_t(std::numeric_limits<std::int32_t>::max()))
     throw InputError(locate(source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
-  out.F.resizeNonZeros(Eigen::Index(cols.size()));
-  std::copy(cols.begin(), cols.end(), out.F.innerIndexPtr());
-  std::copy(values.begin(), values.end(), out.F.valuePtr());
+  out.F.resizeNonZeros(Eigen::Index(nnz_all));
+  if (nnz_all == 0) return;
+  std::memcpy(out.F.innerIndexPtr(), cols.data(), cols.size());
+  std::memcpy(out.F.valuePtr(), values.data(), values.size());
 }
 
 }  // namespace

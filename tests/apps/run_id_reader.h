@@ -23,6 +23,14 @@ inline std::string file_text(const std::filesystem::path& path) {
   return ss.str();
 }
 
+// A CSV's text without its last column, the run id (it differs between runs whose options or inputs differ).
+inline std::string csv_without_run_id(const std::string& csv) {
+  std::string out, line;
+  std::istringstream in(csv);
+  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+  return out;
+}
+
 inline std::string run_id_in(const std::filesystem::path& path) {
   const std::string ext = path.extension().string();
   if (ext == ".json") return nlohmann::json::parse(file_text(path)).value("run_id", std::string());

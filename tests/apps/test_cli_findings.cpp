@@ -9,6 +9,7 @@
 #include <string>
 
 #include "radwalk_runner.h"
+#include "run_id_reader.h"
 
 namespace fs = std::filesystem;
 
@@ -115,17 +116,6 @@ TEST_CASE("radwalk check: -q silences the warnings and keeps their count", "[cli
   CHECK(contains(quiet.out, "warning(s) not shown (--quiet)"));
 }
 
-namespace {
-
-// A CSV without its last column, the run id (it differs between runs whose options or inputs differ).
-std::string without_run_id(const std::string& csv) {
-  std::string out, line;
-  std::istringstream in(csv);
-  while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
-  return out;
-}
-
-}  // namespace
 
 TEST_CASE("radwalk --set MATERIAL.Kd gives byte for byte the B of the edited MTL, and is recorded in the JSON",
           "[cli][overrides]") {
@@ -140,8 +130,8 @@ TEST_CASE("radwalk --set MATERIAL.Kd gives byte for byte the B of the edited MTL
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
   // Equal but for the run id (the last column), which differs because the options and the inputs differ.
-  const std::string edited_csv = without_run_id(slurp(dir / "edited.csv")),
-                    set_csv = without_run_id(slurp(dir / "set.csv"));
+  const std::string edited_csv = csv_without_run_id(slurp(dir / "edited.csv")),
+                    set_csv = csv_without_run_id(slurp(dir / "set.csv"));
   CHECK(!edited_csv.empty());
   CHECK(edited_csv == set_csv);
   const auto j = nlohmann::json::parse(slurp(json));
@@ -166,9 +156,9 @@ TEST_CASE("radwalk --rho-scale 0.5 equals every Kd halved in the MTL, a scale re
   INFO(a.out << b.out);
   REQUIRE(a.exit_code == 0);
   REQUIRE(b.exit_code == 0);
-  const std::string edited_csv = without_run_id(slurp(dir / "edited.csv"));
+  const std::string edited_csv = csv_without_run_id(slurp(dir / "edited.csv"));
   CHECK(!edited_csv.empty());
-  CHECK(edited_csv == without_run_id(slurp(dir / "scaled.csv")));
+  CHECK(edited_csv == csv_without_run_id(slurp(dir / "scaled.csv")));
   const Run bright = run("check " + source("meshes/cornell_box.obj") + " --rho-scale 1.3");
   CHECK(bright.exit_code == 2);
   CHECK(contains(bright.out, "reaches 1"));
