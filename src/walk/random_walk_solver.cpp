@@ -1,7 +1,6 @@
 #include "walk/random_walk_solver.h"
 
 #include <algorithm>
-#include <functional>
 #include <memory>
 #include <cmath>
 #include <limits>
