@@ -30,6 +30,7 @@
 #include "mesh/t_junctions.h"
 #include "mesh/validate.h"
 #include "patch/contact.h"
+#include "patch/patch_scene.h"
 #include "patch/patching.h"
 
 namespace radwalk::app {
@@ -221,32 +222,26 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   return mesh;
 }
 
-// Objects standing on faces (patch/contact.h): noted, and with --contact-cut when the faces are split
-// the supporting faces are cut along the footprints first.
-Mesh cut_contacts(const SceneOptions& options, Mesh mesh, RunSummary& summary) {
-  const std::vector<Contact> contacts = find_contacts(mesh);
-  const bool splitting = options.max_edge > 0 || options.max_area > 0;
-  const bool cut = splitting && options.contact_cut;
+// Objects standing on faces (patch/contact.h), as patch_scene found them: noted, and whether the supporting faces
+// were cut along the footprints (with --contact-cut when the faces are split).
+void note_contacts(const SceneOptions& options, const PatchedScene& scene, RunSummary& summary) {
+  const std::vector<Contact>& contacts = scene.contacts;
   summary.json()["contacts"] = contacts.size();
-  summary.json()["contact_cut"] = cut;
-  if (contacts.empty()) {
-    summary.json()["contact_faces_cut"] = 0;
-    return mesh;
-  }
-  for (std::size_t c = 0; c < contacts.size() && c < 10; ++c) note("contact: " + describe_contact(mesh, contacts[c]));
+  summary.json()["contact_cut"] = scene.cut;
+  summary.json()["contact_faces_cut"] = scene.contact_faces_cut;
+  if (contacts.empty()) return;
+  for (std::size_t c = 0; c < contacts.size() && c < 10; ++c)
+    note("contact: " + scene.contact_lines[c]);
   if (contacts.size() > 10) note("contact: " + std::to_string(contacts.size() - 10) + " more");
-  std::size_t cut_faces = 0;
-  if (cut) mesh = cut_along_contacts(mesh, contacts, &cut_faces);
-  summary.json()["contact_faces_cut"] = cut_faces;
+  const bool splitting = options.max_edge > 0 || options.max_area > 0;
   note(std::to_string(contacts.size()) + (contacts.size() == 1 ? " object stands" : " objects stand") +
        " on faces of the scene: " +
-       (cut ? "the supporting faces are cut along the footprints (" + std::to_string(cut_faces) +
-                  " faces cut), so no patch mixes the lit floor with the part hidden underneath"
-            : splitting ? std::string("not cut; --contact-cut cuts the supporting faces along the footprints, so "
-                                      "that no patch averages the lit floor with the part hidden underneath")
-                        : std::string("not cut, since the input faces are kept as patches (cut with --contact-cut "
-                                      "and --max-edge or --max-area)")));
-  return mesh;
+       (scene.cut ? "the supporting faces are cut along the footprints (" + std::to_string(scene.contact_faces_cut) +
+                        " faces cut), so no patch mixes the lit floor with the part hidden underneath"
+        : splitting ? std::string("not cut; --contact-cut cuts the supporting faces along the footprints, so "
+                                  "that no patch averages the lit floor with the part hidden underneath")
+                    : std::string("not cut, since the input faces are kept as patches (cut with --contact-cut "
+                                  "and --max-edge or --max-area)")));
 }
 
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
@@ -255,31 +250,31 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
 }
 
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh) {
-  Mesh loaded = load_validated_mesh(options, summary);
-  Timer timer;
-  mesh = cut_contacts(options, std::move(loaded), summary);
-  summary.add_timing("contacts", timer.seconds());
-  timer.reset();
-  PatchingOptions patching;
-  patching.max_edge = options.max_edge;
-  patching.max_area = options.max_area;
-  PatchSet patches = make_patches(mesh, patching);
-  const std::size_t back = add_back_sides(patches, options.two_sided);  // two-sided faces: a back patch each
-  summary.add_timing("patch", timer.seconds());
+  ScenePatchingOptions patching;
+  patching.split.max_edge = options.max_edge;
+  patching.split.max_area = options.max_area;
+  patching.contact_cut = options.contact_cut;
+  patching.two_sided = options.two_sided;
+  PatchedScene scene = patch_scene(load_validated_mesh(options, summary), patching);
+  note_contacts(options, scene, summary);
+  summary.add_timing("contacts", scene.contacts_seconds);
+  summary.add_timing("patch", scene.patch_seconds);
+  const PatchSet& patches = scene.patches;
   summary.json()["max_edge"] = options.max_edge;
   summary.json()["max_area"] = options.max_area;
   summary.json()["patches"] = patches.size();
   if (options.two_sided) summary.json()["two_sided"] = true;
-  if (back > 0) summary.json()["back_patches"] = back;
+  if (scene.back_patches > 0) summary.json()["back_patches"] = scene.back_patches;
   summary.json()["total_area"] = patches.total_area();
   const PatchAreaDistribution areas = patch_area_distribution(patches);
   summary.json()["patch_area"] = {{"count", areas.count}, {"min", areas.min}, {"median", areas.median},
                                   {"max", areas.max}};
   char line[160];
   std::snprintf(line, sizeof line, "%zu patches from %zu faces, patch area min %.4g, median %.4g, max %.4g",
-                areas.count, mesh.face_count(), areas.min, areas.median, areas.max);
+                areas.count, scene.mesh.face_count(), areas.min, areas.median, areas.max);
   note(line);
-  return patches;
+  mesh = std::move(scene.mesh);
+  return std::move(scene.patches);
 }
 
 namespace {

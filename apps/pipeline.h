@@ -22,9 +22,11 @@ namespace radwalk::app {
 // reading the command line (apps/output_files.h), the material libraries here.
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
-// load_validated_mesh, then make_patches with options.max_edge and max_area (notes the patch count and area
-// distribution: min, median, max; JSON `patch_area`), then add_back_sides (the faces of two-sided materials, or
-// all with --two-sided, get a back patch each, after all front patches).
+// load_validated_mesh, then patch_scene (patch/patch_scene.h, as radwalk.load: the contacts, cut with
+// --contact-cut when faces are split; make_patches with options.max_edge and max_area; add_back_sides, the faces
+// of two-sided materials, or all with --two-sided, a back patch each after all front patches). Notes the contacts
+// (JSON `contacts`, `contact_cut`, `contact_faces_cut`), the patch count and area distribution (min, median, max;
+// JSON `patch_area`).
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 // The same, keeping the validated mesh (its groups and source lines) in `mesh`.
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh);

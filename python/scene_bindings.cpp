@@ -6,8 +6,7 @@
 #include "bindings.h"
 #include "core/error.h"
 #include "mesh/read_scene.h"
-#include "patch/contact.h"
-#include "patch/patching.h"
+#include "patch/patch_scene.h"
 #include "solve/response_spec.h"
 
 namespace radwalk::python {
@@ -30,7 +29,8 @@ py::array_t<T> view(const T* data, std::size_t n, std::size_t columns, std::size
 // target[...] = values (numpy broadcasting), for `scene.rho = values`.
 void assign(py::object target, py::object values) { py::module_::import("numpy").attr("copyto")(target, values); }
 
-// Reads, validates and patches the scene as every CLI command does (load_scene, make_patches).
+// Reads, validates and patches the scene as every CLI command does (load_scene, then patch_scene: the CLI's
+// load_patches without its notes).
 Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
            bool contact_cut) {
   const std::string path = file.string();
@@ -39,18 +39,16 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
     py::gil_scoped_release release;
     ReadOptions read;
     read.strict = strict;
-    Mesh mesh = load_scene(path, read);
-    // As the CLI's load_patches (apps/pipeline.cpp): contacts cut only when asked and when faces are split, then
-    // the per-face split, then a back patch for every two-sided face.
-    if (contact_cut && (max_edge > 0 || max_area > 0)) mesh = cut_along_contacts(mesh, find_contacts(mesh));
-    PatchingOptions patching;
-    patching.max_edge = max_edge;
-    patching.max_area = max_area;
-    scene.patches = make_patches(mesh, patching);
-    add_back_sides(scene.patches, two_sided);
-    scene.group = patch_groups(mesh, scene.patches);  // through the input face of every (repaired) face
-    scene.groups = mesh.groups;
-    scene.warnings = mesh.warnings;
+    ScenePatchingOptions patching;
+    patching.split.max_edge = max_edge;
+    patching.split.max_area = max_area;
+    patching.contact_cut = contact_cut;
+    patching.two_sided = two_sided;
+    PatchedScene patched = patch_scene(load_scene(path, read), patching);
+    scene.patches = std::move(patched.patches);
+    scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
+    scene.groups = patched.mesh.groups;
+    scene.warnings = patched.mesh.warnings;
   }
   scene.path = path;
   scene.max_edge = max_edge;

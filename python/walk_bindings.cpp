@@ -55,11 +55,16 @@ SparseF walk_form_factors(const py::object& F, const Scene& scene, WalkKernel ke
 Result random_walk(const Scene& scene, const py::object& F, const std::string& method, const std::string& kernel,
                    long walks_per_patch, long particles, std::uint64_t seed, const std::string& survival,
                    double survival_constant, bool theory, const std::vector<int>& patches, long rays, int threads,
-                   bool progress, bool control_variate) {
+                   bool progress, bool control_variate, const std::string& sampler, int replicates,
+                   bool direct_light, long shadow_rays) {
   WalkOptions w = walk_options(method, kernel, walks_per_patch, particles, seed, survival, survival_constant, patches);
   w.theory = theory;
   w.progress = progress;
   w.control_variate = control_variate;
+  w.sampler = parse_walk_sampler(sampler);
+  w.replicates = replicates;
+  w.direct_light = direct_light;
+  w.shadow_rays = shadow_rays;
   check_walk_options(w, scene.patches.size());  // before any form factor is traced, as the CLI
   Result r;
   SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings);
@@ -263,7 +268,9 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
         py::arg("particles") = 1000, py::arg("seed") = 1, py::arg("survival") = "analog",
         py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
         py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
-        py::arg("control_variate") = false,
+        py::arg("control_variate") = false, py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
+        py::arg("replicates") = WalkOptions{}.replicates, py::arg("direct_light") = WalkOptions{}.direct_light,
+        py::arg("shadow_rays") = WalkOptions{}.shadow_rays,
         R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
 
 method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): "gather-absorption",
@@ -277,6 +284,13 @@ survival: "analog", "max" or "constant" (with survival_constant), the roulette r
   (empty: all; the others are NaN); seed: as the CLI's --seed (same seed, same B for any thread count).
 control_variate: gathering, matrix kernel: walk B - c from the shifted source and add the constant c back, as the
   CLI's --control-variate (docs/theory/control_variate.md).
+sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler, --replicates, --direct-light
+  and --shadow-rays (src/walk/walk_options.h): sampler "random" (i.i.d. particles), "sobol" (stratified
+  emission, randomised Sobol first rays) or "jacobi" (stochastic Jacobi, shoot-collision only); with sobol or
+  jacobi, `replicates` independent randomisations (>= 2) give B_se from their spread, and direct_light computes
+  the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
+  receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
+  replicates nor shadow_rays, and direct_light needs sobol or jacobi (InputError, as the CLI).
 Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count.)doc");
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),

@@ -18,12 +18,14 @@ SparseF shooting_transfer(const RadiosityProblem& problem) {
   return T;
 }
 
-MatrixKernel::MatrixKernel(const RadiosityProblem& problem, std::vector<double> p, WalkDirection direction)
-    : rows_(direction == WalkDirection::gather ? problem.F : shooting_transfer(problem)) {
+MatrixKernel::MatrixKernel(const RadiosityProblem& problem, const PatchRgb& E, std::vector<double> p,
+                           WalkDirection direction)
+    // (Each branch its own RowAliasTables: a conditional between problem.F and a SparseF value would copy F.)
+    : rows_(direction == WalkDirection::gather ? RowAliasTables(problem.F) : RowAliasTables(shooting_transfer(problem))) {
   const std::size_t N = problem.size();
   RADWALK_CHECK_EQ(rows_.rows(), N);  // F, rho, E, p and the areas agree in size
   RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.rho.rows()), N);
-  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(E.rows()), N);
   RADWALK_CHECK_EQ(p.size(), N);
   // Row scales n_k and row sums s_k (known: a destination sample is a stop with probability 1 - s_k / n_k).
   std::vector<double> n(N), s(N);
@@ -31,7 +33,7 @@ MatrixKernel::MatrixKernel(const RadiosityProblem& problem, std::vector<double> 
     n[k] = rows_.row_scale(k);
     s[k] = rows_.row_sum(k);
   }
-  tables_ = make_kernel_tables(problem.rho, problem.E, std::move(p), std::move(n), std::move(s));
+  tables_ = make_kernel_tables(problem.rho, E, std::move(p), std::move(n), std::move(s));
   // (H E)_k for the expected-value estimator.
   HE_.assign(N, Rgb::Zero());
   for (std::size_t k = 0; k < N; ++k) {

@@ -11,6 +11,8 @@
 // because P = A.*B obeys P = A.*E + diag(rho) T^T P for the system B = E + diag(rho) F B with any F; T = F
 // exactly when F is reciprocal (A_i F_ij = A_j F_ji), and a stored F that is not (Monte Carlo form factors)
 // still gives shooting estimates unbiased for the same B the direct solver computes.
+#include <utility>
+
 #include "solve/problem.h"
 #include "walk/alias_table.h"
 #include "walk/transition_kernel.h"
@@ -27,7 +29,11 @@ class MatrixKernel {
   static constexpr std::size_t kLanes = 1;
   // p: survival probability per patch (survival_probabilities). Throws InputError on sizes that disagree.
   MatrixKernel(const RadiosityProblem& problem, std::vector<double> p,
-               WalkDirection direction = WalkDirection::gather);
+               WalkDirection direction = WalkDirection::gather)
+      : MatrixKernel(problem, problem.E, std::move(p), direction) {}
+  // The same with E (N x 3) walked in place of problem.E: the shifted source of the control variate
+  // (control_variate.h), with no copy of the problem (F is read, not copied).
+  MatrixKernel(const RadiosityProblem& problem, const PatchRgb& E, std::vector<double> p, WalkDirection direction);
 
   std::size_t size() const { return rows_.rows(); }
   const KernelTables& tables() const { return tables_; }

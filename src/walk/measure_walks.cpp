@@ -11,9 +11,9 @@
 #include "core/moments.h"
 #include "core/parallel.h"
 #include "core/timer.h"
-#include "solve/spectral_radius.h"
 #include "walk/importance_walk.h"
 #include "walk/matrix_kernel.h"
+#include "walk/random_walk_solver.h"
 #include "walk/ray_kernel.h"
 #include "walk/walk_estimators.h"
 #include "walk/walk_lockstep.h"
@@ -178,10 +178,8 @@ Part run_measure(const K& kernel, const RadiosityProblem& problem, const WalkOpt
 
 // Refuses a system whose Neumann series diverges (no finite B to measure), as solve_random_walk does.
 void check_convergent(const RadiosityProblem& problem, const std::string& method) {
-  const SpectralRadius radius = estimate_spectral_radius(problem);
-  if (radius.lower >= 1.0 - 1e-6 || radius.estimate >= 1.0 - 1e-6)
-    throw NumericalError(method + " refused: the spectral radius of diag(rho) F is " + number_text(radius.estimate) +
-                         " >= 1, so B = E + diag(rho) F B has no finite solution to measure");
+  const WalkConvergence convergence = check_walks_converge(problem, method);
+  if (!convergence.refusal.empty()) throw NumericalError(convergence.refusal);
 }
 
 }  // namespace

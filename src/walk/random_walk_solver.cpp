@@ -1,7 +1,6 @@
 #include "walk/random_walk_solver.h"
 
 #include <algorithm>
-#include <functional>
 #include <memory>
 #include <cmath>
 #include <limits>
@@ -21,6 +20,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/timer.h"
+#include "solve/convergence.h"
 #include "solve/spectral_radius.h"
 #include "walk/matrix_kernel.h"
 #include "walk/ray_kernel.h"
@@ -29,6 +29,7 @@
 #include "walk/walk_variance.h"
 #include "walk/control_variate.h"
 #include "walk/direct_light.h"
+#include "walk/replicates.h"
 #include "walk/stochastic_jacobi.h"
 #include "walk/stratified_emission.h"
 
@@ -334,25 +335,14 @@ RunResult run_shoot(const K& kernel, const RadiosityProblem& problem, long parti
   return r;
 }
 
-// The particles of replicate r of a Sobol shooting run (the first `rest` replicates take one more).
-long replicate_particles(const WalkOptions& options, int r) {
-  const long R = options.replicates;
-  return options.particles / R + (r < options.particles % R ? 1 : 0);
-}
-
-// The direct light of replicate r (direct_light.h), adding its shadow rays to the counters.
-using DirectLightOf = std::function<PatchRgb(std::uint64_t replicate, WalkCounters& counters)>;
-
-// Sobol shooting (WalkSampler::sobol): R replicates, each an independent estimate
+// Sobol shooting (WalkSampler::sobol): R replicates (replicates.h), each an independent estimate
 //   B_r = E [+ D_r] + (1 / n_r) sum_w Y_w,
 // with the particles of stratified_emission.h shot from S = E (or from S = D_r, the direct light, when
 // `direct` is given: they then carry the indirect light only); particle w of replicate r draws after its first
-// ray from stream (seed, sobol_particle, r, w). B = mean_r B_r, its standard error s_R / sqrt(R) from the spread
-// s_R of the replicates (R - 1 degrees of freedom), and var = se^2 x particles (the per-particle variance an
-// i.i.d. run of the same error would have, so that B_se = sqrt(var / particles) as for the random sampler).
+// ray from stream (seed, sobol_particle, r, w). B, B_se and var from the replicates (replicate_estimate).
 template <class Estimator, TransitionKernel K>
 RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options,
-                          const DirectLightOf& direct, Progress* progress) {
+                          const ReplicateDirectLight& direct, Progress* progress) {
   const auto N = static_cast<Eigen::Index>(kernel.size());
   const typename Estimator::Tables tables(kernel.tables());
   const int R = options.replicates;
@@ -368,13 +358,9 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
   std::vector<Chunk> chunks;
   for (int rep = 0; rep < R; ++rep) {
     const long n = replicate_particles(options, rep);
-    PatchRgb source = problem.E;
-    Bs[static_cast<std::size_t>(rep)] = problem.E;
-    if (direct) {
-      source = direct(static_cast<std::uint64_t>(rep), r.counters);
-      Bs[static_cast<std::size_t>(rep)] += source;
-    }
-    emissions.emplace_back(source, problem.area, n, options.seed, static_cast<std::uint64_t>(rep));
+    ReplicateStart start = replicate_start(problem.E, rep, direct, r.counters);
+    Bs[static_cast<std::size_t>(rep)] = std::move(start.base);
+    emissions.emplace_back(start.source, problem.area, n, options.seed, static_cast<std::uint64_t>(rep));
     const long chunk = shoot_chunk(n);
     for (long begin = 0; begin < n; begin += chunk)
       if (emissions.back().power() > 0) chunks.push_back({rep, begin, std::min(n, begin + chunk)});
@@ -406,13 +392,10 @@ RunResult run_shoot_sobol(const K& kernel, const RadiosityProblem& problem, cons
         r.counters += part.counters;
       },
       save_shoot_part, [N](distributed::ByteReader& in) { return load_shoot_part(in, static_cast<std::uint64_t>(N)); });
-  r.B = PatchRgb::Zero(N, 3);
-  for (const PatchRgb& B : Bs) r.B += B;
-  r.B /= static_cast<double>(R);
-  PatchRgb spread = PatchRgb::Zero(N, 3);
-  for (const PatchRgb& B : Bs) spread += (B - r.B).square();
-  r.se = (spread / (static_cast<double>(R) * (R - 1))).sqrt();
-  r.var = r.se.square() * static_cast<double>(options.particles);
+  ReplicateEstimate estimate = replicate_estimate(Bs, options.particles);
+  r.B = std::move(estimate.B);
+  r.se = std::move(estimate.se);
+  r.var = std::move(estimate.var);
   return r;
 }
 
@@ -431,14 +414,14 @@ void share_run_result(RunResult& r) {
 // The one dispatch from the method to its estimator (walk_estimators.h).
 template <TransitionKernel K>
 RunResult run(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options, Progress* progress,
-              const DirectLightOf& direct) {
+              const ReplicateDirectLight& direct) {
   if (options.sampler == WalkSampler::jacobi) {
     JacobiResult j = run_stochastic_jacobi(kernel, problem, options, direct);
     if (progress) progress->advance(static_cast<std::size_t>(options.replicates));
     RunResult r;
-    r.B = std::move(j.B);
-    r.se = std::move(j.se);
-    r.var = r.se.square() * static_cast<double>(options.particles);
+    r.B = std::move(j.estimate.B);
+    r.se = std::move(j.estimate.se);
+    r.var = std::move(j.estimate.var);
     r.counters = j.counters;
     return r;
   }
@@ -475,6 +458,15 @@ Reach shooting_reach(const RadiosityProblem& problem, const PatchRgb& B) {
   return r;
 }
 
+// The exact variance (walk_variance.h) of the walks of B' from the shifted source E of the control variate
+// (control_variate.h), which is B's. The dense algebra reads E from a problem, so this (at most
+// kMaxTheoryPatches patches, beside its O(N^2) dense matrices) is the one place the problem is copied.
+PatchRgb shifted_theoretical_variance(const RadiosityProblem& problem, const PatchRgb& E, const WalkOptions& options) {
+  RadiosityProblem shifted = problem;
+  shifted.E = E;
+  return theoretical_variance(shifted, options, dense_radiosity(shifted));
+}
+
 Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                const WalkOptions& options, Progress* progress) {
   const std::size_t N = problem.size();
@@ -496,36 +488,27 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   Solution sol;
   sol.method = std::string(method_name(options.method));
 
-  // The walks estimate the Neumann series sum_m H^m E; with F stored, refuse a system for which it diverges
-  // (spectral radius of some diag(rho_c) F >= 1: rho = 1 in a closed scene, rows of F above 1). The walks would
-  // end (p_k < 1) but their weights grow without bound: no finite B exists to estimate.
   if (F_stored) {
-    const SpectralRadius radius = estimate_spectral_radius(problem);
-    sol.info["spectral_radius"] = radius.estimate;
-    if (radius.lower >= 1.0 - 1e-6 || radius.estimate >= 1.0 - 1e-6) {
-      std::ostringstream why;
-      why << sol.method << " refused: the spectral radius of diag(rho) F is " << radius.estimate
-          << " (channel " << radius.channel << ", max rho " << radius.max_rho << ", max row sum of F "
-          << radius.max_row_sum << ") >= 1, so B = E + diag(rho) F B has no finite solution for the walks to "
-             "estimate; check that reflectances are below 1 and that rows of F sum to at most 1";
+    const WalkConvergence convergence = check_walks_converge(problem, sol.method);
+    sol.info["spectral_radius"] = convergence.radius.estimate;
+    if (!convergence.refusal.empty()) {
       sol.status = SolveStatus::diverged;
-      sol.message = why.str();
+      sol.message = convergence.refusal;
       return sol;
     }
   }
 
-  // The constant control variate (control_variate.h): the walks estimate B - c from the shifted source.
-  std::optional<RadiosityProblem> shifted;
+  // The constant control variate (control_variate.h): the walks estimate B' = B - c from the shifted source E',
+  // which the kernel takes in place of problem.E (gathering only, check_walk_options: the shooting samplers read
+  // their source from problem.E).
   ControlVariate cv;
   if (options.control_variate) {
     if (!F_stored)
       throw InputError("random walk: --control-variate needs the row sums of F, so F stored (--kernel matrix)");
     cv = constant_control_variate(problem);
-    shifted = problem;
-    shifted->E = cv.E_shifted;
     for (int c = 0; c < 3; ++c) sol.info[std::string("control_variate_") + "rgb"[c]] = cv.c(c);
   }
-  const RadiosityProblem& walked = shifted ? *shifted : problem;
+  const PatchRgb& source = options.control_variate ? cv.E_shifted : problem.E;
 
   std::optional<Progress> own_progress;
   if (!progress && options.progress)
@@ -534,7 +517,7 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   RunResult r;
   // The direct light of the Sobol sampler: exact from F (matrix kernel) or by shadow rays (ray kernel).
   const long shadow_rays = direct_shadow_rays(options, N);
-  DirectLightOf direct;
+  ReplicateDirectLight direct;
   if (options.direct_light && options.kernel == WalkKernel::matrix)
     direct = [&](std::uint64_t, WalkCounters&) { return exact_direct_light(problem); };
   else if (options.direct_light)
@@ -548,13 +531,13 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
       return std::move(d.D);
     };
   if (options.kernel == WalkKernel::matrix) {
-    const MatrixKernel kernel(walked, std::move(p), direction_of(options.method));
-    r = run(kernel, walked, options, progress, direct);
+    const MatrixKernel kernel(problem, source, std::move(p), direction_of(options.method));
+    r = run(kernel, problem, options, progress, direct);
   } else {
-    const RayKernel kernel(walked, *patches, *visibility, std::move(p));
-    r = run(kernel, walked, options, progress, direct);
+    const RayKernel kernel(problem, source, *patches, *visibility, std::move(p));
+    r = run(kernel, problem, options, progress, direct);
   }
-  if (shifted) r.B.rowwise() += cv.c.transpose();  // B = c + B'; B' 's variance is B's
+  if (options.control_variate) r.B.rowwise() += cv.c.transpose();  // B = c + B'; B' 's variance is B's
   share_run_result(r);  // over MPI: rank 0's result on every rank
   sol.seconds = timer.seconds();
   if (own_progress) own_progress->finish();
@@ -608,8 +591,10 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
       msg << "; no exact variance for the ray kernel (its F is not stored)";
     else if (N > kMaxTheoryPatches)
       msg << "; exact variance skipped (" << N << " patches > " << kMaxTheoryPatches << ")";
+    else if (options.control_variate)
+      sol.var_theory = shifted_theoretical_variance(problem, cv.E_shifted, options);
     else
-      sol.var_theory = theoretical_variance(walked, options, dense_radiosity(walked));
+      sol.var_theory = theoretical_variance(problem, options, dense_radiosity(problem));
   }
   sol.message = msg.str();
   sol.status = SolveStatus::converged;
@@ -617,6 +602,21 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
 }
 
 }  // namespace
+
+WalkConvergence check_walks_converge(const RadiosityProblem& problem, const std::string& method) {
+  WalkConvergence c;
+  c.radius = estimate_spectral_radius(problem);
+  const SpectralRadius& radius = c.radius;
+  if (radius.lower >= 1.0 - kRadiusOneTolerance || radius.estimate >= 1.0 - kRadiusOneTolerance) {
+    std::ostringstream why;
+    why << method << " refused: the spectral radius of diag(rho) F is " << radius.estimate << " (channel "
+        << radius.channel << ", max rho " << radius.max_rho << ", max row sum of F " << radius.max_row_sum
+        << ") >= 1, so B = E + diag(rho) F B has no finite solution for the walks to estimate; check that "
+           "reflectances are below 1 and that rows of F sum to at most 1";
+    c.refusal = why.str();
+  }
+  return c;
+}
 
 long direct_shadow_rays(const WalkOptions& options, std::size_t patch_count) {
   if (!options.direct_light) return 0;

@@ -22,8 +22,11 @@
 // Threads: whatever TBB allows (core/parallel.h ThreadLimit); the output does not depend on it.
 // Progress: with options.progress a line "random walks (METHOD)" on stderr (core/progress.h); or the caller's
 // Progress, advanced by walk_work_items(options, N) in all (compare shows one line over several solves).
+#include <string>
+
 #include "patch/patch_set.h"
 #include "solve/problem.h"
+#include "solve/spectral_radius.h"
 #include "core/solution.h"
 #include "visibility/visibility.h"
 #include "walk/walk_options.h"
@@ -40,6 +43,19 @@ Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patc
                            const WalkOptions& options);
 Solution solve_random_walk(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                            const WalkOptions& options, Progress& progress);
+
+// The walks estimate the Neumann series B = sum_m (diag(rho) F)^m E, which diverges when the spectral radius of
+// some diag(rho_c) F is 1 or more (within kRadiusOneTolerance, solve/convergence.h: rho = 1 in a closed scene,
+// rows of F above 1): the walks would end (p_k < 1) but their weights grow without bound, and no finite B
+// exists to estimate. For problem.F stored (N x N): the radius estimated (solve/spectral_radius.h) and, when it
+// is that large, `refusal`, one line naming `method`, the radius, its channel, the largest rho and row sum of F
+// (empty when the walks may go on). solve_random_walk returns it as a diverged Solution, measure_random_walk
+// throws it as a NumericalError.
+struct WalkConvergence {
+  SpectralRadius radius;
+  std::string refusal;
+};
+WalkConvergence check_walks_converge(const RadiosityProblem& problem, const std::string& method);
 
 // The shadow rays per receiving patch (over all replicates) a Sobol run with direct_light traces on the ray
 // kernel: options.shadow_rays, or particles / (2 N) and at least 16 per replicate; 0 without direct_light.

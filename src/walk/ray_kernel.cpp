@@ -28,12 +28,12 @@ LaneFloats lane_sqrt(const LaneFloats& x) {
 
 }  // namespace
 
-RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, const Visibility& visibility,
-                     std::vector<double> p)
+RayKernel::RayKernel(const RadiosityProblem& problem, const PatchRgb& E, const PatchSet& patches,
+                     const Visibility& visibility, std::vector<double> p)
     : visibility_(visibility) {
   const std::size_t N = patches.size();
   RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.rho.rows()), N);  // patches, rho, E and p agree in size
-  RADWALK_CHECK_EQ(static_cast<std::size_t>(problem.E.rows()), N);
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(E.rows()), N);
   RADWALK_CHECK_EQ(p.size(), N);
   // Per-patch sampling records, in double and then rounded: the quad split as in sample_patch_point, the
   // corner and edges shrunk about the centroid by (1 - pull) and lifted by eps n as spawn_ray moves a point.
@@ -64,7 +64,7 @@ RayKernel::RayKernel(const RadiosityProblem& problem, const PatchSet& patches, c
     s.normal = frame.n.cast<float>();
   }
   // n_k = 1; the row sums are not known.
-  tables_ = make_kernel_tables(problem.rho, problem.E, std::move(p), std::vector<double>(N, 1.0), {});
+  tables_ = make_kernel_tables(problem.rho, E, std::move(p), std::vector<double>(N, 1.0), {});
 }
 
 void RayKernel::make_rays(const SampleRequest* requests, std::size_t count, RayPacket& rays) const {

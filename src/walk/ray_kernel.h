@@ -30,6 +30,7 @@
 // The row sums s_k, and so the escape probability 1 - s_k of a ray, are unknown without F (tables().s is empty).
 // HE(k, j) = rho_k E_j for one extra, independent sample j (kHESampled): E[.] = (H E)_k.
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "patch/patch_set.h"
@@ -73,7 +74,12 @@ class RayKernel {
   // rho and E come from `problem` (F is not used and may be empty); geometry from `patches`; `visibility`
   // must outlive the kernel. Throws InputError on sizes that disagree.
   RayKernel(const RadiosityProblem& problem, const PatchSet& patches, const Visibility& visibility,
-            std::vector<double> p);
+            std::vector<double> p)
+      : RayKernel(problem, problem.E, patches, visibility, std::move(p)) {}
+  // The same with E (N x 3) walked in place of problem.E: the shifted source of the control variate
+  // (control_variate.h), with no copy of the problem.
+  RayKernel(const RadiosityProblem& problem, const PatchRgb& E, const PatchSet& patches,
+            const Visibility& visibility, std::vector<double> p);
 
   std::size_t size() const { return samplers_.size(); }
   const KernelTables& tables() const { return tables_; }

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "core/check.h"
@@ -24,12 +25,6 @@ double unshot_power(const PatchRgb& S, const Eigen::VectorXd& area) {
   double phi = 0;
   for (Eigen::Index j = 0; j < S.rows(); ++j) phi += area(j) * S.row(j).abs().sum();
   return phi;
-}
-
-// The particles of replicate r (the first particles % R replicates take one more), as the Sobol sampler.
-long replicate_particles(const WalkOptions& options, int r) {
-  const long R = options.replicates;
-  return options.particles / R + (r < options.particles % R ? 1 : 0);
 }
 
 // One iteration: S_next from n rays shot from S by stratified emission (the top of stochastic_jacobi.h).
@@ -89,7 +84,7 @@ PatchRgb shoot_once(const K& kernel, const RadiosityProblem& problem, const Patc
 
 template <TransitionKernel K>
 JacobiResult run_stochastic_jacobi(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options,
-                                   const JacobiDirectLight& direct) {
+                                   const ReplicateDirectLight& direct) {
   const auto N = static_cast<Eigen::Index>(problem.size());
   const int R = options.replicates;
   RADWALK_CHECK(R >= 2);
@@ -102,13 +97,10 @@ JacobiResult run_stochastic_jacobi(const K& kernel, const RadiosityProblem& prob
   JacobiResult result;
   std::vector<PatchRgb> Bs(static_cast<std::size_t>(R));
   for (int r = 0; r < R; ++r) {
+    ReplicateStart start = replicate_start(problem.E, r, direct, result.counters);
     PatchRgb& B = Bs[static_cast<std::size_t>(r)];
-    B = problem.E;
-    PatchRgb S = problem.E;
-    if (direct) {
-      S = direct(static_cast<std::uint64_t>(r), result.counters);
-      B += S;
-    }
+    B = std::move(start.base);
+    PatchRgb S = std::move(start.source);
     const double phi0 = unshot_power(S, problem.area);
     if (!(phi0 > 0)) continue;
     const double rays_per_power = static_cast<double>(replicate_particles(options, r)) * (1 - rho_bar) / phi0;
@@ -122,18 +114,13 @@ JacobiResult run_stochastic_jacobi(const K& kernel, const RadiosityProblem& prob
       ++result.iterations;
     }
   }
-  result.B = PatchRgb::Zero(N, 3);
-  for (const PatchRgb& B : Bs) result.B += B;
-  result.B /= static_cast<double>(R);
-  PatchRgb spread = PatchRgb::Zero(N, 3);
-  for (const PatchRgb& B : Bs) spread += (B - result.B).square();
-  result.se = (spread / (static_cast<double>(R) * (R - 1))).sqrt();
+  result.estimate = replicate_estimate(Bs, options.particles);
   return result;
 }
 
 template JacobiResult run_stochastic_jacobi<MatrixKernel>(const MatrixKernel&, const RadiosityProblem&,
-                                                          const WalkOptions&, const JacobiDirectLight&);
+                                                          const WalkOptions&, const ReplicateDirectLight&);
 template JacobiResult run_stochastic_jacobi<RayKernel>(const RayKernel&, const RadiosityProblem&,
-                                                       const WalkOptions&, const JacobiDirectLight&);
+                                                       const WalkOptions&, const ReplicateDirectLight&);
 
 }  // namespace radwalk

@@ -3,7 +3,7 @@
 // by bounce, each bounce's power re-shot from the patches in proportion to it (Neumann, Bekaert et al.; the method
 // RenderPark recommends), with rays per iteration in proportion to the unshot power.
 //
-// Replicate r (r = 0 .. R-1, R = options.replicates), n_r = its particles (random_walk_solver.h's split):
+// Replicate r (r = 0 .. R-1, R = options.replicates), n_r = its particles (replicates.h, as the Sobol sampler's):
 //   S_0 = E, or D_r (the direct light, direct_light.h) with options.direct_light, and B_r = E (+ D_r);
 //   iteration k = 0, 1, ...: Phi_k = sum_j A_j sum_c |S_kc|; n_{r,k} = max(16, round(c Phi_k)) rays with
 //   c = n_r (1 - rho_bar) / Phi_0 (rho_bar the area-weighted mean reflectance, so that sum_k n_{r,k} ~ n_r);
@@ -16,28 +16,26 @@
 //   shooting operator of shoot_estimators.h), so by induction E[S_k] is the k-th bounce and B_r is unbiased for
 //   B up to the truncation: the iterations stop once Phi_k <= 1e-6 Phi_0 (or after 200), leaving a bias of at
 //   most that unshot fraction (relative 1e-6 of the power; far below any error this method reaches).
-// B = mean_r B_r, B_se from the spread of the replicates (R - 1 degrees of freedom), as the Sobol sampler.
+// B = mean_r B_r, B_se from the spread of the replicates (R - 1 degrees of freedom), as the Sobol sampler
+// (replicates.h).
 // Work per iteration in fixed chunks merged in chunk order: bit-identical for any thread count.
-#include <functional>
-
 #include "core/types.h"
 #include "solve/problem.h"
+#include "walk/replicates.h"
 #include "walk/transition_kernel.h"
 #include "walk/walk_options.h"
 
 namespace radwalk {
 
 struct JacobiResult {
-  PatchRgb B, se;
+  ReplicateEstimate estimate;  // B, B_se and var
   WalkCounters counters;
   long iterations = 0;  // summed over the replicates
 };
 
-// The direct light of replicate r (adds its rays to the counters), or empty for S_0 = E.
-using JacobiDirectLight = std::function<PatchRgb(std::uint64_t replicate, WalkCounters& counters)>;
-
+// direct: the direct light of replicate r (adds its rays to the counters), or empty for S_0 = E.
 template <TransitionKernel K>
 JacobiResult run_stochastic_jacobi(const K& kernel, const RadiosityProblem& problem, const WalkOptions& options,
-                                   const JacobiDirectLight& direct);
+                                   const ReplicateDirectLight& direct);
 
 }  // namespace radwalk

@@ -67,3 +67,39 @@ def test_control_variate_equals_the_cli(tmp_path):
     assert not np.array_equal(plain.B, walk.B)  # the flag changes the walks
     with pytest.raises(radwalk.InputError, match="gathering"):
         radwalk.random_walk(scene, ff, method="shoot-collision", control_variate=True)
+
+
+@pytest.mark.parametrize("kernel, flags, options", [
+    ("matrix", ["--sampler", "sobol", "--replicates", 5, "--direct-light"],
+     {"sampler": "sobol", "replicates": 5, "direct_light": True}),
+    ("ray", ["--sampler", "jacobi", "--replicates", 3, "--direct-light", "--shadow-rays", 48],
+     {"sampler": "jacobi", "replicates": 3, "direct_light": True, "shadow_rays": 48}),
+])
+def test_shooting_sampler_options_equal_the_cli(tmp_path, kernel, flags, options):
+    """random_walk(sampler=, replicates=, direct_light=, shadow_rays=) are the CLI's --sampler, --replicates,
+    --direct-light and --shadow-rays: the same CSV byte for byte, on either kernel."""
+    run_cli("solve", mesh("cube.obj"), "--max-edge", 0.5, "--rays", 300, "--seed", 4, "--solver", "random-walk",
+            "--walk", "shoot", "--estimator", "collision", "--kernel", kernel, "--particles", 6000, *flags,
+            "--csv", tmp_path / "cli.csv")
+    scene = radwalk.load(mesh("cube.obj"), max_edge=0.5)
+    fields = {}
+    F = None
+    if kernel == "matrix":
+        F = radwalk.form_factors(scene, rays=300, seed=4)
+        fields.update(F.diagnostics)
+    walk = radwalk.random_walk(scene, F, method="shoot-collision", kernel=kernel, particles=6000, seed=4, **options)
+    radwalk.write_csv(tmp_path / "py.csv", scene, {**fields, **walk.fields})
+    cli = without_run_id(open(tmp_path / "cli.csv", "rb").read())
+    assert cli == without_run_id(open(tmp_path / "py.csv", "rb").read())
+    plain = radwalk.random_walk(scene, F, method="shoot-collision", kernel=kernel, particles=6000, seed=4)
+    assert not np.array_equal(plain.B, walk.B)  # the options change the particles
+
+
+def test_shooting_sampler_options_are_checked_as_the_cli():
+    scene = radwalk.load(mesh("cube.obj"))
+    with pytest.raises(radwalk.InputError, match="did you mean"):
+        radwalk.random_walk(scene, method="shoot-collision", sampler="sobl")
+    with pytest.raises(radwalk.InputError, match="--sampler sobol or jacobi"):
+        radwalk.random_walk(scene, method="shoot-collision", direct_light=True)
+    with pytest.raises(radwalk.InputError, match="--replicates 1"):
+        radwalk.random_walk(scene, method="shoot-collision", sampler="sobol", replicates=1)
