@@ -24,7 +24,7 @@ void prefix_sums(const std::vector<std::int32_t>& length, std::int32_t* outer) {
   for (std::size_t i = 0; i < length.size(); ++i) {
     at += length[i];
     if (at > std::numeric_limits<std::int32_t>::max())
-      throw InputError("form-factor matrix has more than 2^31-1 non-zeros");
+      throw InputError("form factors: the rows of all ranks hold more than 2^31-1 non-zeros (the 32-bit index range)");
     outer[i + 1] = static_cast<std::int32_t>(at);
   }
 }

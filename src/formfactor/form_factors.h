@@ -20,8 +20,8 @@
 // Rays leave through spawn_ray (visibility/ray_offset.h). Parallel over patches (core/parallel.h); rows are
 // assembled into CSR without a global sort or lock: each row's hits are sorted into (j, count) runs in place,
 // then appended to F's arrays, reserved once (never copied). Memory: 8 bytes per non-zero of F (resident; the
-// reservation for sum_i min(n_i, N) non-zeros costs address space only) plus a working buffer of at most 16 M
-// rays (8 bytes per ray).
+// reservation for sum_i min(n_i, N) non-zeros costs address space only; over MPI, estimate_form_factor_rows: of
+// the rank's own rows only) plus a working buffer of at most 16 M rays (8 bytes per ray).
 #include <cstdint>
 #include <vector>
 
