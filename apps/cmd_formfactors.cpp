@@ -1,6 +1,7 @@
 // radwalk formfactors SCENE [--rays N | --rays-per-area D] -o F.mtx|F.npz [--csv] [--vtp] [--json]
 #include <algorithm>
 #include <cstdio>
+#include <cstdint>
 
 #include "apps/options.h"
 #include "apps/pipeline.h"
@@ -13,14 +14,22 @@ namespace radwalk::app {
 int run_formfactors(const FormFactorsCommand& command) {
   RunSummary summary("formfactors", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
-  const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
-  if (!command.mtx.empty()) {
-    Timer timer;
-    write_form_factors(command.mtx, ff.F, run_id_of(summary));  // .npz or .mtx
-    summary.add_timing("write_matrix", timer.seconds());
-    note("wrote " + command.mtx);
+  // Over MPI each rank traces and keeps its rows; rank 0 gathers the whole F (the others' rows in rank order) to
+  // write the one file, the same bytes as one process's, and to compute the diagnostics, then drops it.
+  const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary, RowsHeld::own_rows);
+  const std::uint64_t nonzeros = total_nonzeros(ff.F, ff.row_blocks);
+  std::vector<CellField> diagnostics;
+  {
+    SparseF gathered;
+    const SparseF& whole = gather_rows_to_root(ff.F, ff.row_blocks, gathered);
+    if (!command.mtx.empty()) {
+      Timer timer;
+      write_form_factors(command.mtx, whole, run_id_of(summary));  // .npz or .mtx (rank 0 writes)
+      summary.add_timing("write_matrix", timer.seconds());
+      note("wrote " + command.mtx);
+    }
+    diagnostics = form_factor_fields(ff, patches, &whole);
   }
-  const std::vector<CellField> diagnostics = form_factor_fields(ff, patches);
 
   // Summary on stdout: closure and reciprocity over all patches.
   const auto& row_sum = diagnostics[0].values;
@@ -29,7 +38,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   const double max_row = *std::max_element(row_sum.begin(), row_sum.end());
   const double max_recip = *std::max_element(recip.begin(), recip.end());
   std::printf("%zu patches, %ld non-zeros (%.1f per row); row sums in [%.6f, %.6f]; max reciprocity error %.3g\n",
-              patches.size(), static_cast<long>(ff.F.nonZeros()), double(ff.F.nonZeros()) / patches.size(), min_row,
+              patches.size(), static_cast<long>(nonzeros), double(nonzeros) / patches.size(), min_row,
               max_row, max_recip);
   summary.json()["row_sum_min"] = min_row;
   summary.json()["row_sum_max"] = max_row;

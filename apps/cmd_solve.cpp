@@ -167,9 +167,12 @@ int run_solve(const SolveCommand& command) {
     const EmbreeVisibility visibility(patches);
     solution = run_walks(command, walk, problem, patches, &visibility, summary);
   } else {
-    FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
+    // Over MPI the deterministic solvers take a row-distributed F (each rank its rows: Jacobi and Gauss-Seidel
+    // sweep them, the direct solve and Southwell gather the whole F); the matrix-kernel walks need every row.
+    FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary,
+                                         walks ? RowsHeld::every_row : RowsHeld::own_rows);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
-    const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
+    const RadiosityProblem problem = make_problem(patches, std::move(ff.F), std::move(ff.row_blocks));
     if (walks) {
       solution = run_walks(command, walk, problem, patches, nullptr, summary);
     } else {

@@ -20,6 +20,7 @@
 #include "formfactor/emitter_form_factors.h"
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factor_file.h"
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/matrix_market.h"
 #include "formfactor/reciprocity.h"
 #include "io/csv_writer.h"
@@ -347,11 +348,16 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
 }  // namespace
 
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
-                                const PatchSet& patches, RunSummary& summary) {
+                                const PatchSet& patches, RunSummary& summary, RowsHeld held) {
   FormFactors ff;
   Timer timer;
+  // Over MPI with RowsHeld::own_rows each rank keeps only its block of rows (formfactor/form_factor_rows.h).
+  const bool own_rows = held == RowsHeld::own_rows;
   if (!options.form_factors.empty()) {
-    ff.F = read_form_factors(options.form_factors, patches.size());  // .npz (mapped) or .mtx
+    // .npz (mapped) or .mtx; a refusal that one rank finds in its own rows is every rank's.
+    distributed::agree_on_input_error([&] {
+      ff.F = read_form_factors(options.form_factors, patches.size(), own_rows ? &ff.row_blocks : nullptr);
+    });
     summary.add_timing("read_form_factors", timer.seconds());
     summary.json()["form_factors_file"] = options.form_factors;
   } else {
@@ -371,9 +377,9 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
       summary.json()["emitter_shadow_rays"] = ef.shadow_rays;
       note("form factors: " + std::to_string(ef.emitter_columns) + " emitter columns from " +
            std::to_string(ef.shadow_rays) + " shadow rays");
-      ff = std::move(ef.form_factors);
+      ff = std::move(ef.form_factors);  // every row on every rank (the emitter columns are not distributed)
     } else {
-      ff = estimate_form_factors(patches, visibility, o);
+      ff = own_rows ? estimate_form_factor_rows(patches, visibility, o) : estimate_form_factors(patches, visibility, o);
     }
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);
@@ -390,7 +396,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     summary.json()["escaped_fraction"] = double(escaped) / traced;
     summary.json()["back_hit_fraction"] = double(back) / traced;
     note("form factors: " + std::to_string(rays) + " rays in " + std::to_string(seconds) + " s, " +
-         std::to_string(ff.F.nonZeros()) + " non-zeros");
+         std::to_string(total_nonzeros(ff.F, ff.row_blocks)) + " non-zeros");
     if (back > 0) {
       std::size_t worst = 0, patches_hit = 0, enclosed = 0;
       for (std::size_t i = 0; i < patches.size(); ++i) {
@@ -409,9 +415,17 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     }
     if (escaped > 0 && g_scene.closed_shell) warn_escaped_rays(ff, patches, escaped, rays, summary);
   }
-  summary.json()["form_factor_nonzeros"] = ff.F.nonZeros();
+  summary.json()["form_factor_nonzeros"] = total_nonzeros(ff.F, ff.row_blocks);
   if (options.reciprocity) {
+    // Averaging A_i F_ij with A_j F_ji needs the other rows: over MPI the whole F is gathered, then each rank
+    // keeps its rows again.
+    const RowBlocks blocks = ff.row_blocks;
+    gather_whole_rows(ff.F, ff.row_blocks);
     const ReciprocityChange change = enforce_reciprocity(ff.F, patches.area);
+    if (holds_own_rows_only(blocks)) {
+      ff.F = keep_rows(ff.F, blocks[static_cast<std::size_t>(distributed::rank())]);
+      ff.row_blocks = blocks;
+    }
     summary.json()["reciprocity_max_relative_change"] = change.max_relative_change;
     summary.json()["reciprocity_mean_relative_change"] = change.mean_relative_change;
     summary.json()["reciprocity_rows_rescaled"] = change.rows_rescaled;
@@ -419,11 +433,22 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
          " % on average, at most " + std::to_string(100 * change.max_relative_change) + " %; " +
          std::to_string(change.rows_rescaled) + " rows rescaled to keep row sums <= 1");
   }
+  if (distributed::size() > 1)  // what each rank holds (docs/json-schema.md)
+    summary.json()["mpi"]["form_factor_nonzeros_by_rank"] = nonzeros_by_rank(ff.F);
   return ff;
 }
 
-std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches) {
-  const FormFactorDiagnostics d = diagnose_form_factors(ff.F, patches.area, ff.rays, ff.back_hits);
+std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches, const SparseF* gathered) {
+  // The reciprocity error needs F_ji: with a row-distributed F rank 0 gathers the whole F (unless the caller
+  // already did), computes the diagnostics alone and sends them to the other ranks (O(N) each).
+  SparseF storage;
+  const SparseF& F = gathered ? *gathered : gather_rows_to_root(ff.F, ff.row_blocks, storage);
+  const bool rows_only = holds_own_rows_only(ff.row_blocks);
+  FormFactorDiagnostics d;
+  if (!rows_only || distributed::is_root()) d = diagnose_form_factors(F, patches.area, ff.rays, ff.back_hits);
+  if (rows_only)
+    for (std::vector<double>* v : {&d.row_sum, &d.back_hit_fraction, &d.reciprocity_error, &d.row_std_error})
+      distributed::broadcast(*v);
   std::vector<CellField> fields = {scalar_field("row_sum", d.row_sum),
                                    scalar_field("reciprocity_error", d.reciprocity_error)};
   if (!ff.rays.empty()) {
@@ -460,8 +485,12 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
     note("wrote " + options.csv);
   }
   summary.add_timing("write", timer.seconds());
-  if (distributed::size() > 1)  // over MPI only (docs/json-schema.md): rank 0's traffic
-    summary.json()["mpi"] = {{"ranks", distributed::size()}, {"rank0_bytes_received", distributed::bytes_received()}};
+  if (distributed::size() > 1) {  // over MPI only (docs/json-schema.md): rank 0's traffic, gathers of the whole F
+    nlohmann::json& mpi = summary.json()["mpi"];
+    mpi["ranks"] = distributed::size();
+    mpi["rank0_bytes_received"] = distributed::bytes_received();
+    mpi["whole_form_factor_gathers"] = whole_row_gathers();
+  }
   if (!options.json.empty()) {
     summary.write(options.json);
     note("wrote " + options.json);

@@ -31,14 +31,23 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 // The same, keeping the validated mesh (its groups and source lines) in `mesh`.
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh);
 
+// Which rows of F each rank holds over MPI: every row (what every consumer of F can use), or only its own block
+// (formfactor/form_factor_rows.h: for Jacobi, Gauss-Seidel and writing F; ff.row_blocks says which). The same
+// with one process.
+enum class RowsHeld { every_row, own_rows };
+
 // Form factors for the patches: read from --form-factors (ray counts left empty) or estimated with Embree
-// (timed as "form_factors"); --reciprocity is applied either way and its change reported.
+// (timed as "form_factors"); --reciprocity is applied either way and its change reported (over MPI on the whole F,
+// gathered for it). Over MPI the JSON's mpi.form_factor_nonzeros_by_rank records what each rank holds.
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
-                                const PatchSet& patches, RunSummary& summary);
+                                const PatchSet& patches, RunSummary& summary, RowsHeld held = RowsHeld::every_row);
 
 // Per-patch form-factor diagnostics as cell fields: row_sum, escaped, back_hits, reciprocity_error,
-// row_std_error (the counts only when F was estimated here).
-std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches);
+// row_std_error (the counts only when F was estimated here). Collective over MPI when ff is row-distributed:
+// rank 0 computes them on the whole F (`gathered`, from gather_rows_to_root, when the caller has it; otherwise
+// gathered here for the time of the computation) and broadcasts them.
+std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet& patches,
+                                          const SparseF* gathered = nullptr);
 
 // Writes -o FILE.vtp, --csv and --json where asked, timing the stage "write". `fields` are the command's own
 // per-patch results; both files also carry the patch description (patch_fields: patch, face, area, normal, rho,

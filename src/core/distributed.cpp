@@ -146,11 +146,24 @@ std::vector<char> allgather_concat_bytes(const void* mine, std::size_t count, st
   return out;
 }
 
-void send_to_root(const std::vector<char>& bytes) {
-  unsigned long long n = bytes.size();
+void send_to_root(const std::vector<char>& bytes) { send_to_root(bytes.data(), bytes.size()); }
+
+void send_to_root(const void* data, std::size_t bytes) {
+  const auto* p = static_cast<const char*>(data);
+  unsigned long long n = bytes;
   MPI_Send(&n, 1, MPI_UNSIGNED_LONG_LONG, 0, 1, g_work);
-  for (std::size_t at = 0; at < bytes.size(); at += kPiece)
-    MPI_Send(bytes.data() + at, static_cast<int>(std::min(kPiece, bytes.size() - at)), MPI_BYTE, 0, 2, g_work);
+  for (std::size_t at = 0; at < bytes; at += kPiece)
+    MPI_Send(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, 0, 2, g_work);
+}
+
+void receive_into(int r, void* data, std::size_t bytes) {
+  unsigned long long n = 0;
+  MPI_Recv(&n, 1, MPI_UNSIGNED_LONG_LONG, r, 1, g_work, MPI_STATUS_IGNORE);
+  RADWALK_CHECK_EQ(static_cast<std::size_t>(n), bytes);  // the sender sent what the receiver expects
+  g_received += bytes;
+  auto* p = static_cast<char*>(data);
+  for (std::size_t at = 0; at < bytes; at += kPiece)
+    MPI_Recv(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, r, 2, g_work, MPI_STATUS_IGNORE);
 }
 
 std::vector<char> receive_from(int r) {
@@ -247,6 +260,8 @@ std::vector<char> allgather_concat_bytes(const void* mine, std::size_t count, st
   return std::vector<char>(p, p + count * elem_size);
 }
 void send_to_root(const std::vector<char>&) { RADWALK_CHECK(false); }  // one process has no other rank
+void send_to_root(const void*, std::size_t) { RADWALK_CHECK(false); }
+void receive_into(int, void*, std::size_t) { RADWALK_CHECK(false); }
 std::vector<char> receive_from(int) {
   RADWALK_CHECK(false);
   return {};

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/error.h"
 #include "core/parallel.h"
 
 namespace radwalk::distributed {
@@ -56,9 +57,14 @@ void broadcast_bytes(void* data, std::size_t bytes);
 void allgather_in_place(void* data, std::size_t elem_size, const std::vector<Range>& ranges);
 // Every rank's `mine` (count elements) concatenated in rank order, on every rank (allgatherv).
 std::vector<char> allgather_concat_bytes(const void* mine, std::size_t count, std::size_t elem_size);
-// Point to point with rank 0 (not collective): a rank r > 0 sends, rank 0 receives from r.
+// Point to point with rank 0 (not collective): a rank r > 0 sends, rank 0 receives from r (messages from one
+// rank arrive in the order sent).
 void send_to_root(const std::vector<char>& bytes);
+void send_to_root(const void* data, std::size_t bytes);
 std::vector<char> receive_from(int r);
+// Receives the next message of rank r into data, which has room for exactly `bytes` bytes (RADWALK_CHECK: the
+// message is that long), with no copy in between.
+void receive_into(int r, void* data, std::size_t bytes);
 // The largest value over all ranks.
 double max_over_ranks(double value);
 // The bytes this rank has received from other ranks so far (every collective and message above; not collective).
@@ -89,6 +95,32 @@ std::vector<T> allgather_concat(const std::vector<T>& mine) {
   if (!bytes.empty()) std::memcpy(static_cast<void*>(out.data()), bytes.data(), bytes.size());
   return out;
 }
+// Runs f() on every rank; when it threw an InputError on any rank, every rank throws the InputError of the lowest
+// such rank (with the same one-line message), so that a refusal that one rank alone finds (a bad entry in its own
+// rows of a file) ends the job at once with that line from rank 0 instead of leaving the others in the next
+// collective. Other exceptions propagate as they are (Session::finish). With one process it is f().
+template <class F>
+void agree_on_input_error(F&& f) {
+  if (size() == 1) {
+    f();
+    return;
+  }
+  std::string mine;
+  try {
+    f();
+  } catch (const InputError& e) {
+    mine = e.what();
+    if (mine.empty()) mine = "input error";
+  }
+  const std::vector<std::uint64_t> lengths = allgather_concat(std::vector<std::uint64_t>{mine.size()});
+  std::size_t first = 0;
+  while (first < lengths.size() && lengths[first] == 0) ++first;
+  if (first == lengths.size()) return;  // no rank refused
+  // The ranks before `first` sent nothing, so its message opens the concatenation.
+  const std::vector<char> all = allgather_concat(std::vector<char>(mine.begin(), mine.end()));
+  throw InputError(std::string(all.data(), static_cast<std::size_t>(lengths[first])));
+}
+
 // The blocks of every rank for n items (block(n, r) for r = 0 .. R-1). Not collective.
 std::vector<Range> all_blocks(std::size_t n, int ranks);
 inline std::vector<Range> all_blocks(std::size_t n) { return all_blocks(n, size()); }

@@ -16,8 +16,8 @@ void write_form_factors(const std::string& path, const SparseF& F, const std::st
     write_matrix_market(path, F, run_id);
 }
 
-SparseF read_form_factors(const std::string& path, std::size_t expected_n) {
-  return is_npz_path(path) ? read_npz(path, expected_n) : read_matrix_market(path, expected_n);
+SparseF read_form_factors(const std::string& path, std::size_t expected_n, RowBlocks* rows) {
+  return is_npz_path(path) ? read_npz(path, expected_n, rows) : read_matrix_market(path, expected_n, rows);
 }
 
 }  // namespace radwalk

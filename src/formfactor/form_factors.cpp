@@ -13,6 +13,7 @@
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "core/sobol.h"
+#include "formfactor/form_factor_rows.h"
 #include "patch/patch_point_sampler.h"
 #include "visibility/ray_offset.h"
 
@@ -186,24 +187,12 @@ RowResult trace_row(const PatchSet& ps, const Visibility& vis, const FormFactorO
   return r;
 }
 
-// Over MPI: every rank traced the rows of its block (row_blocks[rank]) into the first `at` entries of F's
-// arrays; afterwards every rank has every row's counts and entries, each from the rank that traced it, in row
-// order, so F is the one a single process estimates, bit for bit.
-void share_rows(const std::vector<distributed::Range>& row_blocks, std::vector<std::uint32_t>& nnz, FormFactors& out,
-                std::size_t at, const std::string& source) {
-  distributed::share_blocks(nnz, row_blocks);
+// Over MPI: every rank traced the rows of its block (row_blocks[rank]); afterwards every rank has every row's ray
+// outcomes (escaped, back hits: O(N), for the diagnostics and warnings), each from the rank that traced it. F
+// keeps its rows (form_factor_rows.h).
+void share_ray_outcomes(const std::vector<distributed::Range>& row_blocks, FormFactors& out) {
   distributed::share_blocks(out.escaped, row_blocks);
   distributed::share_blocks(out.back_hits, row_blocks);
-  // Straight from F's arrays (no copy into a vector first), then back into them.
-  const std::vector<char> cols = distributed::allgather_concat_bytes(out.F.innerIndexPtr(), at, sizeof(std::int32_t));
-  const std::vector<char> values = distributed::allgather_concat_bytes(out.F.valuePtr(), at, sizeof(float));
-  const std::size_t nnz_all = cols.size() / sizeof(std::int32_t);
-  if (nnz_all > std::size_t(std::numeric_limits<std::int32_t>::max()))
-    throw InputError(locate(source, 0, -1, "form-factor matrix has more than 2^31-1 non-zeros"));
-  out.F.resizeNonZeros(Eigen::Index(nnz_all));
-  if (nnz_all == 0) return;
-  std::memcpy(out.F.innerIndexPtr(), cols.data(), cols.size());
-  std::memcpy(out.F.valuePtr(), values.data(), values.size());
 }
 
 }  // namespace
@@ -219,6 +208,12 @@ std::uint32_t ray_count(const FormFactorOptions& options, double area) {
 }
 
 FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& options) {
+  FormFactors out = estimate_form_factor_rows(ps, vis, options);
+  gather_whole_rows(out.F, out.row_blocks);  // over MPI: every rank gets every row
+  return out;
+}
+
+FormFactors estimate_form_factor_rows(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& options) {
   check_options(options);
   const std::size_t N = ps.size();
   if (N > std::size_t(std::numeric_limits<std::int32_t>::max()))
@@ -237,8 +232,13 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   // is never copied (a copy would double the peak). Blocks of consecutive rows with at most kBlockRays rays (or
   // one row) are traced into a working buffer with room for min(n_i, N) entries per row, and each row's runs
   // are then appended to F's arrays.
+  // Over MPI each rank traces a block of rows with about equal rays (core/distributed.h); with one process, all.
+  const std::vector<distributed::Range> row_blocks = distributed::weighted_blocks(
+      distributed::size() == 1 ? std::vector<double>() : std::vector<double>(out.rays.begin(), out.rays.end()));
+  const distributed::Range mine =
+      distributed::size() == 1 ? distributed::Range{0, N} : row_blocks[static_cast<std::size_t>(distributed::rank())];
   std::size_t bound = 0;
-  for (std::size_t i = 0; i < N; ++i) bound += std::min<std::size_t>(out.rays[i], N);
+  for (std::size_t i = mine.begin; i < mine.end; ++i) bound += std::min<std::size_t>(out.rays[i], N);
   const auto kMaxNonZeros = std::size_t(std::numeric_limits<std::int32_t>::max());
   out.F.resize(Eigen::Index(N), Eigen::Index(N));
   out.F.data().reserve(Eigen::Index(std::min(bound, kMaxNonZeros)));
@@ -247,11 +247,6 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   std::vector<std::int32_t> buf_cols;
   std::vector<std::uint32_t> buf_counts;
   std::size_t at = 0;  // non-zeros in F so far (of this rank's rows, over MPI)
-  // Over MPI each rank traces a block of rows with about equal rays (core/distributed.h); with one process, all.
-  const std::vector<distributed::Range> row_blocks = distributed::weighted_blocks(
-      distributed::size() == 1 ? std::vector<double>() : std::vector<double>(out.rays.begin(), out.rays.end()));
-  const distributed::Range mine =
-      distributed::size() == 1 ? distributed::Range{0, N} : row_blocks[static_cast<std::size_t>(distributed::rank())];
   Progress progress("form factors", mine.size());
   for (std::size_t first = mine.begin; first < mine.end;) {
     std::size_t last = first, total = 0;
@@ -291,9 +286,12 @@ FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, con
   progress.finish();
   buf_cols = {};
   buf_counts = {};
-  if (distributed::size() > 1) share_rows(row_blocks, nnz, out, at, ps.source);
+  if (distributed::size() > 1) {
+    share_ray_outcomes(row_blocks, out);
+    out.row_blocks = row_blocks;
+  }
 
-  // CSR outer index by prefix sums of the row lengths.
+  // CSR outer index by prefix sums of the row lengths (the other ranks' rows empty: nnz[i] = 0 there).
   std::int32_t* outer = out.F.outerIndexPtr();
   outer[0] = 0;
   for (std::size_t i = 0; i < N; ++i) outer[i + 1] = outer[i] + std::int32_t(nnz[i]);

@@ -20,11 +20,12 @@
 // Rays leave through spawn_ray (visibility/ray_offset.h). Parallel over patches (core/parallel.h); rows are
 // assembled into CSR without a global sort or lock: each row's hits are sorted into (j, count) runs in place,
 // then appended to F's arrays, reserved once (never copied). Memory: 8 bytes per non-zero of F (resident; the
-// reservation for sum_i min(n_i, N) non-zeros costs address space only) plus a working buffer of at most 16 M
-// rays (8 bytes per ray).
+// reservation for sum_i min(n_i, N) non-zeros costs address space only; over MPI, estimate_form_factor_rows: of
+// the rank's own rows only) plus a working buffer of at most 16 M rays (8 bytes per ray).
 #include <cstdint>
 #include <vector>
 
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/sparse_f.h"
 #include "patch/patch_set.h"
 #include "visibility/visibility.h"
@@ -48,6 +49,9 @@ struct FormFactors {
   std::vector<std::uint32_t> rays;     // n_i
   std::vector<std::uint32_t> escaped;  // rays from i that hit nothing
   std::vector<std::uint32_t> back_hits;  // rays from i whose first hit was the back of a patch
+  // Over MPI: the rank blocks of F's rows when F holds only this rank's rows (form_factor_rows.h); empty when
+  // every rank holds every row.
+  RowBlocks row_blocks;
 };
 
 // n_i for a patch of area `area` under `options` (checked: InputError for options out of range).
@@ -55,7 +59,14 @@ std::uint32_t ray_count(const FormFactorOptions& options, double area);
 
 // Estimates F for all patches. InputError for bad options (rays_per_patch < 1, negative or non-finite
 // rays_per_area, min_rays < 1, more than 2^32 - 1 rays for a patch, more than 2^31 - 1 patches).
+// Over MPI every rank gets the whole F (gather_whole_rows after estimate_form_factor_rows).
 FormFactors estimate_form_factors(const PatchSet& patches, const Visibility& visibility,
                                   const FormFactorOptions& options = {});
+
+// The same estimate, row-distributed over MPI (form_factor_rows.h): each rank traces and keeps the rows of its
+// block (blocks of about equal rays, in row_blocks), so F holds the non-zeros of those rows only; rays, escaped
+// and back_hits cover every patch on every rank. With one process it is estimate_form_factors (row_blocks empty).
+FormFactors estimate_form_factor_rows(const PatchSet& patches, const Visibility& visibility,
+                                      const FormFactorOptions& options = {});
 
 }  // namespace radwalk

@@ -16,6 +16,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/progress.h"
+#include "formfactor/form_factor_rows.h"
 
 namespace radwalk {
 namespace {
@@ -115,9 +116,14 @@ void write_matrix_market(const std::string& path, const SparseF& F, const std::s
   });
 }
 
-SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
-  const std::uint64_t file_bytes = input_file_size(path);  // refuses FIFOs and devices before opening a stream
-  LineReader reader(path);
+namespace {
+
+struct MatrixSize {
+  long long rows = 0, cols = 0, entries = 0;
+};
+
+// Steps 1 and 2 of reading: the header and the size line, checked; the reader is left before the first entry.
+MatrixSize read_header(LineReader& reader, std::size_t expected_n, std::uint64_t file_bytes) {
   std::string line;
 
   // Step 1: header "%%MatrixMarket matrix coordinate real general" (case-insensitive, any spacing).
@@ -162,13 +168,16 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
   if (static_cast<std::uint64_t>(entries) > file_bytes / 6)
     throw reader.error("declares " + std::to_string(entries) + " entries, more than a file of " +
                        std::to_string(file_bytes) + " bytes can hold (truncated file or wrong count)");
+  return {rows, cols, entries};
+}
 
-  // Step 3: entries, checked one by one; sortedness tracked so a file in row-major order needs no sort.
-  const std::size_t nnz = std::size_t(entries);
-  std::vector<std::int32_t> row(nnz), col(nnz);
-  std::vector<float> value(nnz);
-  bool sorted = true;
-  Progress progress("reading form factors", nnz);
+// Step 3: the entries, checked one by one (format, indices in range, values in [0, 1]); visit(k, i, j, v) for
+// entry k (0-based, file order) at 0-based (i, j); advances `progress` (when given) by the entries read.
+template <class Visit>
+void scan_entries(LineReader& reader, const MatrixSize& size, Progress* progress, Visit&& visit) {
+  const long long rows = size.rows, cols = size.cols;
+  const std::size_t nnz = std::size_t(size.entries);
+  std::string line;
   for (std::size_t k = 0; k < nnz; ++k) {
     if (!reader.next_data(line))
       throw reader.error("file ends after " + std::to_string(k) + " of " + std::to_string(nnz) + " entries");
@@ -182,15 +191,56 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
                          std::to_string(rows));
     if (!std::isfinite(v) || v < 0.0 || v > 1.0)
       throw reader.error("value '" + line.substr(line.find_first_not_of(" \t")) + "' is not in [0, 1]");
-    row[k] = std::int32_t(i - 1);
-    col[k] = std::int32_t(j - 1);
-    value[k] = static_cast<float>(v);
-    if (k > 0 && sorted && (row[k] < row[k - 1] || (row[k] == row[k - 1] && col[k] <= col[k - 1]))) sorted = false;
-    if ((k + 1) % kProgressEntries == 0) progress.advance(kProgressEntries);
+    visit(k, std::int32_t(i - 1), std::int32_t(j - 1), static_cast<float>(v));
+    if (progress && (k + 1) % kProgressEntries == 0) progress->advance(kProgressEntries);
   }
   if (reader.next_data(line)) throw reader.error("more entries than the " + std::to_string(nnz) + " declared");
-  progress.advance(nnz % kProgressEntries);
+  if (progress) progress->advance(nnz % kProgressEntries);
+}
+
+}  // namespace
+
+SparseF read_matrix_market(const std::string& path, std::size_t expected_n, RowBlocks* row_blocks) {
+  const std::uint64_t file_bytes = input_file_size(path);  // refuses FIFOs and devices before opening a stream
+  LineReader reader(path);
+  const MatrixSize size = read_header(reader, expected_n, file_bytes);
+  const long long rows = size.rows, cols = size.cols;
+
+  // Over MPI with row_blocks: a first pass counts each row's entries (checking every one), for blocks of about
+  // equal non-zeros; the second keeps the entries of this rank's rows only (form_factor_rows.h).
+  distributed::Range mine{0, std::size_t(rows)};
+  if (row_blocks && distributed::size() > 1) {
+    std::vector<std::int32_t> counts(std::size_t(rows) + 1, 0);
+    scan_entries(reader, size, nullptr, [&](std::size_t, std::int32_t i, std::int32_t, float) { ++counts[i + 1]; });
+    for (long long i = 0; i < rows; ++i) counts[i + 1] += counts[i];
+    *row_blocks = nonzero_row_blocks(counts.data(), std::size_t(rows));
+    mine = own_rows(*row_blocks, std::size_t(rows));
+    reader = LineReader(path);
+    read_header(reader, expected_n, file_bytes);
+  }
+  const bool every_row = mine.size() == std::size_t(rows);
+  std::vector<std::int32_t> row, col;
+  std::vector<float> value;
+  std::vector<std::uint32_t> entry_of;  // the file's entry index of each kept entry (only when not every row)
+  if (every_row) {
+    row.reserve(std::size_t(size.entries));
+    col.reserve(std::size_t(size.entries));
+    value.reserve(std::size_t(size.entries));
+  }
+  bool sorted = true;
+  Progress progress("reading form factors", std::size_t(size.entries));
+  scan_entries(reader, size, &progress, [&](std::size_t k, std::int32_t i, std::int32_t j, float v) {
+    if (std::size_t(i) < mine.begin || std::size_t(i) >= mine.end) return;
+    const std::size_t q = row.size();
+    row.push_back(i);
+    col.push_back(j);
+    value.push_back(v);
+    if (!every_row) entry_of.push_back(std::uint32_t(k));
+    if (q > 0 && sorted && (row[q] < row[q - 1] || (row[q] == row[q - 1] && col[q] <= col[q - 1]))) sorted = false;
+  });
   progress.finish();
+  const std::size_t nnz = row.size();
+  const auto entry = [&](std::size_t q) { return every_row ? q : std::size_t(entry_of[q]); };
 
   // Step 4: order by (row, column) unless already so; refuse duplicates.
   std::vector<std::size_t> order;
@@ -202,7 +252,7 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
     });
     for (std::size_t k = 1; k < nnz; ++k)
       if (row[order[k]] == row[order[k - 1]] && col[order[k]] == col[order[k - 1]])
-        throw InputError(locate(path, line_of_entry(path, order[k]), -1,
+        throw InputError(locate(path, line_of_entry(path, entry(order[k])), -1,
                                 "duplicate entry (" + std::to_string(row[order[k]] + 1) + ", " +
                                     std::to_string(col[order[k]] + 1) + ")"));
   }
@@ -223,7 +273,7 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n) {
     double sum = 0;
     for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) sum += F.valuePtr()[k];
     if (sum > kMaxRowSum)
-      throw InputError(locate(path, line_of_entry(path, at(std::size_t(outer[i]))), -1,
+      throw InputError(locate(path, line_of_entry(path, entry(at(std::size_t(outer[i])))), -1,
                               "row " + std::to_string(i + 1) + " sums to " + std::to_string(sum) +
                                   ", above 1 + 1e-6 (a form-factor row sums to at most 1)"));
   }

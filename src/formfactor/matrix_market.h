@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <string>
 
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/sparse_f.h"
 
 namespace radwalk {
@@ -28,6 +29,9 @@ inline constexpr double kMaxRowSum = 1.0 + 1e-6;
 // run_id: when not empty, the comment line "% run_id RUN_ID" after the banner (apps/run_metadata.h).
 void write_matrix_market(const std::string& path, const SparseF& F, const std::string& run_id = "");
 
-SparseF read_matrix_market(const std::string& path, std::size_t expected_n);
+// With `row_blocks` over MPI (R > 1 ranks), row-distributed (form_factor_rows.h): a first pass over the file
+// checks every entry and counts each row's, *row_blocks gets blocks of about equal non-zeros, and a second pass
+// keeps this rank's rows only (duplicates and row sums are checked there, by the rank that holds the row).
+SparseF read_matrix_market(const std::string& path, std::size_t expected_n, RowBlocks* row_blocks = nullptr);
 
 }  // namespace radwalk

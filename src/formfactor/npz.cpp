@@ -18,6 +18,7 @@
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/matrix_market.h"
 
 namespace radwalk {
@@ -390,7 +391,7 @@ void write_npz(const std::string& path, const SparseF& F, const std::string& run
   write_atomically(path, [&](std::ostream& os) { write_members(os, members); });
 }
 
-SparseF read_npz(const std::string& path, std::size_t expected_n) {
+SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row_blocks) {
   const MappedFile file(path, input_file_size(path));  // refuses FIFOs, devices and files above kMaxInputBytes
   const Reader reader(path, file);
   const auto fail = [&](const std::string& what) { return reader.error(what); };
@@ -456,10 +457,7 @@ SparseF read_npz(const std::string& path, std::size_t expected_n) {
     throw fail(std::to_string(nnz) + " non-zeros exceed the 32-bit index range");
 
   SparseF F(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(N));
-  F.resizeNonZeros(static_cast<Eigen::Index>(nnz));
   std::int32_t* outer = F.outerIndexPtr();
-  std::int32_t* inner = F.innerIndexPtr();
-  float* value = F.valuePtr();
   if (int_at(indptr, 0) != 0) throw fail("indptr.npy[0] is " + std::to_string(int_at(indptr, 0)) + ", not 0");
   if (int_at(indptr, N) != std::int64_t(nnz))
     throw fail("indptr.npy[N] is " + std::to_string(int_at(indptr, N)) + ", not the " + std::to_string(nnz) +
@@ -472,17 +470,28 @@ SparseF read_npz(const std::string& path, std::size_t expected_n) {
     if (v > std::int64_t(nnz)) throw fail("indptr.npy[" + std::to_string(i) + "] is past the non-zeros");
     outer[i] = static_cast<std::int32_t>(v);
   }
-  for (std::uint64_t i = 0; i < N; ++i) {
+  // Over MPI with `row_blocks`: only this rank's block of rows (balanced by non-zeros) is checked and copied; the other
+  // rows stay empty (form_factor_rows.h). The file is mapped, so the other rows are never read.
+  distributed::Range mine{0, N};
+  if (row_blocks && distributed::size() > 1) {
+    *row_blocks = nonzero_row_blocks(outer, N);
+    mine = own_rows(*row_blocks, N);
+  }
+  const std::int32_t base = outer[mine.begin];
+  F.resizeNonZeros(outer[mine.end] - base);
+  std::int32_t* inner = F.innerIndexPtr();
+  float* value = F.valuePtr();
+  for (std::uint64_t i = mine.begin; i < mine.end; ++i) {
     double sum = 0;
     for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) {
       const std::int64_t j = int_at(indices, std::uint64_t(k));
       if (j < 0 || std::uint64_t(j) >= N)
         throw fail("indices.npy[" + std::to_string(k) + "] (row " + std::to_string(i) + ") is " + std::to_string(j) +
                    ", out of range 0.." + std::to_string(N - 1));
-      if (k > outer[i] && j <= inner[k - 1])
+      if (k > outer[i] && j <= inner[k - 1 - base])
         throw fail("columns of row " + std::to_string(i) + " are not strictly increasing (unsorted or duplicate; "
                    "call F.sum_duplicates() before saving)");
-      inner[k] = static_cast<std::int32_t>(j);
+      inner[k - base] = static_cast<std::int32_t>(j);
       double v;
       if (data.descr == "<f4") {
         float f;
@@ -494,12 +503,17 @@ SparseF read_npz(const std::string& path, std::size_t expected_n) {
       if (!std::isfinite(v) || v < 0.0 || v > 1.0)
         throw fail("data.npy[" + std::to_string(k) + "] (row " + std::to_string(i) + ", column " +
                    std::to_string(j) + ") is " + std::to_string(v) + ", not in [0, 1]");
-      value[k] = static_cast<float>(v);
-      sum += value[k];
+      value[k - base] = static_cast<float>(v);
+      sum += value[k - base];
     }
     if (sum > kMaxRowSum)
       throw fail("row " + std::to_string(i) + " sums to " + std::to_string(sum) +
                  ", above 1 + 1e-6 (a form-factor row sums to at most 1)");
+  }
+  if (mine.size() < N) {
+    // The own rows moved to the front of the arrays; the rows before them empty, those after them too.
+    const std::int32_t end = outer[mine.end];
+    for (std::uint64_t i = 0; i <= N; ++i) outer[i] = i <= mine.begin ? 0 : i >= mine.end ? end - base : outer[i] - base;
   }
   return F;
 }

@@ -26,6 +26,7 @@
 #include <cstddef>
 #include <string>
 
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/sparse_f.h"
 
 namespace radwalk {
@@ -33,7 +34,11 @@ namespace radwalk {
 // Writes F atomically (core/atomic_write.h) as described above; run_id: when not empty, the run_id.npy member.
 void write_npz(const std::string& path, const SparseF& F, const std::string& run_id = "");
 
-// Reads an .npz form-factor file of an expected_n x expected_n matrix; InputError as described above.
-SparseF read_npz(const std::string& path, std::size_t expected_n);
+// Reads an .npz form-factor file of an expected_n x expected_n matrix; InputError as described above. With
+// `row_blocks` over MPI (R > 1 ranks), row-distributed (form_factor_rows.h): *row_blocks gets blocks of about equal
+// non-zeros from indptr (checked whole on every rank), and this rank checks and copies only the entries of its own
+// block, the other rows left empty (a refusal in another rank's rows is found by that rank:
+// distributed::agree_on_input_error makes it every rank's). Without `row_blocks`, or with one process, every row.
+SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row_blocks = nullptr);
 
 }  // namespace radwalk

@@ -2,9 +2,11 @@
 
 namespace radwalk {
 
-std::vector<distributed::Range> sweep_row_blocks(const SparseF& F) {
+std::vector<distributed::Range> sweep_row_blocks(const RadiosityProblem& p) {
+  const SparseF& F = p.F;
   const auto n = static_cast<std::size_t>(F.rows());
   if (distributed::size() == 1) return {distributed::Range{0, n}};
+  if (holds_own_rows_only(p.row_blocks)) return p.row_blocks;
   // A sweep's cost per row: its non-zeros, and the row itself.
   std::vector<double> weights(n);
   for (Eigen::Index i = 0; i < F.rows(); ++i)
@@ -17,6 +19,11 @@ void exchange_rows(PatchRgb& B, const std::vector<distributed::Range>& blocks) {
   if (distributed::size() == 1) return;
   // PatchRgb is row-major: a row is 3 consecutive doubles.
   distributed::allgather_in_place(B.data(), 3 * sizeof(double), blocks);
+}
+
+void exchange_rows(Eigen::VectorXd& x, const std::vector<distributed::Range>& blocks) {
+  if (distributed::size() == 1) return;
+  distributed::allgather_in_place(x.data(), sizeof(double), blocks);
 }
 
 }  // namespace radwalk

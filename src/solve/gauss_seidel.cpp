@@ -35,7 +35,7 @@ Solution solve_gauss_seidel(const RadiosityProblem& p, const SolveOptions& optio
   // ranks exchange their rows (distributed_sweeps.h): block Gauss-Seidel within a rank, Jacobi between ranks.
   // The splitting is then M = D - L_b (L_b: the strict lower triangle of H inside the diagonal blocks), and the
   // residual r(B^k) = M (B^{k+1} - B^k) takes the lower sum over j in the own block only: still exact.
-  const std::vector<distributed::Range> blocks = sweep_row_blocks(p.F);
+  const std::vector<distributed::Range> blocks = sweep_row_blocks(p);
   const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
   const auto first = Eigen::Index(mine.begin), end = Eigen::Index(mine.end);
   run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {

@@ -31,7 +31,7 @@ Solution solve_jacobi(const RadiosityProblem& p, const SolveOptions& options) {
   }
 
   // Over MPI a rank sweeps its block of rows, then the ranks exchange them (distributed_sweeps.h).
-  const std::vector<distributed::Range> blocks = sweep_row_blocks(p.F);
+  const std::vector<distributed::Range> blocks = sweep_row_blocks(p);
   const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
   run_sweeps(s, p, options, std::move(B), [&](PatchRgb& B) {
     // One sweep; the largest |r_ic| / scale_c of B^k comes out of it.

@@ -8,13 +8,14 @@
 
 namespace radwalk {
 
-RadiosityProblem make_problem(const PatchSet& patches, SparseF F) {
+RadiosityProblem make_problem(const PatchSet& patches, SparseF F, RowBlocks row_blocks) {
   const auto n = static_cast<Eigen::Index>(patches.size());
   // F comes from estimate_form_factors or from read_matrix_market, which refuses a file of another size.
   RADWALK_CHECK_EQ(F.rows(), n);
   RADWALK_CHECK_EQ(F.cols(), n);
   RadiosityProblem p;
   p.F = std::move(F);
+  p.row_blocks = std::move(row_blocks);
   p.rho.resize(n, 3);
   p.E.resize(n, 3);
   p.area.resize(n);
@@ -24,6 +25,12 @@ RadiosityProblem make_problem(const PatchSet& patches, SparseF F) {
     p.area(i) = patches.area[i];
   }
   return p;
+}
+
+RadiosityProblem whole_problem(const RadiosityProblem& p) {
+  RadiosityProblem whole = p;
+  gather_whole_rows(whole.F, whole.row_blocks);
+  return whole;
 }
 
 }  // namespace radwalk

@@ -5,21 +5,31 @@
 #include <Eigen/Core>
 
 #include "core/types.h"
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/sparse_f.h"
 #include "patch/patch_set.h"
 
 namespace radwalk {
 
 struct RadiosityProblem {
-  SparseF F;             // N x N form factors
+  SparseF F;             // N x N form factors (over MPI possibly only this rank's rows: row_blocks)
+  // Over MPI: the rank blocks of F's rows when F holds only this rank's rows (formfactor/form_factor_rows.h);
+  // empty when every rank holds every row. Jacobi, Gauss-Seidel, the residual and the spectral radius work on the
+  // own rows and exchange vectors; the other solvers gather the whole F (whole_problem).
+  RowBlocks row_blocks;
   PatchRgb rho;          // N x 3 reflectance
   PatchRgb E;            // N x 3 emitted radiosity
   Eigen::VectorXd area;  // N patch areas
   std::size_t size() const { return static_cast<std::size_t>(area.size()); }
 };
 
-// Takes rho, E and area from the patches and F as given; F must be N x N (RADWALK_CHECK: InternalError).
-RadiosityProblem make_problem(const PatchSet& patches, SparseF F);
+// Takes rho, E and area from the patches and F as given (with its row blocks, when row-distributed); F must be
+// N x N (RADWALK_CHECK: InternalError).
+RadiosityProblem make_problem(const PatchSet& patches, SparseF F, RowBlocks row_blocks = {});
+
+// Collective when p's F is row-distributed: a copy of p whose F holds every row on every rank
+// (gather_whole_rows), for the stages that need the whole F (the direct solve, Southwell).
+RadiosityProblem whole_problem(const RadiosityProblem& p);
 
 // Throws InputError naming the first defect: a value that is not finite, rho < 0, E < 0, F_ij < 0 or area <= 0.
 // Sizes that disagree (F N x N, rho and E N x 3, area N) are InternalError (RADWALK_CHECK). Reflectances >= 1 and rows of F summing above 1 are

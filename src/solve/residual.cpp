@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/parallel.h"
+#include "solve/distributed_sweeps.h"
 
 namespace radwalk {
 
@@ -26,7 +27,10 @@ PatchRgb multiply_F(const SparseF& F, const PatchRgb& B) {
 }
 
 PatchRgb residual(const RadiosityProblem& p, const PatchRgb& B) {
-  return p.E + p.rho * multiply_F(p.F, B) - B;
+  PatchRgb r = p.E + p.rho * multiply_F(p.F, B) - B;
+  // Row-distributed F: each rank's own rows are right; the exchange gives every rank every row.
+  if (holds_own_rows_only(p.row_blocks)) exchange_rows(r, p.row_blocks);
+  return r;
 }
 
 Rgb residual_scale(const PatchRgb& E) {
@@ -54,11 +58,19 @@ PatchRgb system_diagonal(const RadiosityProblem& p) {
   for (Eigen::Index i = 0; i < D.rows(); ++i)
     for (SparseF::InnerIterator it(p.F, i); it; ++it)
       if (it.col() == i) D.row(i) -= p.rho.row(i) * double(it.value());
+  if (holds_own_rows_only(p.row_blocks)) exchange_rows(D, p.row_blocks);  // F_ii from the rank holding row i
   return D;
 }
 
 double relative_residual(const RadiosityProblem& p, const PatchRgb& B) {
-  return relative_norm(residual(p, B), residual_scale(p.E));
+  if (!holds_own_rows_only(p.row_blocks)) return relative_norm(residual(p, B), residual_scale(p.E));
+  // Row-distributed F: the norm of the own rows, then the largest over the ranks (a max, so the same number).
+  const distributed::Range mine = own_rows(p.row_blocks, p.size());
+  const auto first = Eigen::Index(mine.begin), rows = Eigen::Index(mine.size());
+  const PatchRgb r = p.E.middleRows(first, rows) +
+                     p.rho.middleRows(first, rows) * multiply_F(p.F, B).middleRows(first, rows) -
+                     B.middleRows(first, rows);
+  return distributed::max_over_ranks(relative_norm(r, residual_scale(p.E)));
 }
 
 }  // namespace radwalk

@@ -24,17 +24,25 @@ Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options)
                      std::to_string(kAutoDirectMaxPatches) +
                      ": the direct solve is not distributed over MPI ranks (each would factorise the whole system); "
                      "use --solver gauss-seidel or jacobi, whose sweeps are split over the ranks, or run one process");
-  if (name == "direct") return solve_direct(p, options);
+  // Jacobi and Gauss-Seidel sweep a row-distributed F's own rows (distributed_sweeps.h); the direct solve
+  // (a factorisation of the whole system) and Southwell (columns of F: its transpose) need the whole F, which
+  // they gather (whole_problem: gather_whole_rows; docs/scaling.md, "Over MPI").
+  const auto whole = [&p](auto&& solver, const SolveOptions& o) {
+    return holds_own_rows_only(p.row_blocks) ? solver(whole_problem(p), o) : solver(p, o);
+  };
+  const auto direct = [](const RadiosityProblem& q, const SolveOptions& o) { return solve_direct(q, o); };
+  const auto southwell = [](const RadiosityProblem& q, const SolveOptions& o) { return solve_southwell(q, o); };
+  if (name == "direct") return whole(direct, options);
   if (name == "jacobi") return solve_jacobi(p, options);
   if (name == "gauss-seidel") return solve_gauss_seidel(p, options);
-  if (name == "southwell") return solve_southwell(p, options);
+  if (name == "southwell") return whole(southwell, options);
   if (name != "auto")
     throw InputError("unknown solver '" + name + "' (expected auto, direct, jacobi, gauss-seidel or southwell)");
 
   const long n = long(p.size());
-  const bool direct = n <= kAutoDirectMaxPatches;
-  Solution s = direct ? solve_direct(p, options) : solve_gauss_seidel(p, options);
-  const std::string why = direct ? "auto chose direct: " + std::to_string(n) + " patches <= " +
+  const bool use_direct = n <= kAutoDirectMaxPatches;
+  Solution s = use_direct ? whole(direct, options) : solve_gauss_seidel(p, options);
+  const std::string why = use_direct ? "auto chose direct: " + std::to_string(n) + " patches <= " +
                                        std::to_string(kAutoDirectMaxPatches) + ", where the exact LU solve costs under about a second. "
                                  : "auto chose gauss-seidel: " + std::to_string(n) + " patches > " +
                                        std::to_string(kAutoDirectMaxPatches) +

@@ -6,28 +6,40 @@
 
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "solve/distributed_sweeps.h"
 
 namespace radwalk {
 namespace {
 
-Eigen::VectorXd row_sums(const SparseF& F) {
+// Over MPI with a row-distributed F (problem.h) each rank computes its own rows of a product, then the ranks
+// exchange them (distributed_sweeps.h): every rank has the whole vector, with the bits one process computes.
+// Collective then.
+void share_rows(Eigen::VectorXd& v, const RowBlocks& blocks) {
+  if (holds_own_rows_only(blocks)) exchange_rows(v, blocks);
+}
+
+// s_i = sum_j F_ij.
+Eigen::VectorXd row_sums(const SparseF& F, const RowBlocks& blocks) {
   Eigen::VectorXd s(F.rows());
   parallel_for(static_cast<std::size_t>(F.rows()), [&](std::size_t i) {
     double t = 0;
     for (SparseF::InnerIterator it(F, static_cast<Eigen::Index>(i)); it; ++it) t += it.value();
     s(static_cast<Eigen::Index>(i)) = t;
   }, 256);
+  share_rows(s, blocks);
   return s;
 }
 
 // y = diag(rho) F x.
-void apply_H(const SparseF& F, const Eigen::VectorXd& rho, const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+void apply_H(const SparseF& F, const RowBlocks& blocks, const Eigen::VectorXd& rho, const Eigen::VectorXd& x,
+             Eigen::VectorXd& y) {
   parallel_for(static_cast<std::size_t>(F.rows()), [&](std::size_t i) {
     const auto r = static_cast<Eigen::Index>(i);
     double t = 0;
     for (SparseF::InnerIterator it(F, r); it; ++it) t += double(it.value()) * x(it.col());
     y(r) = rho(r) * t;
   }, 256);
+  share_rows(y, blocks);
 }
 
 struct ChannelRadius {
@@ -35,15 +47,15 @@ struct ChannelRadius {
   int products = 0;
 };
 
-ChannelRadius power_iteration(const SparseF& F, const Eigen::VectorXd& rho, double bound, int max_products,
-                              double rel_tol, Progress& progress) {
+ChannelRadius power_iteration(const SparseF& F, const RowBlocks& blocks, const Eigen::VectorXd& rho, double bound,
+                              int max_products, double rel_tol, Progress& progress) {
   const Eigen::Index n = F.rows();
   ChannelRadius r;
   r.upper = bound;
   Eigen::VectorXd x = Eigen::VectorXd::Constant(n, 1.0 / double(n)), y(n), y_prev(n);
   double s_prev = 0;  // x_k = (x_{k-1} + y_{k-1}) / s_prev
   for (int k = 0; k < max_products; ++k) {
-    apply_H(F, rho, x, y);
+    apply_H(F, blocks, rho, x, y);
     ++r.products;
     progress.advance(1);
     // Upper bound from x > 0; lower bound from v = y_{k-1} with H v = s_prev * y - y_prev.
@@ -80,7 +92,7 @@ ChannelRadius power_iteration(const SparseF& F, const Eigen::VectorXd& rho, doub
 SpectralRadius spectral_radius_bound(const RadiosityProblem& p) {
   SpectralRadius r;
   if (p.size() == 0) return r;
-  const Eigen::VectorXd sums = row_sums(p.F);
+  const Eigen::VectorXd sums = row_sums(p.F, p.row_blocks);
   r.max_row_sum = sums.maxCoeff();
   r.max_rho = p.rho.maxCoeff();
   for (int c = 0; c < 3; ++c) {
@@ -97,7 +109,7 @@ SpectralRadius spectral_radius_bound(const RadiosityProblem& p) {
 SpectralRadius estimate_spectral_radius(const RadiosityProblem& p, int max_products, double rel_tol) {
   SpectralRadius r = spectral_radius_bound(p);
   if (p.size() == 0 || r.bound == 0) return r;
-  const Eigen::VectorXd sums = row_sums(p.F);
+  const Eigen::VectorXd sums = row_sums(p.F, p.row_blocks);
   r.estimate = r.upper = r.lower = -1;
   Progress progress("spectral radius (power iteration)", 3 * static_cast<std::size_t>(std::max(max_products, 0)));
   for (int c = 0; c < 3; ++c) {
@@ -110,7 +122,7 @@ SpectralRadius estimate_spectral_radius(const RadiosityProblem& p, int max_produ
     }
     const Eigen::VectorXd rho = p.rho.col(c).matrix();
     const double bound = rho.cwiseProduct(sums).maxCoeff();
-    const ChannelRadius cr = power_iteration(p.F, rho, bound, max_products, rel_tol, progress);
+    const ChannelRadius cr = power_iteration(p.F, p.row_blocks, rho, bound, max_products, rel_tol, progress);
     progress.advance(static_cast<std::size_t>(std::max(max_products - cr.products, 0)));  // stopped early
     r.products += cr.products;
     if (cr.estimate > r.estimate) {

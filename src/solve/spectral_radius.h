@@ -7,6 +7,8 @@
 // x = 1 gives the cheap upper bound max_i rho_i * sum_j F_ij. The power iteration runs on I + H (same Perron
 // vector, keeps x > 0 even where rho_i = 0) and tightens both bounds; the lower bound uses v = H x_{k-1} >= 0,
 // whose product H v = s_k H x_k - H x_{k-1} comes free from consecutive iterates. Max over the three channels.
+// With a row-distributed F (problem.h) every product is distributed: each rank multiplies its own rows by the
+// whole vector, then the ranks exchange the rows of the result (collective), so every number is one process's.
 #include "solve/problem.h"
 
 namespace radwalk {
