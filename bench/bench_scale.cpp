@@ -24,8 +24,10 @@
 // The ratios: rays per CPU second of the shooting walks, the gathering walks and the path tracer over raw
 // Embree's, measured in the same run (CPU seconds: meaningful on a shared machine).
 // Usage: bench_scale [--sizes 1e4,1e5,1e6] [--scene PATH] [--particles P] [--walks W] [--targets T] [--spp S]
-//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace] [--out DIR]
-// (--spp 0: no path tracer; --stages: which of the three ray stages run, e.g. one of them under a profiler)
+//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace]
+//                    [--integrator mis|nee|implicit] [--out DIR]
+// (--spp 0: no path tracer; --stages: which of the three ray stages run, e.g. one of them under a profiler;
+// --integrator: the path tracer's, mis by default)
 #include <sys/resource.h>
 #include <time.h>
 
@@ -103,7 +105,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes = {1e4, 1e5, 1e6};
   long particles = 1 << 20, walks = 0, targets = 0, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
   double ff_max = 2e6;
-  std::string stages = "shoot,gather,pathtrace";
+  std::string stages = "shoot,gather,pathtrace", integrator = "mis";
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string k = argv[a], v = argv[a + 1];
     if (k == "--sizes") sizes = parse_sizes(v);
@@ -117,6 +119,7 @@ int main(int argc, char** argv) {
     else if (k == "--raw-rays") raw_rays = std::atol(v.c_str());
     else if (k == "--out") out_dir = v;
     else if (k == "--stages") stages = v;
+    else if (k == "--integrator") integrator = v;
     else {
       std::fprintf(stderr, "bench_scale: unknown option %s\n", k.c_str());
       return 2;
@@ -204,6 +207,7 @@ int main(int argc, char** argv) {
     if (spp > 0 && runs("pathtrace")) {  // --spp 0: no path tracer
       PatchAverageOptions o;
       o.spp = spp;
+      o.integrator.kind = parse_integrator_kind(integrator);
       o.progress = false;
       const Stage s = stage("path tracer", [&] { pt = estimate_patch_averages(ps, *vis, o); });
       pt_rate = pt.info["rays"] / s.cpu;

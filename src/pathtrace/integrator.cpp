@@ -171,6 +171,18 @@ void PathIntegrator::trace_batch(Path* const* paths, std::size_t n, PathCounters
     }
     visibility_.intersect(rays, hits, m);
     counters.rays += static_cast<long>(m);
+    // A hint, no effect on any value: the records of the patches the continuation rays hit (read by advance),
+    // asked for all at once so that their cache misses overlap.
+    m = 0;
+    for (std::size_t k = base; k < end; ++k) {
+      m += paths[k]->shadow_;
+      if (!paths[k]->tracing_) continue;
+      const PatchIndex j = hits[m++].patch;
+      if (j < 0) continue;
+      __builtin_prefetch(&patches_.E[static_cast<std::size_t>(j)]);
+      __builtin_prefetch(&bsdfs_[static_cast<std::size_t>(j)]);
+      geometry_.prefetch(j);
+    }
     m = 0;
     for (std::size_t k = base; k < end; ++k) {
       Path& path = *paths[k];
