@@ -24,10 +24,10 @@
 // The ratios: rays per CPU second of the shooting walks, the gathering walks and the path tracer over raw
 // Embree's, measured in the same run (CPU seconds: meaningful on a shared machine).
 // Usage: bench_scale [--sizes 1e4,1e5,1e6] [--scene PATH] [--particles P] [--walks W] [--targets T] [--spp S]
-//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace]
+//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace,vtp]
 //                    [--integrator mis|nee|implicit] [--out DIR]
-// (--spp 0: no path tracer; --stages: which of the three ray stages run, e.g. one of them under a profiler;
-// --integrator: the path tracer's, mis by default)
+// (--spp 0: no path tracer; --stages: which of the walks, the path tracer and the vtp writing run (default all),
+// e.g. one of them under a profiler; --integrator: the path tracer's, mis by default)
 #include <sys/resource.h>
 #include <time.h>
 
@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes = {1e4, 1e5, 1e6};
   long particles = 1 << 20, walks = 0, targets = 0, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
   double ff_max = 2e6;
-  std::string stages = "shoot,gather,pathtrace", integrator = "mis";
+  std::string stages = "shoot,gather,pathtrace,vtp", integrator = "mis";
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string k = argv[a], v = argv[a + 1];
     if (k == "--sizes") sizes = parse_sizes(v);
@@ -128,6 +128,10 @@ int main(int argc, char** argv) {
   std::printf("bench_scale: %s, %d threads; particles %ld, gather %ld walks x %ld patches, spp %ld, "
               "form factors %ld rays per patch (up to %.0f patches), raw rays %ld\n",
               scene.c_str(), active_threads(), particles, walks, targets, spp, ff_rays, ff_max, raw_rays);
+  if (spp == 1 || spp < 0) {  // the patch averages need two samples for a variance
+    std::fprintf(stderr, "bench_scale: --spp must be 0 (no path tracer) or at least 2 (got %ld)\n", spp);
+    return 2;
+  }
   std::vector<std::string> stage_list;
   {
     std::stringstream in(stages);
@@ -237,7 +241,7 @@ int main(int argc, char** argv) {
       stage("read npz", [&] { back = read_npz(path, N); });
       std::filesystem::remove(path);
     }
-    {
+    if (runs("vtp")) {
       const std::string path = out_dir + "/bench_scale_B.vtp";
       stage("write vtp", [&] { write_vtp(path, ps, {rgb_field("B", pt.B)}); });
       std::filesystem::remove(path);
