@@ -22,10 +22,10 @@ namespace {
 // sums add its samples in sample order, and a patch's sums add its items in order: the items fix the result's
 // bits.
 constexpr long kBlock = 256;
-// Items are traced in tasks of consecutive items (in the order patch, block) of at least kTaskSamples samples
-// (about 512 tasks when there are more), kLanes paths in flight, so that the ray batches stay full even at a few
+// Items are traced in tasks of consecutive items (in the order patch, block) of about total / 512 samples, at
+// least kTaskSamples and at most kMaxTaskSamples (unless one item has more), kLanes paths in flight, so that the ray batches stay full even at a few
 // samples per patch. How items are grouped into tasks changes no value: each sample draws from its own stream.
-constexpr long kTaskSamples = 1024;
+constexpr long kTaskSamples = 1024, kMaxTaskSamples = 65536;
 constexpr std::size_t kLanes = 32;
 
 struct Partial {
@@ -128,7 +128,8 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const auto blocks = static_cast<std::size_t>((options.spp + kBlock - 1) / kBlock);
   const std::size_t item_count = n * blocks;
   const long block_samples = std::min(options.spp, kBlock);
-  const long task_samples = std::max<long>(kTaskSamples, (static_cast<long>(n) * options.spp + 511) / 512);
+  const long task_samples =
+      std::clamp<long>((static_cast<long>(n) * options.spp + 511) / 512, kTaskSamples, kMaxTaskSamples);
   const auto per_task = static_cast<std::size_t>(std::max<long>(1, task_samples / block_samples));
   const std::size_t tasks = (item_count + per_task - 1) / per_task;
   std::vector<Partial> parts(item_count);

@@ -39,11 +39,12 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Gathering work layout, a function of (m target patches, walks per patch) only.
 //   segments  each target patch's walks cut into `per_patch` segments of `chunk` walks (the last one shorter),
-//             about 512 segments in all, at least 64 walks each: a segment's moments are the sums of its walks'
-//             scores in walk order, and a patch's moments merge its segments in order, so the segments fix the
-//             result's bits;
-//   tasks     `per_task` consecutive segments (in the order patch, segment) traced together, at least
-//             kTaskWalks walks (about 512 tasks when there are more walks): their walks share the lockstep
+//             at least 64 walks each, max(1, 512 / m) segments per patch aimed at (so one per patch from 512
+//             target patches up): a segment's moments are the sums of its walks' scores in walk order, and a
+//             patch's moments merge its segments in order, so the segments fix the result's bits;
+//   tasks     `per_task` consecutive segments (in the order patch, segment) traced together, about
+//             total / 512 walks, at least kTaskWalks and at most kMaxTaskWalks (unless one segment has more;
+//             a task's scores are stored until its segments are summed): their walks share the lockstep
 //             lanes, so that the ray packets stay full when a patch has only a few walks (at 10^6 patches and 3
 //             walks each, one task per patch ran packets of 3 rays and paid a task per 3 walks). How segments
 //             are grouped into tasks changes no value: each walk draws only from its own stream.
@@ -52,7 +53,7 @@ struct GatherLayout {
   std::size_t per_patch = 0;  // segments per target patch
   std::size_t per_task = 0;   // segments per task
 };
-constexpr long kTaskWalks = 1024;
+constexpr long kTaskWalks = 1024, kMaxTaskWalks = 65536;
 GatherLayout gather_layout(std::size_t m, long walks) {
   const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
   const long chunk = std::max<long>(64, (walks + per_patch_target - 1) / per_patch_target);
@@ -60,7 +61,7 @@ GatherLayout gather_layout(std::size_t m, long walks) {
   // Walks per segment, on average (>= 1), and per task.
   const long segment_walks = std::max<long>(1, walks / static_cast<long>(per_patch));
   const long total = static_cast<long>(m) * walks;
-  const long task_walks = std::max<long>(kTaskWalks, (total + 511) / 512);
+  const long task_walks = std::clamp<long>((total + 511) / 512, kTaskWalks, kMaxTaskWalks);
   return {chunk, per_patch, static_cast<std::size_t>(std::max<long>(1, task_walks / segment_walks))};
 }
 
@@ -100,7 +101,7 @@ void gather_walks(const K& kernel, const typename Estimator::Tables& tables,
   };
   auto make = [&](std::size_t w) {
     const GatherSegment& s = segment_of(w);
-    const RngFamily streams(seed, StreamDomain::gather_walk, s.patch);  // walk b from patch i: stream b
+    const RngFamily streams(seed, StreamDomain::gather_walk, s.patch);  // walk b of the patch: stream b
     return Walk(kernel, tables, s.patch, streams.stream(static_cast<std::uint64_t>(s.begin) + (w - s.first)));
   };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
