@@ -24,7 +24,10 @@
 // The ratios: rays per CPU second of the shooting walks, the gathering walks and the path tracer over raw
 // Embree's, measured in the same run (CPU seconds: meaningful on a shared machine).
 // Usage: bench_scale [--sizes 1e4,1e5,1e6] [--scene PATH] [--particles P] [--walks W] [--targets T] [--spp S]
-//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--out DIR]   (--spp 0: no path tracer)
+//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace,vtp]
+//                    [--integrator mis|nee|implicit] [--out DIR]
+// (--spp 0: no path tracer; --stages: which of the walks, the path tracer and the vtp writing run (default all),
+// e.g. one of them under a profiler; --integrator: the path tracer's, mis by default)
 #include <sys/resource.h>
 #include <time.h>
 
@@ -102,6 +105,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes = {1e4, 1e5, 1e6};
   long particles = 1 << 20, walks = 0, targets = 0, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
   double ff_max = 2e6;
+  std::string stages = "shoot,gather,pathtrace,vtp", integrator = "mis";
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string k = argv[a], v = argv[a + 1];
     if (k == "--sizes") sizes = parse_sizes(v);
@@ -114,6 +118,8 @@ int main(int argc, char** argv) {
     else if (k == "--ff-max") ff_max = std::atof(v.c_str());
     else if (k == "--raw-rays") raw_rays = std::atol(v.c_str());
     else if (k == "--out") out_dir = v;
+    else if (k == "--stages") stages = v;
+    else if (k == "--integrator") integrator = v;
     else {
       std::fprintf(stderr, "bench_scale: unknown option %s\n", k.c_str());
       return 2;
@@ -122,6 +128,16 @@ int main(int argc, char** argv) {
   std::printf("bench_scale: %s, %d threads; particles %ld, gather %ld walks x %ld patches, spp %ld, "
               "form factors %ld rays per patch (up to %.0f patches), raw rays %ld\n",
               scene.c_str(), active_threads(), particles, walks, targets, spp, ff_rays, ff_max, raw_rays);
+  if (spp == 1 || spp < 0) {  // the patch averages need two samples for a variance
+    std::fprintf(stderr, "bench_scale: --spp must be 0 (no path tracer) or at least 2 (got %ld)\n", spp);
+    return 2;
+  }
+  std::vector<std::string> stage_list;
+  {
+    std::stringstream in(stages);
+    for (std::string item; std::getline(in, item, ',');) stage_list.push_back(item);
+  }
+  auto runs = [&](const char* name) { return std::find(stage_list.begin(), stage_list.end(), name) != stage_list.end(); };
   const Mesh mesh = load_scene(scene);
   const double area = make_patches(mesh, 0).total_area();
   std::printf("\n%10s %12s %12s %12s %12s %9s %9s %9s\n", "N", "raw Mray/cs", "shoot", "gather", "pathtrace",
@@ -167,7 +183,7 @@ int main(int argc, char** argv) {
     const auto n = static_cast<Eigen::Index>(N);
     const RadiosityProblem walk_problem = make_problem(ps, SparseF(n, n));
     double shoot_rate = 0, gather_rate = 0, pt_rate = 0;
-    {
+    if (runs("shoot")) {
       WalkOptions o;
       o.method = WalkMethod::shoot_collision;
       o.kernel = WalkKernel::ray;
@@ -177,7 +193,7 @@ int main(int argc, char** argv) {
       shoot_rate = double(sol.steps) / s.cpu;
       std::printf("  %ld rays\n", sol.steps);
     }
-    {
+    if (runs("gather")) {
       WalkOptions o;
       o.method = WalkMethod::gather_collision;
       o.kernel = WalkKernel::ray;
@@ -192,9 +208,10 @@ int main(int argc, char** argv) {
     }
     Solution pt;
     pt.B = PatchRgb::Zero(static_cast<Eigen::Index>(N), 3);
-    if (spp > 0) {  // --spp 0: no path tracer
+    if (spp > 0 && runs("pathtrace")) {  // --spp 0: no path tracer
       PatchAverageOptions o;
       o.spp = spp;
+      o.integrator.kind = parse_integrator_kind(integrator);
       o.progress = false;
       const Stage s = stage("path tracer", [&] { pt = estimate_patch_averages(ps, *vis, o); });
       pt_rate = pt.info["rays"] / s.cpu;
@@ -224,7 +241,7 @@ int main(int argc, char** argv) {
       stage("read npz", [&] { back = read_npz(path, N); });
       std::filesystem::remove(path);
     }
-    {
+    if (runs("vtp")) {
       const std::string path = out_dir + "/bench_scale_B.vtp";
       stage("write vtp", [&] { write_vtp(path, ps, {rgb_field("B", pt.B)}); });
       std::filesystem::remove(path);

@@ -24,4 +24,11 @@ Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {
   return radwalk::spawn_ray(offsets_[static_cast<std::size_t>(i)], x, d);
 }
 
+void FacetGeometry::prefetch(PatchIndex i) const {
+  const auto k = static_cast<std::size_t>(i);
+  __builtin_prefetch(&patches_.normal[k]);
+  __builtin_prefetch(&offsets_[k]);
+  __builtin_prefetch(reinterpret_cast<const char*>(&offsets_[k]) + sizeof(PatchRayOffset) - 1);
+}
+
 }  // namespace radwalk

@@ -4,7 +4,8 @@
 //   sample_point(i, u)    = sample_patch_point's point (pdf 1 / A_i) from each patch's PatchPointSampler;
 //   spawn_ray(i, x, d)    = visibility/ray_offset.h's scale-aware offset with the scene's ray epsilon;
 // The per-patch parts of both are precomputed (160 bytes per patch).
-//   sees_itself(i)        = false (a plane does not see itself).
+//   sees_itself(i)        = false (a plane does not see itself);
+//   prefetch(i)           asks for patch i's normal and ray offset.
 // Keeps a reference to the patches (they must outlive it).
 #include <vector>
 
@@ -21,6 +22,7 @@ class FacetGeometry final : public SurfaceGeometry {
   Vec3 sample_point(PatchIndex i, double u1, double u2) const override;
   Ray spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const override;
   bool sees_itself(PatchIndex) const override { return false; }
+  void prefetch(PatchIndex i) const override;
 
  private:
   const PatchSet& patches_;

@@ -35,13 +35,6 @@ IntegratorKind parse_integrator_kind(const std::string& name) {
   throw InputError("unknown path tracing integrator '" + name + "' (expected implicit, nee or mis)");
 }
 
-struct PathIntegrator::PathState {
-  Rgb beta = Rgb::Ones();  // throughput: product of f |cos| / pdf, divided by the survival probabilities
-  double pdf_prev = 0;     // solid-angle pdf of the last sampled direction
-  bool delta_prev = true;  // the last direction came from a delta lobe or the camera: always count emission
-  int depth = 0;           // scattering events so far
-};
-
 PathIntegrator::PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry,
                                const Visibility& visibility, const IntegratorOptions& options)
     : patches_(patches),
@@ -63,13 +56,15 @@ PathIntegrator::PathIntegrator(const PatchSet& patches, const SurfaceGeometry& g
 const Bsdf& PathIntegrator::bsdf(PatchIndex i) const { return bsdfs_[static_cast<std::size_t>(i)]; }
 
 bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n,
-                             const Vec3& wo_world, PathState& state, Rgb& L, Ray& next, Rng& rng,
-                             PathCounters& counters) const {
+                             const Vec3& wo_world, Path& path, PathCounters& counters) const {
+  Path::State& state = path.state_;
+  Rng& rng = path.rng_;
   const Frame frame(n);
   const Vec3 wo = frame.to_local(wo_world);
   ++counters.vertices;
 
-  // Next-event estimation: one point on the emitters, a shadow ray, the area form weighted for MIS.
+  // Next-event estimation: one point on the emitters, a shadow ray, the area form weighted for MIS. The shadow
+  // ray is traced with the continuation ray; if it reaches the emitter first, shadow_L_ is added to L.
   if (options_.kind != IntegratorKind::implicit && !bsdf.is_delta() && !lights_.empty()) {
     const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const LightSample ls = lights_.sample(us, u1, u2);
@@ -83,14 +78,12 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
         const Vec3 wi = frame.to_local(wi_world);
         const Rgb f = bsdf.f(wo, wi);
         if ((f > 0).any()) {
-          const Ray shadow = geometry_.spawn_ray(patch, x, wi_world);
-          ++counters.rays;
-          if (visibility_.intersect(shadow).patch == ls.patch) {
-            const double p_light = ls.pdf_area * dist2 / cos_y;
-            const double w =
-                options_.kind == IntegratorKind::mis ? power_heuristic(p_light, bsdf.pdf(wo, wi)) : 1.0;
-            L += state.beta * f * (std::abs(wi.z()) * w / p_light) * ls.Le;
-          }
+          path.shadow_ray_ = geometry_.spawn_ray(patch, x, wi_world);
+          path.shadow_ = true;
+          path.light_ = ls.patch;
+          const double p_light = ls.pdf_area * dist2 / cos_y;
+          const double w = options_.kind == IntegratorKind::mis ? power_heuristic(p_light, bsdf.pdf(wo, wi)) : 1.0;
+          path.shadow_L_ = state.beta * f * (std::abs(wi.z()) * w / p_light) * ls.Le;
         }
       }
     }
@@ -106,60 +99,127 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   ++state.depth;
 
   if (state.depth >= options_.rr_depth && !survive_russian_roulette(state.beta, rng)) return false;
-  next = geometry_.spawn_ray(patch, x, frame.to_world(s->wi));
+  path.ray_ = geometry_.spawn_ray(patch, x, frame.to_world(s->wi));
   return true;
 }
 
-void PathIntegrator::trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const {
-  for (;;) {
-    const Hit hit = visibility_.intersect(ray);
-    ++counters.rays;
-    if (hit.missed()) {
-      ++counters.escapes;
-      return;
-    }
-    const auto j = static_cast<std::size_t>(hit.patch);
-    const Vec3 x = ray.origin + hit.t * ray.direction;
-    const Vec3 n_front = geometry_.normal(hit.patch, x);
+void PathIntegrator::advance(Path& path, const Hit& shadow_hit, const Hit& hit, PathCounters& counters) const {
+  // The last vertex's light sample first (the order in which L adds the terms: this vertex's, then the next's).
+  if (path.shadow_) {
+    path.shadow_ = false;
+    if (shadow_hit.patch == path.light_) path.L_ += path.shadow_L_;
+  }
+  if (!path.tracing_) return;
+  path.tracing_ = false;
+  const Ray& ray = path.ray_;
+  Path::State& state = path.state_;
+  if (hit.missed()) {
+    ++counters.escapes;
+    return;
+  }
+  const auto j = static_cast<std::size_t>(hit.patch);
+  const Vec3 x = ray.origin + hit.t * ray.direction;
+  const Vec3 n_front = geometry_.normal(hit.patch, x);
 
-    // Emission from the front of an emitter, weighted against next-event estimation.
-    if (hit.front && (patches_.E[j] > 0).any()) {
-      const Rgb Le = patches_.E[j] * kInvPi;
-      if (options_.kind == IntegratorKind::implicit || state.delta_prev) {
-        L += state.beta * Le;
-      } else if (options_.kind == IntegratorKind::mis) {
-        const double cos_y = -ray.direction.dot(n_front);
-        const double p_light = lights_.pdf_area(hit.patch) * hit.t * hit.t / cos_y;
-        L += state.beta * power_heuristic(state.pdf_prev, p_light) * Le;
-      }
+  // Emission from the front of an emitter, weighted against next-event estimation.
+  if (hit.front && (patches_.E[j] > 0).any()) {
+    const Rgb Le = patches_.E[j] * kInvPi;
+    if (options_.kind == IntegratorKind::implicit || state.delta_prev) {
+      path.L_ += state.beta * Le;
+    } else if (options_.kind == IntegratorKind::mis) {
+      const double cos_y = -ray.direction.dot(n_front);
+      const double p_light = lights_.pdf_area(hit.patch) * hit.t * hit.t / cos_y;
+      path.L_ += state.beta * power_heuristic(state.pdf_prev, p_light) * Le;
     }
-    if (options_.max_depth > 0 && state.depth >= options_.max_depth) return;
+  }
+  if (options_.max_depth > 0 && state.depth >= options_.max_depth) return;
 
-    // The back of a one-sided face absorbs (a two-sided face's back is a patch of its own, hit from its front);
-    // a dielectric is an interface and scatters from both sides with its front normal.
-    const Bsdf& bsdf = bsdfs_[j];
-    if (!hit.front && bsdf.is_opaque()) return;
-    const Vec3& n = n_front;
-    if (!scatter(bsdf, hit.patch, x, n, -ray.direction, state, L, ray, rng, counters)) return;
+  // The back of a one-sided face absorbs (a two-sided face's back is a patch of its own, hit from its front);
+  // a dielectric is an interface and scatters from both sides with its front normal.
+  const Bsdf& bsdf = bsdfs_[j];
+  if (!hit.front && bsdf.is_opaque()) return;
+  const Vec3 wo_world = -ray.direction;
+  path.tracing_ = scatter(bsdf, hit.patch, x, n_front, wo_world, path, counters);
+}
+
+void PathIntegrator::run_alone(Path& path, PathCounters& counters) const {
+  while (!path.done()) {
+    Hit shadow_hit, hit;
+    if (path.shadow_) {
+      ++counters.rays;
+      shadow_hit = visibility_.intersect(path.shadow_ray_);
+    }
+    if (path.tracing_) {
+      ++counters.rays;
+      hit = visibility_.intersect(path.ray_);
+    }
+    advance(path, shadow_hit, hit, counters);
+  }
+}
+
+void PathIntegrator::trace_batch(Path* const* paths, std::size_t n, PathCounters& counters) const {
+  // Each path's shadow ray (if any), then its continuation ray (if any), in path order.
+  constexpr std::size_t kMaxBatch = 64;
+  Ray rays[kMaxBatch];
+  Hit hits[kMaxBatch];
+  for (std::size_t base = 0; base < n; base += kMaxBatch / 2) {
+    const std::size_t end = std::min(n, base + kMaxBatch / 2);
+    std::size_t m = 0;
+    for (std::size_t k = base; k < end; ++k) {
+      if (paths[k]->shadow_) rays[m++] = paths[k]->shadow_ray_;
+      if (paths[k]->tracing_) rays[m++] = paths[k]->ray_;
+    }
+    visibility_.intersect(rays, hits, m);
+    counters.rays += static_cast<long>(m);
+    // A hint, no effect on any value: the records of the patches the continuation rays hit (read by advance),
+    // asked for all at once so that their cache misses overlap.
+    m = 0;
+    for (std::size_t k = base; k < end; ++k) {
+      m += paths[k]->shadow_;
+      if (!paths[k]->tracing_) continue;
+      const PatchIndex j = hits[m++].patch;
+      if (j < 0) continue;
+      __builtin_prefetch(&patches_.E[static_cast<std::size_t>(j)]);
+      __builtin_prefetch(&bsdfs_[static_cast<std::size_t>(j)]);
+      geometry_.prefetch(j);
+    }
+    m = 0;
+    for (std::size_t k = base; k < end; ++k) {
+      Path& path = *paths[k];
+      Hit shadow_hit, hit;
+      if (path.shadow_) shadow_hit = hits[m++];
+      if (path.tracing_) hit = hits[m++];
+      advance(path, shadow_hit, hit, counters);
+    }
   }
 }
 
 Rgb PathIntegrator::radiance(const Ray& ray, Rng& rng, PathCounters& counters) const {
-  PathState state;
-  Rgb L = Rgb::Zero();
-  trace(ray, state, L, rng, counters);
-  return L;
+  Path path;
+  path.rng_ = rng;
+  path.ray_ = ray;
+  path.tracing_ = true;
+  run_alone(path, counters);
+  rng = path.rng_;
+  return path.L_;
 }
 
-Rgb PathIntegrator::irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const {
+PathIntegrator::Path PathIntegrator::start_irradiance(PatchIndex i, const Vec3& x, const Rng& rng,
+                                                      PathCounters& counters) const {
   // A white Lambertian vertex at x facing the patch's front: reflected radiance = E_irr / pi.
   static const Bsdf white(Lambertian(Rgb::Ones()));
   const Vec3 n = geometry_.normal(i, x);
-  PathState state;
-  Rgb L = Rgb::Zero();
-  Ray ray;
-  if (scatter(white, i, x, n, n, state, L, ray, rng, counters)) trace(ray, state, L, rng, counters);
-  return kPi * L;
+  Path path;
+  path.rng_ = rng;
+  path.tracing_ = scatter(white, i, x, n, n, path, counters);
+  return path;
+}
+
+Rgb PathIntegrator::irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const {
+  Path path = start_irradiance(i, x, rng, counters);
+  run_alone(path, counters);
+  rng = path.rng_;
+  return kPi * path.L_;
 }
 
 }  // namespace radwalk

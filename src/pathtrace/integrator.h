@@ -21,6 +21,13 @@
 // points on patches and ray origins come from a SurfaceGeometry: the planar facets of the PatchSet
 // (FacetGeometry) for a mesh, or exact curved surfaces.
 // Reproducibility: the estimate is a pure function of the Rng passed in.
+//
+// Paths as state machines (Path): a path waits for at most two rays at a time, the shadow ray of its last
+// vertex's light sample and its continuation ray; advance() takes their hits and runs the path up to its next
+// rays or its end. The shadow ray's answer only adds its contribution to L (it draws nothing), so deferring it
+// to the continuation ray's batch changes no draw: a path's result is the same whether its rays are traced one
+// at a time (radiance, irradiance) or with other paths' in batches (trace_batch, packets of 16 rays: the patch
+// averages), up to a visibility whose answer for a ray depends on how it is traced (single ray or packet).
 #include <string>
 #include <vector>
 
@@ -48,7 +55,7 @@ struct IntegratorOptions {
 
 // Work done, for rays-per-second figures.
 struct PathCounters {
-  long rays = 0;      // intersect calls, shadow rays included
+  long rays = 0;      // rays traced (closest-hit queries), shadow rays included: each is one ray as raw Embree's
   long vertices = 0;  // scattering events
   long escapes = 0;   // path rays that hit nothing (left the scene; shadow rays are not counted)
   void add(const PathCounters& o) {
@@ -60,6 +67,32 @@ struct PathCounters {
 
 class PathIntegrator {
  public:
+  // One path in flight: its state, its stream, the radiance gathered so far and the rays it waits for.
+  class Path {
+   public:
+    Path() = default;
+    bool done() const { return !tracing_ && !shadow_; }
+    const Rgb& L() const { return L_; }  // the radiance gathered (the estimate, once done)
+    Rng& rng() { return rng_; }
+
+   private:
+    friend class PathIntegrator;
+    struct State {
+      Rgb beta = Rgb::Ones();  // throughput: product of f |cos| / pdf, divided by the survival probabilities
+      double pdf_prev = 0;     // solid-angle pdf of the last sampled direction
+      bool delta_prev = true;  // the last direction came from a delta lobe or the camera: always count emission
+      int depth = 0;           // scattering events so far
+    } state_;
+    Rgb L_ = Rgb::Zero();
+    Rng rng_;
+    Ray ray_;                            // the continuation ray, while tracing_
+    bool tracing_ = false;
+    Ray shadow_ray_;                     // the shadow ray, while shadow_
+    bool shadow_ = false;
+    PatchIndex light_ = -1;              // the emitter it must reach first
+    Rgb shadow_L_ = Rgb::Zero();         // what it adds to L then
+  };
+
   // Keeps references to patches, geometry and visibility (they must outlive it; visibility must trace the
   // surfaces geometry describes, for a mesh FacetGeometry(patches)); builds one Bsdf per patch.
   PathIntegrator(const PatchSet& patches, const SurfaceGeometry& geometry, const Visibility& visibility,
@@ -73,16 +106,27 @@ class PathIntegrator {
   // direction scores pi L_in (implicit), and NEE/MIS add the direct part from light samples.
   Rgb irradiance(PatchIndex i, const Vec3& x, Rng& rng, PathCounters& counters) const;
 
+  // The path of irradiance(i, x, rng) started: what irradiance estimates is pi L() once it is done.
+  Path start_irradiance(PatchIndex i, const Vec3& x, const Rng& rng, PathCounters& counters) const;
+  // Traces the rays of paths[0 .. n) in one batch (Visibility's batch intersect: packets of 16 rays) and
+  // advances each path.
+  void trace_batch(Path* const* paths, std::size_t n, PathCounters& counters) const;
+
   const IntegratorOptions& options() const { return options_; }
   const LightSampler& lights() const { return lights_; }
   const SurfaceGeometry& geometry() const { return geometry_; }
   const Bsdf& bsdf(PatchIndex i) const;
 
  private:
-  struct PathState;
-  bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world,
-               PathState& state, Rgb& L, Ray& next, Rng& rng, PathCounters& counters) const;
-  void trace(Ray ray, PathState& state, Rgb& L, Rng& rng, PathCounters& counters) const;
+  // The vertex at x (on `patch`, normal n, towards wo_world): its light sample (a shadow ray the path then
+  // waits for) and its continuation (true: path.ray_ set and waited for; false: the path ends there).
+  bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world, Path& path,
+               PathCounters& counters) const;
+  // Takes the hits of the rays the path waited for (shadow_hit if it waited for a shadow ray, hit if for a
+  // continuation) and runs it up to its next rays or its end.
+  void advance(Path& path, const Hit& shadow_hit, const Hit& hit, PathCounters& counters) const;
+  // Runs a path to its end, its rays traced one at a time.
+  void run_alone(Path& path, PathCounters& counters) const;
 
   const PatchSet& patches_;
   const SurfaceGeometry& geometry_;

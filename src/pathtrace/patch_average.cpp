@@ -1,6 +1,7 @@
 #include "pathtrace/patch_average.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -17,14 +18,100 @@
 namespace radwalk {
 
 namespace {
-// Work item = (patch, block of samples); the split depends only on spp, never on the thread count.
+// Work item = (patch, block of samples); the split depends only on spp, never on the thread count. An item's
+// sums add its samples in sample order, and a patch's sums add its items in order: the items fix the result's
+// bits.
 constexpr long kBlock = 256;
+// Items are traced in tasks of consecutive items (in the order patch, block) of about total / 512 samples, at
+// least kTaskSamples and at most kMaxTaskSamples (unless one item has more), kLanes paths in flight, so that the ray batches stay full even at a few
+// samples per patch. How items are grouped into tasks changes no value: each sample draws from its own stream.
+constexpr long kTaskSamples = 1024, kMaxTaskSamples = 65536;
+constexpr std::size_t kLanes = 32;
 
 struct Partial {
   Rgb sum = Rgb::Zero();    // sum of rho E_irr_hat
   Rgb sum2 = Rgb::Zero();   // sum of its squares
-  PathCounters counters;
 };
+
+// One item of a task: samples [s0, s1) of patch i, the task's samples first .. first + s1 - s0 - 1.
+struct Item {
+  std::size_t patch = 0;
+  long s0 = 0, s1 = 0;
+  std::size_t first = 0;
+};
+
+// The samples of consecutive items, kLanes paths in lockstep, their rays traced in batches
+// (PathIntegrator::trace_batch); out[k] = the sums of item k, its samples' Y = rho_i E_irr_hat(x) added in sample
+// order once all have finished.
+void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const PathIntegrator& integrator,
+                 const std::vector<Item>& items, std::uint64_t seed, Partial* out, PathCounters& counters) {
+  using Path = PathIntegrator::Path;
+  if (items.empty()) return;
+  const std::size_t count = items.back().first + static_cast<std::size_t>(items.back().s1 - items.back().s0);
+  std::vector<Rgb> Y(count, Rgb::Zero());
+  // Sample w of the task, started: x uniform on its patch (two draws), then the irradiance path at x.
+  std::size_t at = 0;  // the item of the last sample started (samples start in order)
+  auto make = [&](std::size_t w) {
+    while (at + 1 < items.size() && w >= items[at + 1].first) ++at;
+    const Item& item = items[at];
+    const RngFamily samples(seed, StreamDomain::patch_average, item.patch);
+    Rng rng = samples.stream(static_cast<std::uint64_t>(item.s0) + (w - item.first));
+    const double u1 = rng.uniform(), u2 = rng.uniform();
+    const auto patch = static_cast<PatchIndex>(item.patch);
+    const Vec3 x = geometry.sample_point(patch, u1, u2);
+    return integrator.start_irradiance(patch, x, rng, counters);
+  };
+  std::array<Path, kLanes> path;
+  std::array<std::size_t, kLanes> index{};
+  std::array<std::size_t, kLanes> patch_of{};
+  std::size_t next = 0, active = 0;
+  auto finish = [&](std::size_t lane) {
+    Y[index[lane]] = patches.rho[patch_of[lane]] * (kPi * path[lane].L());
+  };
+  // Starts samples in order in `lane` until one waits for rays (true) or none is left (false).
+  auto fill = [&](std::size_t lane) {
+    while (next < count) {
+      index[lane] = next;
+      path[lane] = make(next++);
+      patch_of[lane] = items[at].patch;
+      if (!path[lane].done()) return true;
+      finish(lane);
+    }
+    return false;
+  };
+  while (active < kLanes && fill(active)) ++active;
+  std::array<Path*, kLanes> batch;
+  while (active > 0) {
+    for (std::size_t r = 0; r < active; ++r) batch[r] = &path[r];
+    integrator.trace_batch(batch.data(), active, counters);
+    // A finished path's lane takes the next sample or, when none is left, the last lane's path.
+    for (std::size_t r = 0; r < active;) {
+      if (!path[r].done()) {
+        ++r;
+        continue;
+      }
+      finish(r);
+      if (fill(r)) {
+        ++r;
+        continue;
+      }
+      --active;
+      if (r < active) {
+        path[r] = path[active];
+        index[r] = index[active];
+        patch_of[r] = patch_of[active];
+      }
+    }
+  }
+  for (std::size_t k = 0; k < items.size(); ++k) {
+    const std::size_t b = items[k].first, e = b + static_cast<std::size_t>(items[k].s1 - items[k].s0);
+    Partial& p = out[k];
+    for (std::size_t w = b; w < e; ++w) {
+      p.sum += Y[w];
+      p.sum2 += Y[w] * Y[w];
+    }
+  }
+}
 }  // namespace
 
 Solution estimate_patch_averages(const PatchSet& patches, const Visibility& visibility,
@@ -39,37 +126,49 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const PathIntegrator integrator(patches, geometry, visibility, options.integrator);
   const std::size_t n = patches.size();
   const auto blocks = static_cast<std::size_t>((options.spp + kBlock - 1) / kBlock);
-  std::vector<Partial> parts(n * blocks);
-  // Over MPI each rank traces a block of the work items (their own streams), then all share them.
-  const std::vector<distributed::Range> ranges = distributed::all_blocks(parts.size());
+  const std::size_t item_count = n * blocks;
+  const long block_samples = std::min(options.spp, kBlock);
+  const long task_samples =
+      std::clamp<long>((static_cast<long>(n) * options.spp + 511) / 512, kTaskSamples, kMaxTaskSamples);
+  const auto per_task = static_cast<std::size_t>(std::max<long>(1, task_samples / block_samples));
+  const std::size_t tasks = (item_count + per_task - 1) / per_task;
+  std::vector<Partial> parts(item_count);
+  std::vector<PathCounters> task_counters(tasks);
+  // Over MPI each rank traces a block of the tasks (their own streams), then all share the items' sums (a rank's
+  // items are those of its tasks: consecutive) and the tasks' counters.
+  const std::vector<distributed::Range> ranges = distributed::all_blocks(tasks);
+  std::vector<distributed::Range> item_ranges;
+  for (const distributed::Range& r : ranges)
+    item_ranges.push_back({std::min(item_count, r.begin * per_task), std::min(item_count, r.end * per_task)});
   const distributed::Range mine = ranges[static_cast<std::size_t>(distributed::rank())];
+  const distributed::Range my_items = item_ranges[static_cast<std::size_t>(distributed::rank())];
   std::optional<Progress> progress;
-  if (options.progress) progress.emplace("path tracing patches", mine.size());
+  if (options.progress) progress.emplace("path tracing patches", my_items.size());
 
-  // Samples: x uniform on the patch, then an irradiance estimate at x.
   parallel_for(
       mine.size(),
       [&](std::size_t local) {
-        const std::size_t item = mine.begin + local;
-        const std::size_t i = item / blocks;
-        const long s0 = static_cast<long>(item % blocks) * kBlock;
-        const long s1 = std::min(options.spp, s0 + kBlock);
-        Partial& p = parts[item];
-        const RngFamily samples(options.seed, StreamDomain::patch_average, i);
-        for (long s = s0; s < s1; ++s) {
-          Rng rng = samples.stream(static_cast<std::uint64_t>(s));
-          const double u1 = rng.uniform(), u2 = rng.uniform();
-          const auto patch = static_cast<PatchIndex>(i);
-          const Vec3 x = geometry.sample_point(patch, u1, u2);
-          const Rgb y = patches.rho[i] * integrator.irradiance(patch, x, rng, p.counters);
-          p.sum += y;
-          p.sum2 += y * y;
+        const std::size_t task = mine.begin + local;
+        const std::size_t first = task * per_task, last = std::min(item_count, first + per_task);
+        std::vector<Item> items;
+        items.reserve(last - first);
+        std::size_t samples_before = 0;
+        for (std::size_t k = first; k < last; ++k) {
+          Item item;
+          item.patch = k / blocks;
+          item.s0 = static_cast<long>(k % blocks) * kBlock;
+          item.s1 = std::min(options.spp, item.s0 + kBlock);
+          item.first = samples_before;
+          samples_before += static_cast<std::size_t>(item.s1 - item.s0);
+          items.push_back(item);
         }
-        if (progress) progress->advance(1);
+        trace_items(patches, geometry, integrator, items, options.seed, parts.data() + first, task_counters[task]);
+        if (progress) progress->advance(last - first);
       },
       1);
   if (progress) progress->finish();
-  distributed::share_blocks(parts, ranges);
+  distributed::share_blocks(parts, item_ranges);
+  distributed::share_blocks(task_counters, ranges);
 
   // Combine blocks in order; unbiased per-sample variance.
   Solution sol;
@@ -78,13 +177,13 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   sol.B_se.resize(static_cast<Eigen::Index>(n), 3);
   sol.var.resize(static_cast<Eigen::Index>(n), 3);
   PathCounters total;
+  for (const PathCounters& c : task_counters) total.add(c);
   const double m = static_cast<double>(options.spp);
   for (std::size_t i = 0; i < n; ++i) {
     Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
     for (std::size_t b = 0; b < blocks; ++b) {
       sum += parts[i * blocks + b].sum;
       sum2 += parts[i * blocks + b].sum2;
-      total.add(parts[i * blocks + b].counters);
     }
     const auto [mean, var] = mean_and_variance(sum, sum2, m);
     const auto r = static_cast<Eigen::Index>(i);

@@ -30,6 +30,10 @@ class SurfaceGeometry {
   // then skips light samples on the receiver's own patch: they contribute exactly zero); true on a concave
   // curved patch, where such samples carry light.
   virtual bool sees_itself(PatchIndex i) const = 0;
+
+  // A hint with no effect on any value: asks for the memory that normal(i, .) and spawn_ray(i, ...) read, ahead
+  // of the calls (at large N each is a cache miss). Does nothing unless overridden.
+  virtual void prefetch(PatchIndex) const {}
 };
 
 }  // namespace radwalk

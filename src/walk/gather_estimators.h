@@ -58,6 +58,15 @@ class GatherWalk {
   const Rgb& score() const { return X_; }
   std::size_t from() const { return k_; }
   Rng& rng() { return rng_; }
+  // A hint (walk_lockstep.h), no effect on any value: the records the walk reads once at j (its emission, its
+  // survival probability and, on its next move, its weight factor), asked for before they are needed.
+  void prefetch(PatchIndex j) const {
+    if (j < 0) return;
+    const auto k = static_cast<std::size_t>(j);
+    __builtin_prefetch(&t_->w[k]);
+    __builtin_prefetch(&kernel_->tables().E[k]);
+    __builtin_prefetch(&kernel_->tables().p[k]);
+  }
 
  protected:
   // True if the roulette at k ends the walk.

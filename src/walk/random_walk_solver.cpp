@@ -38,16 +38,32 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Gathering chunk layout, a function of (m target patches, walks per patch) only: about 512 chunks in all, at
-// least 64 walks each.
+// Gathering work layout, a function of (m target patches, walks per patch) only.
+//   segments  each target patch's walks cut into `per_patch` segments of `chunk` walks (the last one shorter),
+//             at least 64 walks each, max(1, 512 / m) segments per patch aimed at (so one per patch from 512
+//             target patches up): a segment's moments are the sums of its walks' scores in walk order, and a
+//             patch's moments merge its segments in order, so the segments fix the result's bits;
+//   tasks     `per_task` consecutive segments (in the order patch, segment) traced together, about
+//             total / 512 walks, at least kTaskWalks and at most kMaxTaskWalks (unless one segment has more;
+//             a task's scores are stored until its segments are summed): their walks share the lockstep
+//             lanes, so that the ray packets stay full when a patch has only a few walks (at 10^6 patches and 3
+//             walks each, one task per patch ran packets of 3 rays and paid a task per 3 walks). How segments
+//             are grouped into tasks changes no value: each walk draws only from its own stream.
 struct GatherLayout {
-  long chunk = 0;             // walks per chunk
-  std::size_t per_patch = 0;  // chunks per target patch
+  long chunk = 0;             // walks per segment
+  std::size_t per_patch = 0;  // segments per target patch
+  std::size_t per_task = 0;   // segments per task
 };
+constexpr long kTaskWalks = 1024, kMaxTaskWalks = 65536;
 GatherLayout gather_layout(std::size_t m, long walks) {
   const long per_patch_target = std::max<long>(1, 512 / static_cast<long>(std::max<std::size_t>(m, 1)));
   const long chunk = std::max<long>(64, (walks + per_patch_target - 1) / per_patch_target);
-  return {chunk, static_cast<std::size_t>((walks + chunk - 1) / chunk)};
+  const auto per_patch = static_cast<std::size_t>((walks + chunk - 1) / chunk);
+  // Walks per segment, on average (>= 1), and per task.
+  const long segment_walks = std::max<long>(1, walks / static_cast<long>(per_patch));
+  const long total = static_cast<long>(m) * walks;
+  const long task_walks = std::clamp<long>((total + 511) / 512, kTaskWalks, kMaxTaskWalks);
+  return {chunk, per_patch, static_cast<std::size_t>(std::max<long>(1, task_walks / segment_walks))};
 }
 
 // Shooting chunk size: at least 1024 particles, about 256 chunks in all.
@@ -58,70 +74,101 @@ struct RunResult {
   WalkCounters counters;
 };
 
-// Walks [begin, end) from patch i, K::kLanes of them in lockstep (walk_lockstep.h); the moments add the scores
-// in walk order (with one lane, as the walks finish), so they do not depend on the lane count.
+// One segment of a gathering task: walks [begin, end) of target patch `patch`, walk w on the stream
+// (seed, gather_walk, patch, w).
+struct GatherSegment {
+  std::size_t patch = 0;
+  long begin = 0, end = 0;
+  std::size_t first = 0;  // the task's number of its walk `begin`
+};
+
+// The walks of consecutive segments, K::kLanes of them in lockstep (walk_lockstep.h) whatever segment they come
+// from; out[s] = the moments of segment s, its walks' scores added in walk order once all have finished, so they
+// depend neither on the lane count nor on the other segments of the task.
 template <class Estimator, TransitionKernel K>
-Moments gather_walks(const K& kernel, const typename Estimator::Tables& tables, std::size_t i, long begin, long end,
-                     std::uint64_t seed, WalkCounters& counters) {
+void gather_walks(const K& kernel, const typename Estimator::Tables& tables,
+                  const std::vector<GatherSegment>& segments, std::uint64_t seed, Moments* out,
+                  WalkCounters& counters) {
   using Walk = typename Estimator::template Walk<K>;
-  const auto count = static_cast<std::size_t>(end - begin);
-  const RngFamily streams(seed, StreamDomain::gather_walk, i);  // walk w from patch i
-  auto make = [&](std::size_t w) { return Walk(kernel, tables, i, streams.stream(static_cast<std::uint64_t>(begin) + w)); };
+  if (segments.empty()) return;
+  const GatherSegment& last = segments.back();
+  const std::size_t count = last.first + static_cast<std::size_t>(last.end - last.begin);
+  // Walk w of the task: the segment holding it (a cursor: run_lockstep asks for the walks in order).
+  std::size_t at = 0;
+  auto segment_of = [&](std::size_t w) -> const GatherSegment& {
+    while (at > 0 && w < segments[at].first) --at;
+    while (at + 1 < segments.size() && w >= segments[at + 1].first) ++at;
+    return segments[at];
+  };
+  auto make = [&](std::size_t w) {
+    const GatherSegment& s = segment_of(w);
+    const RngFamily streams(seed, StreamDomain::gather_walk, s.patch);  // walk b of the patch: stream b
+    return Walk(kernel, tables, s.patch, streams.stream(static_cast<std::uint64_t>(s.begin) + (w - s.first)));
+  };
   auto step = [](Walk& walk, std::size_t, PatchIndex j) { walk.advance(j); };
-  ShiftedSums sums;
-  if constexpr (K::kLanes == 1) {
-    run_singly(kernel, count, make, step, [&](std::size_t, const Walk& walk) { sums.add(walk.score()); }, counters);
-  } else {
-    std::vector<Rgb> X(count, Rgb::Zero());
-    run_lockstep(kernel, count, K::kLanes, make, step, [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); },
-                 counters);
-    for (const Rgb& x : X) sums.add(x);
+  std::vector<Rgb> X(count, Rgb::Zero());
+  run_lockstep(kernel, count, K::kLanes, make, step, [&](std::size_t w, const Walk& walk) { X[w] = walk.score(); },
+               counters);
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    ShiftedSums sums;
+    const std::size_t b = segments[s].first, e = b + static_cast<std::size_t>(segments[s].end - segments[s].begin);
+    for (std::size_t w = b; w < e; ++w) sums.add(X[w]);
+    out[s] = sums.moments();
   }
-  return sums.moments();
 }
 
-// Gathering: every target patch gets `walks` walks, cut into fixed chunks whose Moments merge in chunk order.
+// Gathering: every target patch gets `walks` walks, cut into the segments of gather_layout, traced in tasks of
+// consecutive segments; each patch's moments merge its segments' in segment order.
 template <class Estimator, TransitionKernel K>
 RunResult run_gather(const K& kernel, const std::vector<std::size_t>& targets, long walks, std::uint64_t seed,
                      Progress* progress) {
   const typename Estimator::Tables tables(kernel.tables());
   const std::size_t m = targets.size();
   const GatherLayout layout = gather_layout(m, walks);
-  const long chunk = layout.chunk;
-  const std::size_t chunks_per_patch = layout.per_patch;
-  std::vector<Moments> parts(m * chunks_per_patch);
-  std::vector<WalkCounters> part_counters(parts.size());
-  // Over MPI each rank runs a block of the chunks (their walks have their own streams), then all share them.
-  const std::vector<distributed::Range> blocks = distributed::all_blocks(parts.size());
+  const std::size_t per_patch = layout.per_patch, per_task = layout.per_task;
+  const std::size_t segments = m * per_patch, tasks = (segments + per_task - 1) / per_task;
+  std::vector<Moments> parts(segments);
+  std::vector<WalkCounters> task_counters(tasks);
+  // Over MPI each rank runs a block of the tasks (their walks have their own streams), then all share the
+  // segments' moments (the rank's segments are those of its tasks: consecutive) and the tasks' counters.
+  const std::vector<distributed::Range> blocks = distributed::all_blocks(tasks);
+  std::vector<distributed::Range> segment_blocks;
+  for (const distributed::Range& b : blocks)
+    segment_blocks.push_back({std::min(segments, b.begin * per_task), std::min(segments, b.end * per_task)});
   const distributed::Range mine = blocks[static_cast<std::size_t>(distributed::rank())];
   parallel_for(
       mine.size(),
       [&](std::size_t local) {
-        const std::size_t c = mine.begin + local;
-        const std::size_t i = targets[c / chunks_per_patch];
-        const long begin = static_cast<long>(c % chunks_per_patch) * chunk;
-        const long end = std::min(walks, begin + chunk);
-        WalkCounters counters;
-        const Moments mom = gather_walks<Estimator>(kernel, tables, i, begin, end, seed, counters);
-        parts[c] = mom;
-        part_counters[c] = counters;
-        if (progress) progress->advance(1);
+        const std::size_t task = mine.begin + local;
+        const std::size_t first = task * per_task, last = std::min(segments, first + per_task);
+        std::vector<GatherSegment> work;
+        work.reserve(last - first);
+        std::size_t walks_before = 0;
+        for (std::size_t c = first; c < last; ++c) {
+          GatherSegment s;
+          s.patch = targets[c / per_patch];
+          s.begin = static_cast<long>(c % per_patch) * layout.chunk;
+          s.end = std::min(walks, s.begin + layout.chunk);
+          s.first = walks_before;
+          walks_before += static_cast<std::size_t>(s.end - s.begin);
+          work.push_back(s);
+        }
+        gather_walks<Estimator>(kernel, tables, work, seed, parts.data() + first, task_counters[task]);
+        if (progress) progress->advance(last - first);
       },
       1);
-  distributed::share_blocks(parts, blocks);
-  distributed::share_blocks(part_counters, blocks);
-  // Merge per patch in chunk order.
+  distributed::share_blocks(parts, segment_blocks);
+  distributed::share_blocks(task_counters, blocks);
+  // Merge per patch in segment order.
   const auto N = static_cast<Eigen::Index>(kernel.size());
   RunResult r;
   r.B.setConstant(N, 3, kNaN);
   r.var.setConstant(N, 3, kNaN);
   r.se.setConstant(N, 3, kNaN);
+  for (const WalkCounters& c : task_counters) r.counters += c;
   for (std::size_t t = 0; t < m; ++t) {
     Moments mom;
-    for (std::size_t c = 0; c < chunks_per_patch; ++c) {
-      mom.merge(parts[t * chunks_per_patch + c]);
-      r.counters += part_counters[t * chunks_per_patch + c];
-    }
+    for (std::size_t c = 0; c < per_patch; ++c) mom.merge(parts[t * per_patch + c]);
     const auto row = static_cast<Eigen::Index>(targets[t]);
     r.B.row(row) = mom.mean.transpose();
     r.var.row(row) = mom.variance().transpose();

@@ -141,7 +141,8 @@ void RayKernel::sample(std::span<const SampleRequest> requests, std::span<PatchI
       }
       out[base + r] = j;
     }
-    // The walks read these patches' records next (their roulette, weights and next ray): ask for them now, so
+    // The walks read these patches' records next (their roulette, weights and next ray): ask for the kernel's
+    // own (the ray's two cache lines, rho; a walk asks for its estimator's, walk_lockstep.h) now, so
     // that the cache misses of the 16 lanes overlap instead of coming one by one (at large N every table access
     // is a miss). A hint only: no effect on any value.
     for (std::size_t r = 0; r < m; ++r) {
@@ -149,6 +150,7 @@ void RayKernel::sample(std::span<const SampleRequest> requests, std::span<PatchI
       if (j < 0) continue;
       const auto k = static_cast<std::size_t>(j);
       __builtin_prefetch(&samplers_[k]);
+      __builtin_prefetch(reinterpret_cast<const char*>(&samplers_[k]) + 64);
       __builtin_prefetch(&tables_.rho[k]);
     }
     counters.steps += static_cast<long>(m);

@@ -13,6 +13,9 @@
 // lanes = 1 drives each walk alone through the single-sample kernel.sample(k, rng, counters).
 // A walk may also give the uniforms of its next ray (uniforms(): 4 floats or nullptr; the Sobol sampler's first
 // rays, stratified_emission.h): they go into its request (SampleRequest::u) instead of draws from its stream.
+// A walk may also ask for the memory its step to j will read (prefetch(j), a hint with no effect on any value):
+// run_lockstep calls it for every lane of a batch before stepping any, so that the cache misses of the lanes on
+// their destinations' records (at large N, most accesses) overlap instead of coming one after the other.
 #include <algorithm>
 #include <array>
 #include <cstddef>
@@ -31,6 +34,12 @@ const float* walk_uniforms(const Walk& walk) {
     return walk.uniforms();
   else
     return nullptr;
+}
+
+// walk.prefetch(j) where the walk has one.
+template <class Walk>
+void prefetch_step(const Walk& walk, PatchIndex j) {
+  if constexpr (requires { walk.prefetch(j); }) walk.prefetch(j);
 }
 
 // One destination sample for one walk: through the batch call when the walk gives its uniforms.
@@ -84,6 +93,7 @@ void run_lockstep(const K& kernel, std::size_t count, std::size_t lanes, Make&& 
     for (std::size_t r = 0; r < active; ++r) request[r] = {walk[r].from(), &walk[r].rng(), walk_uniforms(walk[r])};
     kernel.sample(std::span<const SampleRequest>(request.data(), active),
                   std::span<PatchIndex>(destination.data(), active), counters);
+    for (std::size_t r = 0; r < active; ++r) prefetch_step(walk[r], destination[r]);
     // Step each. A finished walk's lane takes the next walk or, when none is left, the last lane's walk (not yet
     // stepped this round, so this lane is stepped again).
     for (std::size_t r = 0; r < active;) {

@@ -1,12 +1,16 @@
 // Patch-average radiosity by path tracing against exact answers (furnace, energy balance, a biased cap with a
-// known expectation), agreement of the integrators, and reproducibility across thread counts.
+// known expectation), agreement of the integrators, reproducibility across thread counts, and the batched
+// tracing of the samples (paths in lockstep, rays in packets) against samples traced one ray at a time.
 #include <catch2/catch.hpp>
 
+#include "core/moments.h"
 #include "core/parallel.h"
+#include "pathtrace/facet_geometry.h"
 #include "pathtrace/patch_average.h"
 #include "scenes.h"
 #include "support/stat_checks.h"
 #include "visibility/brute_force_visibility.h"
+#include "visibility/embree_visibility.h"
 
 using namespace radwalk;
 
@@ -142,4 +146,42 @@ TEST_CASE("patch averages are bit-identical for 1 and 2 threads", "[pathtrace]")
   CHECK((one.B == two.B).all());
   CHECK((one.B_se == two.B_se).all());
   CHECK(one.steps == two.steps);
+}
+
+TEST_CASE("patch averages traced in batches equal their samples traced one ray at a time", "[pathtrace]") {
+  // estimate_patch_averages runs the samples of many patches in lockstep and traces their rays (shadow rays with
+  // the continuation rays) in batches; sample s of patch i must still be PathIntegrator::irradiance on its own
+  // stream (seed, patch_average, i, s), rays traced one at a time, and the sums must add the samples in order:
+  // bit for bit, for every integrator, on the brute-force visibility and on Embree (packets of 16 against single
+  // rays).
+  const PatchSet p = test::lit_box(Rgb(0.6, 0.5, 0.4), Rgb::Constant(3.0));
+  const FacetGeometry geometry(p);
+  const BruteForceVisibility brute(p);
+  const EmbreeVisibility embree(p);
+  for (const Visibility* vis : {static_cast<const Visibility*>(&brute), static_cast<const Visibility*>(&embree)})
+    for (const IntegratorKind kind : kAll) {
+      const PatchAverageOptions o = options_for(kind, 5, 106);
+      const Solution s = estimate_patch_averages(p, *vis, o);
+      const PathIntegrator integrator(p, geometry, *vis, o.integrator);
+      PathCounters counters;
+      long mismatches = 0;
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+        for (long k = 0; k < o.spp; ++k) {
+          Rng rng = stream(o.seed, StreamDomain::patch_average, i, static_cast<std::uint64_t>(k));
+          const double u1 = rng.uniform(), u2 = rng.uniform();
+          const auto patch = static_cast<PatchIndex>(i);
+          const Rgb y = p.rho[i] * integrator.irradiance(patch, geometry.sample_point(patch, u1, u2), rng, counters);
+          sum += y;
+          sum2 += y * y;
+        }
+        const auto [mean, var] = mean_and_variance(sum, sum2, static_cast<double>(o.spp));
+        const auto r = static_cast<Eigen::Index>(i);
+        mismatches += !(s.B.row(r).transpose() == p.E[i] + mean).all() || !(s.var.row(r).transpose() == var).all();
+      }
+      INFO((vis == &brute ? "brute force, " : "embree, ") << to_string(kind));
+      CHECK(mismatches == 0);
+      CHECK(s.info.at("rays") == static_cast<double>(counters.rays));
+      CHECK(s.steps == counters.vertices);
+    }
 }

@@ -12,6 +12,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/moments.h"
 #include "core/sampling.h"
 #include "patch/patch_builder.h"
 #include "support/stat_checks.h"
@@ -222,4 +223,31 @@ TEST_CASE("unit_circle turned by its quarter turns is within 2.5e-7 of (cos, sin
   }
   INFO("largest error " << worst);
   CHECK(worst < 0x1.0p-22);
+}
+
+TEST_CASE("gathering tasks spanning patches give each patch the moments of its own walks", "[walk][ray][lockstep]") {
+  // With 5 walks per patch, one task of the solver holds the walks of all six patches in its lockstep lanes
+  // (random_walk_solver.cpp, gather_layout): each patch's B and var must still be those of its walks (seed,
+  // gather_walk, i, w), w = 0..4, replayed one at a time; the summation orders differ (shifted sums against two
+  // passes), hence the relative tolerance of a few roundings.
+  const std::vector<int> open = {0, 1, 2, 3, 4};  // escapes too
+  const RadiosityProblem p = test::mixed_cube(open);
+  const PatchSet patches = test::cube_patches(p, open);
+  const EmbreeVisibility embree(patches);
+  WalkOptions o;
+  o.method = WalkMethod::gather_collision;
+  o.kernel = WalkKernel::ray;
+  o.walks_per_patch = 5;
+  o.seed = 23;
+  const Solution s = solve_random_walk(p, &patches, &embree, o);
+  const RayKernel kernel(p, patches, embree, survival_probabilities(p.rho, {}));
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const auto x = test::gather_scores(o.method, kernel, i, o.walks_per_patch, o.seed);
+    for (int c = 0; c < 3; ++c) {
+      const SampleMoments m = sample_moments(x[c]);
+      INFO("patch " << i << ", channel " << c);
+      CHECK(s.B(static_cast<Eigen::Index>(i), c) == Approx(m.mean).epsilon(1e-12).margin(1e-300));
+      CHECK(s.var(static_cast<Eigen::Index>(i), c) == Approx(m.var).epsilon(1e-9).margin(1e-12));
+    }
+  }
 }
