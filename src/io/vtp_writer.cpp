@@ -181,7 +181,7 @@ void write_no_cells(std::ostream& out, const char* element) {
 }  // namespace
 
 void write_vtp_fields(const std::string& path, const PatchSet& patches, const std::vector<const CellField*>& fields,
-                      const VtpMetadata& metadata) {
+                      const VtpMetadata& metadata, const DisplayMesh* given_mesh) {
   const std::size_t n = patches.size();
   // Everything that can be refused is checked before the file is created.
   for (const CellField* f : fields) {
@@ -189,7 +189,9 @@ void write_vtp_fields(const std::string& path, const PatchSet& patches, const st
     RADWALK_CHECK_EQ(f->values.size(), n * static_cast<std::size_t>(f->components));  // a value per patch, component
   }
   for (const auto& entry : metadata.entries) check_name(entry.first);
-  const DisplayMesh mesh = make_display_mesh(patches);
+  DisplayMesh built;
+  if (!given_mesh) built = make_display_mesh(patches);
+  const DisplayMesh& mesh = given_mesh ? *given_mesh : built;
   static_assert(sizeof(Vec3) == 3 * sizeof(double), "display points are packed xyz triples");
   RADWALK_CHECK_EQ(mesh.offsets.size(), n + 1);
 

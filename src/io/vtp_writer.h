@@ -22,14 +22,17 @@
 
 #include "io/cell_field.h"
 #include "io/vtp_metadata.h"
+#include "patch/display_mesh.h"
 
 namespace radwalk {
 
 void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields,
                const VtpMetadata& metadata = {});
-// The same for fields held elsewhere (no copy): fields[k] is the k-th field, alive until the call returns.
+// The same for fields held elsewhere (no copy): fields[k] is the k-th field, alive until the call returns; and,
+// when mesh is given, with that display mesh, which must be make_display_mesh(patches) (a caller builds it before
+// it allocates the fields, so that the peak of building it does not come on top of them).
 void write_vtp_fields(const std::string& path, const PatchSet& patches, const std::vector<const CellField*>& fields,
-                      const VtpMetadata& metadata = {});
+                      const VtpMetadata& metadata = {}, const DisplayMesh* mesh = nullptr);
 
 // A ParaView collection (.pvd) listing (time, file) pairs, e.g. the steps of a progressive solve.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps);
