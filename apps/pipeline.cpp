@@ -457,6 +457,9 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
     malloc_trim(0);
 #endif
     const DisplayMesh mesh = make_display_mesh(patches);
+#if defined(__GLIBC__)
+    malloc_trim(0);  // the display mesh's build leaves millions of small freed blocks
+#endif
     const std::vector<CellField> description = patch_fields(patches);
     std::vector<const CellField*> all;
     for (const CellField& f : description) all.push_back(&f);
