@@ -1,20 +1,9 @@
 #include "io/vtp_writer.h"
 
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDoubleArray.h>
-#include <vtkFieldData.h>
-#include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkStringArray.h>
-#include <vtkTypeInt64Array.h>
-#include <vtkUnsignedCharArray.h>
-#include <vtkXMLPolyDataWriter.h>
-
-#include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <ostream>
 #include <stdexcept>
 
@@ -22,10 +11,18 @@
 #include "core/check.h"
 #include "core/error.h"
 #include "core/srgb.h"
+#include "io/vtk_binary.h"
 #include "patch/display_mesh.h"
 
 namespace radwalk {
 namespace {
+
+// The file is VTK XML PolyData written here, one array at a time, straight into the atomic writer's stream: each
+// DataArray inline (format="binary", io/vtk_binary.h), so that no offsets into the file are needed before the
+// data exist, and each point field is computed, encoded, written and freed before the next. The layout is VTK's
+// own (what vtkXMLPolyDataWriter writes in binary mode with zlib): field data, then the piece's point data, cell
+// data, points and cells (vertices, lines and strips empty; polygon offsets are the end of each polygon in the
+// connectivity, without the leading 0).
 
 void check_name(const std::string& name) {
   if (name.empty() || paraview_name(name) != name || is_calculator_reserved(name) ||
@@ -33,121 +30,204 @@ void check_name(const std::string& name) {
     throw std::logic_error("write_vtp: '" + name + "' is not a name ParaView's Calculator accepts");
 }
 
-void name_rgb(vtkDataArray* a) {
-  a->SetComponentName(0, "R");
-  a->SetComponentName(1, "G");
-  a->SetComponentName(2, "B");
+// The shortest text that reads back as x (std::to_chars).
+std::string number_text(double x) {
+  char text[32];
+  const auto end = std::to_chars(text, text + sizeof text, x).ptr;
+  return std::string(text, end);
 }
 
-vtkNew<vtkDoubleArray> real_array(const CellField& f, const std::vector<double>& values, std::size_t tuples) {
-  vtkNew<vtkDoubleArray> a;
-  a->SetName(f.name.c_str());
-  a->SetNumberOfComponents(f.components);
-  // The array reads `values` in place (save = 1: VTK neither copies nor frees it; it outlives the writer).
-  a->SetArray(const_cast<double*>(values.data()), static_cast<vtkIdType>(tuples * f.components), 1);
-  if (f.kind == FieldKind::quantity && f.components == 3) name_rgb(a);
-  return a;
+template <class T>
+constexpr const char* vtk_type_name() {
+  if constexpr (std::is_same_v<T, double>) return "Float64";
+  if constexpr (std::is_same_v<T, std::int64_t>) return "Int64";
+  if constexpr (std::is_same_v<T, unsigned char>) return "UInt8";
 }
 
-vtkNew<vtkUnsignedCharArray> srgb_array(const std::vector<double>& B, std::size_t tuples) {
-  vtkNew<vtkUnsignedCharArray> a;
-  a->SetName("B_srgb");
-  a->SetNumberOfComponents(3);
-  a->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
-  for (std::size_t k = 0; k < tuples * 3; ++k) a->SetValue(static_cast<vtkIdType>(k), srgb8_from_radiosity(B[k]));
-  name_rgb(a);
-  return a;
-}
+// What an array element says about the values besides its name and type.
+struct ArrayLayout {
+  int components = 1;
+  bool rgb = false;            // component names R, G, B
+  std::size_t tuples_attr = 0;  // > 0: NumberOfTuples attribute (field data)
+};
 
-void add_field_data(vtkPolyData* poly, const VtpMetadata& metadata) {
-  for (const auto& [key, value] : metadata.entries) {
-    check_name(key);
-    if (const auto* text = std::get_if<std::string>(&value)) {
-      vtkNew<vtkStringArray> a;
-      a->SetName(key.c_str());
-      a->InsertNextValue(*text);
-      poly->GetFieldData()->AddArray(a);
-    } else if (const auto* real = std::get_if<double>(&value)) {
-      vtkNew<vtkDoubleArray> a;
-      a->SetName(key.c_str());
-      a->InsertNextValue(*real);
-      poly->GetFieldData()->AddArray(a);
+// ' RangeMin="..." RangeMax="..."' as VTK writes them: the range of the values (one component) or of the tuples'
+// Euclidean norms, over the finite ones; "" when none is finite.
+template <class T>
+std::string range_attributes(const T* values, std::size_t tuples, int components) {
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t t = 0; t < tuples; ++t) {
+    double r = 0;
+    if (components == 1) {
+      r = static_cast<double>(values[t]);
     } else {
-      vtkNew<vtkTypeInt64Array> a;
-      a->SetName(key.c_str());
-      a->InsertNextValue(std::get<std::int64_t>(value));
-      poly->GetFieldData()->AddArray(a);
+      for (int c = 0; c < components; ++c) {
+        const double v = static_cast<double>(values[t * static_cast<std::size_t>(components) + c]);
+        r += v * v;
+      }
+      r = std::sqrt(r);
+    }
+    if (!std::isfinite(r)) continue;
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  if (!(lo <= hi)) return "";
+  return " RangeMin=\"" + number_text(lo) + "\" RangeMax=\"" + number_text(hi) + "\"";
+}
+
+// One <DataArray> of `tuples` x layout.components values at `values`, at indentation `indent`.
+template <class T>
+void write_data_array(std::ostream& out, const std::string& indent, const std::string& name, const T* values,
+                      std::size_t tuples, const ArrayLayout& layout) {
+  out << indent << "<DataArray type=\"" << vtk_type_name<T>() << "\" Name=\"" << name << "\"";
+  if (layout.components != 1) out << " NumberOfComponents=\"" << layout.components << "\"";
+  if (layout.rgb) out << " ComponentName0=\"R\" ComponentName1=\"G\" ComponentName2=\"B\"";
+  if (layout.tuples_attr > 0) out << " NumberOfTuples=\"" << layout.tuples_attr << "\"";
+  out << " format=\"binary\"" << range_attributes(values, tuples, layout.components) << ">\n" << indent << "  ";
+  write_vtk_compressed_base64(out, values, tuples * static_cast<std::size_t>(layout.components) * sizeof(T));
+  out << "\n" << indent << "</DataArray>\n";
+}
+
+// The run's metadata as one-tuple arrays (vtp_metadata.h): a string array holds its text and a terminating NUL,
+// which is how VTK stores strings in binary arrays.
+void write_field_data(std::ostream& out, const VtpMetadata& metadata) {
+  if (metadata.entries.empty()) return;
+  out << "    <FieldData>\n";
+  ArrayLayout one;
+  one.tuples_attr = 1;
+  for (const auto& [key, value] : metadata.entries) {
+    if (const auto* text = std::get_if<std::string>(&value)) {
+      out << "      <Array type=\"String\" Name=\"" << key << "\" NumberOfTuples=\"1\" format=\"binary\">\n        ";
+      write_vtk_compressed_base64(out, text->c_str(), text->size() + 1);
+      out << "\n      </Array>\n";
+    } else if (const auto* real = std::get_if<double>(&value)) {
+      write_data_array(out, "      ", key, real, 1, one);
+    } else {
+      write_data_array(out, "      ", key, &std::get<std::int64_t>(value), 1, one);
     }
   }
+  out << "    </FieldData>\n";
+}
+
+// B_srgb (core/srgb.h) of the RGB values: 8-bit sRGB per channel.
+std::vector<unsigned char> srgb_of(const std::vector<double>& rgb) {
+  std::vector<unsigned char> s(rgb.size());
+  for (std::size_t k = 0; k < rgb.size(); ++k) s[k] = srgb8_from_radiosity(rgb[k]);
+  return s;
+}
+
+bool is_radiosity(const CellField& f) { return f.name == "B" && f.components == 3; }
+
+ArrayLayout layout_of(const CellField& f) {
+  ArrayLayout l;
+  l.components = f.components;
+  l.rgb = f.kind == FieldKind::quantity && f.components == 3;
+  return l;
+}
+
+ArrayLayout rgb_layout() {
+  ArrayLayout l;
+  l.components = 3;
+  l.rgb = true;
+  return l;
+}
+
+// The point data: each quantity field averaged at the display points, and B_srgb of the average of B; each
+// computed, written and freed before the next.
+void write_point_data(std::ostream& out, const DisplayMesh& mesh, const PatchSet& patches,
+                      const std::vector<const CellField*>& fields, const std::string& path) {
+  out << "      <PointData>\n";
+  const std::size_t m = mesh.points.size();
+  for (const CellField* f : fields) {
+    if (f->kind != FieldKind::quantity) continue;
+    const std::vector<double> at_points = point_average(mesh, patches, f->values, f->components);
+    write_data_array(out, "        ", f->name, at_points.data(), m, layout_of(*f));
+    if (is_radiosity(*f)) write_data_array(out, "        ", "B_srgb", srgb_of(at_points).data(), m, rgb_layout());
+    if (!out) throw InputError(path + ": write failed (disk full?)");
+  }
+  out << "      </PointData>\n";
+}
+
+// The cell data: every field, counts as Int64, the others as Float64, B_srgb after B.
+void write_cell_data(std::ostream& out, std::size_t n, const std::vector<const CellField*>& fields,
+                     const std::string& path) {
+  bool radiosity = false;
+  for (const CellField* f : fields) radiosity = radiosity || (is_radiosity(*f) && f->kind == FieldKind::quantity);
+  out << "      <CellData" << (radiosity ? " Scalars=\"B\"" : "") << ">\n";
+  for (const CellField* f : fields) {
+    if (f->kind == FieldKind::count) {
+      std::vector<std::int64_t> counts(f->values.size());
+      for (std::size_t k = 0; k < counts.size(); ++k) counts[k] = static_cast<std::int64_t>(std::llround(f->values[k]));
+      write_data_array(out, "        ", f->name, counts.data(), n, layout_of(*f));
+      continue;
+    }
+    write_data_array(out, "        ", f->name, f->values.data(), n, layout_of(*f));
+    if (f->kind == FieldKind::quantity && is_radiosity(*f))
+      write_data_array(out, "        ", "B_srgb", srgb_of(f->values).data(), n, rgb_layout());
+    if (!out) throw InputError(path + ": write failed (disk full?)");
+  }
+  out << "      </CellData>\n";
+}
+
+// Empty cells of one kind (vertices, lines, strips), as VTK writes them.
+void write_no_cells(std::ostream& out, const char* element) {
+  const std::int64_t none = 0;
+  out << "      <" << element << ">\n";
+  write_data_array(out, "        ", "connectivity", &none, 0, {});
+  write_data_array(out, "        ", "offsets", &none, 0, {});
+  out << "      </" << element << ">\n";
 }
 
 }  // namespace
 
+void write_vtp_fields(const std::string& path, const PatchSet& patches, const std::vector<const CellField*>& fields,
+                      const VtpMetadata& metadata, const DisplayMesh* given_mesh) {
+  const std::size_t n = patches.size();
+  // Everything that can be refused is checked before the file is created.
+  for (const CellField* f : fields) {
+    check_name(f->name);
+    RADWALK_CHECK_EQ(f->values.size(), n * static_cast<std::size_t>(f->components));  // a value per patch, component
+  }
+  for (const auto& entry : metadata.entries) check_name(entry.first);
+  DisplayMesh built;
+  if (!given_mesh) built = make_display_mesh(patches);
+  const DisplayMesh& mesh = given_mesh ? *given_mesh : built;
+  static_assert(sizeof(Vec3) == 3 * sizeof(double), "display points are packed xyz triples");
+  RADWALK_CHECK_EQ(mesh.offsets.size(), n + 1);
+
+  write_atomically(path, [&](std::ostream& out) {
+    out << "<?xml version=\"1.0\"?>\n"
+           "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
+           "compressor=\"vtkZLibDataCompressor\">\n"
+           "  <PolyData>\n";
+    write_field_data(out, metadata);
+    out << "    <Piece NumberOfPoints=\"" << mesh.points.size()
+        << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << n << "\">\n";
+    write_point_data(out, mesh, patches, fields, path);
+    write_cell_data(out, n, fields, path);
+    out << "      <Points>\n";
+    ArrayLayout xyz;
+    xyz.components = 3;
+    write_data_array(out, "        ", "Points", reinterpret_cast<const double*>(mesh.points.data()),
+                     mesh.points.size(), xyz);
+    out << "      </Points>\n";
+    for (const char* element : {"Verts", "Lines", "Strips"}) write_no_cells(out, element);
+    out << "      <Polys>\n";
+    write_data_array(out, "        ", "connectivity", mesh.ids.data(), mesh.ids.size(), {});
+    write_data_array(out, "        ", "offsets", mesh.offsets.data() + 1, n, {});
+    out << "      </Polys>\n"
+           "    </Piece>\n"
+           "  </PolyData>\n"
+           "</VTKFile>\n";
+  });
+}
+
 void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields,
                const VtpMetadata& metadata) {
-  const std::size_t n = patches.size();
-  const DisplayMesh mesh = make_display_mesh(patches);
-  // Points, polygons and real fields are VTK arrays over the display mesh's and the fields' own memory (no copy,
-  // no virtual call per value: at 10^7 patches the per-value calls took much of the writer's time and the copies
-  // several GB). save = 1: VTK never frees them; they outlive the writer.
-  static_assert(sizeof(Vec3) == 3 * sizeof(double), "display points are packed xyz triples");
-  static_assert(sizeof(std::int64_t) == sizeof(vtkTypeInt64), "64-bit polygon offsets and ids");
-  vtkNew<vtkDoubleArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetArray(reinterpret_cast<double*>(const_cast<Vec3*>(mesh.points.data())),
-                        static_cast<vtkIdType>(3 * mesh.points.size()), 1);
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  vtkNew<vtkTypeInt64Array> offsets, connectivity;
-  offsets->SetArray(reinterpret_cast<vtkTypeInt64*>(const_cast<std::int64_t*>(mesh.offsets.data())),
-                    static_cast<vtkIdType>(n + 1), 1);
-  connectivity->SetArray(reinterpret_cast<vtkTypeInt64*>(const_cast<std::int64_t*>(mesh.ids.data())),
-                         static_cast<vtkIdType>(mesh.ids.size()), 1);
-  vtkNew<vtkCellArray> polys;
-  polys->SetData(offsets, connectivity);
-  vtkNew<vtkPolyData> poly;
-  poly->SetPoints(points);
-  poly->SetPolys(polys);
-
-  std::vector<std::vector<double>> point_values;  // the point fields' values, alive until the file is written
-  point_values.reserve(fields.size());
-  for (const CellField& f : fields) {
-    check_name(f.name);
-    RADWALK_CHECK_EQ(f.values.size(), n * static_cast<std::size_t>(f.components));  // a value per patch, component
-    if (f.kind == FieldKind::count) {
-      vtkNew<vtkTypeInt64Array> a;
-      a->SetName(f.name.c_str());
-      a->SetNumberOfComponents(f.components);
-      a->SetNumberOfTuples(static_cast<vtkIdType>(n));
-      for (std::size_t k = 0; k < f.values.size(); ++k)
-        a->SetValue(static_cast<vtkIdType>(k), static_cast<std::int64_t>(std::llround(f.values[k])));
-      poly->GetCellData()->AddArray(a);
-      continue;
-    }
-    poly->GetCellData()->AddArray(real_array(f, f.values, n));
-    if (f.kind != FieldKind::quantity) continue;
-    const std::vector<double>& at_points =
-        point_values.emplace_back(point_average(mesh, patches, f.values, f.components));
-    poly->GetPointData()->AddArray(real_array(f, at_points, mesh.points.size()));
-    if (f.name == "B" && f.components == 3) {
-      poly->GetCellData()->AddArray(srgb_array(f.values, n));
-      poly->GetPointData()->AddArray(srgb_array(at_points, mesh.points.size()));
-      poly->GetCellData()->SetActiveScalars("B");
-    }
-  }
-  add_field_data(poly, metadata);
-
-  // VTK writes into memory, never to the disk: on a (nearly) full disk VTK 9.1's file writer crashed or reported
-  // success for an empty file. The bytes then go through the atomic writer, which checks every byte on disk.
-  vtkNew<vtkXMLPolyDataWriter> writer;
-  writer->WriteToOutputStringOn();
-  writer->SetInputData(poly);
-  writer->SetDataModeToBinary();
-  writer->SetCompressorTypeToZLib();
-  if (writer->Write() != 1) throw InputError(path + ": VTK could not encode the file");
-  const std::string bytes = writer->GetOutputString();
-  if (bytes.empty()) throw InputError(path + ": VTK produced no output");
-  write_atomically(path, [&](std::ostream& out) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+  std::vector<const CellField*> views;
+  views.reserve(fields.size());
+  for (const CellField& f : fields) views.push_back(&f);
+  write_vtp_fields(path, patches, views, metadata);
 }
 
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps) {

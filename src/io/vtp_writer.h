@@ -14,17 +14,25 @@
 // No point fields for counts and geometry.
 // Field data: the metadata (vtp_metadata.h).
 // Throws std::logic_error for a field of the wrong size or with a name that is not usable in ParaView
-// (paraview_name(name) != name, or the Calculator's reserved word `var`).
+// (paraview_name(name) != name, or the Calculator's reserved word `var`), before the file is created.
+// Memory: the file is encoded as it is written (one array at a time, each compressed in blocks; io/vtk_binary.h),
+// so besides the fields the writer holds the display mesh, one point field and one compressed array at a time.
 #include <string>
 #include <vector>
 
 #include "io/cell_field.h"
 #include "io/vtp_metadata.h"
+#include "patch/display_mesh.h"
 
 namespace radwalk {
 
 void write_vtp(const std::string& path, const PatchSet& patches, const std::vector<CellField>& fields,
                const VtpMetadata& metadata = {});
+// The same for fields held elsewhere (no copy): fields[k] is the k-th field, alive until the call returns; and,
+// when mesh is given, with that display mesh, which must be make_display_mesh(patches) (a caller builds it before
+// it allocates the fields, so that the peak of building it does not come on top of them).
+void write_vtp_fields(const std::string& path, const PatchSet& patches, const std::vector<const CellField*>& fields,
+                      const VtpMetadata& metadata = {}, const DisplayMesh* mesh = nullptr);
 
 // A ParaView collection (.pvd) listing (time, file) pairs, e.g. the steps of a progressive solve.
 void write_pvd(const std::string& path, const std::vector<std::pair<double, std::string>>& steps);

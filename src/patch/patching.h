@@ -32,8 +32,11 @@
 
 namespace radwalk {
 
-// A guard against a mistyped max_edge: far more patches than any solver here can use (about 150 bytes each).
-inline constexpr std::size_t kMaxPatchCount = 10'000'000;
+// A guard against a mistyped max_edge: twice the largest scene measured end to end (docs/scaling.md, "Ten million
+// patches": about 150 bytes a patch for the PatchSet, about 700 for a ray-kernel solve with its .vtp). Every index
+// holds far beyond it: patch and point indices are 32-bit (PatchIndex, corners, Embree's primitive ids: 2^31 - 1
+// and 2^32 - 1), display-mesh and F offsets are 64-bit, F's 32-bit non-zero count is checked where F is built.
+inline constexpr std::size_t kMaxPatchCount = 20'000'000;
 
 struct PatchingOptions {
   double max_edge = 0;  // > 0: no patch edge longer than this (mesh units)
