@@ -112,8 +112,8 @@ SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, s
   const auto data = csr.attr("data").cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
   const auto indices = csr.attr("indices").cast<py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>>();
   const auto indptr = csr.attr("indptr").cast<py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>>();
-  const Eigen::Map<const SparseF> map(n, n, static_cast<Eigen::Index>(data.size()), indptr.data(), indices.data(),
-                                      data.data());
+  const Eigen::Map<const SparseF::Base> map(n, n, static_cast<Eigen::Index>(data.size()), indptr.data(), indices.data(),
+                                            data.data());
   return SparseF(map);
 }
 
