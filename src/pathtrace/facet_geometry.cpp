@@ -4,12 +4,11 @@
 
 namespace radwalk {
 
-FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches) {
-  const double eps = ray_epsilon(patches);
+FacetGeometry::FacetGeometry(const PatchSet& patches) : patches_(patches), eps_(ray_epsilon(patches)) {
   offsets_.reserve(patches.size());
   points_.reserve(patches.size());
   for (std::size_t i = 0; i < patches.size(); ++i) {
-    offsets_.push_back(patch_ray_offset(patches, i, eps));
+    offsets_.push_back(patch_ray_offset(patches, i, eps_));
     points_.emplace_back(patches, i);
   }
 }
@@ -22,6 +21,11 @@ Vec3 FacetGeometry::sample_point(PatchIndex i, double u1, double u2) const {
 
 Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {
   return radwalk::spawn_ray(offsets_[static_cast<std::size_t>(i)], x, d);
+}
+
+Ray FacetGeometry::spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, const Vec3& y,
+                                    const Vec3& n_y) const {
+  return shorten_to_plane(spawn_ray(i, x, w), x, y, n_y, 4 * eps_);
 }
 
 void FacetGeometry::prefetch(PatchIndex i) const {

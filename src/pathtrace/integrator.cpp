@@ -77,10 +77,9 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
       if (cos_y > 0 && dist > 0) {
         const Vec3 wi = frame.to_local(wi_world);
         const Rgb f = bsdf.f(wo, wi);
-        if ((f > 0).any()) {
-          path.shadow_ray_ = geometry_.spawn_ray(patch, x, wi_world);
+        path.shadow_ray_ = geometry_.spawn_shadow_ray(patch, x, wi_world, ls.point, ls.normal);
+        if ((f > 0).any() && path.shadow_ray_.tmax > 0) {
           path.shadow_ = true;
-          path.light_ = ls.patch;
           const double p_light = ls.pdf_area * dist2 / cos_y;
           const double w = options_.kind == IntegratorKind::mis ? power_heuristic(p_light, bsdf.pdf(wo, wi)) : 1.0;
           path.shadow_L_ = state.beta * f * (std::abs(wi.z()) * w / p_light) * ls.Le;
@@ -103,11 +102,11 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   return true;
 }
 
-void PathIntegrator::advance(Path& path, const Hit& shadow_hit, const Hit& hit, PathCounters& counters) const {
+void PathIntegrator::advance(Path& path, bool shadow_blocked, const Hit& hit, PathCounters& counters) const {
   // The last vertex's light sample first (the order in which L adds the terms: this vertex's, then the next's).
   if (path.shadow_) {
     path.shadow_ = false;
-    if (shadow_hit.patch == path.light_) path.L_ += path.shadow_L_;
+    if (!shadow_blocked) path.L_ += path.shadow_L_;
   }
   if (!path.tracing_) return;
   path.tracing_ = false;
@@ -144,52 +143,55 @@ void PathIntegrator::advance(Path& path, const Hit& shadow_hit, const Hit& hit, 
 
 void PathIntegrator::run_alone(Path& path, PathCounters& counters) const {
   while (!path.done()) {
-    Hit shadow_hit, hit;
+    bool blocked = false;
+    Hit hit;
     if (path.shadow_) {
       ++counters.rays;
-      shadow_hit = visibility_.intersect(path.shadow_ray_);
+      ++counters.shadow_rays;
+      blocked = visibility_.occluded(path.shadow_ray_);
     }
     if (path.tracing_) {
       ++counters.rays;
       hit = visibility_.intersect(path.ray_);
     }
-    advance(path, shadow_hit, hit, counters);
+    advance(path, blocked, hit, counters);
   }
 }
 
 void PathIntegrator::trace_batch(Path* const* paths, std::size_t n, PathCounters& counters) const {
-  // Each path's shadow ray (if any), then its continuation ray (if any), in path order.
-  constexpr std::size_t kMaxBatch = 64;
-  Ray rays[kMaxBatch];
+  // The paths' shadow rays (occlusion) and continuation rays (closest hit), each in path order.
+  constexpr std::size_t kMaxBatch = 32;
+  Ray shadow[kMaxBatch], rays[kMaxBatch];
+  bool blocked[kMaxBatch];
   Hit hits[kMaxBatch];
-  for (std::size_t base = 0; base < n; base += kMaxBatch / 2) {
-    const std::size_t end = std::min(n, base + kMaxBatch / 2);
-    std::size_t m = 0;
+  for (std::size_t base = 0; base < n; base += kMaxBatch) {
+    const std::size_t end = std::min(n, base + kMaxBatch);
+    std::size_t ms = 0, mc = 0;
     for (std::size_t k = base; k < end; ++k) {
-      if (paths[k]->shadow_) rays[m++] = paths[k]->shadow_ray_;
-      if (paths[k]->tracing_) rays[m++] = paths[k]->ray_;
+      if (paths[k]->shadow_) shadow[ms++] = paths[k]->shadow_ray_;
+      if (paths[k]->tracing_) rays[mc++] = paths[k]->ray_;
     }
-    visibility_.intersect(rays, hits, m);
-    counters.rays += static_cast<long>(m);
+    if (ms > 0) visibility_.occluded(shadow, blocked, ms);
+    if (mc > 0) visibility_.intersect(rays, hits, mc);
+    counters.rays += static_cast<long>(ms + mc);
+    counters.shadow_rays += static_cast<long>(ms);
     // A hint, no effect on any value: the records of the patches the continuation rays hit (read by advance),
     // asked for all at once so that their cache misses overlap.
-    m = 0;
-    for (std::size_t k = base; k < end; ++k) {
-      m += paths[k]->shadow_;
-      if (!paths[k]->tracing_) continue;
-      const PatchIndex j = hits[m++].patch;
+    for (std::size_t c = 0; c < mc; ++c) {
+      const PatchIndex j = hits[c].patch;
       if (j < 0) continue;
       __builtin_prefetch(&patches_.E[static_cast<std::size_t>(j)]);
       __builtin_prefetch(&bsdfs_[static_cast<std::size_t>(j)]);
       geometry_.prefetch(j);
     }
-    m = 0;
+    ms = mc = 0;
     for (std::size_t k = base; k < end; ++k) {
       Path& path = *paths[k];
-      Hit shadow_hit, hit;
-      if (path.shadow_) shadow_hit = hits[m++];
-      if (path.tracing_) hit = hits[m++];
-      advance(path, shadow_hit, hit, counters);
+      bool is_blocked = false;
+      Hit hit;
+      if (path.shadow_) is_blocked = blocked[ms++];
+      if (path.tracing_) hit = hits[mc++];
+      advance(path, is_blocked, hit, counters);
     }
   }
 }

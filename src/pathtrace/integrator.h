@@ -22,12 +22,16 @@
 // (FacetGeometry) for a mesh, or exact curved surfaces.
 // Reproducibility: the estimate is a pure function of the Rng passed in.
 //
+// Shadow rays are occlusion queries (Visibility::occluded) on the segment from the vertex to the light point,
+// stopped short of the light's tangent plane (SurfaceGeometry::spawn_shadow_ray): the light sample counts when
+// nothing lies between. Continuation rays are closest-hit queries.
 // Paths as state machines (Path): a path waits for at most two rays at a time, the shadow ray of its last
-// vertex's light sample and its continuation ray; advance() takes their hits and runs the path up to its next
+// vertex's light sample and its continuation ray; advance() takes their answers and runs the path up to its next
 // rays or its end. The shadow ray's answer only adds its contribution to L (it draws nothing), so deferring it
 // to the continuation ray's batch changes no draw: a path's result is the same whether its rays are traced one
-// at a time (radiance, irradiance) or with other paths' in batches (trace_batch, packets of 16 rays: the patch
-// averages), up to a visibility whose answer for a ray depends on how it is traced (single ray or packet).
+// at a time (radiance, irradiance) or with other paths' in batches (trace_batch: closest hits in packets of 16,
+// occlusion in Embree's ray streams: the patch averages), up to a visibility whose answer for a ray depends on
+// how it is traced (single ray or packet).
 #include <string>
 #include <vector>
 
@@ -55,11 +59,13 @@ struct IntegratorOptions {
 
 // Work done, for rays-per-second figures.
 struct PathCounters {
-  long rays = 0;      // rays traced (closest-hit queries), shadow rays included: each is one ray as raw Embree's
+  long rays = 0;         // rays traced: closest-hit queries and shadow rays (occlusion queries), each one ray
+  long shadow_rays = 0;  // of which shadow rays
   long vertices = 0;  // scattering events
   long escapes = 0;   // path rays that hit nothing (left the scene; shadow rays are not counted)
   void add(const PathCounters& o) {
     rays += o.rays;
+    shadow_rays += o.shadow_rays;
     vertices += o.vertices;
     escapes += o.escapes;
   }
@@ -87,10 +93,9 @@ class PathIntegrator {
     Rng rng_;
     Ray ray_;                            // the continuation ray, while tracing_
     bool tracing_ = false;
-    Ray shadow_ray_;                     // the shadow ray, while shadow_
+    Ray shadow_ray_;                     // the shadow ray (a segment), while shadow_
     bool shadow_ = false;
-    PatchIndex light_ = -1;              // the emitter it must reach first
-    Rgb shadow_L_ = Rgb::Zero();         // what it adds to L then
+    Rgb shadow_L_ = Rgb::Zero();         // what it adds to L when the segment is not occluded
   };
 
   // Keeps references to patches, geometry and visibility (they must outlive it; visibility must trace the
@@ -122,9 +127,9 @@ class PathIntegrator {
   // waits for) and its continuation (true: path.ray_ set and waited for; false: the path ends there).
   bool scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, const Vec3& n, const Vec3& wo_world, Path& path,
                PathCounters& counters) const;
-  // Takes the hits of the rays the path waited for (shadow_hit if it waited for a shadow ray, hit if for a
+  // Takes the answers to the rays the path waited for (shadow_blocked if it waited for a shadow ray, hit if for a
   // continuation) and runs it up to its next rays or its end.
-  void advance(Path& path, const Hit& shadow_hit, const Hit& hit, PathCounters& counters) const;
+  void advance(Path& path, bool shadow_blocked, const Hit& hit, PathCounters& counters) const;
   // Runs a path to its end, its rays traced one at a time.
   void run_alone(Path& path, PathCounters& counters) const;
 

@@ -16,7 +16,13 @@ LightSampler::LightSampler(const PatchSet& patches, const SurfaceGeometry& geome
     weights.push_back(selection == LightSelection::power ? patches.area[i] * patches.E[i].mean()
                                                          : patches.area[i]);
   }
-  if (!emitters_.empty()) choice_ = DiscreteDistribution(weights);
+  if (emitters_.empty()) return;
+  choice_ = AliasTable(weights);
+  for (std::size_t k = 0; k < emitters_.size(); ++k) {
+    const auto j = static_cast<std::size_t>(emitters_[k]);
+    pdf_area_.push_back(choice_.pdf(k) / patches.area[j]);
+    Le_.push_back(patches.E[j] * kInvPi);
+  }
 }
 
 LightSample LightSampler::sample(double u_select, double u1, double u2) const {
@@ -26,19 +32,19 @@ LightSample LightSampler::sample(double u_select, double u1, double u2) const {
   s.patch = j;
   s.point = geometry_->sample_point(j, u1, u2);
   s.normal = geometry_->normal(j, s.point);
-  s.Le = patches_->E[j] * kInvPi;
-  s.pdf_area = choice_.pmf(k) / patches_->area[j];
+  s.Le = Le_[k];
+  s.pdf_area = pdf_area_[k];
   return s;
 }
 
 double LightSampler::pmf(PatchIndex i) const {
   const int k = slot_[static_cast<std::size_t>(i)];
-  return k < 0 ? 0.0 : choice_.pmf(static_cast<std::size_t>(k));
+  return k < 0 ? 0.0 : choice_.pdf(static_cast<std::size_t>(k));
 }
 
 double LightSampler::pdf_area(PatchIndex i) const {
-  const double p = pmf(i);
-  return p > 0 ? p / patches_->area[static_cast<std::size_t>(i)] : 0.0;
+  const int k = slot_[static_cast<std::size_t>(i)];
+  return k < 0 ? 0.0 : pdf_area_[static_cast<std::size_t>(k)];
 }
 
 }  // namespace radwalk

@@ -2,7 +2,8 @@
 // LightSampler: next-event estimation's choice of a point on the emitters (patches with E > 0 in some channel).
 //
 // An emitter j is chosen with probability P_j proportional to its power A_j * mean(E_j) (LightSelection::power)
-// or to its area A_j (LightSelection::area), then a point y uniformly on its surface (SurfaceGeometry::sample_point),
+// or to its area A_j (LightSelection::area), by an alias table (O(1) per sample whatever the number of emitters),
+// then a point y uniformly on its surface (SurfaceGeometry::sample_point),
 // so the area density of y is
 //   pdf_area(y) = P_j / A_j        (1/m^2 in the mesh's length unit),
 // and the emitter's front normal at y (SurfaceGeometry::normal).
@@ -49,7 +50,9 @@ class LightSampler {
   const SurfaceGeometry* geometry_;
   std::vector<PatchIndex> emitters_;
   std::vector<int> slot_;  // patch -> index in emitters_, -1 for non-emitters
-  DiscreteDistribution choice_;
+  AliasTable choice_;               // over emitters_
+  std::vector<double> pdf_area_;    // P_j / A_j of each emitter
+  std::vector<Rgb> Le_;             // E_j / pi of each emitter
   Rgb power_ = Rgb::Zero();
 };
 

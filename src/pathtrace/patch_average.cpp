@@ -200,6 +200,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
     sol.message += " (biased: paths capped at " + std::to_string(options.integrator.max_depth) + " bounces)";
   sol.info["spp"] = m;
   sol.info["rays"] = static_cast<double>(total.rays);
+  sol.info["shadow_rays"] = static_cast<double>(total.shadow_rays);
   sol.info["escapes"] = static_cast<double>(total.escapes);
   sol.info["rays_per_second"] = sol.seconds > 0 ? static_cast<double>(total.rays) / sol.seconds : 0.0;
   sol.info["rr_depth"] = options.integrator.rr_depth;
