@@ -3,6 +3,8 @@
 // double-precision brute force alike.
 #include <catch2/catch.hpp>
 
+#include <utility>
+
 #include "core/rng.h"
 #include "pathtrace/facet_geometry.h"
 #include "scenes.h"
@@ -32,16 +34,25 @@ PatchIndex lamp_of(const PatchSet& p) {
   return -1;
 }
 
+// A scene with one emitting patch, its facets, both visibilities, the lamp and its normal.
+struct LampScene {
+  explicit LampScene(PatchSet patches)
+      : p(std::move(patches)), geometry(p), embree(p), brute(p), lamp(lamp_of(p)),
+        n_y(lamp >= 0 ? p.normal[static_cast<std::size_t>(lamp)] : Vec3::Zero()) {}
+  PatchSet p;
+  FacetGeometry geometry;
+  EmbreeVisibility embree;
+  BruteForceVisibility brute;
+  PatchIndex lamp;
+  Vec3 n_y;
+};
+
 }  // namespace
 
 TEST_CASE("shadow segments in an empty box reach the light unoccluded and stop before its plane", "[pathtrace]") {
-  const PatchSet p = test::lit_box(Rgb::Constant(0.5), Rgb::Constant(3.0));
-  const FacetGeometry geometry(p);
-  const EmbreeVisibility embree(p);
-  const BruteForceVisibility brute(p);
-  const PatchIndex lamp = lamp_of(p);
+  const LampScene scene(test::lit_box(Rgb::Constant(0.5), Rgb::Constant(3.0)));
+  const auto& [p, geometry, embree, brute, lamp, n_y] = scene;
   REQUIRE(lamp >= 0);
-  const Vec3 n_y = p.normal[static_cast<std::size_t>(lamp)];
   long tested = 0;
   for_light_pairs(p, geometry, lamp, [&](PatchIndex i, const Vec3& x, const Vec3& y) {
     const Vec3 w = (y - x).normalized();
@@ -66,15 +77,11 @@ TEST_CASE("shadow segments through an obstacle are occluded", "[pathtrace]") {
   const int wall = b.add_material("wall", Rgb::Constant(0.5));
   const int lamp_material = b.add_material("lamp", Rgb::Constant(0.5), Rgb::Constant(3.0));
   test::add_cube_outward(b, Vec3(0.3, 0.3, 0.5), 0.4, wall);
-  const PatchSet p = test::closed_box(Vec3(1, 0.8, 1.3), 3, b, [&](int f, int a, int c) {
+  const LampScene scene(test::closed_box(Vec3(1, 0.8, 1.3), 3, b, [&](int f, int a, int c) {
     return (f == 3 && a == 1 && c == 1) ? lamp_material : wall;
-  });
-  const FacetGeometry geometry(p);
-  const EmbreeVisibility embree(p);
-  const BruteForceVisibility brute(p);
-  const PatchIndex lamp = lamp_of(p);
+  }));
+  const auto& [p, geometry, embree, brute, lamp, n_y] = scene;
   REQUIRE(lamp >= 0);
-  const Vec3 n_y = p.normal[static_cast<std::size_t>(lamp)];
   long tested = 0;
   for_light_pairs(p, geometry, lamp, [&](PatchIndex i, const Vec3& x, const Vec3& y) {
     // Receivers on the floor (y = 0) with x in (0.34, 0.66) and z in (0.6, 0.86), below the cube (x in
