@@ -202,6 +202,17 @@ class MappedFile {
   std::uint64_t size_ = 0;
 };
 
+// Drops the whole pages inside [begin, end) of the mapping from the process's resident memory (madvise
+// MADV_DONTNEED), once the reader has copied them, so that the mapped file and F are not both resident: the peak of
+// reading F is about F's own size. A later read of those pages faults them in again from the file (the mapping is
+// private and never written), so this changes no value.
+void release_mapped(const char* begin, const char* end) {
+  const auto page = static_cast<std::uintptr_t>(::sysconf(_SC_PAGESIZE));
+  const std::uintptr_t b = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t e = reinterpret_cast<std::uintptr_t>(end) / page * page;
+  if (e > b) ::madvise(reinterpret_cast<void*>(b), e - b, MADV_DONTNEED);
+}
+
 // A parsed .npy member: its dtype, shape and the bytes of its array inside the mapping.
 struct Array {
   std::string name, descr;
@@ -481,7 +492,17 @@ SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row
   F.resizeNonZeros(outer[mine.end] - base);
   std::int32_t* inner = F.innerIndexPtr();
   float* value = F.valuePtr();
+  // The mapped indices and values already copied are released every 2^22 non-zeros (16 to 32 MB of the file).
+  const std::uint64_t index_width = indices.descr == "<i8" ? 8 : 4, value_width = data.descr == "<f8" ? 8 : 4;
+  constexpr std::int64_t kReleaseStep = std::int64_t{1} << 22;
+  std::int64_t released = base;
   for (std::uint64_t i = mine.begin; i < mine.end; ++i) {
+    if (outer[i] - released >= kReleaseStep) {
+      const auto from = std::uint64_t(released), to = std::uint64_t(outer[i]);
+      release_mapped(indices.data + index_width * from, indices.data + index_width * to);
+      release_mapped(data.data + value_width * from, data.data + value_width * to);
+      released = outer[i];
+    }
     double sum = 0;
     for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) {
       const std::int64_t j = int_at(indices, std::uint64_t(k));
