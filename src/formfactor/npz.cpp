@@ -493,7 +493,7 @@ SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row
   std::int32_t* inner = F.innerIndexPtr();
   float* value = F.valuePtr();
   // The mapped indices and values already copied are released every 2^22 non-zeros (16 to 32 MB of the file).
-  const std::uint64_t index_width = indices.descr == "<i8" ? 8 : 4, value_width = data.descr == "<f8" ? 8 : 4;
+  const std::uint64_t index_width = item_size(indices.descr), value_width = item_size(data.descr);
   constexpr std::int64_t kReleaseStep = std::int64_t{1} << 22;
   std::int64_t released = base;
   for (std::uint64_t i = mine.begin; i < mine.end; ++i) {

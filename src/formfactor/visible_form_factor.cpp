@@ -50,9 +50,7 @@ double VisibleFormFactor::estimate(std::size_t i, std::size_t e, long M, const S
     if (cos_x <= 0 || cos_y <= 0) continue;
     // Stop short of e's plane as the offset origin sees it (at grazing angles the offset moves that plane nearer
     // than r - 4 eps).
-    Ray ray = spawn_ray(offset, x, w);
-    const double t_plane = std::min(r, ne.dot(corner[0] - ray.origin) / ne.dot(w));
-    ray.tmax = t_plane * (1 - 1e-5) - 4 * eps_;
+    const Ray ray = stop_before_plane(spawn_ray(offset, x, w), r, corner[0], ne, 4 * eps_);
     if (!(ray.tmax > 0)) continue;
     batch[pending] = ray;
     weight[pending] = Ae * cos_x * cos_y / (kPi * r2);

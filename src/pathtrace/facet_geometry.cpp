@@ -23,9 +23,9 @@ Ray FacetGeometry::spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const {
   return radwalk::spawn_ray(offsets_[static_cast<std::size_t>(i)], x, d);
 }
 
-Ray FacetGeometry::spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, const Vec3& y,
+Ray FacetGeometry::spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, double r, const Vec3& y,
                                     const Vec3& n_y) const {
-  return shorten_to_plane(spawn_ray(i, x, w), x, y, n_y, 4 * eps_);
+  return stop_before_plane(spawn_ray(i, x, w), r, y, n_y, 4 * eps_);
 }
 
 void FacetGeometry::prefetch(PatchIndex i) const {

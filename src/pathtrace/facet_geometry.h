@@ -23,7 +23,8 @@ class FacetGeometry final : public SurfaceGeometry {
   Vec3 normal(PatchIndex i, const Vec3& x) const override;
   Vec3 sample_point(PatchIndex i, double u1, double u2) const override;
   Ray spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const override;
-  Ray spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, const Vec3& y, const Vec3& n_y) const override;
+  Ray spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, double r, const Vec3& y,
+                       const Vec3& n_y) const override;
   bool sees_itself(PatchIndex) const override { return false; }
   void prefetch(PatchIndex i) const override;
 

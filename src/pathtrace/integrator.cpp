@@ -64,7 +64,7 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
   ++counters.vertices;
 
   // Next-event estimation: one point on the emitters, a shadow ray, the area form weighted for MIS. The shadow
-  // ray is traced with the continuation ray; if it reaches the emitter first, shadow_L_ is added to L.
+  // ray is traced with the continuation ray; if nothing occludes its segment, shadow_L_ is added to L.
   if (options_.kind != IntegratorKind::implicit && !bsdf.is_delta() && !lights_.empty()) {
     const double us = rng.uniform(), u1 = rng.uniform(), u2 = rng.uniform();
     const LightSample ls = lights_.sample(us, u1, u2);
@@ -77,9 +77,11 @@ bool PathIntegrator::scatter(const Bsdf& bsdf, PatchIndex patch, const Vec3& x, 
       if (cos_y > 0 && dist > 0) {
         const Vec3 wi = frame.to_local(wi_world);
         const Rgb f = bsdf.f(wo, wi);
-        path.shadow_ray_ = geometry_.spawn_shadow_ray(patch, x, wi_world, ls.point, ls.normal);
-        if ((f > 0).any() && path.shadow_ray_.tmax > 0) {
-          path.shadow_ = true;
+        if ((f > 0).any()) {
+          path.shadow_ray_ = geometry_.spawn_shadow_ray(patch, x, wi_world, dist, ls.point, ls.normal);
+          path.shadow_ = path.shadow_ray_.tmax > 0;
+        }
+        if (path.shadow_) {
           const double p_light = ls.pdf_area * dist2 / cos_y;
           const double w = options_.kind == IntegratorKind::mis ? power_heuristic(p_light, bsdf.pdf(wo, wi)) : 1.0;
           path.shadow_L_ = state.beta * f * (std::abs(wi.z()) * w / p_light) * ls.Le;

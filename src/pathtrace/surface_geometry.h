@@ -7,9 +7,8 @@
 // facets of a mesh (FacetGeometry, the default) and on exact curved surfaces (an analytic sphere in the tests, where
 // the rendering equation has a closed-form solution that no polyhedron has).
 // A Visibility for the same scene answers ray queries; the two must describe the same surfaces.
-#include <algorithm>
-
 #include "core/types.h"
+#include "visibility/ray_offset.h"
 #include "visibility/visibility.h"
 
 namespace radwalk {
@@ -28,13 +27,14 @@ class SurfaceGeometry {
   // d leaves by, so that tracing it does not find patch i again at t ~ 0.
   virtual Ray spawn_ray(PatchIndex i, const Vec3& x, const Vec3& d) const = 0;
 
-  // A shadow ray: leaves the point x on patch i along the unit direction w towards the point y of another surface
-  // (front normal n_y there), its tmax short of y's tangent plane as the moved origin o sees it:
-  //   tmax = min(|y - x|, n_y.(y - o) / n_y.w) (1 - 1e-5) - margin,
-  // so that Visibility::occluded asks whether anything lies between x and y, not whether y's own surface is there.
-  // margin = 0 here; an override may add its offset's scale. tmax <= 0: no segment to test (a grazing pair).
-  virtual Ray spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, const Vec3& y, const Vec3& n_y) const {
-    return shorten_to_plane(spawn_ray(i, x, w), x, y, n_y, 0.0);
+  // A shadow ray: leaves the point x on patch i along the unit direction w = (y - x) / r, r = |y - x|, towards the
+  // point y of another surface (front normal n_y there), as a segment that stops before y's tangent plane
+  // (visibility/ray_offset.h, stop_before_plane, margin 0 here; an override may add its offset's scale), so that
+  // Visibility::occluded asks whether anything lies between x and y, not whether y's own surface is there.
+  // tmax <= 0: no segment to test (a grazing pair).
+  virtual Ray spawn_shadow_ray(PatchIndex i, const Vec3& x, const Vec3& w, double r, const Vec3& y,
+                               const Vec3& n_y) const {
+    return stop_before_plane(spawn_ray(i, x, w), r, y, n_y, 0.0);
   }
 
   // Whether a point of patch i can see other points of patch i. False for a planar patch (next-event estimation
@@ -46,13 +46,6 @@ class SurfaceGeometry {
   // of the calls (at large N each is a cache miss). Does nothing unless overridden.
   virtual void prefetch(PatchIndex) const {}
 
- protected:
-  // spawn_shadow_ray's tmax for a ray already spawned from x towards y.
-  static Ray shorten_to_plane(Ray ray, const Vec3& x, const Vec3& y, const Vec3& n_y, double margin) {
-    const double t_plane = std::min((y - x).norm(), n_y.dot(y - ray.origin) / n_y.dot(ray.direction));
-    ray.tmax = t_plane * (1 - 1e-5) - margin;
-    return ray;
-  }
 };
 
 }  // namespace radwalk

@@ -43,6 +43,17 @@ inline Ray spawn_ray(const PatchRayOffset& offset, const Vec3& point, const Vec3
   return ray;
 }
 
+// The ray (spawned towards a point at distance r from the point it left) as a segment that stops before the plane
+// through plane_point with unit normal plane_normal, as the moved origin o sees that plane:
+//   tmax = min(r, n.(plane_point - o) / n.direction) (1 - 1e-5) - margin.
+// At grazing angles the offset moves the plane nearer than r; tmax <= 0 leaves nothing to test. For occlusion
+// queries "is anything between the two points" that must not find the target's own surface (shadow rays).
+inline Ray stop_before_plane(Ray ray, double r, const Vec3& plane_point, const Vec3& plane_normal, double margin) {
+  const double t_plane = std::min(r, plane_normal.dot(plane_point - ray.origin) / plane_normal.dot(ray.direction));
+  ray.tmax = t_plane * (1 - 1e-5) - margin;
+  return ray;
+}
+
 // A ray leaving `point` (on patch `patch`) along unit `direction`, offset by `eps` = ray_epsilon(patches).
 // O(corners of the patch): computes patch_ray_offset each time.
 inline Ray spawn_ray(const PatchSet& patches, std::size_t patch, const Vec3& point, const Vec3& direction,

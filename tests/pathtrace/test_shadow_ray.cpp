@@ -57,7 +57,7 @@ TEST_CASE("shadow segments in an empty box reach the light unoccluded and stop b
   for_light_pairs(p, geometry, lamp, [&](PatchIndex i, const Vec3& x, const Vec3& y) {
     const Vec3 w = (y - x).normalized();
     if (!(-w.dot(n_y) > 0) || !(p.normal[static_cast<std::size_t>(i)].dot(w) > 0)) return;  // back-facing pair
-    const Ray ray = geometry.spawn_shadow_ray(i, x, w, y, n_y);
+    const Ray ray = geometry.spawn_shadow_ray(i, x, w, (y - x).norm(), y, n_y);
     if (!(ray.tmax > 0)) return;  // grazing pair: no segment
     ++tested;
     const Vec3 end = ray.origin + ray.tmax * ray.direction;
@@ -89,7 +89,7 @@ TEST_CASE("shadow segments through an obstacle are occluded", "[pathtrace]") {
     // segment from there to it enters the cube's bottom face (at y = 0.3 its z is still above 0.53).
     if (std::abs(x.y()) > 1e-12 || x.x() < 0.34 || x.x() > 0.66 || x.z() < 0.6 || x.z() > 0.86) return;
     const Vec3 w = (y - x).normalized();
-    const Ray ray = geometry.spawn_shadow_ray(i, x, w, y, n_y);
+    const Ray ray = geometry.spawn_shadow_ray(i, x, w, (y - x).norm(), y, n_y);
     REQUIRE(ray.tmax > 0);
     ++tested;
     CHECK(brute.occluded(ray));
