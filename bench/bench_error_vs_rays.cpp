@@ -1,5 +1,5 @@
 // bench_error_vs_rays: error against rays traced and against CPU and wall seconds, for every ray-kernel
-// random-walk method and sampler, on the bundled Cornell box (issue 14). Not a test.
+// random-walk method and sampler, on the bundled Cornell box. Not a test.
 //
 // Error measure (README, "Which method when"): with x the reference and y the estimate per patch, channel means
 // xbar_i, ybar_i,

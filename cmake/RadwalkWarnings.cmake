@@ -33,7 +33,7 @@ endfunction()
 # TEST_CASE discovered as a CTest test; hidden cases (tag "[.]", run only by name) are left out.
 function(radwalk_add_test name)
   cmake_parse_arguments(T "" "" "SOURCES;DEPS" ${ARGN})
-  add_executable(${name} ${T_SOURCES})
+  add_executable(${name} ${T_SOURCES} $<TARGET_OBJECTS:radwalk_test_scratch>)
   target_link_libraries(${name} PRIVATE radwalk_options Catch2::Catch2WithMain radwalk_test_support ${T_DEPS})
   target_compile_definitions(${name} PRIVATE RADWALK_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
   set(env "")

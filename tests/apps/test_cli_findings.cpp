@@ -1,4 +1,4 @@
-// radwalk and its scene findings (issue 11 items 2 and 8): every defect reported in one run, grouped by kind,
+// radwalk and its scene findings: every defect reported in one run, grouped by kind,
 // --json written on refusal, -q silencing warnings but keeping their count; --set and --rho-scale giving
 // byte for byte the results of the edited MTL.
 #include <catch2/catch.hpp>

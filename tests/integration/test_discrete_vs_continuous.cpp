@@ -12,7 +12,7 @@
 // The same holds for a thin panel in a closed box lit from both sides by black, non-reflecting walls that emit:
 // both models now treat a face alike (one-sided: its back absorbs; two-sided: a patch per side), so per patch and
 // per side (group means) they agree within noise, where a one-sided radiosity model against a two-sided path
-// tracer used to mix a modelling difference into the comparison (issue 11).
+// tracer used to mix a modelling difference into the comparison.
 #include <catch2/catch.hpp>
 #include <cmath>
 

@@ -1,4 +1,4 @@
-// Every finding at once (issue 11 item 2): validation collects every refusal, repair, warning and note of a scene,
+// Every finding at once: validation collects every refusal, repair, warning and note of a scene,
 // grouped by kind, before it refuses; T-junctions named at the T point; bent quads with an ambiguous area split;
 // material overrides (--set, --rho-scale) act like the edited MTL.
 #include <catch2/catch.hpp>
@@ -149,7 +149,7 @@ TEST_CASE("T-junctions are named at the T point, as a note, and are not non-mani
 
 TEST_CASE("closed shells: a closed room around open objects is closed, and outward faces on its planes are not the room",
           "[mesh][findings]") {
-  // Issue 11: a closed room with a table top modelled as one sheet was not a closed shell, so rays escaping it
+  // A closed room with a table top modelled as one sheet was not a closed shell, so rays escaping it
   // through furniture bottoms lying on the floor were not reported.
   std::vector<Vec3> v = {{0, 0, 0}, {4, 0, 0}, {4, 3, 0}, {0, 3, 0}, {0, 0, 4}, {4, 0, 4}, {4, 3, 4}, {0, 3, 4}};
   // the room, facing in (the reversed windings of a closed box facing out)

@@ -93,7 +93,7 @@ TEST_CASE("PLY colours outside 0..255 are refused, not wrapped", "[mesh][ply]") 
 }
 
 TEST_CASE("PLY per-face defects are all reported at once, each naming its face and line", "[mesh][ply]") {
-  // Issue 11: the PLY reader stopped at the first bad face; the OBJ reader collected them all.
+  // The PLY reader collects every bad face before it refuses, as the OBJ reader does.
   const std::string text =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
       "element face 6\nproperty list uchar int vertex_indices\nproperty uchar red\nproperty uchar green\n"

@@ -2,12 +2,40 @@
 import os
 import shutil
 import subprocess
+import sys
+import tempfile
 from pathlib import Path
 
 import pytest
 
 SOURCE = Path(os.environ.get("RADWALK_SOURCE", Path(__file__).resolve().parents[2]))
 CLI = os.environ.get("RADWALK_CLI", str(SOURCE / "build" / "apps" / "radwalk"))
+
+
+def pytest_configure(config):
+    """Gives the run a scratch folder of its own in the temporary directory it was given: tmp_path's folders
+    (pytest's --basetemp), tempfile's and those of every child process (TMPDIR) go there. It is removed when the
+    run passes and kept, and named, when a test failed (as the C++ tests' scratch folders)."""
+    scratch = tempfile.mkdtemp(prefix="radwalk-test-pytest-")
+    config._radwalk_scratch = scratch
+    config.option.basetemp = os.path.join(scratch, "basetemp")
+    os.environ["TMPDIR"] = scratch
+    tempfile.tempdir = scratch
+
+
+def pytest_unconfigure(config):
+    scratch = getattr(config, "_radwalk_scratch", None)
+    if scratch is None:
+        return
+    failed = getattr(config, "_radwalk_failed", True)
+    if failed:
+        print(f"radwalk test: kept scratch folder {scratch}", file=sys.stderr)
+    else:
+        shutil.rmtree(scratch, ignore_errors=True)
+
+
+def pytest_sessionfinish(session, exitstatus):
+    session.config._radwalk_failed = exitstatus != 0
 
 
 def run_cli(*args, check=True):

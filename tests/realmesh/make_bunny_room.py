@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes a closed room around the Stanford bunny of Debian's glmark2-data (issue 11 item 10).
+"""Writes a closed room around the Stanford bunny of Debian's glmark2-data.
 
 Usage: make_bunny_room.py BUNNY_OBJ OUT_DIR  ->  OUT_DIR/bunny_room.obj + OUT_DIR/bunny_room.mtl
 

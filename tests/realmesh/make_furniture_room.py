@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes a raw "furniture room" OBJ + MTL with the defects of real modelling-tool exports (issue 11, "Done when").
+"""Writes a raw "furniture room" OBJ + MTL with the defects of real modelling-tool exports.
 
 Usage: make_furniture_room.py OUT_DIR  ->  OUT_DIR/furniture_room.obj, furniture_room.mtl, furniture_room.json
 

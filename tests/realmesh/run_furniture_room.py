@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""CTest (label realmesh): issue 11's "Done when" on a raw furniture room (make_furniture_room.py).
+"""CTest (label realmesh): a raw furniture room (make_furniture_room.py).
 
 Usage: run_furniture_room.py RADWALK SOURCE_DIR WORK_DIR
 
