@@ -394,7 +394,7 @@ TEST_CASE("a file-size limit (ulimit -f) fails the write in one line naming the 
   fs::remove_all(dir);
 }
 
-TEST_CASE("--json naming the scene's material library, directly or through a link, is refused and never written",
+TEST_CASE("a --json naming the scene's material library, directly or through a link, is refused and never written",
           "[cli][fault]") {
   const fs::path dir = scratch() / "json_refused";
   fs::remove_all(dir);
@@ -437,7 +437,7 @@ TEST_CASE("--json naming the scene's material library, directly or through a lin
   fs::remove_all(dir);
 }
 
-TEST_CASE("--progressive replaces a series only when the new one is complete; a failed run keeps the old one",
+TEST_CASE("progressive series: replaced only when the new one is complete, a failed run keeps the old one",
           "[cli][fault]") {
   const fs::path dir = scratch() / "progressive_replace";
   fs::remove_all(dir);
@@ -472,7 +472,7 @@ TEST_CASE("--progressive replaces a series only when the new one is complete; a 
   fs::remove_all(dir);
 }
 
-TEST_CASE("--progressive with an empty directory name is refused in one line", "[cli]") {
+TEST_CASE("progressive series: an empty directory name is refused in one line", "[cli]") {
   const fs::path dir = scratch() / "progressive_empty";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -490,7 +490,7 @@ TEST_CASE("--progressive with an empty directory name is refused in one line", "
   fs::remove_all(dir);
 }
 
-TEST_CASE("output names of up to 255 bytes are written; paths beyond PATH_MAX or NAME_MAX are refused in one line",
+TEST_CASE("output names of up to 255 bytes are written, paths beyond PATH_MAX or NAME_MAX are refused in one line",
           "[cli][limits]") {
   const fs::path dir = scratch() / "path_lengths";
   fs::remove_all(dir);
