@@ -62,7 +62,7 @@ std::string output_extensions(OutputFile kind) {
 
 std::string check_series_directory(const std::string& dir) {
   if (dir.empty())
-    return "--progressive needs a directory name (an empty one would put the series into the current directory)";
+    return "needs a directory name (an empty one would put the series into the current directory)";
   return path_length_problem(dir);
 }
 

@@ -26,7 +26,7 @@ std::string check_output_file(const std::string& path, OutputFile kind);
 std::string output_extensions(OutputFile kind);
 
 // "" when `dir` may hold a --progressive series: a non-empty name (an empty one would write into the current
-// directory) of a path short enough to open; else one line naming the option and what is wrong.
+// directory) of a path short enough to open; else one line saying what is wrong (the parser prefixes the option).
 std::string check_series_directory(const std::string& dir);
 
 }  // namespace radwalk::app

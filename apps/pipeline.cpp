@@ -180,7 +180,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
     } scope;
     set_input_observer([&input_bytes, &inputs_read](const std::string& path, const std::string& bytes) {
       input_bytes.add(bytes);
-      inputs_read.push_back({"the scene's input " + path, path});
+      inputs_read.push_back({"an input read", path});
     });
     mesh = read_scene(options.scene, read);
     set_input_observer({});
