@@ -5,6 +5,7 @@
 
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/path_length.h"
 
 namespace radwalk::app {
 namespace {
@@ -34,6 +35,7 @@ const Format& format_of(OutputFile kind) {
 
 std::string check_output_file(const std::string& path, OutputFile kind) {
   if (path.empty()) return "";
+  if (const std::string too_long = path_length_problem(path); !too_long.empty()) return too_long;
   const Format& format = format_of(kind);
   const std::string ext = std::filesystem::path(path).extension().string();
   bool known = false;
@@ -56,6 +58,12 @@ std::string output_extensions(OutputFile kind) {
   std::string text;
   for (const std::string& e : format_of(kind).extensions) text += (text.empty() ? "" : "|") + e;
   return text;
+}
+
+std::string check_series_directory(const std::string& dir) {
+  if (dir.empty())
+    return "needs a directory name (an empty one would put the series into the current directory)";
+  return path_length_problem(dir);
 }
 
 }  // namespace radwalk::app

@@ -17,11 +17,16 @@ enum class OutputFile {
 };
 
 // "" when `path` may be written as `kind` (an empty path is no output), else one line saying why not:
-// "out.png: the file written is VTK XML PolyData, so its name must end in .vtp", or the missing directory.
+// "out.png: the file written is VTK XML PolyData, so its name must end in .vtp", the missing directory, or a path
+// too long to open (core/path_length.h).
 // Extensions are compared exactly (".vtp", not ".VTP"): the writers choose their format by the same rule.
 std::string check_output_file(const std::string& path, OutputFile kind);
 
 // The accepted extensions for help texts: ".vtp", ".png|.exr".
 std::string output_extensions(OutputFile kind);
+
+// "" when `dir` may hold a --progressive series: a non-empty name (an empty one would write into the current
+// directory) of a path short enough to open; else one line saying what is wrong (the parser prefixes the option).
+std::string check_series_directory(const std::string& dir);
 
 }  // namespace radwalk::app

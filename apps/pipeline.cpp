@@ -18,6 +18,7 @@
 #include "core/distributed.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/path_length.h"
 #include "core/timer.h"
 #include "core/parallel.h"
 #include "formfactor/emitter_form_factors.h"
@@ -140,14 +141,23 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   std::vector<MaterialOverride> overrides;
   for (const std::string& text : options.set_material) overrides.push_back(parse_material_override(text));
   record_overrides(options, overrides, summary);
-  // A refusal is written to --json too, with every finding (a reading error that stops the reader is one).
+  // Every file the readers read (the scene, its material libraries), as they read them: --json may be written on
+  // a refusal only if it is none of them (it may be refused for naming one, directly or through a link).
+  std::vector<NamedFile> inputs_read;
+  const auto json_writable = [&] {
+    return !options.json.empty() && check_distinct_files(output_files_of("--json", options.json), inputs_read).empty();
+  };
+  // A refusal is written to --json too, with every finding (a reading error that stops the reader is one), unless
+  // --json itself is refused.
   auto refuse = [&](const std::vector<Finding>& findings, const std::string& message) {
     record_findings(findings, summary);
     summary.json()["refused"] = true;
     summary.json()["error"] = message;
-    if (!options.json.empty()) summary.write(options.json);
+    if (json_writable()) summary.write(options.json);
   };
-  if (!std::filesystem::exists(options.scene)) {
+  require_path_length(options.scene);
+  std::error_code missing;
+  if (!std::filesystem::exists(options.scene, missing)) {
     const std::string message = options.scene + ": no such file";
     Finding f;
     f.kind = "no such file";
@@ -168,7 +178,10 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
     struct ObserverScope {
       ~ObserverScope() { set_input_observer({}); }
     } scope;
-    set_input_observer([&input_bytes](const std::string&, const std::string& bytes) { input_bytes.add(bytes); });
+    set_input_observer([&input_bytes, &inputs_read](const std::string& path, const std::string& bytes) {
+      input_bytes.add(bytes);
+      inputs_read.push_back({"an input read", path});
+    });
     mesh = read_scene(options.scene, read);
     set_input_observer({});
     if (!options.form_factors_input.empty()) input_bytes.add(file_bytes_digest(options.form_factors_input));
@@ -194,7 +207,7 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
       for (const std::string& line : errors) std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
       message = options.scene + ": refused: " + count_by_kind(all, Severity::error) +
                 (options.strict ? " (--strict)" : "") + "; every finding is listed above" +
-                (options.json.empty() ? "" : " and in " + options.json);
+                (json_writable() ? " and in " + options.json : "");
     }
     refuse(all, message);
     throw InputError(message);

@@ -18,7 +18,8 @@ namespace radwalk::app {
 // prints the repairs, warnings and notes grouped by kind (mesh/validate.h); the summary gets every finding
 // ("findings"), the overrides, and the warnings printed while reading the command line (options.warnings). On
 // refusal every finding is printed (errors grouped by kind after the warnings), --json is written with them
-// ("refused": true), and an InputError with one summary line is thrown. Output file names were checked while
+// ("refused": true) unless it names a file the readers read (then it is refused, never written), and an InputError
+// with one summary line is thrown. Output file names were checked while
 // reading the command line (apps/output_files.h), the material libraries here.
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 

@@ -24,6 +24,10 @@ std::string step_name(std::size_t k) {
   return name;
 }
 
+// The target every step's temporary is created for until finish() knows its place in the series (so that the
+// temporaries a killed run left are removed by the next series written in DIR, core/atomic_write.h).
+constexpr const char* kStagedStep = "step_NNNN.vtp";
+
 }  // namespace
 
 ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
@@ -35,14 +39,19 @@ ProgressiveSeries::ProgressiveSeries(std::string dir, const PatchSet& patches,
       residual_of_(std::move(residual_of)),
       metadata_(std::move(metadata)),
       max_files_(std::max<std::size_t>(max_files, 2)) {
+  if (dir_.empty()) throw InputError("--progressive needs a directory name");
   std::error_code ec;
+  created_dir_ = !fs::is_directory(dir_, ec);
   fs::create_directories(dir_, ec);
-  if (ec || !fs::is_directory(dir_)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
-  const std::regex stale("step_[0-9]{4,}\\.vtp");
-  if (distributed::is_root())  // over MPI only rank 0 writes the series (core/distributed.h)
-    for (const auto& entry : fs::directory_iterator(dir_))
-      if (std::regex_match(entry.path().filename().string(), stale)) fs::remove(entry.path());
+  if (ec || !fs::is_directory(dir_, ec)) throw InputError("--progressive " + dir_ + ": cannot create the directory");
   pvd_ = (fs::path(dir_) / pvd_name).string();
+  require_output_directory(pvd_);  // the collection can be written (not a directory, say), before any step
+}
+
+ProgressiveSeries::~ProgressiveSeries() {
+  kept_.clear();  // removes the temporaries of the steps not published
+  std::error_code ec;
+  if (!finished_ && created_dir_ && distributed::is_root()) fs::remove(dir_, ec);  // only if empty
 }
 
 void ProgressiveSeries::write(long iteration, const PatchRgb& B) {
@@ -61,9 +70,15 @@ void ProgressiveSeries::write_file(long time, std::vector<CellField> fields, Vtp
   std::vector<CellField> all = patch_fields_;
   all.insert(all.end(), fields.begin(), fields.end());
   step.merge(metadata_);
-  const std::string file = (fs::path(dir_) / ("iterate_" + std::to_string(time) + ".vtp")).string();
-  write_vtp(file, patches_, all, step);
-  kept_.emplace_back(time, file);
+  const std::string staged = (fs::path(dir_) / kStagedStep).string();
+  std::unique_ptr<PendingFile> file;
+  if (distributed::is_root()) {
+    file = std::make_unique<PendingFile>(staged);
+    file->write_via_path([&](const std::string& temporary) { write_vtp(temporary, patches_, all, step); });
+  } else {
+    write_vtp(staged, patches_, all, step);  // over MPI only rank 0 writes: the same work, discarded (atomic_write.h)
+  }
+  kept_.emplace_back(time, std::move(file));
   writing_seconds_ += writing.seconds();
 }
 
@@ -81,12 +96,11 @@ void ProgressiveSeries::add(long iteration, const PatchRgb& B) {
   if (calls_ % stride_ != 0) return;
   write(iteration, B);
   if (kept_.size() + 1 >= max_files_) {
-    // Thin: keep the steps at multiples of 2 x stride (odd positions, since position k holds call (k+1) x stride).
-    std::vector<std::pair<long, std::string>> thinned;
-    for (std::size_t k = 0; k < kept_.size(); ++k) {
-      if (k % 2 == 1) thinned.push_back(kept_[k]);
-      else if (distributed::is_root()) fs::remove(kept_[k].second);
-    }
+    // Thin: keep the steps at multiples of 2 x stride (odd positions, since position k holds call (k+1) x stride);
+    // a step dropped removes its temporary.
+    decltype(kept_) thinned;
+    for (std::size_t k = 0; k < kept_.size(); ++k)
+      if (k % 2 == 1) thinned.push_back(std::move(kept_[k]));
     kept_ = std::move(thinned);
     stride_ *= 2;
   }
@@ -96,12 +110,47 @@ std::size_t ProgressiveSeries::finish() {
   if (last_iteration_ >= 0 && (kept_.empty() || kept_.back().first != last_iteration_) && last_B_.rows() > 0)
     write(last_iteration_, last_B_);
   std::vector<std::pair<double, std::string>> steps;
+  if (!distributed::is_root()) {  // nothing was written on this rank (write_file)
+    for (std::size_t k = 0; k < kept_.size(); ++k) steps.emplace_back(double(kept_[k].first), step_name(k));
+    write_pvd(pvd_, steps);
+    finished_ = true;
+    kept_.clear();
+    return steps.size();
+  }
+  // Each kept step's temporary becomes the temporary of its name in the series (a rename in DIR: no space needed).
+  std::vector<std::unique_ptr<PendingFile>> files;
   for (std::size_t k = 0; k < kept_.size(); ++k) {
-    if (distributed::is_root())  // the other ranks' files were not written (core/atomic_write.h)
-      fs::rename(kept_[k].second, fs::path(dir_) / step_name(k));
+    auto file = std::make_unique<PendingFile>((fs::path(dir_) / step_name(k)).string());
+    const std::string staged = kept_[k].second->temporary();
+    file->write_via_path([&](const std::string& temporary) {
+      std::error_code ec;
+      fs::rename(staged, temporary, ec);
+      if (ec) throw InputError(file->path() + ": cannot write output: rename failed (" + ec.message() + ")");
+    });
+    kept_[k].second.reset();  // its temporary is gone; frees its slot in the signal-cleanup table
+    files.push_back(std::move(file));
     steps.emplace_back(double(kept_[k].first), step_name(k));
   }
-  write_pvd(pvd_, steps);
+  PendingFile pvd(pvd_);
+  pvd.write_via_path([&](const std::string& temporary) { write_pvd(temporary, steps); });
+  // Published together: every step and the collection were written completely before the first rename.
+  std::vector<PendingFile*> together;
+  for (const auto& f : files) together.push_back(f.get());
+  together.push_back(&pvd);
+  commit_together(together);
+  finished_ = true;
+  kept_.clear();
+  // The earlier run's steps beyond this series (a longer series before) are no longer in the collection.
+  const std::regex numbered("step_([0-9]{4,})\\.vtp");
+  std::error_code ec;
+  std::vector<fs::path> stale;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    std::smatch m;
+    const std::string name = it->path().filename().string();
+    if (std::regex_match(name, m, numbered) && (m[1].length() > 9 || std::stoul(m[1].str()) >= steps.size()))
+      stale.push_back(it->path());
+  }
+  for (const fs::path& p : stale) fs::remove(p, ec);
   return steps.size();
 }
 

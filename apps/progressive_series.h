@@ -13,12 +13,20 @@
 //
 // At most max_files steps are kept: every call is written while there is room; when the count reaches the limit,
 // every other kept step is deleted and only every 2nd (then 4th, ...) later call is written. The last iterate is
-// always included (finish). Stale step_NNNN.vtp files in DIR from an earlier run are removed at the start.
+// always included (finish).
+//
+// A series already in DIR stays whole until the new one is complete: every step is written to a pending temporary
+// in DIR (core/atomic_write.h) and finish() publishes the steps and the .pvd together (commit_together: all were
+// written completely before the first rename), then removes the earlier run's step_NNNN.vtp beyond the new count.
+// A run that fails before (a full disk, the file-size limit, an error, a signal) removes its temporaries and
+// leaves the old series readable; a DIR that the series created is removed again if it stays empty.
 #include <functional>
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "core/atomic_write.h"
 #include "core/types.h"
 #include "core/solution.h"
 #include "core/timer.h"
@@ -31,18 +39,22 @@ namespace radwalk::app {
 
 class ProgressiveSeries {
  public:
-  // Creates DIR (InputError if it cannot). max_files >= 2.
+  // Creates DIR (InputError if it cannot) and checks that the collection can be written there. max_files >= 2.
   // The collection is DIR/pvd_name.
   ProgressiveSeries(std::string dir, const PatchSet& patches, std::function<double(const PatchRgb&)> residual_of,
                     VtpMetadata metadata = {}, std::size_t max_files = 200,
                     const std::string& pvd_name = "solve.pvd");
+  // Without finish(): removes the steps written (the old series stays) and DIR if it was created and is empty.
+  ~ProgressiveSeries();
+  ProgressiveSeries(const ProgressiveSeries&) = delete;
+  ProgressiveSeries& operator=(const ProgressiveSeries&) = delete;
   // One iterate (the solver's on_iterate callback).
   void add(long iteration, const PatchRgb& B);
   // One step of a convergence series: the estimate B with its standard error B_se after `count` walks or samples
   // (the time of the step; counts must increase), and the step's metadata (walks, B_se summary, seconds, ...).
   void add_estimate(long count, const PatchRgb& B, const PatchRgb& B_se, const VtpMetadata& step);
-  // Writes the last iterate if it was skipped, renames the kept steps to step_0000.vtp ... in order and writes
-  // solve.pvd. Returns the number of steps.
+  // Writes the last iterate if it was skipped and the .pvd, then publishes the kept steps as step_0000.vtp ... in
+  // order together with the .pvd, and removes the earlier run's steps beyond them. Returns the number of steps.
   std::size_t finish();
   long stride() const { return stride_; }
   const std::string& pvd_path() const { return pvd_; }
@@ -52,6 +64,7 @@ class ProgressiveSeries {
   void write_file(long time, std::vector<CellField> fields, VtpMetadata step);
 
   std::string dir_, pvd_;
+  bool created_dir_ = false, finished_ = false;
   const PatchSet& patches_;
   std::vector<CellField> patch_fields_;  // patch_fields(patches_), the same in every step
   std::function<double(const PatchRgb&)> residual_of_;
@@ -60,7 +73,7 @@ class ProgressiveSeries {
   double writing_seconds_ = 0;  // spent in write(), left out of elapsed_seconds
   std::size_t max_files_;
   long calls_ = 0, stride_ = 1;
-  std::vector<std::pair<long, std::string>> kept_;  // (iteration, file)
+  std::vector<std::pair<long, std::unique_ptr<PendingFile>>> kept_;  // (iteration, its step, not yet published)
   long last_iteration_ = -1;
   PatchRgb last_B_;
 };

@@ -25,6 +25,7 @@
 #include "core/did_you_mean.h"
 #include "core/distributed.h"
 #include "core/error.h"
+#include "core/path_length.h"
 #include "core/progress.h"
 #include "walk/measure_by_method.h"
 #include "walk/named_choice.h"
@@ -93,6 +94,12 @@ CLI::Validator output_file(OutputFile kind) {
                         "FILE" + output_extensions(kind));
 }
 
+// An input path short enough to open (core/path_length.h): checked before any file is read.
+const CLI::Validator kPathFits([](std::string& path) { return path_length_problem(path); }, "PATH");
+
+// The directory of a --progressive series (apps/output_files.h).
+const CLI::Validator kSeriesDirectory([](std::string& dir) { return check_series_directory(dir); }, "DIR");
+
 // Every command name and option name the parser knows (for the messages about those it does not).
 CommandLineWords words_of(const CLI::App& app) {
   CommandLineWords words;
@@ -145,7 +152,7 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   cmd->add_flag("-q,--quiet", g_quiet,
                 "No progress, notes or scene warnings on stderr (the scene's repairs and warnings are counted in "
                 "one line and listed in --json; other warnings and errors still print)");
-  cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required();
+  cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required()->check(kPathFits);
   cmd->add_option("--set", o.set_material,
                   "Override a material: MATERIAL.Kd=r,g,b (rho) or MATERIAL.Ke=r,g,b (emitted radiance); one "
                   "value is grey; repeatable")
@@ -189,7 +196,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
     cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)")
         ->check(output_file(OutputFile::json));
     cmd->add_option("--paraview-state", o.paraview_state,
-                    "Write a ParaView state FILE.py that opens the .vtp coloured by B_srgb from the scene's camera");
+                    "Write a ParaView state FILE.py that opens the .vtp coloured by B_srgb from the scene's camera")
+        ->check(kPathFits);
   }
 }
 
@@ -207,6 +215,7 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
   auto* file =
       cmd->add_option("--form-factors", o.form_factors,
                       "Read F from a file of 'radwalk formfactors' instead of tracing: FILE.mtx (Matrix Market) or FILE.npz (binary CSR, memory-mapped)")
+          ->check(kPathFits)
           ->check(CLI::ExistingFile);
   file->excludes(rays)->excludes(density);
   cmd->add_flag("--reciprocity", o.reciprocity,
@@ -441,7 +450,8 @@ int run_main(int argc, char** argv) {
       "--progressive", solve.progressive,
       "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "
       "southwell (time = iteration, at most 200 steps), or for random-walk the estimate and B_se after 1, 2, 4, "
-      "... batches of walks (time = walks; costs about one more run)");
+      "... batches of walks (time = walks; costs about one more run)")
+      ->check(kSeriesDirectory);
 
   CompareCommand compare;
   auto* compare_cmd =
@@ -552,7 +562,8 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   pt_cmd->add_option("--progressive", pt.progressive,
                      "Write the patch averages after 1, 2, 4, ... batches of samples, with B_se, as "
-                     "DIR/step_NNNN.vtp + DIR/pathtrace.pvd (time = samples per patch) for ParaView");
+                     "DIR/step_NNNN.vtp + DIR/pathtrace.pvd (time = samples per patch) for ParaView")
+      ->check(kSeriesDirectory);
   pt_cmd
       ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
       ->expected(10);

@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/error.h"
+#include "core/path_length.h"
 
 namespace radwalk {
 
@@ -36,6 +37,7 @@ std::string size_text(std::uint64_t bytes) {
 // Opens path for reading without blocking (a FIFO without a writer would block a plain open) and refuses what is
 // not a regular file; returns the descriptor and the size.
 FileDescriptor open_regular(const std::string& path, std::uint64_t& size) {
+  require_path_length(path);
   FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
   if (file.fd < 0)
     throw InputError(locate(path, 0, -1, std::string("cannot open the file (") + std::strerror(errno) + ")"));

@@ -3,7 +3,8 @@
 //
 // Only regular files are read: a FIFO, a device, a socket or a directory is refused before a byte is read (so
 // nothing blocks on a pipe without a writer, or reads /dev/zero until memory runs out), and so is a file larger
-// than the caller's bound. Every refusal is one InputError naming the file.
+// than the caller's bound, and a path too long to open (core/path_length.h). Every refusal is one InputError
+// naming the file.
 #include <cstdint>
 #include <functional>
 #include <string>

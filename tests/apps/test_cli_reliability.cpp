@@ -1,16 +1,22 @@
-// End-to-end reliability checks of the radwalk program (issue 12, docs/reliability.md): the run id in every
-// output, memory bounds refused or kept up front (O4), and real processes killed while writing an output (P2).
+// End-to-end reliability checks of the radwalk program (docs/reliability.md): the run id in every output, memory
+// bounds refused or kept up front (O4), real processes killed while writing an output (P2), outputs under a
+// file-size limit, refused outputs never written, progressive series replaced only when complete, and the limits
+// on path lengths.
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <set>
+#include <sstream>
 #include <thread>
 
+#include "core/atomic_write.h"
 #include "radwalk_runner.h"
 #include "run_id_reader.h"
 #include "support/reference_problems.h"
@@ -240,7 +246,7 @@ bool kill_while_writing(const fs::path& dir, const fs::path& csv, int signal) {
   int status = 0;
   for (;;) {
     for (const std::string& t : temporaries(dir))
-      if (t.find(csv.filename().string()) != std::string::npos) seen = true;
+      if (fs::path(t).filename().string().rfind(radwalk::temporary_prefix(csv.string()), 0) == 0) seen = true;
     if (seen) {
       ::kill(pid, signal);
       break;
@@ -277,6 +283,7 @@ TEST_CASE("P2: SIGTERM during a CLI output write leaves the old file and no temp
   }
   CHECK(hit);  // the write takes about a second: the temporary was seen
   CHECK(file_text(csv) == "old\n");
+  fs::remove_all(dir);
 }
 
 TEST_CASE("P2: kill -9 during a CLI output write leaves the old file, and the next run removes the temporary",
@@ -300,6 +307,7 @@ TEST_CASE("P2: kill -9 during a CLI output write leaves the old file, and the ne
   CHECK(temporaries(dir).empty());  // ...until the next run writing the same file removes it
   check_old_or_complete(csv);
   CHECK(file_text(csv) != "old\n");
+  fs::remove_all(dir);
 }
 
 TEST_CASE("measure's run id follows its options: another method or response is another run", "[cli][run_id]") {
@@ -318,4 +326,210 @@ TEST_CASE("measure's run id follows its options: another method or response is a
   CHECK(id("--response material:white --method direct") == base);
   CHECK(id("--response material:white --method adjoint-direct") != base);
   CHECK(id("--response material:red --method direct") != base);
+}
+
+namespace {
+
+// Runs a shell command line: exit code (-1 when killed by a signal) and merged stdout + stderr, as run().
+Run run_shell(const std::string& command) {
+  Run r{-1, {}};
+  FILE* pipe = popen(("{ " + command + "; } 2>&1").c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::array<char, 4096> buf{};
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+// Runs radwalk under a file-size limit of `kib` KiB (ulimit -f, as batch systems set it): exit code and merged
+// output, as run().
+Run run_limited(int kib, const std::string& args) {
+  return run_shell("ulimit -f " + std::to_string(kib) + "; exec " + std::string(RADWALK_BINARY) + " --quiet " + args);
+}
+
+// The lines radwalk printed about the run ("radwalk: ..."), not the command's own report on stdout.
+std::size_t lines_of(const std::string& text) {
+  std::istringstream in(text);
+  std::size_t lines = 0;
+  for (std::string line; std::getline(in, line);) lines += line.rfind("radwalk:", 0) == 0;
+  return lines;
+}
+
+// Every file under dir (recursively) with its content.
+std::map<std::string, std::string> contents(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files[fs::relative(e.path(), dir).string()] = file_text(e.path());
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("a file-size limit (ulimit -f) fails the write in one line naming the file, keeps the old file and "
+          "leaves no temporary", "[cli][fault][limits]") {
+  const fs::path dir = scratch() / "file_size_limit";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // A stream writer (.vtp), then a writer that takes a file name (OpenEXR), each beyond a 64 KiB limit.
+  const fs::path vtp = dir / "big.vtp", exr = dir / "big.exr";
+  for (const fs::path& f : {vtp, exr}) std::ofstream(f) << "old\n";
+  const std::vector<std::pair<fs::path, std::string>> cases = {
+      {vtp, "patch " + source("meshes/cornell_box.obj") + " --max-edge 30 -o " + vtp.string()},
+      {exr, "pathtrace " + source("meshes/cube.obj") + " --spp 2 --width 200 --height 200 --image " + exr.string()}};
+  for (const auto& [file, args] : cases) {
+    const Run r = run_limited(64, args);
+    INFO(args << "\n" << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(lines_of(r.out) == 1);
+    CHECK(r.out.find(file.string() + ": write failed: file size limit reached") != std::string::npos);
+    CHECK(file_text(file) == "old\n");
+    CHECK(temporaries(dir).empty());
+  }
+  // The same commands without the limit write them.
+  for (const auto& [file, args] : cases) CHECK(run(args).exit_code == 0);
+  CHECK(file_text(vtp) != "old\n");
+  CHECK(fs::file_size(vtp) > 64 * 1024);
+  CHECK(fs::file_size(exr) > 64 * 1024);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a --json naming the scene's material library, directly or through a link, is refused and never written",
+          "[cli][fault]") {
+  const fs::path dir = scratch() / "json_refused";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string mtl = file_text(source("meshes/cube.mtl"));
+  // A scene whose library is named like a JSON file, and a plain copy of the cube.
+  std::string obj = file_text(source("meshes/cube.obj"));
+  obj.replace(obj.find("mtllib cube.mtl"), 15, "mtllib lib.json");
+  std::ofstream(dir / "odd.obj") << obj;
+  std::ofstream(dir / "lib.json") << mtl;
+  fs::copy_file(source("meshes/cube.obj"), dir / "cube.obj");
+  fs::copy_file(source("meshes/cube.mtl"), dir / "cube.mtl");
+  fs::create_symlink("cube.mtl", dir / "link.json");
+  fs::create_symlink("cube.mtl", dir / "link.csv");
+  const std::vector<std::pair<std::string, fs::path>> cases = {
+      {"check " + (dir / "odd.obj").string() + " --json " + (dir / "lib.json").string(), dir / "lib.json"},
+      {"patch " + (dir / "odd.obj").string() + " -o " + (dir / "p.vtp").string() + " --json " +
+           (dir / "lib.json").string(), dir / "lib.json"},
+      {"check " + (dir / "cube.obj").string() + " --json " + (dir / "link.json").string(), dir / "cube.mtl"},
+      {"solve " + (dir / "cube.obj").string() + " --json " + (dir / "link.json").string(), dir / "cube.mtl"}};
+  for (const auto& [args, library] : cases) {
+    const Run r = run(args);
+    INFO(args << "\n" << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(lines_of(r.out) == 1);
+    CHECK(r.out.find("would overwrite the scene's material library") != std::string::npos);
+    CHECK(file_text(library) == mtl);
+    CHECK(fs::is_symlink(fs::symlink_status(dir / "link.json")));
+    CHECK_FALSE(fs::exists(dir / "p.vtp"));
+  }
+  // Another output refused for naming the library: --json, which passed its checks, records the refusal.
+  const Run r = run("patch " + (dir / "cube.obj").string() + " -o " + (dir / "p.vtp").string() + " --csv " +
+                    (dir / "link.csv").string() + " --json " + (dir / "good.json").string());
+  INFO(r.out);
+  CHECK(r.exit_code == 2);
+  CHECK(file_text(dir / "cube.mtl") == mtl);
+  REQUIRE(fs::exists(dir / "good.json"));
+  CHECK(file_text(dir / "good.json").find("\"refused\": true") != std::string::npos);
+  CHECK(temporaries(dir).empty());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("progressive series: replaced only when the new one is complete, a failed run keeps the old one",
+          "[cli][fault]") {
+  const fs::path dir = scratch() / "progressive_replace";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const fs::path series = dir / "series";
+  const std::string solve = "solve " + source("meshes/cube.obj") + " --rays 500 --solver jacobi --progressive " +
+                            series.string();
+  REQUIRE(run(solve + " --tol 1e-10").exit_code == 0);
+  const auto old = contents(series);
+  REQUIRE(old.size() > 3);  // solve.pvd and its steps
+  // The new series cannot be written (a file-size limit below one step): the old one stays, whole.
+  const Run failed = run_limited(1, solve + " --tol 1e-3");
+  INFO(failed.out);
+  CHECK(failed.exit_code == 2);
+  CHECK(lines_of(failed.out) == 1);
+  CHECK(failed.out.find("file size limit reached") != std::string::npos);
+  CHECK(contents(series) == old);
+  CHECK(temporaries(series).empty());
+  // A shorter series that succeeds replaces it: every step file is in the collection, no earlier one is left.
+  REQUIRE(run(solve + " --tol 1e-3").exit_code == 0);
+  const auto now = contents(series);
+  CHECK(now != old);
+  CHECK(now.size() < old.size());
+  const std::string pvd = now.at("solve.pvd");
+  for (const auto& [name, text] : now)
+    if (name != "solve.pvd") CHECK(pvd.find("file=\"" + name + "\"") != std::string::npos);
+  CHECK(temporaries(series).empty());
+  // A series in a new directory that fails leaves no directory behind.
+  CHECK(run_limited(1, "solve " + source("meshes/cube.obj") + " --rays 500 --solver jacobi --progressive " +
+                           (dir / "fresh").string()).exit_code == 2);
+  CHECK_FALSE(fs::exists(dir / "fresh"));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("progressive series: an empty directory name is refused in one line", "[cli]") {
+  const fs::path dir = scratch() / "progressive_empty";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (const std::string& command :
+       {"solve " + source("meshes/cube.obj") + " --solver jacobi --progressive ''",
+        "solve " + source("meshes/cube.obj") + " --solver random-walk --walks-per-patch 8 --progressive ''",
+        "pathtrace " + source("meshes/cube.obj") + " --spp 4 --progressive ''"}) {
+    const Run r = run_shell("cd " + dir.string() + " && exec " + std::string(RADWALK_BINARY) + " --quiet " + command);
+    INFO(command << "\n" << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(lines_of(r.out) == 1);
+    CHECK(r.out.find("--progressive") != std::string::npos);
+    CHECK(fs::is_empty(dir));  // nothing written into the current directory
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("output names of up to 255 bytes are written, paths beyond PATH_MAX or NAME_MAX are refused in one line",
+          "[cli][limits]") {
+  const fs::path dir = scratch() / "path_lengths";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string cube = source("meshes/cube.obj");
+  // Names of 231 to 255 bytes: their temporaries must fit NAME_MAX too.
+  for (const std::size_t length : {231, 250, 255}) {
+    const fs::path vtp = dir / (std::string(length - 4, 'v') + ".vtp"), csv = dir / (std::string(length - 4, 'c') + ".csv");
+    const Run r = run("patch " + cube + " -o " + vtp.string() + " --csv " + csv.string());
+    INFO(length << "\n" << r.out);
+    CHECK(r.exit_code == 0);
+    CHECK(fs::file_size(vtp) > 0);
+    CHECK(fs::file_size(csv) > 0);
+    CHECK(temporaries(dir).empty());
+  }
+  // Too long: a path of more than PATH_MAX - 1 bytes ("./" repeated), a component of more than NAME_MAX bytes.
+  std::string deep = source("meshes");
+  while (deep.size() < 4200) deep += "/.";
+  const std::string long_scene = deep + "/cube.obj", long_name = (dir / (std::string(300, 'n') + ".obj")).string();
+  const std::string long_output = (dir / (std::string(300, 'o') + ".vtp")).string();
+  std::string long_dir = dir.string();
+  while (long_dir.size() < 4200) long_dir += "/.";
+  const std::vector<std::string> commands = {
+      "check " + long_scene,
+      "solve " + long_scene + " --csv " + (dir / "x.csv").string(),
+      "check " + long_name,
+      "patch " + cube + " -o " + long_output,
+      "patch " + cube + " -o " + long_dir + "/x.vtp",
+      "solve " + cube + " --json " + long_dir + "/x.json",
+      "solve " + cube + " --form-factors " + deep + "/cube.mtx",
+      "solve " + cube + " --solver jacobi --progressive " + long_dir + "/series",
+      "solve " + cube + " -o " + (dir / "x.vtp").string() + " --paraview-state " + long_dir + "/x.py"};
+  for (const std::string& command : commands) {
+    const Run r = run(command);
+    INFO(command.substr(0, 120) << "\n" << r.out.substr(0, 400));
+    CHECK(r.exit_code == 2);
+    CHECK(lines_of(r.out) == 1);
+    CHECK(r.out.find("path too long") != std::string::npos);
+  }
+  CHECK(std::distance(fs::directory_iterator(dir), fs::directory_iterator()) == 6);  // the six written above
+  fs::remove_all(dir);
 }

@@ -5,6 +5,8 @@
 #include <sstream>
 
 #include <csignal>
+#include <functional>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -156,12 +158,16 @@ TEST_CASE("SIGTERM removes pending temporaries, temporaries of dead processes ar
   }
   // What a kill -9 leaves: temporaries of a process that is gone, in this module's and earlier versions' names.
   const std::string pid = std::to_string(dead_pid());
-  for (const std::string& name : {".out.vtp.radwalk-tmp-" + pid + "-0.vtp", "out.vtp.tmp-" + pid, ".tmp-" + pid + "-out.vtp"})
+  const std::string prefix = temporary_prefix((dir / "out.vtp").string());
+  for (const std::string& name : {prefix + pid + "-0.vtp", ".out.vtp.radwalk-tmp-" + pid + "-0.vtp",
+                                  "out.vtp.tmp-" + pid, ".tmp-" + pid + "-out.vtp"})
     std::ofstream(dir / name) << "stale";
-  std::ofstream(dir / (".out.vtp.radwalk-tmp-" + std::to_string(::getpid()) + "-99.vtp")) << "ours, alive";
+  std::ofstream(dir / (prefix + std::to_string(::getpid()) + "-99.vtp")) << "ours, alive";
+  std::ofstream(dir / (temporary_prefix((dir / "other.vtp").string()) + pid + "-0.vtp")) << "another target's";
   write_atomically((dir / "out.vtp").string(), [](std::ostream& o) { o << "fresh\n"; });
   CHECK(slurp(dir / "out.vtp") == "fresh\n");
-  CHECK(entries(dir) == 2);  // the output and the live process's temporary
+  CHECK(entries(dir) == 3);  // the output, the live process's temporary and another target's
+  fs::remove_all(dir);
 }
 
 TEST_CASE("a full disk fails the write and keeps the old file", "[io][fault]") {
@@ -178,4 +184,66 @@ TEST_CASE("a full disk fails the write and keeps the old file", "[io][fault]") {
   CHECK(slurp(out) == "old\n");
   CHECK(entries(mnt) == 1);
   ::system(("umount " + mnt.string()).c_str());
+}
+
+TEST_CASE("target names of up to 255 bytes have temporaries that fit NAME_MAX", "[io]") {
+  const fs::path dir = fresh_dir("long_names");
+  // 255 bytes with a short extension, 255 bytes that are all extension, and the longest temporary name possible.
+  for (const std::string& name : {std::string(251, 'a') + ".vtp", "." + std::string(254, 'b'), "c." + std::string(253, 'd')}) {
+    INFO(name.size());
+    const std::string path = (dir / name).string();
+    {
+      PendingFile file(path);
+      CHECK(fs::path(file.temporary()).filename().string().size() <= 255);
+      CHECK(fs::path(file.temporary()).filename().string().rfind(temporary_prefix(path), 0) == 0);
+    }
+    write_atomically(path, [](std::ostream& o) { o << "long\n"; });
+    CHECK(slurp(path) == "long\n");
+  }
+  CHECK(fs::path(PendingFile((dir / "x.vtp").string()).temporary()).extension() == ".vtp");
+  CHECK(entries(dir) == 3);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a file-size limit (RLIMIT_FSIZE) fails the write, keeps the old file and leaves no temporary",
+          "[io][fault]") {
+  const fs::path dir = fresh_dir("fsize");
+  const std::string out = (dir / "out.csv").string();
+  write_atomically(out, [](std::ostream& o) { o << "old\n"; });
+  // In a child process (the limit and SIGXFSZ are per process), as a plain program: SIGXFSZ at its default
+  // (kill). Exit code 0: every check held; otherwise the number of the first that failed.
+  const pid_t child = ::fork();
+  if (child == 0) {
+    std::signal(SIGXFSZ, SIG_DFL);
+    const rlimit limit{64 * 1024, 64 * 1024};
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0) ::_exit(10);
+    const auto refused = [&](const std::function<void()>& write) {
+      try {
+        write();
+      } catch (const InputError& e) {
+        const std::string what = e.what();
+        return what.find(out + ": write failed: file size limit reached") != std::string::npos;
+      }
+      return false;
+    };
+    // A stream writer, and a writer that takes a file name and does not check what it wrote.
+    if (!refused([&] { write_atomically(out, [](std::ostream& o) { o << std::string(1 << 20, 'x'); }); })) ::_exit(1);
+    if (slurp(out) != "old\n" || entries(dir) != 1) ::_exit(2);
+    if (!refused([&] {
+          write_atomically_via_path(out, [](const std::string& tmp) { std::ofstream(tmp) << std::string(1 << 20, 'y'); });
+        }))
+      ::_exit(3);
+    if (slurp(out) != "old\n" || entries(dir) != 1) ::_exit(4);
+    // Below the limit a write succeeds.
+    write_atomically(out, [](std::ostream& o) { o << "new\n"; });
+    ::_exit(slurp(out) == "new\n" && entries(dir) == 1 ? 0 : 5);
+  }
+  int status = 0;
+  REQUIRE(::waitpid(child, &status, 0) == child);
+  INFO("killed by signal " << (WIFSIGNALED(status) ? WTERMSIG(status) : 0));
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(slurp(out) == "new\n");
+  CHECK(entries(dir) == 1);
+  fs::remove_all(dir);
 }
