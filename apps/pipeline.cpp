@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cstdint>
+#include "apps/rank_agreement.h"
 #include "apps/run_metadata.h"
 #include "apps/scene_camera.h"
 #include "io/paraview_state.h"
 
 #include <cstdio>
+#include <exception>
 #include <filesystem>
 #if defined(__GLIBC__)
 #include <malloc.h>  // malloc_trim
@@ -132,9 +134,8 @@ std::uint64_t file_bytes_digest(const std::string& path) {
   return d.value();
 }
 
-}  // namespace
-
-Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
+// load_validated_mesh on this rank alone, noting in `inputs` every file read and its digest as it is read.
+Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankInputs& inputs) {
   for (const std::string& w : options.warnings) summary.add_warning(w);
   summary.json()["scene"] = options.scene;
   summary.json()["strict"] = options.strict;
@@ -178,13 +179,20 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
     struct ObserverScope {
       ~ObserverScope() { set_input_observer({}); }
     } scope;
-    set_input_observer([&input_bytes, &inputs_read](const std::string& path, const std::string& bytes) {
+    set_input_observer([&input_bytes, &inputs_read, &inputs](const std::string& path, const std::string& bytes) {
       input_bytes.add(bytes);
       inputs_read.push_back({"an input read", path});
+      Digest file;
+      file.add(bytes);
+      inputs.files.push_back({path, file.value()});
     });
     mesh = read_scene(options.scene, read);
     set_input_observer({});
-    if (!options.form_factors_input.empty()) input_bytes.add(file_bytes_digest(options.form_factors_input));
+    if (!options.form_factors_input.empty()) {
+      const std::uint64_t digest = file_bytes_digest(options.form_factors_input);
+      input_bytes.add(digest);
+      inputs.files.push_back({options.form_factors_input, digest});
+    }
     summary.json()["run_id"] = run_id(options, input_bytes);
     std::vector<NamedFile> libraries;
     for (const Material& m : mesh.materials)
@@ -236,6 +244,26 @@ Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   summary.json()["threads"] = options.threads;
   summary.json()["faces"] = mesh.face_count();
   summary.json()["materials"] = mesh.materials.size();
+  return mesh;
+}
+
+}  // namespace
+
+Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
+  // Every rank reads and validates its own copy of the inputs, then the ranks compare what they read
+  // (apps/rank_agreement.h), also when a rank refused them: a rank that lacks a file or read other bytes is named
+  // by every rank at once instead of leaving the others in the next collective or mixing two scenes.
+  RankInputs inputs;
+  Mesh mesh;
+  std::exception_ptr refused;
+  try {
+    mesh = read_validated_mesh(options, summary, inputs);
+  } catch (const InputError& e) {
+    inputs.refusal = e.what();
+    refused = std::current_exception();
+  }
+  agree_on_inputs(inputs);
+  if (refused) std::rethrow_exception(refused);
   return mesh;
 }
 

@@ -19,8 +19,10 @@ namespace radwalk::app {
 // ("findings"), the overrides, and the warnings printed while reading the command line (options.warnings). On
 // refusal every finding is printed (errors grouped by kind after the warnings), --json is written with them
 // ("refused": true) unless it names a file the readers read (then it is refused, never written), and an InputError
-// with one summary line is thrown. Output file names were checked while
-// reading the command line (apps/output_files.h), the material libraries here.
+// with one summary line is thrown. Output file names were checked while reading the command line
+// (apps/output_files.h), the material libraries here. Collective over MPI: the ranks then compare the bytes they
+// read and whether they refused them (apps/rank_agreement.h, agree_on_inputs), and on a difference every rank
+// throws one InputError naming it.
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
 
 // load_validated_mesh, then patch_scene (patch/patch_scene.h, as radwalk.load: the contacts, cut with

@@ -22,11 +22,13 @@
 #include "apps/options.h"
 #include "apps/output_files.h"
 #include "apps/pipeline.h"
+#include "apps/rank_agreement.h"
 #include "core/did_you_mean.h"
 #include "core/distributed.h"
 #include "core/error.h"
 #include "core/path_length.h"
 #include "core/progress.h"
+#include "io/run_summary.h"
 #include "walk/measure_by_method.h"
 #include "walk/named_choice.h"
 
@@ -268,10 +270,18 @@ void add_replaced_option(CLI::App* cmd, const std::string& flag, const std::stri
 // The command and its option values for the run id (apps/run_metadata.h): one line "NAME=VALUE" per option in
 // the order declared, VALUE as given (the values joined by a unit separator) or the default. Left out: what
 // does not change what is computed (--threads, --quiet, --help); of the output files only whether each was given.
+// Options that do not change what is computed: left out of the run id and free to differ between MPI ranks.
+const std::set<std::string> kPerRunIrrelevant = {"--threads", "--quiet", "--help"};
+// The output files' options: the run id, and the ranks' agreement, count only whether each was given.
+const std::set<std::string> kOutputOptions = {"--output", "--csv",   "--json",       "--vtp",
+                                              "--image",  "--paraview-state", "--progressive"};
+// The input files' options: the ranks' agreement counts only whether each was given (their bytes are compared
+// once read, apps/rank_agreement.h); the run id hashes the names too.
+const std::set<std::string> kInputOptions = {"scene", "--form-factors"};
+
 std::string canonical_options(const CLI::App* cmd) {
-  static const std::set<std::string> kIgnored = {"--threads", "--quiet", "--help"};
-  static const std::set<std::string> kOutputs = {"--output", "--csv",   "--json",       "--vtp",
-                                                 "--image",  "--paraview-state", "--progressive"};
+  const std::set<std::string>& kIgnored = kPerRunIrrelevant;
+  const std::set<std::string>& kOutputs = kOutputOptions;
   std::string canonical = cmd->get_name();
   for (const CLI::Option* o : cmd->get_options()) {
     const std::string name = o->get_name();
@@ -287,6 +297,30 @@ std::string canonical_options(const CLI::App* cmd) {
     canonical += "\n" + name + "=" + value;
   }
   return canonical;
+}
+
+// The command's options as the ranks of an MPI run compare them (apps/rank_agreement.h), in the order declared:
+// every option but --threads, --quiet and --help; of the input and output files only whether each was given; of
+// flags whether each was given; of the others the values as given (joined by spaces) or the default.
+std::vector<OptionSetting> option_settings(const CLI::App* cmd) {
+  std::vector<OptionSetting> settings;
+  for (const CLI::Option* o : cmd->get_options()) {
+    OptionSetting s;
+    s.name = o->get_name();
+    if (kPerRunIrrelevant.count(s.name)) continue;
+    s.given = o->count() > 0;
+    if (kOutputOptions.count(s.name) || kInputOptions.count(s.name)) {
+      s.kind = OptionSetting::Kind::file;
+    } else if (o->get_expected_min() == 0) {  // a flag (CLI11: expects no value)
+      s.kind = OptionSetting::Kind::flag;
+    } else if (s.given) {
+      for (const std::string& r : o->results()) s.value += (s.value.empty() ? "" : " ") + r;
+    } else {
+      s.value = o->get_default_str();
+    }
+    settings.push_back(std::move(s));
+  }
+  return settings;
 }
 
 }  // namespace
@@ -568,14 +602,20 @@ int run_main(int argc, char** argv) {
       ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
       ->expected(10);
 
+  // The command line: parsed, then checked (--paraview-state, distinct files). A refusal (one line) or --help is
+  // acted on only once the ranks of an MPI run have agreed on their commands (apps/rank_agreement.h), so that a
+  // rank that refuses its command line, or runs another command, never leaves the others waiting.
+  std::string refusal;
+  std::exception_ptr help_or_version;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) return app.exit(e);  // --help
-    const CommandLineWords words = words_of(app);
-    std::fprintf(stderr, "radwalk: error: %s; %s\n", parse_error_message(e, args, words).c_str(),
-                 help_pointer(selected_command(args, words)).c_str());
-    return 2;
+    if (e.get_exit_code() == 0) {
+      help_or_version = std::current_exception();
+    } else {
+      const CommandLineWords words = words_of(app);
+      refusal = parse_error_message(e, args, words) + "; " + help_pointer(selected_command(args, words));
+    }
   }
   Progress::set_enabled(!g_quiet);
   set_quiet(g_quiet);
@@ -585,24 +625,19 @@ int run_main(int argc, char** argv) {
   for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
                                std::pair{&solve.scene, solve.scene.vtp}, std::pair{&compare.scene, compare.scene.vtp},
                                std::pair{&pt.scene, pt.scene.vtp}}) {
-    if (o->paraview_state.empty()) continue;
+    if (!refusal.empty() || help_or_version || o->paraview_state.empty()) continue;
     const bool py = o->paraview_state.size() > 3 && o->paraview_state.rfind(".py") == o->paraview_state.size() - 3;
     const bool has_vtp = vtp.size() > 4 && vtp.rfind(".vtp") == vtp.size() - 4;
-    std::string problem;
     if (!py)
-      problem = o->paraview_state + ": radwalk writes ParaView's Python state files: name it FILE.py (File > Load "
+      refusal = o->paraview_state + ": radwalk writes ParaView's Python state files: name it FILE.py (File > Load "
                                     "State opens it)";
     else if (!has_vtp)
-      problem = "--paraview-state needs a .vtp output (-o FILE.vtp, or --vtp for formfactors)";
-    if (!problem.empty()) {
-      std::fprintf(stderr, "radwalk: error: %s\n", problem.c_str());
-      return 2;
-    }
+      refusal = "--paraview-state needs a .vtp output (-o FILE.vtp, or --vtp for formfactors)";
   }
 
   // Every file the command writes; none may be an input or another output (distinct_files.h). The scene's
   // material libraries are known only once it is read: load_validated_mesh checks them.
-  {
+  if (refusal.empty() && !help_or_version) {
     auto outputs = [](std::initializer_list<std::pair<const char*, std::string>> named) {
       std::vector<NamedFile> files;
       for (const auto& [role, path] : named)
@@ -625,17 +660,49 @@ int run_main(int argc, char** argv) {
       o->form_factors_input = form_factors;
       const std::string clash =
           check_distinct_files(o->outputs, {{"the scene", o->scene}, {"--form-factors", form_factors}});
-      if (clash.empty()) continue;
-      std::fprintf(stderr, "radwalk: error: %s\n", clash.c_str());
-      return 2;
+      if (!clash.empty() && refusal.empty()) refusal = clash;
     }
   }
 
+  RankCommand mine;
+  mine.program = std::string("radwalk ") + RADWALK_VERSION + " (" + git_describe() + ")";
+  mine.refusal = refusal;
+  if (help_or_version) {
+    try {
+      std::rethrow_exception(help_or_version);
+    } catch (const CLI::CallForVersion&) {
+      mine.command = "--version";
+    } catch (const CLI::ParseError&) {
+      mine.command = "--help";
+    }
+  }
   for (const auto& [o, cmd] : {std::pair{&check, check_cmd}, std::pair{&patch.scene, patch_cmd},
                                std::pair{&ff.scene, ff_cmd}, std::pair{&solve.scene, solve_cmd},
                                std::pair{&compare.scene, compare_cmd}, std::pair{&pt.scene, pt_cmd},
                                std::pair{&measure.scene, measure_cmd}})
-    if (*cmd) o->run_options = canonical_options(cmd);
+    if (refusal.empty() && !help_or_version && *cmd) {
+      o->run_options = canonical_options(cmd);
+      mine.command = cmd->get_name();
+      mine.options = option_settings(cmd);
+    }
+  // Over MPI, before any other collective: every rank runs the same command with the same options.
+  try {
+    agree_on_command(mine);
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "radwalk: error: %s\n", e.what());
+    return 2;
+  }
+  if (help_or_version) {
+    try {
+      std::rethrow_exception(help_or_version);
+    } catch (const CLI::ParseError& e) {
+      return app.exit(e);
+    }
+  }
+  if (!refusal.empty()) {
+    std::fprintf(stderr, "radwalk: error: %s\n", refusal.c_str());
+    return 2;
+  }
 
   try {
     if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);

@@ -329,14 +329,191 @@ TEST_CASE("over MPI bad input on every rank is one line and exit 2 for the whole
 }
 
 TEST_CASE("over MPI an input error on one rank alone ends the job with exit 2 and no hang", "[mpi]") {
-  // MPMD: rank 0 runs a good command and waits in the first collective for rank 1, whose scene is missing. Rank 1
-  // waits Session::kErrorWaitSeconds (10 s) for the others to end too, then says why and aborts the job.
-  const std::string good = "solve " + kScene + "--rays 200 --solver random-walk --walk shoot --particles 20000 -q";
-  const std::string cmd = "timeout 120 " + mpirun(1) + " " + good + " : -np 1 " + RADWALK_BINARY + " solve " +
-                          source("meshes/no_such_scene.obj") + " -q";
+  // MPMD: both ranks run the same command, but rank 1's scene is missing (a node without its copy). The ranks
+  // compare what they read once the scene is read (apps/rank_agreement.h): rank 0 names rank 1's refusal at once.
+  const std::string options =
+      " --max-edge 100 --seed 5 --rays 200 --solver random-walk --walk shoot --particles 20000 -q";
+  const std::string missing = source("meshes/no_such_scene.obj");
+  const std::string cmd = "timeout -k 10 120 " + mpirun(1) + " solve " + source("meshes/cornell_box.obj") + options +
+                          " : -np 1 " + RADWALK_BINARY + " solve " + missing + options;
   const Run r = shell(cmd);
   INFO(cmd << "\n" << r.out);
   CHECK(r.exit_code == 2);  // not 124 (timeout's: a hang)
-  CHECK(r.out.find("rank 1: radwalk: error: ") != std::string::npos);
-  CHECK(r.out.find("no_such_scene.obj: no such file") != std::string::npos);
+  CHECK(r.out == "radwalk: error: MPI rank 1 refuses its inputs, rank 0 does not: " + missing + ": no such file\n");
+}
+
+namespace {
+
+// A scratch directory for one test, removed with everything in it when the test ends.
+struct ScratchDir {
+  fs::path path;
+  explicit ScratchDir(const std::string& name) : path(scratch_dir("mpi") / name) {
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+    fs::remove(path.parent_path(), ignored);  // the process's scratch folder, when no other test left files there
+  }
+};
+
+// Two ranks of one job running different command lines (MPMD: mpirun ... -np 1 radwalk A : -np 1 radwalk B), each
+// in its own working directory when one is given; killed after `seconds` (exit code 124: the job hung).
+Run two_ranks(const std::string& rank0, const std::string& rank1, const fs::path& dir0 = {},
+              const fs::path& dir1 = {}, int seconds = 60) {
+  mpirun(1);  // sets the environment mpirun needs as root
+  auto app = [](const fs::path& dir, const std::string& args) {
+    return "-np 1 " + (dir.empty() ? std::string() : "-wdir " + dir.string() + " ") + RADWALK_BINARY + " " + args;
+  };
+  const std::string cmd = "timeout -k 10 " + std::to_string(seconds) + " " + RADWALK_MPIRUN +
+                          " -q --oversubscribe --bind-to none " + app(dir0, rank0) + " : " + app(dir1, rank1);
+  Run r = shell(cmd);
+  r.out = cmd + "\n" + r.out;  // for the messages; the output itself follows the first line
+  return r;
+}
+
+// What a run printed, without the command line two_ranks put first.
+std::string printed(const Run& r) { return r.out.substr(r.out.find('\n') + 1); }
+
+// The files below `dir` (what a refused job must not have written).
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> files;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) files.push_back(e.path().string());
+  return files;
+}
+
+}  // namespace
+
+TEST_CASE("over MPI ranks that run different commands are refused at start-up with one line and exit 2", "[mpi]") {
+  const ScratchDir dir("commands");
+  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 100 --seed 5 --rays 200 -q ";
+  const Run r = two_ranks("solve " + scene + "--solver jacobi --csv " + (dir.path / "B.csv").string(),
+                          "formfactors " + scene + "-o " + (dir.path / "F.mtx").string());
+  INFO(r.out);
+  CHECK(r.exit_code == 2);  // not 124: before the agreement the two commands waited in different collectives
+  CHECK(printed(r) == "radwalk: error: MPI rank 1 runs 'formfactors' but rank 0 runs 'solve'\n");
+  CHECK(files_in(dir.path).empty());
+}
+
+TEST_CASE("over MPI ranks with different option values are refused at start-up with one line naming the first",
+          "[mpi]") {
+  const ScratchDir dir("options");
+  const std::string base = "solve " + source("meshes/cornell_box.obj") + " --max-edge 100 -q --csv " +
+                           (dir.path / "B.csv").string() + " ";
+  const std::string walks = "--solver random-walk --walk shoot --particles 20000 ";
+  const std::string kSame = " (every rank must run the same command with the same options)\n";
+  struct Case {
+    std::string rank0, rank1, says;
+  };
+  const std::vector<Case> cases = {
+      // Different seeds: F rows and walks of two seeds put together.
+      {walks + "--seed 3", walks + "--seed 7", "MPI rank 1 has --seed 7, rank 0 has --seed 3"},
+      {walks, walks + "--seed 7", "MPI rank 1 has --seed 7, rank 0 has --seed 1 (the default)"},
+      // Different solvers: one rank's solver ignored.
+      {"--solver jacobi", "--solver gauss-seidel", "MPI rank 1 has --solver gauss-seidel, rank 0 has --solver jacobi"},
+      // Different ray counts: F rows of two budgets.
+      {walks + "--rays 200", walks + "--rays 100", "MPI rank 1 has --rays 100, rank 0 has --rays 200"},
+      // Different walk budgets.
+      {walks + "--seed 3", "--solver random-walk --walk shoot --particles 30000 --seed 3",
+       "MPI rank 1 has --particles 30000, rank 0 has --particles 20000"},
+      // A flag on one rank only.
+      {"--solver jacobi --two-sided", "--solver jacobi", "MPI rank 1 has no --two-sided, rank 0 has --two-sided"},
+      // An output on one rank only (some writers gather from every rank).
+      {"--solver jacobi --json " + (dir.path / "B.json").string(), "--solver jacobi",
+       "MPI rank 1 has no --json, rank 0 has --json"},
+  };
+  for (const Case& c : cases) {
+    const Run r = two_ranks(base + c.rank0, base + c.rank1);
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(printed(r) == "radwalk: error: " + c.says + kSame);
+    CHECK(files_in(dir.path).empty());
+  }
+}
+
+TEST_CASE("over MPI ranks may differ in --threads and in the names of their output files", "[mpi]") {
+  // Not refused: 1 and N threads compute the same, and only rank 0 writes.
+  const ScratchDir dir("per-rank");
+  const std::string base = "solve " + source("meshes/cornell_box.obj") + " --max-edge 100 --seed 5 --rays 200 -q "
+                           "--solver random-walk --walk shoot --particles 20000 ";
+  const Run r = two_ranks(base + "--threads 1 --csv " + (dir.path / "B.csv").string(),
+                          base + "--threads 2 --csv " + (dir.path / "other.csv").string());
+  INFO(r.out);
+  CHECK(r.exit_code == 0);
+  CHECK(printed(r).find("error") == std::string::npos);
+  CHECK(files_in(dir.path) == std::vector<std::string>{(dir.path / "B.csv").string()});
+}
+
+TEST_CASE("over MPI ranks that read different input bytes are refused with one line naming the file and exit 2",
+          "[mpi]") {
+  // Node-local copies: the same relative names in two working directories (mpirun -wdir), one copy changed.
+  const ScratchDir dir("inputs");
+  const fs::path out = dir.path / "out", d0 = dir.path / "rank0", d1 = dir.path / "rank1";
+  for (const fs::path& d : {out, d0, d1}) fs::create_directories(d);
+  const std::string scene = file_text(source("meshes/cornell_box.obj"));
+  const std::string mtl = file_text(source("meshes/cornell_box.mtl"));
+  auto write = [](const fs::path& path, const std::string& text) {
+    std::ofstream f(path, std::ios::binary);
+    f << text;
+  };
+  auto copies = [&](const std::string& scene1, const std::string& mtl1) {
+    write(d0 / "scene.obj", scene);
+    write(d0 / "cornell_box.mtl", mtl);
+    write(d1 / "scene.obj", scene1);
+    write(d1 / "cornell_box.mtl", mtl1);
+  };
+  const std::string args = "solve scene.obj --max-edge 100 --seed 5 --rays 200 -q --solver jacobi --csv " +
+                           (out / "B.csv").string();
+  const std::string kSame = " (every rank must read the same inputs)\n";
+
+  // The scene with one more face on rank 1: a different patch count (before the agreement, an abort inside MPI).
+  copies(scene + "v 1 1 1\nv 2 1 1\nv 1 2 1\nf -3 -2 -1\n", mtl);
+  {
+    const Run r = two_ranks(args, args, d0, d1);
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(printed(r) == "radwalk: error: MPI ranks 0 and 1 read different bytes from scene.obj" + kSame);
+    CHECK(files_in(out).empty());
+  }
+  // Another reflectance in rank 1's material library: the same patches, two scenes' rows put together (before
+  // the agreement, a wrong B without a word).
+  std::string mtl1 = mtl;
+  const std::size_t kd = mtl1.find("Kd ");
+  REQUIRE(kd != std::string::npos);
+  mtl1.replace(kd, 3, "Kd 0.01 0.01 0.01\n#");
+  copies(scene, mtl1);
+  {
+    const Run r = two_ranks(args, args, d0, d1);
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(printed(r) == "radwalk: error: MPI ranks 0 and 1 read different bytes from cornell_box.mtl" + kSame);
+    CHECK(files_in(out).empty());
+  }
+  // Different --form-factors files (two seeds' F) under the same name.
+  copies(scene, mtl);
+  for (const auto& [d, seed] : {std::pair{d0, "1"}, std::pair{d1, "2"}}) {
+    const Run w = shell("cd " + d.string() + " && " + RADWALK_BINARY +
+                        " formfactors scene.obj --max-edge 100 --rays 200 -q -o F.mtx --seed " + seed);
+    REQUIRE(w.exit_code == 0);
+  }
+  {
+    const std::string read = "solve scene.obj --max-edge 100 -q --solver jacobi --form-factors F.mtx --csv " +
+                             (out / "B.csv").string();
+    const Run r = two_ranks(read, read, d0, d1);
+    INFO(r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(printed(r) == "radwalk: error: MPI ranks 0 and 1 read different bytes from F.mtx" + kSame);
+    CHECK(files_in(out).empty());
+  }
+  // The same bytes at different paths agree (node-local copies need not share a path).
+  {
+    const std::string same = " --max-edge 100 --seed 5 --rays 200 -q --solver jacobi --csv " + (out / "B.csv").string();
+    const Run r =
+        two_ranks("solve " + (d0 / "scene.obj").string() + same, "solve " + (d1 / "scene.obj").string() + same);
+    INFO(r.out);
+    CHECK(r.exit_code == 0);
+    CHECK(fs::exists(out / "B.csv"));
+  }
 }
