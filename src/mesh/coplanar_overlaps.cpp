@@ -70,19 +70,6 @@ double intersection_area(std::array<Vec2, 3> s, std::array<Vec2, 3> t) {
   return poly.size() < 3 ? 0.0 : std::abs(polygon_area(poly));
 }
 
-std::uint64_t mix(std::uint64_t x) {  // SplitMix64's finaliser
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
-std::uint64_t cell_key(int level, std::int64_t x, std::int64_t y, std::int64_t z) {
-  return mix(mix(mix(mix(static_cast<std::uint64_t>(level)) ^ static_cast<std::uint64_t>(x)) ^
-                 static_cast<std::uint64_t>(y)) ^
-             static_cast<std::uint64_t>(z));
-}
-
 }  // namespace
 
 std::vector<CoplanarOverlap> find_coplanar_overlaps(const Mesh& mesh, const std::vector<bool>* skip,
@@ -121,17 +108,37 @@ std::vector<CoplanarOverlap> find_coplanar_overlaps(const Mesh& mesh, const std:
     level[f] = static_cast<std::int8_t>(l);
     level_used[static_cast<std::size_t>(l)] = 1;
   }
+  // Cell coordinates, clamped to 32 bits (a clamped cell is only a larger one: more candidates, none lost).
   auto cells = [&](std::size_t f, int l) {
     const double size = std::ldexp(h, l);
-    std::array<std::int64_t, 6> c{};
+    std::array<std::int32_t, 6> c{};
+    auto index = [](double x) {
+      return static_cast<std::int32_t>(std::clamp(std::floor(x), -2147483648.0, 2147483647.0));
+    };
     for (int a = 0; a < 3; ++a) {
-      c[static_cast<std::size_t>(2 * a)] = static_cast<std::int64_t>(std::floor((lo[f][a] - origin[a]) / size));
-      c[static_cast<std::size_t>(2 * a + 1)] = static_cast<std::int64_t>(std::floor((hi[f][a] - origin[a]) / size));
+      c[static_cast<std::size_t>(2 * a)] = index((lo[f][a] - origin[a]) / size);
+      c[static_cast<std::size_t>(2 * a + 1)] = index((hi[f][a] - origin[a]) / size);
     }
     return c;  // x0, x1, y0, y1, z0, z1
   };
-  std::vector<std::pair<std::uint64_t, std::int32_t>> entries;
-  entries.reserve(2 * F);
+  // One entry per (cell, face), sorted by cell: (level, x, y, z), so a cell's faces are consecutive and cells are
+  // visited in space order (the faces' data then stays in cache for meshes whose face order follows space).
+  struct Entry {
+    std::array<std::int32_t, 4> cell;  // level, x, y, z
+    std::int32_t face;
+  };
+  // Cell order and equality, written out (std::array's call memcmp).
+  auto before = [](const std::array<std::int32_t, 4>& x, const std::array<std::int32_t, 4>& y) {
+    if (x[0] != y[0]) return x[0] < y[0];
+    if (x[1] != y[1]) return x[1] < y[1];
+    if (x[2] != y[2]) return x[2] < y[2];
+    return x[3] < y[3];
+  };
+  auto same = [](const std::array<std::int32_t, 4>& x, const std::array<std::int32_t, 4>& y) {
+    return x[0] == y[0] && x[1] == y[1] && x[2] == y[2] && x[3] == y[3];
+  };
+  std::vector<Entry> entries;
+  entries.reserve(4 * F);
   for (std::size_t f = 0; f < F; ++f) {
     if (skip && (*skip)[f]) continue;
     if (normal[f] == Vec3::Zero()) continue;
@@ -139,26 +146,19 @@ std::vector<CoplanarOverlap> find_coplanar_overlaps(const Mesh& mesh, const std:
     const auto c = cells(f, l);
     for (std::int64_t x = c[0]; x <= c[1]; ++x)
       for (std::int64_t y = c[2]; y <= c[3]; ++y)
-        for (std::int64_t z = c[4]; z <= c[5]; ++z) entries.emplace_back(cell_key(l, x, y, z), static_cast<std::int32_t>(f));
+        for (std::int64_t z = c[4]; z <= c[5]; ++z)
+          entries.push_back({{l, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y), static_cast<std::int32_t>(z)},
+                             static_cast<std::int32_t>(f)});
   }
-  std::sort(entries.begin(), entries.end());
-  // An open-addressing table from a cell's key to its first entry.
-  std::size_t slots = 16;
-  while (slots < 2 * entries.size()) slots *= 2;
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> table(slots, {0, std::numeric_limits<std::uint32_t>::max()});
-  for (std::size_t k = 0; k < entries.size(); ++k) {
-    if (k > 0 && entries[k].first == entries[k - 1].first) continue;
-    std::size_t s = entries[k].first & (slots - 1);
-    while (table[s].second != std::numeric_limits<std::uint32_t>::max()) s = (s + 1) & (slots - 1);
-    table[s] = {entries[k].first, static_cast<std::uint32_t>(k)};
-  }
-  auto first_entry = [&](std::uint64_t key) -> std::size_t {
-    std::size_t s = key & (slots - 1);
-    while (table[s].second != std::numeric_limits<std::uint32_t>::max()) {
-      if (table[s].first == key) return table[s].second;
-      s = (s + 1) & (slots - 1);
-    }
-    return entries.size();
+  std::sort(entries.begin(), entries.end(),
+            [&](const Entry& x, const Entry& y) { return same(x.cell, y.cell) ? x.face < y.face : before(x.cell, y.cell); });
+  int levels = 0;
+  for (const char used : level_used) levels += used;
+  // The first entry of a cell (entries.size() if none): a binary search.
+  auto first_entry = [&](const std::array<std::int32_t, 4>& cell) -> std::size_t {
+    const auto it = std::lower_bound(entries.begin(), entries.end(), cell,
+                                     [&](const Entry& e, const std::array<std::int32_t, 4>& c) { return before(e.cell, c); });
+    return it != entries.end() && same(it->cell, cell) ? static_cast<std::size_t>(it - entries.begin()) : entries.size();
   };
 
   // The pair test: boxes touch, normals (anti)parallel, every corner in the other's planes, positive overlap.
@@ -169,13 +169,42 @@ std::vector<CoplanarOverlap> find_coplanar_overlaps(const Mesh& mesh, const std:
       if (lo[f][a] > hi[g][a] || lo[g][a] > hi[f][a]) return;
     const double cosine = normal[f].dot(normal[g]);
     if (std::abs(cosine) < 1 - 1e-3) return;  // a loose filter: the plane test below decides
+    // In f's plane: a side of either face along which they are apart, or only touch (neighbours sharing an edge),
+    // within the rounding 64 u D of the projected coordinates, separates them (a quick rejection, sound for any
+    // corners: the triangles lie in the hull of their face's corners).
+    const Vec3 e1 = normal[f].unitOrthogonal(), e2 = normal[f].cross(e1), o = corner(mesh, f, 0);
+    const double D = (hi[f].cwiseMax(hi[g]) - lo[f].cwiseMin(lo[g])).norm();
+    std::array<Vec2, 4> pf, pg;
+    const int nf = mesh.corner_count(f), ng = mesh.corner_count(g);
+    for (int k = 0; k < nf; ++k)
+      pf[static_cast<std::size_t>(k)] = Vec2((corner(mesh, f, k) - o).dot(e1), (corner(mesh, f, k) - o).dot(e2));
+    for (int k = 0; k < ng; ++k)
+      pg[static_cast<std::size_t>(k)] = Vec2((corner(mesh, g, k) - o).dot(e1), (corner(mesh, g, k) - o).dot(e2));
+    for (const auto& [poly, m] : {std::pair<const std::array<Vec2, 4>*, int>{&pf, nf}, {&pg, ng}})
+      for (int k = 0; k < m; ++k) {
+        const Vec2 edge = (*poly)[static_cast<std::size_t>((k + 1) % m)] - (*poly)[static_cast<std::size_t>(k)];
+        const double length = edge.norm();
+        if (!(length > 0)) continue;
+        const Vec2 axis(-edge.y() / length, edge.x() / length);
+        double f0 = std::numeric_limits<double>::infinity(), f1 = -f0, g0 = f0, g1 = -f0;
+        for (int j = 0; j < nf; ++j) {
+          const double x = axis.dot(pf[static_cast<std::size_t>(j)]);
+          f0 = std::min(f0, x);
+          f1 = std::max(f1, x);
+        }
+        for (int j = 0; j < ng; ++j) {
+          const double x = axis.dot(pg[static_cast<std::size_t>(j)]);
+          g0 = std::min(g0, x);
+          g1 = std::max(g1, x);
+        }
+        if (f0 >= g1 - 64 * kU * D || g0 >= f1 - 64 * kU * D) return;
+      }
     for (const auto& [x, y] : {std::pair<std::size_t, std::size_t>{f, g}, {g, f}})
       for (int t = 0; t < triangle_count(mesh, x); ++t) {
         const auto tri = triangle(mesh, x, t);
         for (int k = 0; k < mesh.corner_count(y); ++k)
           if (!in_plane(tri[0], tri[1], tri[2], corner(mesh, y, k))) return;
       }
-    const Vec3 e1 = normal[f].unitOrthogonal(), e2 = normal[f].cross(e1), o = corner(mesh, f, 0);
     auto flat = [&](const std::array<Vec3, 3>& tri) {
       std::array<Vec2, 3> p;
       for (std::size_t k = 0; k < 3; ++k) p[k] = Vec2((tri[k] - o).dot(e1), (tri[k] - o).dot(e2));
@@ -191,30 +220,42 @@ std::vector<CoplanarOverlap> find_coplanar_overlaps(const Mesh& mesh, const std:
         p += (corner(mesh, x, (k + 1) % mesh.corner_count(x)) - corner(mesh, x, k)).norm();
       return p;
     };
-    const double D = (hi[f].cwiseMax(hi[g]) - lo[f].cwiseMin(lo[g])).norm();
     if (!(area > 64 * kU * (perimeter(f) + perimeter(g)) * D)) return;
     found.push_back({static_cast<std::int32_t>(std::min(f, g)), static_cast<std::int32_t>(std::max(f, g)), area,
                      cosine > 0});
   };
 
-  for (std::size_t f = 0; f < F; ++f) {
+  // Pairs on one level: within each cell's entries, each pair in the first cell both boxes cover.
+  for (std::size_t begin = 0, end = 0; begin < entries.size(); begin = end) {
+    end = begin + 1;
+    while (end < entries.size() && same(entries[end].cell, entries[begin].cell)) ++end;
+    const auto& cell = entries[begin].cell;
+    for (std::size_t i = begin; i < end; ++i)
+      for (std::size_t j = i + 1; j < end; ++j) {
+        const auto f = static_cast<std::size_t>(entries[i].face), g = static_cast<std::size_t>(entries[j].face);
+        const auto cf = cells(f, cell[0]), cg = cells(g, cell[0]);
+        if (std::max(cf[0], cg[0]) != cell[1] || std::max(cf[2], cg[2]) != cell[2] || std::max(cf[4], cg[4]) != cell[3])
+          continue;
+        test(f, g);
+      }
+  }
+  // Pairs across levels: each face looks up the cells its box covers on every coarser level in use.
+  for (std::size_t f = 0; f < F && levels > 1; ++f) {
     if (skip && (*skip)[f]) continue;
     if (normal[f] == Vec3::Zero()) continue;
-    for (int l = level[f]; l < 64; ++l) {
+    for (int l = level[f] + 1; l < 64; ++l) {
       if (!level_used[static_cast<std::size_t>(l)]) continue;
       const auto c = cells(f, l);
       for (std::int64_t x = c[0]; x <= c[1]; ++x)
         for (std::int64_t y = c[2]; y <= c[3]; ++y)
           for (std::int64_t z = c[4]; z <= c[5]; ++z) {
-            const std::uint64_t key = cell_key(l, x, y, z);
-            for (std::size_t e = first_entry(key); e < entries.size() && entries[e].first == key; ++e) {
-              const auto g = static_cast<std::size_t>(entries[e].second);
-              if (g == f || level[g] != l) continue;
-              if (l == level[f] && g < f) continue;  // a pair on one level: tested from its lower face
+            const std::array<std::int32_t, 4> cell = {l, static_cast<std::int32_t>(x), static_cast<std::int32_t>(y),
+                                                      static_cast<std::int32_t>(z)};
+            for (std::size_t e = first_entry(cell); e < entries.size() && same(entries[e].cell, cell); ++e) {
+              const auto g = static_cast<std::size_t>(entries[e].face);
               const auto cg = cells(g, l);
-              // Each pair once: in the first cell both boxes cover (this also rejects a colliding key).
+              // Each pair once: in the first cell both boxes cover.
               if (std::max(c[0], cg[0]) != x || std::max(c[2], cg[2]) != y || std::max(c[4], cg[4]) != z) continue;
-              if (cg[1] < x || cg[3] < y || cg[5] < z) continue;
               test(f, g);
             }
           }

@@ -12,9 +12,10 @@
 // the two faces' bounding box (a shared edge gives a sliver of width a few u D).
 //
 // Cost: candidate pairs come from a hierarchical grid (level l has cells of size h 2^l, h the median face extent;
-// each face is in the at most 8 cells of the level where its bounding box fits a cell), each face looking up the
-// cells its box covers on its own level and the coarser ones in use. A mesh whose faces are of similar size costs
-// O(F) lookups and pair tests (linear in the face count F), never a test of every pair.
+// each face is in the at most 8 cells of the level where its bounding box fits a cell, sorted by cell): the faces
+// of one cell are paired with each other, and each face looks up the cells its box covers on the coarser levels in
+// use. A mesh whose faces are of similar sizes costs O(F log F) (the sort) and O(F) pair tests, never a test of
+// every pair; each pair test rejects neighbours that only touch by a separating side before any exact test.
 #include <cstdint>
 #include <vector>
 
