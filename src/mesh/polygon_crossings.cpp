@@ -237,6 +237,61 @@ PolygonPieces split_at_crossings(const std::vector<Vec3>& corners, bool touches)
     out.pieces.push_back(std::move(loop));
     signed_area.push_back(shoelace(q_all, out.pieces.back()));
   }
+  // Nesting: a piece inside another (the pieces never cross, so one interior point decides) winding the same way
+  // covers a region the outline winds around twice (a pentagram's centre): left out, the region counted once. One
+  // winding the other way inside another would make a hole (winding 0): not split.
+  {
+    auto winding = [&](const Vec2& x, const std::vector<std::int32_t>& loop) {
+      int w = 0;
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        const Vec2& a = q_all[static_cast<std::size_t>(loop[k])];
+        const Vec2& b = q_all[static_cast<std::size_t>(loop[(k + 1) % loop.size()])];
+        if (a.y() <= x.y()) {
+          if (b.y() > x.y() && orient(a, b, x) > 0) ++w;
+        } else if (b.y() <= x.y() && orient(a, b, x) < 0) {
+          --w;
+        }
+      }
+      return w;
+    };
+    std::vector<char> keep(out.pieces.size(), 1);
+    for (std::size_t i = 0; i < out.pieces.size() && out.pieces.size() > 1; ++i) {
+      std::vector<Vec3> p3;
+      for (const std::int32_t k : out.pieces[i])
+        p3.push_back(static_cast<std::size_t>(k) < n ? corners[static_cast<std::size_t>(k)]
+                                                     : out.new_points[static_cast<std::size_t>(k) - n]);
+      const auto t = triangulate_polygon(p3);
+      if (!t || t->empty()) continue;  // left to triangulate_pieces
+      const auto& tri = t->front();
+      const Vec3 g = (p3[static_cast<std::size_t>(tri[0])] + p3[static_cast<std::size_t>(tri[1])] +
+                      p3[static_cast<std::size_t>(tri[2])]) / 3;
+      const Vec2 x((g - c).dot(e1), (g - c).dot(e2));
+      for (std::size_t j = 0; j < out.pieces.size(); ++j) {
+        if (j == i || std::abs(signed_area[j].first) <= std::abs(signed_area[i].first)) continue;
+        if (winding(x, out.pieces[j]) == 0) continue;
+        if (signed_area[i].first * signed_area[j].first < 0)
+          return degenerate("a loop of its outline lies inside another and winds the other way (a hole)");
+        keep[i] = 0;
+        break;
+      }
+    }
+    std::size_t m = 0;
+    for (std::size_t k = 0; k < out.pieces.size(); ++k) {
+      if (!keep[k]) {
+        ++out.nested;
+        continue;
+      }
+      if (m != k) {  // (a vector moved onto itself is left empty)
+        out.pieces[m] = std::move(out.pieces[k]);
+        signed_area[m] = signed_area[k];
+      }
+      if (k == first_loop) first_loop = m;
+      ++m;
+    }
+    out.pieces.resize(m);
+    signed_area.resize(m);
+    if (first_loop >= m) first_loop = 0;
+  }
   double total = 0;
   for (const auto& a : signed_area) total += a.first;
   const double sign = total > 0 ? 1 : total < 0 ? -1 : (signed_area.empty() || signed_area[first_loop].first >= 0 ? 1 : -1);
@@ -260,10 +315,19 @@ std::string split_message(const std::string& what, const PolygonPieces& pieces, 
   std::string s = what + " crosses itself: split at " + std::to_string(m) + (m == 1 ? " crossing" : " crossings") +
                   " into " + std::to_string(k) + " simple " + (k == 1 ? "piece" : "pieces") + " of area " +
                   area.str() + " in all (the lobes' areas as drawn)";
+  if (pieces.nested > 0)
+    s += ", " + std::to_string(pieces.nested) + (pieces.nested == 1 ? " piece" : " pieces") +
+         " inside another left out (a region the outline winds around twice is covered once)";
   if (pieces.reversed > 0)
     s += ", " + std::to_string(pieces.reversed) + (pieces.reversed == 1 ? " lobe" : " lobes") +
          " turned to face along the polygon's dominant normal";
   return s + ", " + std::to_string(triangles) + " triangles";
+}
+
+std::string new_vertices(std::size_t first, std::size_t end) {
+  if (end <= first) return "";
+  if (end == first + 1) return "; the crossing is new vertex " + std::to_string(first + 1);
+  return "; the crossings are new vertices " + std::to_string(first + 1) + " to " + std::to_string(end);
 }
 
 std::optional<std::vector<std::array<std::int32_t, 3>>> triangulate_pieces(const std::vector<Vec3>& corners,

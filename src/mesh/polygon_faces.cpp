@@ -91,7 +91,8 @@ void PolygonFaces::add(const std::vector<std::int32_t>& input, long line, std::i
             index[static_cast<std::size_t>(t[2])], -1},
            line, material, group, source);
     return found("self-intersecting polygon split", Severity::repair,
-                 split_message("polygon with " + n + " vertices", pieces, triangles->size()) + " (--strict refuses it)");
+                 split_message("polygon with " + n + " vertices", pieces, triangles->size()) +
+                     new_vertices(mesh_.vertices.size() - pieces.new_points.size(), mesh_.vertices.size()) + " (--strict refuses it)");
   }
   if (!triangles) {
     if (!(N.norm() > 0))  // no area, no power: dropped

@@ -283,7 +283,9 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
                    index[static_cast<std::size_t>(t[2])], -1});
         changed = true;
         log.add("self-intersecting polygon split", Severity::repair, f,
-                split_message("quad", pieces, triangles->size()) + " (--strict refuses it)");
+                split_message("quad", pieces, triangles->size()) +
+                    new_vertices(mesh.vertices.size() - pieces.new_points.size(), mesh.vertices.size()) +
+                    " (--strict refuses it)");
         continue;
       }
     }

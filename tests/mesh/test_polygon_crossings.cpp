@@ -162,8 +162,10 @@ TEST_CASE("a figure-eight through one corner and a pentagram are split; a simple
   CHECK(touched.area == 2);  // small integers: exact
   CHECK(triangles_of(eight, touched).one_way);
 
-  // A pentagram in one stroke: 5 crossings, nested pieces (the star's outline and its inner pentagon) covering the
-  // centre twice, as its winding number says: their area is |vector area|.
+  // A pentagram in one stroke: 5 crossings, nested pieces (the star's outline and its inner pentagon, where the
+  // winding number is 2); the inner one is left out, so the centre is covered once: the area is the star's,
+  // |vector area| (which counts the centre twice) less the inner pentagon's, (5/2) r^2 sin(72 deg) with
+  // r = cos(72 deg) / cos(36 deg).
   std::vector<Vec3> star;
   for (int k = 0; k < 5; ++k) {
     const double a = M_PI / 2 + 4 * M_PI * k / 5;
@@ -175,7 +177,14 @@ TEST_CASE("a figure-eight through one corner and a pentagram are split; a simple
   REQUIRE(pentagram.status == PolygonPieces::Status::split);
   CHECK(pentagram.meetings == 5);
   CHECK(pentagram.reversed == 0);
-  CHECK(std::abs(pentagram.area - N.norm()) <= 16 * 15 * u);  // 15 shoelace terms of size 1
+  CHECK(pentagram.nested == 1);
+  CHECK(pentagram.pieces.size() == 1);
+  const double r = std::cos(2 * M_PI / 5) / std::cos(M_PI / 5);
+  const double star_area = N.norm() - 2.5 * r * r * std::sin(2 * M_PI / 5);
+  CHECK(std::abs(pentagram.area - star_area) <= 16 * 15 * u);  // 15 shoelace terms of size 1
+  const Triangles t = triangles_of(star, pentagram);
+  CHECK(std::abs(t.area - star_area) <= 16 * 15 * u);
+  CHECK(t.one_way);
 
   // A simple concave polygon (an L) has no crossing.
   CHECK(split_at_crossings({{0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}}, true).status ==
@@ -196,7 +205,7 @@ TEST_CASE("reading a self-intersecting polygon repairs it with a finding naming 
   CHECK(line ==
         "eight.obj:12: face 0: polygon with 6 vertices crosses itself: split at 1 crossing into 2 simple pieces of "
         "area 4 in all (the lobes' areas as drawn), 1 lobe turned to face along the polygon's dominant normal, 4 "
-        "triangles (--strict refuses it) (object 'eight', group 'lobes')");
+        "triangles; the crossing is new vertex 10 (--strict refuses it) (object 'eight', group 'lobes')");
   REQUIRE(mesh.faces.size() == 5);
   CHECK(mesh.vertices.size() == 10);  // the crossing point added
   CHECK(mesh.vertices[9] == Vec3(0, 0, 0));
@@ -238,8 +247,8 @@ TEST_CASE("a planar bow-tie quad is split into its two lobes; a folded one and -
   REQUIRE(f != nullptr);
   CHECK(finding_line(*f) ==
         "bowtie: face 0: quad crosses itself: split at 1 crossing into 2 simple pieces of area 0.5 in all (the lobes' "
-        "areas as drawn), 1 lobe turned to face along the polygon's dominant normal, 2 triangles (--strict refuses "
-        "it) (material 'light')");
+        "areas as drawn), 1 lobe turned to face along the polygon's dominant normal, 2 triangles; the crossing is new "
+        "vertex 8 (--strict refuses it) (material 'light')");
   REQUIRE(mesh.face_count() == 3);
   CHECK(mesh.vertices.back() == Vec3(1, 0.5, 0));
   double area = 0;
