@@ -3,6 +3,9 @@
 // wall, a lid left on its box), which render on top of each other and which the radiosity counts twice. Faces
 // that only share an edge or a corner do not overlap.
 //
+// find_coplanar_overlaps returns pairs facing either way; validation reports those facing the same way (back to
+// back they are a contact: patch/contact.h).
+//
 // Coplanar means within rounding: every corner q of one face is at a distance from the plane of each triangle
 // (a, b, c) of the other (a quad is its fan (0,1,2), (0,2,3)) no larger than the rounding of the distance
 // |((b-a) x (c-a)) . (q-a)| / |(b-a) x (c-a)|: 8 u times the determinant's permanent over |(b-a) x (c-a)| (u the

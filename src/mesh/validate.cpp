@@ -461,14 +461,16 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
                     " but facing the other way; back-to-back faces are refused (give the wall a thickness)");
   }
 
-  // Coplanar faces that overlap (coplanar_overlaps.h); a duplicate is reported as such.
+  // Coplanar faces that overlap facing the same way (coplanar_overlaps.h); a duplicate is reported as such. Back
+  // to back they are a contact (a block's bottom on a floor), which patching cuts along (patch/contact.h).
   for (const CoplanarOverlap& o : find_coplanar_overlaps(mesh, &duplicate)) {
+    if (!o.same_side) continue;
     const auto f = static_cast<std::size_t>(o.face_a), g = static_cast<std::size_t>(o.face_b);
     const std::string other =
         "face " + std::to_string(mesh.source_face(g)) + " at line " + std::to_string(log.line(g)) + mesh.context(g);
     log.add("coplanar overlapping faces", Severity::warning, f,
             "coplanar overlapping faces: this face and " + other + " lie in one plane and overlap in area " +
-                fmt(o.area) + (o.same_side ? ", facing the same way" : ", back to back") +
+                fmt(o.area) + ", facing the same way" +
                 "; the radiosity counts the shared area twice (remove one, or give them a gap)");
   }
 

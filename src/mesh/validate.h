@@ -24,7 +24,8 @@
 //   self-intersecting quad (a bow-tie) split at its crossing into its two lobes (polygon_crossings.h: a new vertex
 //   there, both facing along the quad's dominant normal).
 // Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); coplanar faces that overlap
-//   with positive area (coplanar_overlaps.h: both faces and the shared area named); non-manifold edge (3+
+//   with positive area facing the same way (coplanar_overlaps.h: both faces and the shared area named; back to back
+//   they are a contact, a block's bottom on a floor, which patching cuts along); non-manifold edge (3+
 //   faces); non-manifold vertex (faces around it form 2+ fans, joined across T-junctions); neighbours with
 //   inconsistent orientation (flipped face); a non-diffuse material (the radiosity solvers use Kd only); no
 //   emitter; a scene far from the origin.
