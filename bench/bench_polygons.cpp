@@ -1,13 +1,17 @@
 // bench_polygons: CPU time of triangulating one n-gon against n (convex, star, comb; n = 256 .. 4096) with the
 // fitted exponent of t ~ n^k, and of the coplanar-overlap search (mesh/coplanar_overlaps.h) and the whole
-// validation on generated grids of F quads up to 10^6 faces.
+// validation on generated grids of F quads up to 10^6 faces; side by side, the former full-scan ear clipping
+// (convex, n = 128 .. 512).
 //
 // Times are CPU seconds of the process (clock_gettime CLOCK_PROCESS_CPUTIME_ID: meaningful on a shared machine),
 // each the best of 3 runs. The exponent is the least-squares slope of log t against log n.
 // Usage: bench_polygons [--max-faces F]   (default 1e6)
 #include <time.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,6 +41,55 @@ double best_of_3(F&& f) {
     best = std::min(best, cpu_seconds() - t0);
   }
   return best;
+}
+
+// The former ear clipping, kept as the reference of the triangles radwalk gave before ear lists: every round
+// tests every corner against every other corner and cuts the best-shaped ear, the first in ring order among
+// equals (O(n^3)).
+std::optional<std::vector<std::array<std::int32_t, 3>>> full_scan_ear_clipping(const std::vector<Vec3>& corners) {
+  auto turn = [](const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& N) { return (b - a).cross(c - a).dot(N); };
+  auto shape = [](const Vec3& a, const Vec3& b, const Vec3& c) {
+    const double twice_area = (b - a).cross(c - a).norm();
+    const double ab = (b - a).norm(), bc = (c - b).norm(), ca = (a - c).norm();
+    if (!(ab > 0 && bc > 0 && ca > 0)) return 0.0;
+    return std::min({twice_area / (ab * ca), twice_area / (ab * bc), twice_area / (bc * ca)});
+  };
+  const std::size_t n = corners.size();
+  Vec3 N = Vec3::Zero();
+  for (std::size_t k = 0; k < n; ++k) N += 0.5 * corners[k].cross(corners[(k + 1) % n]);
+  if (!(N.norm() > 0)) return std::nullopt;
+  std::vector<std::int32_t> ring(n);
+  for (std::size_t k = 0; k < n; ++k) ring[k] = static_cast<std::int32_t>(k);
+  std::vector<std::array<std::int32_t, 3>> triangles;
+  auto at = [&](std::size_t i) -> const Vec3& { return corners[static_cast<std::size_t>(ring[i])]; };
+  while (ring.size() > 3) {
+    const std::size_t m = ring.size();
+    std::size_t best = m;
+    double best_shape = -1;
+    for (std::size_t i = 0; i < m; ++i) {
+      const Vec3 &a = at((i + m - 1) % m), &b = at(i), &c = at((i + 1) % m);
+      if (!(turn(a, b, c, N) > 0)) continue;
+      bool empty = true;
+      for (std::size_t j = 0; j < m && empty; ++j) {
+        if (j == i || j == (i + m - 1) % m || j == (i + 1) % m) continue;
+        const Vec3& p = at(j);
+        if (p == a || p == b || p == c) continue;
+        empty = !(turn(a, b, p, N) > 0 && turn(b, c, p, N) > 0 && turn(c, a, p, N) >= 0);
+      }
+      if (!empty) continue;
+      const double s = shape(a, b, c);
+      if (s > best_shape) {
+        best_shape = s;
+        best = i;
+      }
+    }
+    if (best == m) return std::nullopt;
+    triangles.push_back({ring[(best + m - 1) % m], ring[best], ring[(best + 1) % m]});
+    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best));
+  }
+  if (!(turn(at(0), at(1), at(2), N) > 0)) return std::nullopt;
+  triangles.push_back({ring[0], ring[1], ring[2]});
+  return triangles;
 }
 
 std::vector<Vec3> polygon(const std::string& kind, std::size_t n) {
@@ -117,15 +170,30 @@ int main(int argc, char** argv) {
     std::printf("\n");
   }
   std::printf("%8s", "exponent");
-  for (std::size_t k = 0; k < kinds.size(); ++k) {
+  auto fit = [](const std::vector<double>& x, const std::vector<double>& y) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    const double m = static_cast<double>(ns.size());
-    for (std::size_t i = 0; i < ns.size(); ++i) {
-      const double x = std::log(ns[i]), y = std::log(times[k][i]);
-      sx += x, sy += y, sxx += x * x, sxy += x * y;
+    const double m = static_cast<double>(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      const double lx = std::log(x[i]), ly = std::log(y[i]);
+      sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
     }
-    std::printf(" %10.2f", (m * sxy - sx * sy) / (m * sxx - sx * sx));
+    return (m * sxy - sx * sy) / (m * sxx - sx * sx);
+  };
+  for (std::size_t k = 0; k < kinds.size(); ++k) std::printf(" %10.2f", fit(ns, times[k]));
+  // Side by side: the former full scan (every corner tested against every corner each round), convex only,
+  // n = 128 .. 512 (it is cubic: 22 CPU s at n = 2048).
+  std::printf("\n\nformer full-scan ear clipping, convex: CPU ms\n");
+  std::vector<double> old_n, old_t;
+  for (std::size_t n = 128; n <= 512; n *= 2) {
+    const auto p = polygon("convex", n);
+    const double t = best_of_3([&] {
+      if (!full_scan_ear_clipping(p)) std::abort();
+    });
+    old_n.push_back(static_cast<double>(n));
+    old_t.push_back(t);
+    std::printf("%8zu %10.3f\n", n, 1e3 * t);
   }
+  std::printf("%8s %10.2f", "exponent", fit(old_n, old_t));
   std::printf("\n\ncoplanar overlaps and validate_mesh on grids: CPU s\n%10s %10s %10s %12s\n", "faces", "overlaps",
               "found", "validate");
   for (const std::size_t side : {100, 316, 1000, 3162}) {
