@@ -1,9 +1,11 @@
 #include "mesh/polygon_faces.h"
 
 #include "core/error.h"
+#include "mesh/polygon_crossings.h"
 #include "mesh/triangulate.h"
 
 namespace radwalk {
+
 
 void PolygonFaces::push(const std::array<std::int32_t, 4>& corners, long line, std::int32_t material,
                         std::int32_t group, std::int32_t source) {
@@ -46,10 +48,53 @@ void PolygonFaces::add(const std::vector<std::int32_t>& input, long line, std::i
   if (corners.size() > 1 && corners.front() == corners.back()) corners.pop_back();
   std::vector<Vec3> points;
   for (std::int32_t v : corners) points.push_back(mesh_.vertices[static_cast<std::size_t>(v)]);
-  const auto triangles = corners.size() >= 3 ? triangulate_polygon(points) : std::nullopt;
+  // An outline that crosses itself (in its plane) is split at its crossings first (polygon_crossings.h); any other
+  // is ear-clipped as it is, and if that fails (no ear: corners that touch, a figure-eight through a corner) the
+  // touches are split too.
+  PolygonPieces pieces = corners.size() >= 4 ? split_at_crossings(points, false) : PolygonPieces{};
+  std::optional<std::vector<std::array<std::int32_t, 3>>> triangles;
+  std::string why = pieces.why;  // why a crossing outline cannot be split, if it cannot
+  bool off_plane = pieces.status == PolygonPieces::Status::nonplanar;
+  if (pieces.status != PolygonPieces::Status::split) {
+    triangles = corners.size() >= 3 ? triangulate_polygon(points) : std::nullopt;
+    if (!triangles && corners.size() >= 4) {
+      pieces = split_at_crossings(points, true);
+      if (!pieces.why.empty()) why = pieces.why;
+      off_plane = off_plane || pieces.status == PolygonPieces::Status::nonplanar;
+    }
+  }
+  Vec3 N = Vec3::Zero();
+  for (std::size_t k = 0; k < points.size(); ++k) N += points[k].cross(points[(k + 1) % points.size()]);
+  // Not split: off its plane (whatever its vector area), or degenerate (overlapping edges) with an area.
+  if (!triangles && pieces.status != PolygonPieces::Status::split && !why.empty() && (off_plane || N.norm() > 0))
+    return found("self-intersecting polygon", Severity::error,
+                 "polygon with " + n + " vertices is self-intersecting and cannot be split: " + why +
+                     "; split it into simple polygons");
+  if (pieces.status == PolygonPieces::Status::split) {
+    triangles = triangulate_pieces(points, pieces);
+    if (!triangles) {
+      if (!(N.norm() > 0) && !(pieces.area > 0))
+        return found("polygon without area dropped", Severity::repair,
+                     "polygon with " + n + " vertices has no area: dropped (it carries no power; --strict refuses it)");
+      return found("self-intersecting polygon", Severity::error,
+                   "polygon with " + n + " vertices is self-intersecting and a piece between its crossings could not "
+                   "be triangulated; split it into simple polygons");
+    }
+    // The crossing points become vertices; the pieces' indices map to the mesh's.
+    std::vector<std::int32_t> index(corners.begin(), corners.end());
+    for (const Vec3& p : pieces.new_points) {
+      index.push_back(static_cast<std::int32_t>(mesh_.vertices.size()));
+      mesh_.vertices.push_back(p);
+    }
+    for (const auto& t : *triangles)
+      push({index[static_cast<std::size_t>(t[0])], index[static_cast<std::size_t>(t[1])],
+            index[static_cast<std::size_t>(t[2])], -1},
+           line, material, group, source);
+    return found("self-intersecting polygon split", Severity::repair,
+                 split_message("polygon with " + n + " vertices", pieces, triangles->size()) +
+                     new_vertices(mesh_.vertices.size() - pieces.new_points.size(), mesh_.vertices.size()) + " (--strict refuses it)");
+  }
   if (!triangles) {
-    Vec3 N = Vec3::Zero();
-    for (std::size_t k = 0; k < points.size(); ++k) N += points[k].cross(points[(k + 1) % points.size()]);
     if (!(N.norm() > 0))  // no area, no power: dropped
       return found("polygon without area dropped", Severity::repair,
                    "polygon with " + n + " vertices has no area: dropped (it carries no power; --strict refuses it)");

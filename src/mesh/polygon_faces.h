@@ -4,8 +4,11 @@
 // A face with 3 or 4 corners is kept as it is (validate_mesh judges its geometry). A polygon with more corners
 // is triangulated (triangulate.h: ear clipping, concave and non-planar polygons included), each triangle keeping
 // the input face index (face_source), line, group and material: a repair, one finding per polygon in
-// mesh.findings (finding.h). Repeated consecutive corners of a polygon are merged first. A polygon with no area is
-// dropped (also a repair: it carries no power). With `strict` every repair is a refusal instead, as is a polygon
+// mesh.findings (finding.h). Repeated consecutive corners of a polygon are merged first. A polygon whose outline
+// crosses itself is split at its crossings into simple pieces (polygon_crossings.h: the crossing points become new
+// vertices, every piece faces along the polygon's dominant normal, the area kept is the lobes' areas as drawn),
+// then triangulated: a repair, its finding names the crossings and the area. A polygon with no area is dropped
+// (also a repair: it carries no power). With `strict` every repair is a refusal instead, as is a polygon
 // that cannot be triangulated (not simple) or has a bad vertex index: an error finding, and the polygon is left
 // out (validate_mesh refuses the scene once it has collected every finding).
 #include <cstdint>

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <queue>
 
 namespace radwalk {
 
@@ -33,46 +34,130 @@ Vec3 newell(const std::vector<Vec3>& p) {
 
 }  // namespace
 
-std::optional<std::vector<std::array<std::int32_t, 3>>> triangulate_polygon(const std::vector<Vec3>& corners) {
+std::optional<std::vector<std::array<std::int32_t, 3>>> triangulate_polygon(const std::vector<Vec3>& corners,
+                                                                            TriangulationCost* cost) {
   const std::size_t n = corners.size();
   if (n < 3 || n > kMaxPolygonCorners) return std::nullopt;
   const Vec3 N = newell(corners);
   if (!(N.norm() > 0)) return std::nullopt;
-  std::vector<std::int32_t> ring(n);
-  for (std::size_t k = 0; k < n; ++k) ring[k] = static_cast<std::int32_t>(k);
+  TriangulationCost local;
+  TriangulationCost& count = cost ? *cost : local;
+  auto at = [&](std::int32_t k) -> const Vec3& { return corners[static_cast<std::size_t>(k)]; };
+
+  // The ring as a doubly linked list over the corners' indices (ring order = increasing index, as cut).
+  std::vector<std::int32_t> prev(n), next(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    prev[k] = static_cast<std::int32_t>((k + n - 1) % n);
+    next[k] = static_cast<std::int32_t>((k + 1) % n);
+  }
+  std::vector<char> alive(n, 1);
+  // Corners that are not strictly convex (reflex or straight): the only ones that can block an ear (in a simple
+  // polygon, a triangle (a, b, c) at a convex corner b that holds any corner holds a reflex one: the one farthest
+  // from the diagonal c - a). `reflex_list` may hold corners since cut or turned convex (skipped, then dropped).
+  std::vector<char> reflex(n, 0);
+  std::vector<std::int32_t> reflex_list;
+  auto convex = [&](std::int32_t b) { return turn(at(prev[static_cast<std::size_t>(b)]), at(b), at(next[static_cast<std::size_t>(b)]), N) > 0; };
+  for (std::size_t k = 0; k < n; ++k)
+    if (!convex(static_cast<std::int32_t>(k))) {
+      reflex[k] = 1;
+      reflex_list.push_back(static_cast<std::int32_t>(k));
+    }
+  std::size_t stale = 0;  // entries of reflex_list no longer alive and reflex
+
+  // Corner b is an ear: convex, and no reflex corner strictly inside its triangle or on its diagonal.
+  auto is_ear = [&](std::int32_t b) {
+    ++count.ear_tests;
+    const std::int32_t ia = prev[static_cast<std::size_t>(b)], ic = next[static_cast<std::size_t>(b)];
+    const Vec3 &a = at(ia), &pb = at(b), &c = at(ic);
+    if (!(turn(a, pb, c, N) > 0)) return false;  // a reflex or straight corner is no ear
+    for (const std::int32_t j : reflex_list) {
+      if (!alive[static_cast<std::size_t>(j)] || !reflex[static_cast<std::size_t>(j)] || j == ia || j == ic) continue;
+      ++count.blocker_tests;
+      const Vec3& p = at(j);
+      if (p == a || p == pb || p == c) continue;  // a repeated point (a hole's bridge) does not block
+      if (blocks_ear(p, a, pb, c, N)) return false;
+    }
+    return true;
+  };
+
+  // Candidate ears, best shape first, ties to the lowest corner index (the order of the former full scan, which
+  // cut the best-shaped ear, the first in ring order among equals). An entry is current while its version matches.
+  struct Candidate {
+    double shape;
+    std::int32_t corner;
+    std::uint32_t version;
+  };
+  auto worse = [](const Candidate& x, const Candidate& y) {
+    return x.shape != y.shape ? x.shape < y.shape : x.corner > y.corner;
+  };
+  std::priority_queue<Candidate, std::vector<Candidate>, decltype(worse)> ears(worse);
+  std::vector<std::uint32_t> version(n, 0);
+  auto consider = [&](std::int32_t b) {
+    const auto k = static_cast<std::size_t>(b);
+    ++version[k];
+    if (!is_ear(b)) return;
+    const double s = shape(at(prev[k]), at(b), at(next[k]));
+    if (!(s >= 0)) return;  // not a number: never cut (as the full scan never chose it)
+    ears.push({s, b, version[k]});
+  };
+  for (std::size_t k = 0; k < n; ++k) consider(static_cast<std::int32_t>(k));
+
   std::vector<std::array<std::int32_t, 3>> triangles;
   triangles.reserve(n - 2);
-  while (ring.size() > 3) {
-    const std::size_t m = ring.size();
-    std::size_t best = m;
-    double best_shape = -1;
-    for (std::size_t i = 0; i < m; ++i) {
-      const Vec3& a = corners[static_cast<std::size_t>(ring[(i + m - 1) % m])];
-      const Vec3& b = corners[static_cast<std::size_t>(ring[i])];
-      const Vec3& c = corners[static_cast<std::size_t>(ring[(i + 1) % m])];
-      if (!(turn(a, b, c, N) > 0)) continue;  // a reflex or straight corner is no ear
-      bool empty = true;
-      for (std::size_t j = 0; j < m && empty; ++j) {
-        if (j == i || j == (i + m - 1) % m || j == (i + 1) % m) continue;
-        const Vec3& p = corners[static_cast<std::size_t>(ring[j])];
-        if (p == a || p == b || p == c) continue;  // a repeated point (a hole's bridge) does not block
-        empty = !blocks_ear(p, a, b, c, N);
-      }
-      if (!empty) continue;
-      const double s = shape(a, b, c);
-      if (s > best_shape) {
-        best_shape = s;
-        best = i;
-      }
+  std::size_t remaining = n, rescans = 0;
+  std::int32_t first = 0;  // a corner still in the ring
+  while (remaining > 3) {
+    if (ears.empty()) {
+      // In exact arithmetic an ear's status changes only when a neighbour is cut, so this is a polygon that is
+      // not simple. Rounding can hide an ear from that rule: look again at every corner, a bounded number of times.
+      if (rescans++ == kMaxEarRescans) return std::nullopt;
+      std::int32_t k = first;
+      for (std::size_t m = 0; m < remaining; ++m, k = next[static_cast<std::size_t>(k)]) consider(k);
+      if (ears.empty()) return std::nullopt;  // no ear: not a simple polygon
     }
-    if (best == m) return std::nullopt;  // no ear: not a simple polygon
-    triangles.push_back({ring[(best + m - 1) % m], ring[best], ring[(best + 1) % m]});
-    ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best));
+    const Candidate best = ears.top();
+    ears.pop();
+    const auto b = static_cast<std::size_t>(best.corner);
+    if (!alive[b] || best.version != version[b]) continue;
+    if (!is_ear(best.corner)) {  // rounding: a corner turned reflex since; it is looked at again when it changes
+      ++version[b];
+      continue;
+    }
+    const std::int32_t a = prev[b], c = next[b];
+    triangles.push_back({a, best.corner, c});
+    alive[b] = 0;
+    next[static_cast<std::size_t>(a)] = c;
+    prev[static_cast<std::size_t>(c)] = a;
+    first = a;
+    --remaining;
+    // The two neighbours: each may have turned convex (or, by rounding, reflex), and their ears changed.
+    for (const std::int32_t v : {a, c}) {
+      const auto k = static_cast<std::size_t>(v);
+      const bool r = !convex(v);
+      if (r && !reflex[k]) reflex_list.push_back(v);
+      if (!r && reflex[k]) ++stale;
+      reflex[k] = r;
+    }
+    if (reflex[b]) ++stale;
+    if (2 * stale > reflex_list.size() && stale > 0) {
+      reflex_list.erase(std::remove_if(reflex_list.begin(), reflex_list.end(),
+                                       [&](std::int32_t j) {
+                                         return !alive[static_cast<std::size_t>(j)] ||
+                                                !reflex[static_cast<std::size_t>(j)];
+                                       }),
+                        reflex_list.end());
+      stale = 0;
+    }
+    if (remaining > 3) {
+      consider(a);
+      consider(c);
+    }
   }
-  if (!(turn(corners[static_cast<std::size_t>(ring[0])], corners[static_cast<std::size_t>(ring[1])],
-             corners[static_cast<std::size_t>(ring[2])], N) > 0))
-    return std::nullopt;
-  triangles.push_back({ring[0], ring[1], ring[2]});
+  const std::int32_t r0 = first, r1 = next[static_cast<std::size_t>(r0)], r2 = next[static_cast<std::size_t>(r1)];
+  std::array<std::int32_t, 3> last = {r0, r1, r2};
+  std::sort(last.begin(), last.end());  // ring order from the lowest index, as the former vector ring had it
+  if (!(turn(at(last[0]), at(last[1]), at(last[2]), N) > 0)) return std::nullopt;
+  triangles.push_back(last);
   return triangles;
 }
 

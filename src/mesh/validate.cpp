@@ -8,8 +8,10 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "mesh/coplanar_overlaps.h"
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
+#include "mesh/polygon_crossings.h"
 #include "mesh/t_junctions.h"
 #include "mesh/triangulate.h"
 
@@ -228,8 +230,8 @@ double scene_diagonal(const Mesh& mesh) {
 
 // Step (a repair unless strict): faces without area are dropped (they carry no power); quads bent beyond the
 // planarity limit, non-convex, or whose area is ambiguous beyond tol.area_ambiguity, are split into two triangles
-// along the better diagonal (triangulate.h). A self-intersecting quad (a bow-tie) is left to check_face_geometry,
-// which refuses it.
+// along the better diagonal (triangulate.h). A self-intersecting quad (a bow-tie) is split at its crossing into its
+// two lobes (polygon_crossings.h) when it is planar; otherwise it is left to check_face_geometry, which refuses it.
 void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   if (tol.strict) return;  // check_face_geometry refuses what would be repaired here
   const double diagonal = scene_diagonal(mesh);
@@ -264,6 +266,29 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
     std::array<Vec3, 4> p;
     for (std::size_t k = 0; k < 4; ++k) p[k] = mesh.vertices[static_cast<std::size_t>(mesh.faces[f][k])];
     const auto split = !folded && (bent || concave || ambiguous) ? split_quad(p) : std::nullopt;
+    if (!split && (folded || concave)) {
+      // A bow-tie: split at its crossing into its lobes (polygon_crossings.h), if it is planar.
+      const std::vector<Vec3> corners(p.begin(), p.end());
+      const PolygonPieces pieces = split_at_crossings(corners, true);
+      const auto triangles = pieces.status == PolygonPieces::Status::split ? triangulate_pieces(corners, pieces)
+                                                                           : std::nullopt;
+      if (triangles) {
+        std::vector<std::int32_t> index(mesh.faces[f].begin(), mesh.faces[f].end());
+        for (const Vec3& x : pieces.new_points) {
+          index.push_back(static_cast<std::int32_t>(mesh.vertices.size()));
+          mesh.vertices.push_back(x);
+        }
+        for (const auto& t : *triangles)
+          keep(f, {index[static_cast<std::size_t>(t[0])], index[static_cast<std::size_t>(t[1])],
+                   index[static_cast<std::size_t>(t[2])], -1});
+        changed = true;
+        log.add("self-intersecting polygon split", Severity::repair, f,
+                split_message("quad", pieces, triangles->size()) +
+                    new_vertices(mesh.vertices.size() - pieces.new_points.size(), mesh.vertices.size()) +
+                    " (--strict refuses it)");
+        continue;
+      }
+    }
     if (!split) {
       keep(f, mesh.faces[f]);
       continue;
@@ -406,7 +431,8 @@ void check_materials(Mesh& mesh, FindingLog& log) {
   }
 }
 
-// Step: duplicates, non-manifold edges and vertices, orientation of neighbours, T-junctions (t_junctions.h).
+// Step: duplicates, coplanar overlapping faces, non-manifold edges and vertices, orientation of neighbours,
+// T-junctions (t_junctions.h).
 void check_topology(const Mesh& mesh, FindingLog& log) {
   const EdgeTable t = build_edge_table(mesh);
   auto welded = [&](std::size_t f, int k) {
@@ -433,6 +459,19 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
       log.error("duplicate face", f,
                 "duplicate face: same corners as " + other +
                     " but facing the other way; back-to-back faces are refused (give the wall a thickness)");
+  }
+
+  // Coplanar faces that overlap facing the same way (coplanar_overlaps.h); a duplicate is reported as such. Back
+  // to back they are a contact (a block's bottom on a floor), which patching cuts along (patch/contact.h).
+  for (const CoplanarOverlap& o : find_coplanar_overlaps(mesh, &duplicate)) {
+    if (!o.same_side) continue;
+    const auto f = static_cast<std::size_t>(o.face_a), g = static_cast<std::size_t>(o.face_b);
+    const std::string other =
+        "face " + std::to_string(mesh.source_face(g)) + " at line " + std::to_string(log.line(g)) + mesh.context(g);
+    log.add("coplanar overlapping faces", Severity::warning, f,
+            "coplanar overlapping faces: this face and " + other + " lie in one plane and overlap in area " +
+                fmt(o.area) + ", facing the same way" +
+                "; the radiosity counts the shared area twice (remove one, or give them a gap)");
   }
 
   // Edges: non-manifold (3+ uses) and inconsistent orientation (2 uses in the same direction).

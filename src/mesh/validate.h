@@ -15,13 +15,17 @@
 //   diagonal; scene too large or too small for single precision (the later steps are skipped); and with strict:
 //   degenerate face (area <= degenerate_area * D^2, D = diagonal of the scene's bounding box), non-planar quad
 //   (quad_nonplanarity > planar_error), non-convex quad (quad_min_turn_sine < -convex_sine), area-ambiguous quad
-//   (quad area ambiguity > area_ambiguity, below); always: self-intersecting quad (bow-tie); duplicate face (same
+//   (quad area ambiguity > area_ambiguity, below); self-intersecting quad (bow-tie); always: a bow-tie off its plane; duplicate face (same
 //   welded corners, in either orientation); material index out of range; reflectance Kd outside [0, 1) or
 //   emission Ke negative, not finite or above 1e300, for a material some face uses.
 // Repaired (refused with strict where said above): quad with one vertex repeated at adjacent corners -> triangle;
 //   face without material -> material "radwalk_default" (rho 0.5, no emission); degenerate face dropped;
-//   non-planar, non-convex or area-ambiguous quad split into two triangles along the better diagonal.
-// Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); non-manifold edge (3+
+//   non-planar, non-convex or area-ambiguous quad split into two triangles along the better diagonal; a planar
+//   self-intersecting quad (a bow-tie) split at its crossing into its two lobes (polygon_crossings.h: a new vertex
+//   there, both facing along the quad's dominant normal).
+// Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); coplanar faces that overlap
+//   with positive area facing the same way (coplanar_overlaps.h: both faces and the shared area named; back to back
+//   they are a contact, a block's bottom on a floor, which patching cuts along); non-manifold edge (3+
 //   faces); non-manifold vertex (faces around it form 2+ fans, joined across T-junctions); neighbours with
 //   inconsistent orientation (flipped face); a non-diffuse material (the radiosity solvers use Kd only); no
 //   emitter; a scene far from the origin.

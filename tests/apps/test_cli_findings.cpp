@@ -59,6 +59,31 @@ fs::path edited_cornell_box(const fs::path& dir, const std::string& white_kd, bo
 
 }  // namespace
 
+TEST_CASE("radwalk check: self-intersecting faces are split and coplanar overlaps reported, each naming its faces",
+          "[cli][findings]") {
+  const std::string eight = source("tests/data/self_intersecting_polygon.obj");
+  const Run r = run_loud("check " + eight);
+  INFO(r.out);
+  CHECK(r.exit_code == 0);
+  CHECK(contains(r.out, eight + ":17: face 0: polygon with 6 vertices crosses itself: split at 1 crossing into 2 "
+                        "simple pieces of area 4 in all"));
+  CHECK(contains(r.out, "(object 'eight', material 'light')"));
+  CHECK(contains(r.out, eight + ":20: face 1: quad crosses itself: split at 1 crossing into 2 simple pieces of area "
+                        "0.5 in all"));
+  const Run strict = run_loud("check " + eight + " --strict");
+  INFO(strict.out);
+  CHECK(strict.exit_code == 2);
+  CHECK(contains(strict.out, "face 1: self-intersecting or folded quad"));
+
+  const std::string overlap = source("tests/data/coplanar_overlap.obj");
+  const Run o = run_loud("check " + overlap);
+  INFO(o.out);
+  CHECK(o.exit_code == 0);
+  CHECK(contains(o.out, overlap + ":18: face 0: coplanar overlapping faces: this face and face 1 at line 21 (object "
+                        "'decal', material 'white') lie in one plane and overlap in area 1, facing the same way"));
+  CHECK(!contains(o.out, "face 2 at line"));  // the neighbour shares an edge only
+}
+
 TEST_CASE("radwalk check: several defects are all reported in one run, grouped, and --json is written on refusal",
           "[cli][findings]") {
   const fs::path dir = scratch_dir("findings");
