@@ -4,6 +4,7 @@
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
+#include "core/moments.h"
 #include "core/timer.h"
 #include "solve/direct_solver.h"
 
@@ -27,6 +28,22 @@ PatchRgb adjoint_Y(const RadiosityProblem& problem, const Response& response) {
   const Solution Y = solve_adjoint_direct(problem, response);
   if (Y.status != SolveStatus::converged) throw NumericalError(Y.message);
   return Y.B;
+}
+
+// Every method's one rule for a result that does not fit a double: a measurement whose M, standard error or
+// per-walk sample variance is not finite is refused (NumericalError, naming the quantity, the method and the
+// response), never printed as inf or NaN. The exact per-walk variance is not checked: it is legitimately infinite
+// when the second-moment system diverges, and is reported as such.
+void refuse_overflow(const MeasureEstimate& est, const std::string& method, const Response& response) {
+  const auto check = [&](const Rgb& v, const std::string& what) {
+    if (v.allFinite()) return;
+    throw NumericalError("--method " + method + ": " + what + " over " + response.what +
+                         " overflows a double (largest response weight " + number_text(response.R.maxCoeff()) +
+                         "): scale the response weights or the emission down");
+  };
+  check(est.M, "the measurement M = <R, B>_A");
+  check(est.se, "the standard error of M");
+  check(est.var, "the per-walk variance of M");
 }
 
 }  // namespace
@@ -69,8 +86,10 @@ bool measure_needs_form_factors(const MeasureOptions& o) {
   return is_deterministic_measure(o.method) || is_importance_measure(o.method) || o.walk.kernel != WalkKernel::ray;
 }
 
-Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
-                              const Response& response, const MeasureOptions& o) {
+namespace {
+
+Measurement measure_unscaled(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                             const Response& response, const MeasureOptions& o) {
   Measurement m;
   MeasureEstimate& est = m.estimate;
   m.deterministic = is_deterministic_measure(o.method);
@@ -99,6 +118,30 @@ Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* p
   }
   if (m.deterministic) est.seconds = timer.seconds();
   est.method = o.method;
+  return m;
+}
+
+}  // namespace
+
+// Scale before squaring (core/moments.h), as solve_random_walk does: with an emission far from 1 every method
+// measures the problem with E / s (s = moment_scale(max E), a power of two: exact) and M and its standard error
+// are multiplied back by s, the variances by s^2; then refuse_overflow.
+Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                              const Response& response, const MeasureOptions& o) {
+  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  Measurement m;
+  if (s == 1) {
+    m = measure_unscaled(problem, patches, visibility, response, o);
+  } else {
+    RadiosityProblem scaled = problem;
+    scaled.E /= s;
+    m = measure_unscaled(scaled, patches, visibility, response, o);
+    m.estimate.M *= s;
+    m.estimate.se *= s;
+    m.estimate.var *= s * s;
+    m.estimate.var_theory *= s * s;
+  }
+  refuse_overflow(m.estimate, o.method, response);
   return m;
 }
 
