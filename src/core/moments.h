@@ -118,14 +118,15 @@ struct ShiftedSums {
 };
 
 // 1 when `largest` is within [2^-200, 2^200] (squares of samples up to 2^200 times 2^63 samples fit a double:
-// nothing to gain, and the common case is left untouched), else the power of two 2^e with largest = f 2^e,
-// f in [0.5, 1); 1 for 0, a negative or a non-finite `largest`.
+// nothing to gain, and the common case is left untouched), else the power of two 2^(e - 1) with largest = f 2^e,
+// f in [0.5, 1), so that largest / s is in [1, 2) (and s is finite up to the largest double); 1 for 0, a
+// negative or a non-finite `largest`.
 inline double moment_scale(double largest) {
   if (!(largest > 0) || !std::isfinite(largest)) return 1;
   if (largest >= std::ldexp(1.0, -200) && largest <= std::ldexp(1.0, 200)) return 1;
   int exponent = 0;
   std::frexp(largest, &exponent);
-  return std::ldexp(1.0, exponent);
+  return std::ldexp(1.0, exponent - 1);
 }
 
 struct SampleMoments {

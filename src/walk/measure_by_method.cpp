@@ -1,6 +1,7 @@
 #include "walk/measure_by_method.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
@@ -123,23 +124,31 @@ Measurement measure_unscaled(const RadiosityProblem& problem, const PatchSet* pa
 
 }  // namespace
 
-// Scale before squaring (core/moments.h), as solve_random_walk does: with an emission far from 1 every method
-// measures the problem with E / s (s = moment_scale(max E), a power of two: exact) and M and its standard error
-// are multiplied back by s, the variances by s^2; then refuse_overflow.
+// Scale before squaring (core/moments.h), as solve_random_walk does: M is linear in E and in R, so with an
+// emission or response weights far from 1 every method measures the problem with E / s and the response R / r
+// (s = moment_scale(max E), r = moment_scale(max R): powers of two, exact), and M and its standard error are
+// multiplied back by s r, the variances by (s r)^2; then refuse_overflow.
 Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                               const Response& response, const MeasureOptions& o) {
   const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  const double r = moment_scale(response.R.size() > 0 ? response.R.maxCoeff() : 0.0);
   Measurement m;
-  if (s == 1) {
+  if (s == 1 && r == 1) {
     m = measure_unscaled(problem, patches, visibility, response, o);
   } else {
-    RadiosityProblem scaled = problem;
-    scaled.E /= s;
-    m = measure_unscaled(scaled, patches, visibility, response, o);
-    m.estimate.M *= s;
-    m.estimate.se *= s;
-    m.estimate.var *= s * s;
-    m.estimate.var_theory *= s * s;
+    std::optional<RadiosityProblem> scaled;
+    if (s != 1) {
+      scaled.emplace(problem);
+      scaled->E /= s;
+    }
+    Response weights = response;
+    weights.R /= r;
+    m = measure_unscaled(scaled ? *scaled : problem, patches, visibility, weights, o);
+    // M s r, not M (s r): s r may overflow where the product does not.
+    m.estimate.M = m.estimate.M * s * r;
+    m.estimate.se = m.estimate.se * s * r;
+    m.estimate.var = m.estimate.var * s * s * r * r;
+    m.estimate.var_theory = m.estimate.var_theory * s * s * r * r;
   }
   refuse_overflow(m.estimate, o.method, response);
   return m;
