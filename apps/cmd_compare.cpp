@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "apps/finite_outputs.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
@@ -37,6 +38,7 @@ int run_compare(const CompareCommand& command) {
   std::unique_ptr<EmbreeVisibility> visibility;
   if (options.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(patches);
   const CompareResult result = compare_random_walks(problem, &patches, visibility.get(), options, reference.B);
+  refuse_overflow(result.rows, max_emission(patches));
   double total = 0;
   for (const auto& s : result.summary) total += s.seconds;
   summary.add_timing("walks", total);

@@ -4,6 +4,7 @@
 
 #include <optional>
 
+#include "apps/finite_outputs.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
 #include "apps/progressive_series.h"
@@ -198,6 +199,7 @@ int run_solve(const SolveCommand& command) {
     }
   }
   summary.add_timing("solve", solution.seconds);
+  refuse_overflow(solution, "solve", max_emission(patches));
   if (walks && too_few_particles(solution))
     warn(summary, solution.method + ": " + std::to_string(static_cast<long>(solution.info.at("unreached_patches"))) +
                       " of the " + std::to_string(static_cast<long>(solution.info.at("reflecting_patches"))) +
@@ -214,11 +216,17 @@ int run_solve(const SolveCommand& command) {
   auto& j = summary.json()["solution"];
 
   if (solution.B.rows() == static_cast<Eigen::Index>(patches.size())) {
-    // Area-weighted mean radiosity per channel, a quick sanity figure.
+    // Area-weighted mean radiosity per channel, a quick sanity figure; when sum A_i B_i overflows (B near the
+    // largest double), with the weights A_i / total area, whose sum stays finite whenever B is.
     Rgb mean = Rgb::Zero();
     for (std::size_t i = 0; i < patches.size(); ++i)
       mean += patches.area[i] * solution.B.row(static_cast<Eigen::Index>(i)).transpose();
     mean /= patches.total_area();
+    if (!mean.isFinite().all() && solution.B.allFinite()) {
+      mean = Rgb::Zero();
+      for (std::size_t i = 0; i < patches.size(); ++i)
+        mean += (patches.area[i] / patches.total_area()) * solution.B.row(static_cast<Eigen::Index>(i)).transpose();
+    }
     std::printf("area-weighted mean B = (%.6g, %.6g, %.6g) W/m^2\n", mean[0], mean[1], mean[2]);
     j["mean_B"] = {mean[0], mean[1], mean[2]};
     fields.push_back(rgb_field("B", solution.B));

@@ -1,19 +1,16 @@
 #include "apps/command_line.h"
 
 #include <algorithm>
-#include <cstdlib>
 
 #include "core/did_you_mean.h"
+#include "mesh/text_scan.h"
 
 namespace radwalk::app {
 namespace {
 
-// A number such as "-1" or "-0.5e3": a value, not an option.
-bool is_number(const std::string& word) {
-  char* end = nullptr;
-  std::strtod(word.c_str(), &end);
-  return end != word.c_str() && *end == '\0';
-}
+// A number such as "-1" or "-0.5e3" (the number rule of mesh/text_scan.h, out of range included): a value, not
+// an option.
+bool is_number(const std::string& word) { return parse_number(word).status != NumberStatus::not_a_number; }
 
 bool is_option(const std::string& word) { return word.size() > 1 && word[0] == '-' && !is_number(word); }
 

@@ -29,6 +29,7 @@
 #include "core/path_length.h"
 #include "core/progress.h"
 #include "io/run_summary.h"
+#include "mesh/text_scan.h"
 #include "walk/measure_by_method.h"
 #include "walk/named_choice.h"
 
@@ -39,22 +40,37 @@ namespace {
 
 bool g_quiet = false;
 
-// A finite number, > 0 (strictly_positive) or >= 0, with a one-line message naming what was given (CLI11's
-// own PositiveNumber reports a non-number as out of a 309-digit range). Integer options are converted by
-// CLI11 after it.
-CLI::Validator finite_number(bool strictly_positive) {
-  const std::string what = strictly_positive ? "a positive number" : "a number >= 0";
+// The number of an option value, under the one number rule of every text radwalk reads (mesh/text_scan.h
+// parse_number: decimal digits with an optional sign, fraction and exponent; no hex floats, no blanks, no nan or
+// inf; a value below the smallest double rounds to 0, one above the largest is out of range), finite and of the
+// sign asked for, with a one-line message naming what was given (CLI11's own PositiveNumber reports a non-number
+// as out of a 309-digit range). Used as a transform (real options) it rewrites the text to the value parsed, in
+// 17 significant digits, which CLI11's strtold-and-round reads back as exactly that double, so the option holds
+// the correctly rounded value the scene readers would have read; used as a check (integer options) it only
+// refuses, and CLI11 converts the digits.
+enum class NumberSign { any, non_negative, positive };
+CLI::Validator rule_number(NumberSign sign) {
+  const std::string what = sign == NumberSign::positive       ? "a positive number"
+                           : sign == NumberSign::non_negative ? "a number >= 0"
+                                                              : "a finite number";
   return CLI::Validator(
       [=](std::string& text) -> std::string {
-        char* end = nullptr;
-        const double v = std::strtod(text.c_str(), &end);
-        const bool ok =
-            end != text.c_str() && *end == '\0' && std::isfinite(v) && (strictly_positive ? v > 0 : v >= 0);
-        return ok ? std::string() : "expected " + what + ", got '" + text + "'";
+        const ParsedNumber n = parse_number(text);
+        const double v = n.value;
+        const bool ok = n.status == NumberStatus::ok && std::isfinite(v) &&
+                        (sign == NumberSign::positive ? v > 0 : sign == NumberSign::non_negative ? v >= 0 : true);
+        if (!ok)
+          return "expected " + what + ", got '" + text + "'" +
+                 (n.status == NumberStatus::out_of_range ? " (out of range)" : "");
+        char canonical[32];
+        std::snprintf(canonical, sizeof canonical, "%.17g", v);
+        text = canonical;
+        return std::string();
       },
-      strictly_positive ? "POSITIVE" : "NONNEGATIVE");
+      sign == NumberSign::positive ? "POSITIVE" : sign == NumberSign::non_negative ? "NONNEGATIVE" : "NUMBER");
 }
-const CLI::Validator kPositive = finite_number(true), kNonNegative = finite_number(false);
+const CLI::Validator kPositive = rule_number(NumberSign::positive), kNonNegative = rule_number(NumberSign::non_negative),
+                     kReal = rule_number(NumberSign::any);
 
 // A whole number in [lo, hi] written as digits (no sign, exponent or fraction): CLI11 itself saturates
 // `--seed -1` to 2^64 - 1 and lets 2^63 - 1 samples overflow what multiplies them. One line naming the range.
@@ -161,13 +177,13 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
       ->allow_extra_args(false);
   cmd->add_option("--rho-scale", o.rho_scale, "Multiply every material's Kd by S (after --set); refused if a "
                                               "channel reaches 1")
-      ->check(kNonNegative)
+      ->transform(kNonNegative)
       ->capture_default_str();
   if (patching)
     cmd->add_option("--max-edge", o.max_edge,
                     "Split faces until no patch edge is longer than L (mesh units); 0 keeps input faces. Each face "
                     "is split on its own: a face whose edges are all at most L stays whole")
-        ->check(kNonNegative)
+        ->transform(kNonNegative)
         ->capture_default_str();
   if (patching)
     cmd->add_flag("--two-sided", o.two_sided,
@@ -177,7 +193,7 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
     cmd->add_option("--max-area", o.max_area,
                     "Split faces until no patch area is above A (mesh units squared; with --max-edge both hold); "
                     "0: no bound")
-        ->check(kNonNegative)
+        ->transform(kNonNegative)
         ->capture_default_str();
   if (patching)
     cmd->add_flag("--contact-cut", o.contact_cut,
@@ -209,7 +225,7 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
                    ->capture_default_str();
   auto* density = cmd->add_option("--rays-per-area", o.rays_per_area,
                                   "Rays per unit area (at least --min-rays per patch) instead of --rays")
-                      ->check(kPositive);
+                      ->transform(kPositive);
   rays->excludes(density);
   cmd->add_option("--min-rays", o.min_rays, "Minimum rays per patch with --rays-per-area")
       ->check(kPositive)
@@ -401,7 +417,7 @@ int run_main(int argc, char** argv) {
       ->add_option(
           "--tol", solve.tol,
           "Iterative solvers stop when max over channels of |E - (I - diag(rho) F) B|_inf / |E|_inf <= tol")
-      ->check(kPositive)
+      ->transform(kPositive)
       ->capture_default_str();
   solve_cmd
       ->add_option(
@@ -438,6 +454,7 @@ int run_main(int argc, char** argv) {
                   "Random-walk survival probability p_k: " + walk_choices_help(kSurvivalRules));
   solve_cmd
       ->add_option("--survival-constant", solve.walk.survival.constant, "p for --survival constant, in (0, 1)")
+      ->transform(kReal)
       ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.walk.theory,
                       "Also compute the exact per-walk variance (dense; small scenes)");
@@ -463,7 +480,7 @@ int run_main(int argc, char** argv) {
           "--refine", solve.refine,
           "Adaptive patching: solve, split every patch whose irradiance (B - E) / rho differs from a "
           "coplanar edge neighbour's by more than TOL (relative), re-solve, repeat")
-      ->check(kPositive);
+      ->transform(kPositive);
   solve_cmd->add_option("--refine-steps", solve.refine_steps, "Adaptive patching: at most K refinement steps")
       ->check(kNonNegative)
       ->capture_default_str();
@@ -473,12 +490,12 @@ int run_main(int argc, char** argv) {
   solve_cmd
       ->add_option("--refine-floor", solve.refine_floor,
                    "Adaptive patching: differences are relative to max(H_i, H_j, F x the mean irradiance)")
-      ->check(kNonNegative)
+      ->transform(kNonNegative)
       ->capture_default_str();
   solve_cmd
       ->add_option("--refine-noise", solve.refine_noise,
                    "Adaptive patching: ignore differences within Z form-factor standard errors (0: off)")
-      ->check(kNonNegative)
+      ->transform(kNonNegative)
       ->capture_default_str();
   solve_cmd->add_option(
       "--progressive", solve.progressive,
@@ -549,6 +566,7 @@ int run_main(int argc, char** argv) {
   add_walk_choice(measure_cmd, "--survival", measure.walk.survival.rule, parse_survival_rule,
                   survival_name(measure.walk.survival.rule), "Russian roulette: " + walk_choices_help(kSurvivalRules));
   measure_cmd->add_option("--survival-constant", measure.walk.survival.constant, "p for --survival constant, in (0, 1)")
+      ->transform(kReal)
       ->capture_default_str();
   measure_cmd->add_option("--walks", measure.walks, "Walks (or particles) in all; per channel for importance walks")
       ->check(CLI::Range(2L, kMaxWalkCount))
@@ -563,9 +581,11 @@ int run_main(int argc, char** argv) {
       ->add_option("--defensive", measure.defensive,
                    "Importance walks: fraction alpha of the analog walk mixed in (keeps an approximate importance "
                    "unbiased); default 0 with the exact importance, 0.1 otherwise")
+      ->transform(kReal)
       ->check(CLI::Range(0.0, 1.0));
   measure_cmd->add_option("--camera", measure.camera, "With --response camera: px py pz tx ty tz ux uy uz fov_deg")
-      ->expected(10);
+      ->expected(10)
+      ->transform(kReal);
   measure_cmd->add_option("--width", measure.width, "With --response camera: image width")
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();
@@ -600,7 +620,8 @@ int run_main(int argc, char** argv) {
       ->check(kSeriesDirectory);
   pt_cmd
       ->add_option("--camera", pt.camera, "px py pz  tx ty tz  ux uy uz  fov_deg (position, target, up, fov)")
-      ->expected(10);
+      ->expected(10)
+      ->transform(kReal);
 
   // The command line: parsed, then checked (--paraview-state, distinct files). A refusal (one line) or --help is
   // acted on only once the ranks of an MPI run have agreed on their commands (apps/rank_agreement.h), so that a

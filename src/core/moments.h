@@ -23,6 +23,13 @@
 //                                 moments() converts: mean = K + S1 / n, M2 = max(0, S2 - S1^2 / n).
 //   sample_moments(x)             two passes over stored samples: mean, var and the fourth central moment
 //                                 mu4 = (1/n) sum (x - mean)^4 (for the variance z-test of the tests).
+//
+// Scale before squaring: samples as large as 1e300 (emission is legal up to pi 1e300) have squares beyond the
+// largest double, tiny ones squares below the smallest. moment_scale(largest) gives a power of two s near the
+// largest magnitude expected; an accumulator then takes x / s and the results are multiplied back:
+// mean = s mean(x / s), se = s se(x / s), var = s^2 var(x / s), which is infinite only when the variance itself
+// does not fit a double. Dividing and multiplying by a power of two is exact (away from subnormals), so the
+// results are those of the unscaled samples bit for bit wherever those did not overflow.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -109,6 +116,18 @@ struct ShiftedSums {
     return m;
   }
 };
+
+// 1 when `largest` is within [2^-200, 2^200] (squares of samples up to 2^200 times 2^63 samples fit a double:
+// nothing to gain, and the common case is left untouched), else the power of two 2^(e - 1) with largest = f 2^e,
+// f in [0.5, 1), so that largest / s is in [1, 2) (and s is finite up to the largest double); 1 for 0, a
+// negative or a non-finite `largest`.
+inline double moment_scale(double largest) {
+  if (!(largest > 0) || !std::isfinite(largest)) return 1;
+  if (largest >= std::ldexp(1.0, -200) && largest <= std::ldexp(1.0, 200)) return 1;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  return std::ldexp(1.0, exponent - 1);
+}
 
 struct SampleMoments {
   double mean = 0, var = 0, mu4 = 0;

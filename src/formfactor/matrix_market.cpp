@@ -17,6 +17,7 @@
 #include "core/input_file.h"
 #include "core/progress.h"
 #include "formfactor/form_factor_rows.h"
+#include "mesh/text_scan.h"
 
 namespace radwalk {
 namespace {
@@ -42,6 +43,19 @@ bool parse(const char*& p, const char* end, T& value) {
   auto [next, ec] = std::from_chars(p, end, value);
   if (ec != std::errc() || next == p) return false;
   if (next < end && *next != ' ' && *next != '\t' && *next != '\r') return false;
+  p = next;
+  return true;
+}
+
+// A value: the token up to the next blank under the scene readers' number rule (mesh/text_scan.h parse_number:
+// underflow rounds to 0; hex floats, nan and inf are read as such or refused there, never half-read).
+bool parse(const char*& p, const char* end, double& value) {
+  skip_space(p, end);
+  const char* next = p;
+  while (next < end && *next != ' ' && *next != '\t' && *next != '\r') ++next;
+  const ParsedNumber n = parse_number(std::string_view(p, static_cast<std::size_t>(next - p)));
+  if (n.status != NumberStatus::ok) return false;
+  value = n.value;
   p = next;
   return true;
 }

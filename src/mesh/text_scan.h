@@ -10,9 +10,9 @@
 // Name rule (rest_of_statement): a name (material, material library) is everything from its first token to the
 // end of the statement or a '#' comment, trailing spaces and tabs removed, so "newmtl red paint" and "usemtl red
 // paint" name the same material.
-// Numbers are parsed with std::from_chars, which rounds correctly (0.73 becomes the double nearest 0.73); NaN and
-// infinity parse as such so that callers can reject them with a precise message; a number whose magnitude
-// overflows a double is "out of range", not "not a number".
+// Numbers: decimal only (no hex floats such as 0x1p-1, no blanks), by std::from_chars, correctly rounded; nan and inf
+// parse so that callers refuse them precisely; underflow rounds to 0, overflow is "out of range". The one rule of
+// every numeric field of every text input and of every numeric option value (apps/radwalk.cpp rule_number).
 #include <cstdint>
 #include <optional>
 #include <string>

@@ -142,11 +142,20 @@ struct CameraSplat {
   }
 };
 
+// The scale of the scores' moments (core/moments.h moment_scale) from the largest emitted radiosity.
+double score_scale(const PatchSet& patches) {
+  double largest = 0;
+  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
+  return moment_scale(largest);
+}
+
 // Runs `particles` particles in fixed chunks; trace(k, rng, scores, counters) fills one particle's scores.
-// Per-bin sums of scores and of squared scores are combined in chunk order (bit-identical for any thread count).
+// Per-bin sums of scores / scale and of their squares are combined in chunk order (bit-identical for any thread
+// count); scale is a power of two (score_scale), so the division is exact.
 template <class Trace>
 void run_particles(std::size_t bins, const LightTraceOptions& options, std::size_t batch, const char* label,
-                   Tally& total, Trace&& trace) {
+                   double scale, Tally& total, Trace&& trace) {
+  const double inverse_scale = 1 / scale;
   const auto chunks = static_cast<std::size_t>((options.particles + kChunk - 1) / kChunk);
   std::vector<Tally> tallies(std::min(chunks, batch), Tally(bins));
   std::optional<Progress> progress;
@@ -168,8 +177,9 @@ void run_particles(std::size_t bins, const LightTraceOptions& options, std::size
             scores.entries.clear();
             trace(rng, scores, t.counters);
             for (const auto& [i, s] : scores.entries) {
-              t.sum[i] += s;
-              t.sum2[i] += s * s;
+              const Rgb y = s * inverse_scale;
+              t.sum[i] += y;
+              t.sum2[i] += y * y;
             }
           }
           if (progress) progress->advance(1);
@@ -205,13 +215,15 @@ Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geo
   const std::size_t n = patches.size();
 
   Tally total(n);
+  const double scale = score_scale(patches);
   if (!integrator.lights().empty())
-    run_particles(n, options, kBatch, "light tracing", total, [&](Rng& rng, Scores& scores, PathCounters& c) {
+    run_particles(n, options, kBatch, "light tracing", scale, total, [&](Rng& rng, Scores& scores, PathCounters& c) {
       PatchTally visit{patches, scores};
       trace_particle(patches, visibility, integrator, options, rng, visit, c);
     });
 
-  // Mean and unbiased per-particle variance of each patch's score.
+  // Mean and unbiased per-particle variance of each patch's score, scaled back (var infinite only when it does not
+  // fit a double).
   Solution sol;
   sol.method = "lighttrace";
   const auto rows = static_cast<Eigen::Index>(n);
@@ -222,9 +234,9 @@ Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geo
   for (std::size_t i = 0; i < n; ++i) {
     const auto [mean, var] = mean_and_variance(total.sum[i], total.sum2[i], m);
     const auto r = static_cast<Eigen::Index>(i);
-    sol.B.row(r) = (patches.E[i] + mean).transpose();
-    sol.var.row(r) = var.transpose();
-    sol.B_se.row(r) = (var / m).sqrt().transpose();
+    sol.B.row(r) = (patches.E[i] + mean * scale).transpose();
+    sol.var.row(r) = (var * scale * scale).transpose();
+    sol.B_se.row(r) = ((var / m).sqrt() * scale).transpose();
   }
   sol.status = SolveStatus::converged;
   sol.walks = options.particles;
@@ -255,8 +267,9 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   const PathIntegrator integrator(patches, facets, visibility, io);
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   Tally total(pixels);
+  const double scale = score_scale(patches);
   if (!integrator.lights().empty())
-    run_particles(pixels, options, kImageBatch, "light tracing image", total,
+    run_particles(pixels, options, kImageBatch, "light tracing image", scale, total,
                   [&](Rng& rng, Scores& scores, PathCounters& c) {
                     CameraSplat visit{integrator.geometry(), visibility, pinhole, scores, c};
                     trace_particle(patches, visibility, integrator, options, rng, visit, c);
@@ -267,8 +280,8 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   const double m = static_cast<double>(options.particles);
   for (std::size_t k = 0; k < pixels; ++k) {
     const auto [mean, var] = mean_and_variance(total.sum[k], total.sum2[k], m);
-    result.mean.pixels[k] = mean;
-    result.se.pixels[k] = (var / m).sqrt();
+    result.mean.pixels[k] = mean * scale;
+    result.se.pixels[k] = (var / m).sqrt() * scale;
   }
   result.spp = options.particles;
   result.rays = total.counters.rays;

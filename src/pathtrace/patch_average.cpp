@@ -27,6 +27,16 @@ constexpr long kBlock = 256;
 // samples per patch. How items are grouped into tasks changes no value: each sample draws from its own stream.
 constexpr long kTaskSamples = 1024, kMaxTaskSamples = 65536;
 constexpr std::size_t kLanes = 32;
+// Items in flight at once (their sums, 48 bytes each): the memory of the estimate is O(kWaveItems + patches),
+// whatever the sample count.
+constexpr std::size_t kWaveItems = std::size_t(1) << 15;
+
+// The scale of the samples' moments (core/moments.h moment_scale) from the largest emitted radiosity.
+double score_scale(const PatchSet& patches) {
+  double largest = 0;
+  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
+  return moment_scale(largest);
+}
 
 struct Partial {
   Rgb sum = Rgb::Zero();    // sum of rho E_irr_hat
@@ -44,7 +54,8 @@ struct Item {
 // (PathIntegrator::trace_batch); out[k] = the sums of item k, its samples' Y = rho_i E_irr_hat(x) added in sample
 // order once all have finished.
 void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const PathIntegrator& integrator,
-                 const std::vector<Item>& items, std::uint64_t seed, Partial* out, PathCounters& counters) {
+                 const std::vector<Item>& items, std::uint64_t seed, double inverse_scale, Partial* out,
+                 PathCounters& counters) {
   using Path = PathIntegrator::Path;
   if (items.empty()) return;
   const std::size_t count = items.back().first + static_cast<std::size_t>(items.back().s1 - items.back().s0);
@@ -107,8 +118,9 @@ void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const
     const std::size_t b = items[k].first, e = b + static_cast<std::size_t>(items[k].s1 - items[k].s0);
     Partial& p = out[k];
     for (std::size_t w = b; w < e; ++w) {
-      p.sum += Y[w];
-      p.sum2 += Y[w] * Y[w];
+      const Rgb y = Y[w] * inverse_scale;  // exact: a power of two
+      p.sum += y;
+      p.sum2 += y * y;
     }
   }
 }
@@ -132,64 +144,85 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
       std::clamp<long>((static_cast<long>(n) * options.spp + 511) / 512, kTaskSamples, kMaxTaskSamples);
   const auto per_task = static_cast<std::size_t>(std::max<long>(1, task_samples / block_samples));
   const std::size_t tasks = (item_count + per_task - 1) / per_task;
-  std::vector<Partial> parts(item_count);
-  std::vector<PathCounters> task_counters(tasks);
-  // Over MPI each rank traces a block of the tasks (their own streams), then all share the items' sums (a rank's
-  // items are those of its tasks: consecutive) and the tasks' counters.
-  const std::vector<distributed::Range> ranges = distributed::all_blocks(tasks);
-  std::vector<distributed::Range> item_ranges;
-  for (const distributed::Range& r : ranges)
-    item_ranges.push_back({std::min(item_count, r.begin * per_task), std::min(item_count, r.end * per_task)});
-  const distributed::Range mine = ranges[static_cast<std::size_t>(distributed::rank())];
-  const distributed::Range my_items = item_ranges[static_cast<std::size_t>(distributed::rank())];
+  // The tasks run in waves of at most kWaveItems items; a wave's sums are added to its patches' totals in item
+  // order, so every patch adds its items in the same order as one pass over all items would.
+  const std::size_t wave_tasks = std::max<std::size_t>(1, kWaveItems / per_task);
+  const double inverse_scale = 1 / score_scale(patches);
+  std::vector<Rgb> sum(n, Rgb::Zero()), sum2(n, Rgb::Zero());
+  std::vector<Partial> parts;
+  PathCounters total;
+  // Over MPI each rank traces a block of each wave's tasks (their own streams), then all share the wave's items'
+  // sums (a rank's items are those of its tasks: consecutive) and the tasks' counters.
+  const auto wave_blocks = [&](std::size_t t0, std::size_t t1) {
+    std::vector<distributed::Range> ranges = distributed::all_blocks(t1 - t0), items;
+    const std::size_t i0 = t0 * per_task, i1 = std::min(item_count, t1 * per_task);
+    for (const distributed::Range& r : ranges)
+      items.push_back({std::min(i1 - i0, r.begin * per_task), std::min(i1 - i0, r.end * per_task)});
+    return std::pair{ranges, items};
+  };
   std::optional<Progress> progress;
-  if (options.progress) progress.emplace("path tracing patches", my_items.size());
-
-  parallel_for(
-      mine.size(),
-      [&](std::size_t local) {
-        const std::size_t task = mine.begin + local;
-        const std::size_t first = task * per_task, last = std::min(item_count, first + per_task);
-        std::vector<Item> items;
-        items.reserve(last - first);
-        std::size_t samples_before = 0;
-        for (std::size_t k = first; k < last; ++k) {
-          Item item;
-          item.patch = k / blocks;
-          item.s0 = static_cast<long>(k % blocks) * kBlock;
-          item.s1 = std::min(options.spp, item.s0 + kBlock);
-          item.first = samples_before;
-          samples_before += static_cast<std::size_t>(item.s1 - item.s0);
-          items.push_back(item);
-        }
-        trace_items(patches, geometry, integrator, items, options.seed, parts.data() + first, task_counters[task]);
-        if (progress) progress->advance(last - first);
-      },
-      1);
+  if (options.progress) {
+    std::size_t my_items = 0;
+    for (std::size_t t0 = 0; t0 < tasks; t0 += wave_tasks)
+      my_items += wave_blocks(t0, std::min(tasks, t0 + wave_tasks)).second[static_cast<std::size_t>(distributed::rank())].size();
+    progress.emplace("path tracing patches", my_items);
+  }
+  for (std::size_t t0 = 0; t0 < tasks; t0 += wave_tasks) {
+    const std::size_t t1 = std::min(tasks, t0 + wave_tasks);
+    const std::size_t i0 = t0 * per_task, i1 = std::min(item_count, t1 * per_task);
+    const auto blocks_of_wave = wave_blocks(t0, t1);
+    const std::vector<distributed::Range>& ranges = blocks_of_wave.first;
+    const std::vector<distributed::Range>& item_ranges = blocks_of_wave.second;
+    const distributed::Range mine = ranges[static_cast<std::size_t>(distributed::rank())];
+    parts.assign(i1 - i0, Partial{});
+    std::vector<PathCounters> task_counters(t1 - t0);
+    parallel_for(
+        mine.size(),
+        [&](std::size_t local) {
+          const std::size_t task = t0 + mine.begin + local;
+          const std::size_t first = task * per_task, last = std::min(item_count, first + per_task);
+          std::vector<Item> items;
+          items.reserve(last - first);
+          std::size_t samples_before = 0;
+          for (std::size_t k = first; k < last; ++k) {
+            Item item;
+            item.patch = k / blocks;
+            item.s0 = static_cast<long>(k % blocks) * kBlock;
+            item.s1 = std::min(options.spp, item.s0 + kBlock);
+            item.first = samples_before;
+            samples_before += static_cast<std::size_t>(item.s1 - item.s0);
+            items.push_back(item);
+          }
+          trace_items(patches, geometry, integrator, items, options.seed, inverse_scale, parts.data() + (first - i0),
+                      task_counters[task - t0]);
+          if (progress) progress->advance(last - first);
+        },
+        1);
+    distributed::share_blocks(parts, item_ranges);
+    distributed::share_blocks(task_counters, ranges);
+    for (std::size_t k = i0; k < i1; ++k) {
+      sum[k / blocks] += parts[k - i0].sum;
+      sum2[k / blocks] += parts[k - i0].sum2;
+    }
+    for (const PathCounters& c : task_counters) total.add(c);
+  }
   if (progress) progress->finish();
-  distributed::share_blocks(parts, item_ranges);
-  distributed::share_blocks(task_counters, ranges);
 
-  // Combine blocks in order; unbiased per-sample variance.
+  // Unbiased per-sample variance of the scaled samples, scaled back: var = s^2 var(Y / s) is infinite only when
+  // the variance itself does not fit a double; B and B_se = s se(Y / s) are finite whenever the samples are.
   Solution sol;
   sol.method = std::string("pathtrace-") + to_string(options.integrator.kind);
   sol.B.resize(static_cast<Eigen::Index>(n), 3);
   sol.B_se.resize(static_cast<Eigen::Index>(n), 3);
   sol.var.resize(static_cast<Eigen::Index>(n), 3);
-  PathCounters total;
-  for (const PathCounters& c : task_counters) total.add(c);
+  const double scale = 1 / inverse_scale;
   const double m = static_cast<double>(options.spp);
   for (std::size_t i = 0; i < n; ++i) {
-    Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
-    for (std::size_t b = 0; b < blocks; ++b) {
-      sum += parts[i * blocks + b].sum;
-      sum2 += parts[i * blocks + b].sum2;
-    }
-    const auto [mean, var] = mean_and_variance(sum, sum2, m);
+    const auto [mean, var] = mean_and_variance(sum[i], sum2[i], m);
     const auto r = static_cast<Eigen::Index>(i);
-    sol.B.row(r) = (patches.E[i] + mean).transpose();
-    sol.var.row(r) = var.transpose();
-    sol.B_se.row(r) = (var / m).sqrt().transpose();
+    sol.B.row(r) = (patches.E[i] + mean * scale).transpose();
+    sol.var.row(r) = (var * scale * scale).transpose();
+    sol.B_se.row(r) = ((var / m).sqrt() * scale).transpose();
   }
   sol.status = SolveStatus::converged;
   sol.walks = static_cast<long>(n) * options.spp;

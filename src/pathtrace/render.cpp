@@ -1,5 +1,6 @@
 #include "pathtrace/render.h"
 
+#include <algorithm>
 #include <optional>
 #include <string>
 
@@ -33,6 +34,11 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
   std::optional<Progress> progress;
   if (options.progress) progress.emplace("rendering", mine.size());
   const double m = static_cast<double>(options.spp);
+  // Radiances are summed and squared as L / scale (core/moments.h moment_scale: a power of two, exact), so that
+  // an emission up to pi 1e300 gives a finite mean and standard error.
+  double largest = 0;
+  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
+  const double scale = moment_scale(largest), inverse_scale = 1 / scale;
   parallel_for(
       mine.size(),
       [&](std::size_t local) {
@@ -45,13 +51,13 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
           for (long s = 0; s < options.spp; ++s) {
             Rng rng = stream(options.seed, StreamDomain::render_pixel, pixel, static_cast<std::uint64_t>(s));
             const double u = rng.uniform(), v = rng.uniform();
-            const Rgb L = integrator.radiance(pinhole.generate_ray(px + u, py + v), rng, counters);
+            const Rgb L = integrator.radiance(pinhole.generate_ray(px + u, py + v), rng, counters) * inverse_scale;
             sum += L;
             sum2 += L * L;
           }
           const auto [mean, var] = mean_and_variance(sum, sum2, m);
-          result.mean.at(px, py) = mean;
-          result.se.at(px, py) = (var / m).sqrt();
+          result.mean.at(px, py) = mean * scale;
+          result.se.at(px, py) = (var / m).sqrt() * scale;
         }
         if (progress) progress->advance(1);
       },

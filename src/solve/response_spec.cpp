@@ -1,11 +1,14 @@
 #include "solve/response_spec.h"
 
-#include <charconv>
+#include <cmath>
+#include <optional>
 #include <sstream>
+#include <unordered_map>
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "mesh/text_scan.h"
 
 namespace radwalk {
 namespace {
@@ -20,16 +23,11 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return parts;
 }
 
+// A patch number: the scene readers' integer rule (mesh/text_scan.h parse_long).
 bool whole_number(const std::string& s, long& value) {
-  const char* end = s.data() + s.size();
-  const auto r = std::from_chars(s.data(), end, value);
-  return r.ec == std::errc() && r.ptr == end && !s.empty();
-}
-
-bool real_number(const std::string& s, double& value) {
-  const char* end = s.data() + s.size();
-  const auto r = std::from_chars(s.data(), end, value);
-  return r.ec == std::errc() && r.ptr == end && !s.empty();
+  const std::optional<long> v = parse_long(s);
+  if (v) value = *v;
+  return v.has_value();
 }
 
 // A line without its trailing '\r' (a CRLF file).
@@ -77,16 +75,21 @@ Eigen::VectorXd response_from_csv(const std::string& text, const std::string& fi
   std::string line;
   std::getline(in, line);
   const std::vector<std::string> header = split(chomp(line), ',');
-  long patch_col = -1, weight_col = -1;
-  for (std::size_t k = 0; k < header.size(); ++k) {
-    if (header[k] == "patch") patch_col = long(k);
-    if (header[k] == column) weight_col = long(k);
-  }
-  if (patch_col < 0) throw InputError(file + ":1: --response " + spec + ": the CSV has no 'patch' column");
-  if (weight_col < 0)
-    throw InputError(file + ":1: --response " + spec + ": no column '" + printable(column) + "'" +
-                     did_you_mean(column, header));
+  const std::string at_header = file + ":1: --response " + spec + ": ";
+  // Step 1: the header: every name once, a `patch` column and the weight column.
+  std::unordered_map<std::string, std::size_t> column_of;
+  for (std::size_t k = 0; k < header.size(); ++k)
+    if (!column_of.emplace(header[k], k).second)
+      throw InputError(at_header + "column '" + printable(header[k]) + "' is named twice (columns " +
+                       std::to_string(column_of[header[k]] + 1) + " and " + std::to_string(k + 1) + ")");
+  const auto patch_at = column_of.find("patch"), weight_at = column_of.find(column);
+  if (patch_at == column_of.end()) throw InputError(at_header + "the CSV has no 'patch' column");
+  if (weight_at == column_of.end())
+    throw InputError(at_header + "no column '" + printable(column) + "'" + did_you_mean(column, header));
+  const std::size_t patch_col = patch_at->second, weight_col = weight_at->second;
+  // Step 2: the rows: as many cells as the header, a patch listed once, a finite weight.
   Eigen::VectorXd R = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patch_count));
+  std::vector<long> listed_on(patch_count, 0);  // the line that listed each patch, 0 if none
   long line_number = 1;
   while (std::getline(in, line)) {
     ++line_number;
@@ -94,14 +97,23 @@ Eigen::VectorXd response_from_csv(const std::string& text, const std::string& fi
     if (line.empty()) continue;
     const std::vector<std::string> cells = split(line, ',');
     const std::string where = file + ":" + std::to_string(line_number) + ": --response " + spec + ": ";
+    if (cells.size() != header.size())
+      throw InputError(where + "the row has " + std::to_string(cells.size()) + " cells, the header " +
+                       std::to_string(header.size()));
     long patch = 0;
-    if (std::size_t(std::max(patch_col, weight_col)) >= cells.size() ||
-        !whole_number(cells[std::size_t(patch_col)], patch) || patch < 0 || std::size_t(patch) >= patch_count)
+    if (!whole_number(cells[patch_col], patch) || patch < 0 || std::size_t(patch) >= patch_count)
       throw InputError(where + "expected a patch number in [0, " + std::to_string(patch_count) + ") and a weight");
-    const std::string& cell = cells[std::size_t(weight_col)];
-    double w = 0;
-    if (!real_number(cell, w)) throw InputError(where + "weight '" + printable(cell) + "' is not a number");
-    R(patch) = w;
+    if (const long first = listed_on[std::size_t(patch)])
+      throw InputError(where + "patch " + std::to_string(patch) + " is listed twice (first on line " +
+                       std::to_string(first) + ")");
+    listed_on[std::size_t(patch)] = line_number;
+    const std::string& cell = cells[weight_col];
+    const ParsedNumber w = parse_number(cell);
+    if (w.status == NumberStatus::out_of_range)
+      throw InputError(where + "weight '" + printable(cell) + "' is out of range");
+    if (w.status != NumberStatus::ok || !std::isfinite(w.value))
+      throw InputError(where + "weight '" + printable(cell) + "' is not a number");
+    R(patch) = w.value;
   }
   return R;
 }

@@ -1,9 +1,11 @@
 #include "walk/measure_by_method.h"
 
 #include <algorithm>
+#include <optional>
 
 #include "core/did_you_mean.h"
 #include "core/error.h"
+#include "core/moments.h"
 #include "core/timer.h"
 #include "solve/direct_solver.h"
 
@@ -27,6 +29,22 @@ PatchRgb adjoint_Y(const RadiosityProblem& problem, const Response& response) {
   const Solution Y = solve_adjoint_direct(problem, response);
   if (Y.status != SolveStatus::converged) throw NumericalError(Y.message);
   return Y.B;
+}
+
+// Every method's one rule for a result that does not fit a double: a measurement whose M, standard error or
+// per-walk sample variance is not finite is refused (NumericalError, naming the quantity, the method and the
+// response), never printed as inf or NaN. The exact per-walk variance is not checked: it is legitimately infinite
+// when the second-moment system diverges, and is reported as such.
+void refuse_overflow(const MeasureEstimate& est, const std::string& method, const Response& response) {
+  const auto check = [&](const Rgb& v, const std::string& what) {
+    if (v.allFinite()) return;
+    throw NumericalError("--method " + method + ": " + what + " over " + response.what +
+                         " overflows a double (largest response weight " + number_text(response.R.maxCoeff()) +
+                         "): scale the response weights or the emission down");
+  };
+  check(est.M, "the measurement M = <R, B>_A");
+  check(est.se, "the standard error of M");
+  check(est.var, "the per-walk variance of M");
 }
 
 }  // namespace
@@ -69,8 +87,10 @@ bool measure_needs_form_factors(const MeasureOptions& o) {
   return is_deterministic_measure(o.method) || is_importance_measure(o.method) || o.walk.kernel != WalkKernel::ray;
 }
 
-Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
-                              const Response& response, const MeasureOptions& o) {
+namespace {
+
+Measurement measure_unscaled(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                             const Response& response, const MeasureOptions& o) {
   Measurement m;
   MeasureEstimate& est = m.estimate;
   m.deterministic = is_deterministic_measure(o.method);
@@ -99,6 +119,38 @@ Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* p
   }
   if (m.deterministic) est.seconds = timer.seconds();
   est.method = o.method;
+  return m;
+}
+
+}  // namespace
+
+// Scale before squaring (core/moments.h), as solve_random_walk does: M is linear in E and in R, so with an
+// emission or response weights far from 1 every method measures the problem with E / s and the response R / r
+// (s = moment_scale(max E), r = moment_scale(max R): powers of two, exact), and M and its standard error are
+// multiplied back by s r, the variances by (s r)^2; then refuse_overflow.
+Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                              const Response& response, const MeasureOptions& o) {
+  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  const double r = moment_scale(response.R.size() > 0 ? response.R.maxCoeff() : 0.0);
+  Measurement m;
+  if (s == 1 && r == 1) {
+    m = measure_unscaled(problem, patches, visibility, response, o);
+  } else {
+    std::optional<RadiosityProblem> scaled;
+    if (s != 1) {
+      scaled.emplace(problem);
+      scaled->E /= s;
+    }
+    Response weights = response;
+    weights.R /= r;
+    m = measure_unscaled(scaled ? *scaled : problem, patches, visibility, weights, o);
+    // M s r, not M (s r): s r may overflow where the product does not.
+    m.estimate.M = m.estimate.M * s * r;
+    m.estimate.se = m.estimate.se * s * r;
+    m.estimate.var = m.estimate.var * s * s * r * r;
+    m.estimate.var_theory = m.estimate.var_theory * s * s * r * r;
+  }
+  refuse_overflow(m.estimate, o.method, response);
   return m;
 }
 

@@ -53,7 +53,8 @@ struct Measurement {
 
 // M by options.method; the caller has checked the options (check_measure_options: the one check, before any form
 // factor is traced). The ray kernel needs patches and visibility; every other method problem.F. Throws
-// NumericalError if an LU solve fails.
+// NumericalError if an LU solve fails, or if M, its standard error or its per-walk sample variance does not fit a
+// double (every method alike: never an infinite or NaN result).
 Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                               const Response& response, const MeasureOptions& options);
 

@@ -514,8 +514,8 @@ PatchRgb shifted_theoretical_variance(const RadiosityProblem& problem, const Pat
   return theoretical_variance(shifted, options, dense_radiosity(shifted));
 }
 
-Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
-               const WalkOptions& options, Progress* progress) {
+Solution solve_unscaled(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                        const WalkOptions& options, Progress* progress) {
   const std::size_t N = problem.size();
   check_walk_options(options, N);
   const bool gather = is_gathering(options.method);
@@ -645,6 +645,28 @@ Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const V
   }
   sol.message = msg.str();
   sol.status = SolveStatus::converged;
+  return sol;
+}
+
+// Scale before squaring (core/moments.h): with an emission far from 1 (beyond 2^200 or below 2^-200) the walks run
+// on a copy of the problem with E / s, s = moment_scale(max E) a power of two, and B, B_se, the control variate and
+// the emitted power are multiplied back by s, var and var_theory by s^2. Every estimator is linear in E and draws
+// its random numbers from ratios of E, so the result is s times that of E / s bit for bit, and it is infinite only
+// where the quantity itself does not fit a double (a per-walk variance above 1.8e308). Otherwise (the common case)
+// the problem is used as it is.
+Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+               const WalkOptions& options, Progress* progress) {
+  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  if (s == 1) return solve_unscaled(problem, patches, visibility, options, progress);
+  RadiosityProblem scaled = problem;
+  scaled.E /= s;
+  Solution sol = solve_unscaled(scaled, patches, visibility, options, progress);
+  sol.B *= s;
+  sol.B_se *= s;
+  sol.var *= s * s;
+  sol.var_theory *= s * s;
+  for (auto& [key, value] : sol.info)
+    if (key == "emitted_power" || key.rfind("control_variate_", 0) == 0) value *= s;
   return sol;
 }
 

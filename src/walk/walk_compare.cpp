@@ -52,9 +52,10 @@ void check_compare_options(const CompareOptions& options, std::size_t patch_coun
   for (WalkMethod method : options.methods) check_walk_options(method_options(options, method, patch_count), patch_count);
 }
 
-CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
-                                   const Visibility* visibility, const CompareOptions& options,
-                                   const PatchRgb& B_reference) {
+namespace {
+
+CompareResult compare_unscaled(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
+                               const CompareOptions& options, const PatchRgb& B_reference) {
   const std::size_t N = problem.size();
   check_compare_options(options, N);
   const auto n_rows = static_cast<Eigen::Index>(N);
@@ -162,6 +163,36 @@ CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchS
     sum.efficiency = sum.mean_var > 0 ? static_cast<double>(walks) / (sum.mean_var * seconds)
                                       : std::numeric_limits<double>::infinity();
     result.summary.push_back(sum);
+  }
+  return result;
+}
+
+}  // namespace
+
+// Scale before squaring (core/moments.h), as solve_random_walk does: with an emission far from 1 the runs compare
+// the problem with E / s (s = moment_scale(max E), a power of two: exact) against B_reference / s, and the
+// results are multiplied back: means by s, variances and their standard errors by s^2, efficiencies (1 / (var x
+// seconds)) divided by s^2; z and the ratios do not change. The run-to-run spread of the variances squares a
+// variance, which now fits a double whenever the variance does.
+CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
+                                   const Visibility* visibility, const CompareOptions& options,
+                                   const PatchRgb& B_reference) {
+  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  if (s == 1) return compare_unscaled(problem, patches, visibility, options, B_reference);
+  RadiosityProblem scaled = problem;
+  scaled.E /= s;
+  CompareResult result = compare_unscaled(scaled, patches, visibility, options, PatchRgb(B_reference / s));
+  const double s2 = s * s;
+  for (CompareRow& row : result.rows) {
+    row.mean *= s;
+    row.var *= s2;
+    row.var_se *= s2;
+    row.var_theory *= s2;
+    row.efficiency /= s2;
+  }
+  for (CompareSummary& summary : result.summary) {
+    summary.mean_var *= s2;
+    summary.efficiency /= s2;
   }
   return result;
 }

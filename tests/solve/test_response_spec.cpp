@@ -55,10 +55,31 @@ TEST_CASE("response_from_csv: every malformed row is a one-line refusal naming f
   CHECK(refused("patch,w\n0,1\n3,1\n", "w") == "w.csv:3: --response csv:w.csv:w: " + bad_patch);   // out of range
   CHECK(refused("patch,w\n-1,1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);       // negative
   CHECK(refused("patch,w\n1.5,1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);      // not whole
-  CHECK(refused("patch,w\n1\n", "w") == "w.csv:2: --response csv:w.csv:w: " + bad_patch);          // short row
+  CHECK(refused("patch,w\n1\n", "w") == "w.csv:2: --response csv:w.csv:w: the row has 1 cells, the header 2");
   CHECK(refused("patch,w\n1,abc\n", "w") == "w.csv:2: --response csv:w.csv:w: weight 'abc' is not a number");
   CHECK(refused("patch,w\n1,\n", "w") == "w.csv:2: --response csv:w.csv:w: weight '' is not a number");  // NaN cell
   CHECK(refused("patch,w\n1,2x\n", "w") == "w.csv:2: --response csv:w.csv:w: weight '2x' is not a number");
+}
+
+TEST_CASE("response_from_csv: a patch listed twice, a column named twice and ragged rows are refused",
+          "[solve][response]") {
+  const auto refused = [](const std::string& text, const std::string& column) {
+    return refusal([&] { response_from_csv(text, "w.csv", column, "csv:w.csv:" + column, 3); });
+  };
+  const std::string at = "--response csv:w.csv:w: ";
+  CHECK(refused("patch,w\n0,1\n2,3\n0,2\n", "w") == "w.csv:4: " + at + "patch 0 is listed twice (first on line 2)");
+  CHECK(refused("patch,w,w\n0,1,2\n", "w") == "w.csv:1: " + at + "column 'w' is named twice (columns 2 and 3)");
+  CHECK(refused("patch,x,patch\n0,1,2\n", "x") ==
+        "w.csv:1: --response csv:w.csv:x: column 'patch' is named twice (columns 1 and 3)");
+  CHECK(refused("patch,w\n0,1,5\n", "w") == "w.csv:2: " + at + "the row has 3 cells, the header 2");      // longer
+  CHECK(refused("patch,w,x\n0,1,5\n1,2\n", "w") == "w.csv:3: " + at + "the row has 2 cells, the header 3");  // shorter
+  CHECK(refused("patch,w\n0,1,\n", "w") == "w.csv:2: " + at + "the row has 3 cells, the header 2");  // trailing comma
+  // The scene readers' number rule: hex floats are not numbers, overflow is out of range, underflow is 0.
+  CHECK(refused("patch,w\n0,0x1p-1\n", "w") == "w.csv:2: " + at + "weight '0x1p-1' is not a number");
+  CHECK(refused("patch,w\n0,1e400\n", "w") == "w.csv:2: " + at + "weight '1e400' is out of range");
+  CHECK(refused("patch,w\n0,nan\n", "w") == "w.csv:2: " + at + "weight 'nan' is not a number");
+  CHECK(response_from_csv("patch,w\n0,1e-400\n1,+0.5\n", "w.csv", "w", "csv:w.csv:w", 3) ==
+        (Eigen::VectorXd(3) << 0, 0.5, 0).finished());
 }
 
 TEST_CASE("parse_response: patches, materials and groups", "[solve][response]") {
