@@ -178,7 +178,8 @@ MatrixSize read_header(LineReader& reader, std::size_t expected_n, std::uint64_t
       throw reader.error("not a Matrix Market file: the first line must start with %%MatrixMarket");
     if (words.size() != 5 || words[1] != "matrix" || words[2] != "coordinate" || words[3] != "real" ||
         words[4] != "general")
-      throw reader.error("unsupported Matrix Market type '" + excerpt(line) + "', need 'matrix coordinate real general'");
+      throw reader.error("unsupported Matrix Market type '" + excerpt(line) +
+                         "', need 'matrix coordinate real general'");
   }
 
   // Step 2: size line "rows cols entries", square and of the expected size.
@@ -227,7 +228,8 @@ void scan_entries(LineReader& reader, const MatrixSize& size, Progress* progress
       throw reader.error("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range 1.." +
                          std::to_string(rows));
     if (!std::isfinite(v) || v < 0.0 || v > 1.0)
-      throw reader.error("value '" + excerpt(std::string_view(line).substr(line.find_first_not_of(" \t"))) + "' is not in [0, 1]");
+      throw reader.error("value '" + excerpt(std::string_view(line).substr(line.find_first_not_of(" \t"))) +
+                         "' is not in [0, 1]");
     visit(k, std::int32_t(i - 1), std::int32_t(j - 1), static_cast<float>(v));
     if (progress && (k + 1) % kProgressEntries == 0) progress->advance(kProgressEntries);
   }

@@ -284,7 +284,8 @@ class NpyDict {
       if (++digits > 18) throw malformed("shape entry too large");
       v = v * 10 + std::uint64_t(s_[p_++] - '0');
     }
-    if (digits == 0 || (digits > 1 && s_[start] == '0') || (p_ < s_.size() && (identifier_char(s_[p_]) || s_[p_] == '.')))
+    const bool glued = p_ < s_.size() && (identifier_char(s_[p_]) || s_[p_] == '.');  // 5L, 5.0, 5e3
+    if (digits == 0 || (digits > 1 && s_[start] == '0') || glued)
       throw malformed("shape");
     return v;
   }
@@ -385,7 +386,8 @@ class Reader {
       // Extra fields; ZIP64's holds the 64-bit values of the fields that read 0xffffffff, in this order.
       for (std::size_t x = name_len; rest.size() - x >= 4;) {
         const std::uint64_t id = le(rest.data() + x, 2), len = le(rest.data() + x + 2, 2);
-        if (len > rest.size() - x - 4) throw error("corrupt .npz file (extra field of " + excerpt(name) + " past its end)");
+        if (len > rest.size() - x - 4)
+          throw error("corrupt .npz file (extra field of " + excerpt(name) + " past its end)");
         std::size_t y = x + 4;
         const std::size_t stop = y + len;
         for (std::uint64_t* field : {&size, &packed, &local}) {
@@ -456,7 +458,8 @@ class Reader {
   // directory holds (so a value changed inside the file is refused even when it is a valid value).
   template <class Visit>
   void stream(const Array& a, std::uint64_t item, Visit&& visit) const {
-    std::vector<char> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(a.data_bytes, kChunkBytes / item * item)));
+    const std::uint64_t piece = kChunkBytes / item * item;
+    std::vector<char> buffer(static_cast<std::size_t>(std::min(a.data_bytes, piece)));
     std::uint32_t crc = a.header_crc;
     for (std::uint64_t done = 0; done < a.data_bytes;) {
       const auto n = static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), a.data_bytes - done));
@@ -466,7 +469,8 @@ class Reader {
       done += n;
     }
     if (crc != a.crc)
-      throw error("member " + a.name + ": CRC-32 mismatch (the file is corrupt, or was changed after it was written)");
+      throw error("member " + a.name +
+                  ": CRC-32 mismatch (the file is corrupt, or was changed after it was written)");
   }
 
  private:
@@ -575,7 +579,8 @@ SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row
   const bool unicode_csr = format.descr == "<U3" && format.shape.empty() && format.data_bytes == 12;
   if (!bytes_csr && !unicode_csr) throw fail("member format.npy is not 'csr' (save F.tocsr())");
   reader.stream(format, format.data_bytes, [&](std::uint64_t, const char* p, std::uint64_t) {
-    const std::string_view csr = bytes_csr ? std::string_view("csr", 3) : std::string_view("c\0\0\0s\0\0\0r\0\0\0", 12);
+    const std::string_view csr =
+        bytes_csr ? std::string_view("csr", 3) : std::string_view("c\0\0\0s\0\0\0r\0\0\0", 12);  // UTF-32LE
     if (std::string_view(p, csr.size()) != csr) throw fail("member format.npy is not 'csr' (save F.tocsr())");
   });
   check(shape, {"<i8", "<i4"});

@@ -70,7 +70,7 @@ std::int64_t declared_n(std::string_view b) {
   const std::size_t header = le(b, magic + 8, 2), data = magic + 10 + header;
   if (data + 8 > b.size()) return 3;
   const bool int32 = b.substr(magic, 10 + header).find("<i4") != std::string_view::npos;
-  const auto n = static_cast<std::int64_t>(int32 ? std::int64_t(std::int32_t(le(b, data, 4))) : std::int64_t(le(b, data, 8)));
+  const std::int64_t n = int32 ? std::int64_t(std::int32_t(le(b, data, 4))) : std::int64_t(le(b, data, 8));
   return std::clamp<std::int64_t>(n, 0, kMaxPatches);
 }
 
