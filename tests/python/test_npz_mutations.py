@@ -175,3 +175,5 @@ def test_what_radwalk_accepts_scipy_reads_as_the_same_matrix(tmp_path):
     print("accepted", accepted, "refused by both", refused_both, "kinds accepted", sorted(kinds_accepted))
     assert accepted > 3 and refused_both > 100, (accepted, refused_both)
     assert kinds_accepted - {"unchanged"}, kinds_accepted
+    for name in ("radwalk.npz", "scipy64.npz", "scipy32.npz"):
+        (tmp_path / name).unlink()
