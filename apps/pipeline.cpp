@@ -398,7 +398,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
   // Over MPI with RowsHeld::own_rows each rank keeps only its block of rows (formfactor/form_factor_rows.h).
   const bool own_rows = held == RowsHeld::own_rows;
   if (!options.form_factors.empty()) {
-    // .npz (mapped) or .mtx; a refusal that one rank finds in its own rows is every rank's.
+    // .npz (read in pieces) or .mtx; a refusal that one rank finds in its own rows is every rank's.
     distributed::agree_on_input_error([&] {
       ff.F = read_form_factors(options.form_factors, patches.size(), own_rows ? &ff.row_blocks : nullptr);
     });

@@ -29,6 +29,7 @@ struct FileDescriptor {
 };
 
 InputObserver g_observer;
+InputPieceObserver g_piece_observer;
 
 std::string size_text(std::uint64_t bytes) {
   return bytes >= (std::uint64_t{1} << 30) ? std::to_string(bytes >> 30) + " GiB" : std::to_string(bytes) + " bytes";
@@ -94,6 +95,54 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
 }
 
 void set_input_observer(InputObserver observer) { g_observer = std::move(observer); }
+
+namespace {
+
+std::int64_t mtime_ns(const struct stat& st) {
+  return std::int64_t(st.st_mtim.tv_sec) * 1000000000 + std::int64_t(st.st_mtim.tv_nsec);
+}
+
+}  // namespace
+
+InputFileReader::InputFileReader(const std::string& path) : path_(path) {
+  FileDescriptor file = open_regular(path, size_);
+  if (size_ > kMaxInputBytes)
+    throw InputError(locate(path, 0, -1, "is " + size_text(size_) + ", more than the " + size_text(kMaxInputBytes) +
+                                             " radwalk reads"));
+  struct stat st {};
+  if (::fstat(file.fd, &st) != 0) throw InputError(locate(path, 0, -1, "cannot read the file's status"));
+  mtime_ns_ = mtime_ns(st);
+  fd_ = file.fd;
+  file.fd = -1;
+}
+
+InputFileReader::~InputFileReader() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+void InputFileReader::read_at(std::uint64_t offset, void* out, std::size_t n) const {
+  auto* p = static_cast<char*>(out);
+  std::size_t have = 0;
+  while (have < n) {
+    const ssize_t got = ::pread(fd_, p + have, n - have, static_cast<off_t>(offset + have));
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throw InputError(locate(path_, 0, -1, std::string("read error (") + std::strerror(errno) + ")"));
+    }
+    if (got == 0) throw InputError(locate(path_, 0, -1, "changed while it was read (it is shorter now)"));
+    have += static_cast<std::size_t>(got);
+  }
+  if (g_piece_observer) g_piece_observer(path_, offset, n);
+}
+
+void InputFileReader::check_unchanged() const {
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0) throw InputError(locate(path_, 0, -1, "cannot read the file's status"));
+  if (static_cast<std::uint64_t>(st.st_size) != size_ || mtime_ns(st) != mtime_ns_)
+    throw InputError(locate(path_, 0, -1, "changed while it was read (its size or modification time differ)"));
+}
+
+void set_input_piece_observer(InputPieceObserver observer) { g_piece_observer = std::move(observer); }
 
 
 }  // namespace radwalk

@@ -1,6 +1,6 @@
 #pragma once
 // A form-factor file, its format chosen by the extension: ".npz" is binary CSR (npz.h: scipy.sparse.load_npz
-// reads it, radwalk maps it), anything else Matrix Market text (matrix_market.h, for interchange).
+// reads it, radwalk reads it into F in pieces), anything else Matrix Market text (matrix_market.h, for interchange).
 #include <cstddef>
 #include <string>
 

@@ -14,6 +14,7 @@
 #include "core/atomic_write.h"
 #include "core/check.h"
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "core/input_file.h"
 #include "core/progress.h"
 #include "formfactor/form_factor_rows.h"
@@ -47,16 +48,17 @@ bool parse(const char*& p, const char* end, T& value) {
   return true;
 }
 
-// A value: the token up to the next blank under the scene readers' number rule (mesh/text_scan.h parse_number:
-// underflow rounds to 0; hex floats, nan and inf are read as such or refused there, never half-read).
-bool parse(const char*& p, const char* end, double& value) {
+// Parses one value token, then whitespace, under the number rule of every text format (mesh/text_scan.h): a
+// value below the smallest double rounds to 0 (1e-400 is 0, not malformed), one above the largest is infinite (and
+// then refused as not in [0, 1]); false when there is no number or it is followed by junk.
+bool parse_value(const char*& p, const char* end, double& value) {
   skip_space(p, end);
-  const char* next = p;
-  while (next < end && *next != ' ' && *next != '\t' && *next != '\r') ++next;
-  const ParsedNumber n = parse_number(std::string_view(p, static_cast<std::size_t>(next - p)));
-  if (n.status != NumberStatus::ok) return false;
-  value = n.value;
-  p = next;
+  const char* stop = p;
+  while (stop < end && *stop != ' ' && *stop != '\t' && *stop != '\r') ++stop;
+  const ParsedNumber n = parse_number(std::string_view(p, std::size_t(stop - p)));
+  if (n.status == NumberStatus::not_a_number) return false;
+  value = n.status == NumberStatus::out_of_range ? std::numeric_limits<double>::infinity() : n.value;
+  p = stop;
   return true;
 }
 
@@ -98,7 +100,28 @@ long line_of_entry(const std::string& path, std::size_t k) {
 
 }  // namespace
 
+void check_writable_form_factors(const std::string& path, const SparseF& F) {
+  const auto refuse = [&](const std::string& what) {
+    return InputError(locate(path, 0, -1, "not a form-factor matrix: " + what + "; nothing written"));
+  };
+  if (F.rows() != F.cols())
+    throw refuse("it is " + std::to_string(F.rows()) + " x " + std::to_string(F.cols()) + ", not square");
+  for (Eigen::Index i = 0; i < F.outerSize(); ++i) {
+    double sum = 0;
+    for (SparseF::InnerIterator it(F, i); it; ++it) {
+      const double v = it.value();
+      if (!std::isfinite(v) || v < 0.0 || v > 1.0)
+        throw refuse("F(" + std::to_string(i) + ", " + std::to_string(it.index()) + ") = " + number_text(v) +
+                     " is not in [0, 1] (0-based row, column)");
+      sum += v;
+    }
+    if (sum > kMaxRowSum)
+      throw refuse("row " + std::to_string(i) + " (0-based) sums to " + number_text(sum) + ", above 1 + 1e-6");
+  }
+}
+
 void write_matrix_market(const std::string& path, const SparseF& F, const std::string& run_id) {
+  check_writable_form_factors(path, F);
   write_atomically(path, [&](std::ostream& os) {
     os << "%%MatrixMarket matrix coordinate real general\n";
     if (!run_id.empty()) os << "% run_id " << run_id << '\n';
@@ -155,7 +178,8 @@ MatrixSize read_header(LineReader& reader, std::size_t expected_n, std::uint64_t
       throw reader.error("not a Matrix Market file: the first line must start with %%MatrixMarket");
     if (words.size() != 5 || words[1] != "matrix" || words[2] != "coordinate" || words[3] != "real" ||
         words[4] != "general")
-      throw reader.error("unsupported Matrix Market type '" + line + "', need 'matrix coordinate real general'");
+      throw reader.error("unsupported Matrix Market type '" + excerpt(line) +
+                         "', need 'matrix coordinate real general'");
   }
 
   // Step 2: size line "rows cols entries", square and of the expected size.
@@ -164,7 +188,7 @@ MatrixSize read_header(LineReader& reader, std::size_t expected_n, std::uint64_t
   {
     const char *p = line.data(), *end = p + line.size();
     if (!parse(p, end, rows) || !parse(p, end, cols) || !parse(p, end, entries) || (skip_space(p, end), p != end))
-      throw reader.error("malformed size line '" + line + "', expected 'rows columns entries'");
+      throw reader.error("malformed size line '" + excerpt(line) + "', expected 'rows columns entries'");
   }
   if (rows != cols)
     throw reader.error("matrix is " + std::to_string(rows) + " x " + std::to_string(cols) + ", not square");
@@ -198,13 +222,14 @@ void scan_entries(LineReader& reader, const MatrixSize& size, Progress* progress
     const char *p = line.data(), *end = p + line.size();
     long long i = 0, j = 0;
     double v = 0;  // read as a double: a tiny value (1e-50) rounds to the nearest float instead of failing
-    if (!parse(p, end, i) || !parse(p, end, j) || !parse(p, end, v) || (skip_space(p, end), p != end))
-      throw reader.error("malformed entry '" + line + "', expected 'row column value'");
+    if (!parse(p, end, i) || !parse(p, end, j) || !parse_value(p, end, v) || (skip_space(p, end), p != end))
+      throw reader.error("malformed entry '" + excerpt(line) + "', expected 'row column value'");
     if (i < 1 || i > rows || j < 1 || j > cols)
       throw reader.error("index (" + std::to_string(i) + ", " + std::to_string(j) + ") out of range 1.." +
                          std::to_string(rows));
     if (!std::isfinite(v) || v < 0.0 || v > 1.0)
-      throw reader.error("value '" + line.substr(line.find_first_not_of(" \t")) + "' is not in [0, 1]");
+      throw reader.error("value '" + excerpt(std::string_view(line).substr(line.find_first_not_of(" \t"))) +
+                         "' is not in [0, 1]");
     visit(k, std::int32_t(i - 1), std::int32_t(j - 1), static_cast<float>(v));
     if (progress && (k + 1) % kProgressEntries == 0) progress->advance(kProgressEntries);
   }

@@ -26,7 +26,14 @@ namespace radwalk {
 // Largest row sum read_matrix_market accepts.
 inline constexpr double kMaxRowSum = 1.0 + 1e-6;
 
-// run_id: when not empty, the comment line "% run_id RUN_ID" after the banner (apps/run_metadata.h).
+// What both form-factor readers accept of F's values, checked before a writer writes a byte: every entry finite
+// and in [0, 1], every row summing to at most kMaxRowSum, F square. Otherwise InputError "PATH: not a form-factor
+// matrix: ...", naming the entry or row (a negative or NaN entry from a caller's matrix would give a file that
+// radwalk refuses to read back, far from the cause; F's entries are fractions of power, so the writer refuses it).
+void check_writable_form_factors(const std::string& path, const SparseF& F);
+
+// run_id: when not empty, the comment line "% run_id RUN_ID" after the banner (apps/run_metadata.h). Refuses what
+// check_writable_form_factors refuses.
 void write_matrix_market(const std::string& path, const SparseF& F, const std::string& run_id = "");
 
 // With `row_blocks` over MPI (R > 1 ranks), row-distributed (form_factor_rows.h): a first pass over the file

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/excerpt.h"
+
 namespace radwalk {
 
 namespace {
@@ -31,9 +33,9 @@ const char* severity_name(Severity severity) {
 
 std::string finding_line(const Finding& f) {
   std::string context;
-  if (!f.object.empty()) context = "object '" + f.object + "'";
-  if (!f.group.empty()) context += (context.empty() ? "" : ", ") + ("group '" + f.group + "'");
-  if (!f.material.empty()) context += (context.empty() ? "" : ", ") + ("material '" + f.material + "'");
+  if (!f.object.empty()) context = "object '" + excerpt(f.object) + "'";
+  if (!f.group.empty()) context += (context.empty() ? "" : ", ") + ("group '" + excerpt(f.group) + "'");
+  if (!f.material.empty()) context += (context.empty() ? "" : ", ") + ("material '" + excerpt(f.material) + "'");
   return locate(f.file, f.line, f.face, f.message + (context.empty() ? "" : " (" + printable(context) + ")"));
 }
 

@@ -1,6 +1,7 @@
 #include "mesh/mesh.h"
 
 #include "core/error.h"
+#include "core/excerpt.h"
 
 namespace radwalk {
 
@@ -10,9 +11,11 @@ std::string Mesh::context(std::size_t f) const {
 
 std::string Mesh::context_of(std::int32_t material, std::int32_t group) const {
   std::string parts;
-  if (group >= 0 && static_cast<std::size_t>(group) < groups.size()) parts = groups[static_cast<std::size_t>(group)];
+  if (group >= 0 && static_cast<std::size_t>(group) < groups.size())
+    parts = excerpt(groups[static_cast<std::size_t>(group)]);
   if (material >= 0 && static_cast<std::size_t>(material) < materials.size())
-    parts += (parts.empty() ? "" : ", ") + ("material '" + materials[static_cast<std::size_t>(material)].name + "'");
+    parts += (parts.empty() ? "" : ", ") + ("material '" +
+                                                  excerpt(materials[static_cast<std::size_t>(material)].name) + "'");
   return parts.empty() ? std::string() : " (" + printable(parts) + ")";
 }
 

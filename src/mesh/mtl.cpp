@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/text_scan.h"
 
 namespace radwalk {
@@ -18,7 +19,7 @@ double finite_number(std::string_view token, const std::string& key, const std::
                      : n.status == NumberStatus::ok         ? "not a finite number"
                                                             : "not a number";
   std::string message = key;
-  message.append(": '").append(token).append("' is ").append(what);
+  message.append(": '").append(excerpt(token)).append("' is ").append(what);
   throw InputError(locate(path, line, -1, message));
 }
 
@@ -26,7 +27,7 @@ double finite_number(std::string_view token, const std::string& key, const std::
 Rgb parse_colour(const std::vector<std::string_view>& tokens, const std::string& path, long line) {
   const std::string key(tokens[0]);
   if (tokens.size() >= 2 && (tokens[1] == "spectral" || tokens[1] == "xyz"))
-    throw InputError(locate(path, line, -1, key + " " + std::string(tokens[1]) + " is not supported: give r g b"));
+    throw InputError(locate(path, line, -1, key + " " + excerpt(tokens[1]) + " is not supported: give r g b"));
   if (tokens.size() != 2 && tokens.size() != 4)
     throw InputError(locate(path, line, -1, key + " needs 1 or 3 numbers, found " +
                                                 std::to_string(tokens.size() - 1)));
@@ -79,7 +80,7 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
       e.Pr = parse_scalar(tokens, path, line);
       if (!(*e.Pr >= 0 && *e.Pr <= 1))  // the roughness Pr^2 is a GGX alpha (and 1e300^2 is no number)
         throw InputError(
-            locate(path, line, -1, "Pr (roughness) must be in [0, 1], found " + std::string(tokens[1])));
+            locate(path, line, -1, "Pr (roughness) must be in [0, 1], found " + excerpt(tokens[1])));
     } else if (key == "Pm") {
       e.Pm = parse_scalar(tokens, path, line);
     } else if (key == kTwoSidedStatement) {

@@ -7,6 +7,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/mtl.h"
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
@@ -58,7 +59,7 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
       for (int k = 0; k < 3; ++k) {
         const auto x = parse_double(tokens[k + 1]);
         if (!x)
-          throw InputError(locate(path, line, -1, vertex + ": '" + std::string(tokens[k + 1]) + "' is not a number"));
+          throw InputError(locate(path, line, -1, vertex + ": '" + excerpt(tokens[k + 1]) + "' is not a number"));
         // A non-finite coordinate (nan, inf) is kept: validate_mesh refuses the faces that use it, with the
         // scene's other findings.
         p[k] = *x;
@@ -78,7 +79,7 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
         const std::string_view token = tokens[k];
         const auto index = parse_long(token.substr(0, token.find('/')));
         if (!index)
-          throw InputError(locate(path, line, face, "'" + std::string(token) + "' is not a vertex index"));
+          throw InputError(locate(path, line, face, "'" + excerpt(token) + "' is not a vertex index"));
         const long resolved = *index > 0 ? *index - 1 : static_cast<long>(s.vertices.size()) + *index;
         if (f.bad_index.empty()) {
           if (*index == 0)
@@ -157,7 +158,7 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
     if (name.empty()) return;
     const std::string file = resolved(name);
     if (!source.exists(file))
-      throw InputError(locate(path, lib.line, -1, "material library '" + printable(name) + "' not found (looked for " +
+      throw InputError(locate(path, lib.line, -1, "material library '" + excerpt(name) + "' not found (looked for " +
                                                       printable(file) + ")"));
     files.push_back(file);
     name.clear();
@@ -216,7 +217,7 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
     if (!by_name.emplace(e.name, index).second)
     {
       Finding again = mesh.finding_of(-1, 0, -1, -1, "material defined again", Severity::warning,
-                                      "material '" + printable(e.name) +
+                                      "material '" + excerpt(e.name) +
                                           "' is defined again; the first definition is used");
       again.file = e.file;
       again.line = e.line;
@@ -244,7 +245,7 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
         for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
         Finding unknown = mesh.finding_of(static_cast<long>(f), sf.line, -1, sf.group, "unknown material",
                                           Severity::error,
-                                          "unknown material '" + printable(use.name) + "' (usemtl at line " +
+                                          "unknown material '" + excerpt(use.name) + "' (usemtl at line " +
                                               std::to_string(use.line) + ": " + where + ")");
         unknown.material = use.name;
         mesh.findings.push_back(unknown);

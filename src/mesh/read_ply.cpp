@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
 #include "mesh/triangulate.h"
@@ -116,7 +117,7 @@ PlyHeader parse_header(const std::string& path, std::string_view bytes) {
       if (tokens[1] == "ascii") h.format = PlyFormat::ascii;
       else if (tokens[1] == "binary_little_endian") h.format = PlyFormat::little_endian;
       else if (tokens[1] == "binary_big_endian") h.format = PlyFormat::big_endian;
-      else throw InputError(locate(path, line, -1, "unknown PLY format '" + std::string(tokens[1]) + "'"));
+      else throw InputError(locate(path, line, -1, "unknown PLY format '" + excerpt(tokens[1]) + "'"));
       format_seen = true;
     } else if (key == "element") {
       const auto count = tokens.size() == 3 ? parse_long(tokens[2]) : std::nullopt;
@@ -145,7 +146,7 @@ PlyHeader parse_header(const std::string& path, std::string_view bytes) {
         }
       }
       if (!ok)
-        throw InputError(locate(path, line, -1, "malformed property statement '" + std::string(text) +
+        throw InputError(locate(path, line, -1, "malformed property statement '" + excerpt(text) +
                                                     "' (expected 'property TYPE NAME' or 'property list "
                                                     "COUNT_TYPE ITEM_TYPE NAME' with integer COUNT_TYPE)"));
       h.elements.back().properties.push_back(p);
@@ -155,7 +156,7 @@ PlyHeader parse_header(const std::string& path, std::string_view bytes) {
       h.body_line = line + 1;
       return h;
     } else {
-      throw InputError(locate(path, line, -1, "unknown PLY header statement '" + std::string(key) + "'"));
+      throw InputError(locate(path, line, -1, "unknown PLY header statement '" + excerpt(key) + "'"));
     }
   }
 }
@@ -222,10 +223,10 @@ class PlyReader {
     at_ = end;
     const ParsedNumber n = parse_number(token);
     if (n.status != NumberStatus::ok)
-      throw InputError(locate(path_, line_, -1, what + ": '" + printable(token) + "' is not " +
+      throw InputError(locate(path_, line_, -1, what + ": '" + excerpt(token) + "' is not " +
                                                     (n.status == NumberStatus::out_of_range ? "in range" : "a number")));
     if (!is_float(type) && std::floor(n.value) != n.value)
-      throw InputError(locate(path_, line_, -1, what + ": '" + printable(token) + "' is not an integer"));
+      throw InputError(locate(path_, line_, -1, what + ": '" + excerpt(token) + "' is not an integer"));
     return n.value;
   }
 
@@ -266,7 +267,7 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
   for (const PlyElement& e : header.elements) {
     const std::uint64_t each = std::max<std::uint64_t>(1, e.minimum_size(binary));
     if (e.count > available / each || needed + e.count * each > available)
-      throw InputError(locate(path, e.line, -1, "element '" + printable(e.name) + "' declares " +
+      throw InputError(locate(path, e.line, -1, "element '" + excerpt(e.name) + "' declares " +
                                                     std::to_string(e.count) + " items, but only " +
                                                     std::to_string(available) +
                                                     " bytes follow the header (truncated file or wrong count)"));
@@ -315,7 +316,7 @@ Mesh read_ply_bytes(const std::string& path, std::string_view bytes, const ReadO
       const long face = is_face ? static_cast<long>(item) : -1;
       const std::string what = is_vertex ? "vertex " + std::to_string(item + 1)
                                : is_face ? "face " + std::to_string(item)
-                                         : printable(e.name) + " " + std::to_string(item);
+                                         : excerpt(e.name) + " " + std::to_string(item);
       Vec3 point = Vec3::Zero();
       std::vector<std::int32_t> corners;
       // A face's own defects are collected (one finding each, the face left out, the scene refused after

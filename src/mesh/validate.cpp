@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/coplanar_overlaps.h"
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
@@ -37,7 +38,7 @@ std::string fmt(const Rgb& c) {
 std::string vertex_name(std::int32_t v) { return "vertex " + std::to_string(static_cast<long>(v) + 1); }
 
 std::string material_name(const Material& m) {
-  std::string s = "material '" + m.name + "'";
+  std::string s = "material '" + excerpt(m.name) + "'";
   if (!m.file.empty()) {
     s += " (";
     s += m.file;

@@ -3,12 +3,16 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <utility>
 
 #include <sys/stat.h>
 
 #include "core/error.h"
 #include "formfactor/form_factors.h"
+#include "formfactor/form_factor_file.h"
 #include "formfactor/matrix_market.h"
+#include "formfactor/npz.h"
 #include "support/box_scenes.h"
 #include "visibility/embree_visibility.h"
 
@@ -139,4 +143,73 @@ TEST_CASE("Matrix Market: tiny values are values, FIFOs are refused", "[formfact
   std::filesystem::remove(fifo);
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   CHECK_THROWS_WITH(read_matrix_market(fifo, 3), Catch::Contains("pipe.mtx") && Catch::Contains("FIFO"));
+}
+
+TEST_CASE("Matrix Market: a value below the smallest double is 0, as in every text format", "[formfactor]") {
+  // The number rule of mesh/text_scan.h: underflow rounds to 0 ("1e-400" was refused as a malformed entry);
+  // overflow is a number out of [0, 1], not a malformed entry.
+  const SparseF F = read_matrix_market(write_text("underflow.mtx", kHeader + "3 3 2\n1 2 1e-400\n1 3 0.5\n"), 3);
+  CHECK(F.nonZeros() == 2);
+  CHECK(F.coeff(0, 1) == 0.0f);
+  CHECK(F.coeff(0, 2) == 0.5f);
+  const std::string huge = refusal(kHeader + "3 3 1\n1 2 1e400\n");
+  INFO(huge);
+  CHECK(huge.find("not in [0, 1]") != std::string::npos);
+  std::filesystem::remove_all(std::filesystem::path(temp_path("")).parent_path());
+}
+
+TEST_CASE("Matrix Market: a malformed line of a megabyte is quoted by its first 80 characters", "[formfactor]") {
+  const std::string junk(1 << 20, '7');
+  for (const std::string& text : {kHeader + "3 3 1\n1 2 0.5" + junk + "x\n", kHeader + "3 3 " + junk + "x\n",
+                                  "%%MatrixMarket matrix coordinate real " + junk + "\n",
+                                  kHeader + "3 3 1\n1 2 1" + junk + "\n"}) {
+    const std::string message = refusal(text);
+    INFO(message.substr(0, 300));
+    CHECK(message.find("bad.mtx:") != std::string::npos);
+    CHECK(message.size() < 300);
+    CHECK(message.find("777...'") != std::string::npos);
+  }
+  std::filesystem::remove_all(std::filesystem::path(temp_path("")).parent_path());
+}
+
+TEST_CASE("write_matrix_market and write_npz refuse a matrix their readers would refuse", "[formfactor]") {
+  // A negative entry was written, and the file then refused by read_matrix_market; F's entries are fractions of
+  // power, so the writers refuse what the readers refuse, in one line naming the file and the entry, writing
+  // nothing.
+  const auto F_with = [](float a, float b) {
+    SparseF F(3, 3);
+    F.insert(0, 1) = a;
+    F.insert(1, 2) = b;
+    F.makeCompressed();
+    return F;
+  };
+  for (const char* name : {"w.mtx", "w.npz"}) {
+    const std::string path = temp_path(name);
+    std::filesystem::remove(path);
+    const bool npz = std::string(name) == "w.npz";
+    const auto write = [&](const SparseF& F) { npz ? write_npz(path, F) : write_matrix_market(path, F); };
+    for (const auto& [F, phrase] :
+         {std::pair<SparseF, std::string>{F_with(-0.25f, 0.5f), "F(0, 1) = -0.25 is not in [0, 1]"},
+          {F_with(0.25f, std::numeric_limits<float>::quiet_NaN()), "F(1, 2) = nan is not in [0, 1]"},
+          {F_with(0.25f, 1.5f), "F(1, 2) = 1.5 is not in [0, 1]"}}) {
+      try {
+        write(F);
+        FAIL(name << ": written");
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        INFO(message);
+        CHECK(message.rfind(path + ": not a form-factor matrix: ", 0) == 0);
+        CHECK(message.find(phrase) != std::string::npos);
+      }
+      CHECK(!std::filesystem::exists(path));
+    }
+    SparseF over(3, 3);
+    over.insert(2, 0) = 0.75f;
+    over.insert(2, 1) = 0.5f;
+    CHECK_THROWS_WITH(write(over), Catch::Contains("row 2 (0-based) sums to 1.25"));
+    // What they write, they read back.
+    write(F_with(0.25f, 1.0f));
+    CHECK(read_form_factors(path, 3).coeff(1, 2) == 1.0f);
+  }
+  std::filesystem::remove_all(std::filesystem::path(temp_path("")).parent_path());
 }

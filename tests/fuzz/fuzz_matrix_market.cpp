@@ -23,6 +23,7 @@
 #include <fstream>
 #include <string>
 
+#include "form_factor_oracles.h"
 #include "formfactor/matrix_market.h"
 #include "fuzz_support.h"
 
@@ -75,26 +76,9 @@ Declared declared_size(std::string_view text) {
 }
 
 void check_csr(const SparseF& F, std::size_t n, long long entries) {
-  RADWALK_FUZZ_CHECK(F.rows() == static_cast<Eigen::Index>(n) && F.cols() == F.rows(), "size");
-  RADWALK_FUZZ_CHECK(F.isCompressed(), "not compressed");
   RADWALK_FUZZ_CHECK(F.nonZeros() == entries, "entries: " + std::to_string(F.nonZeros()) + " read, " +
                                                   std::to_string(entries) + " declared");
-  const std::int32_t* outer = F.outerIndexPtr();
-  const std::int32_t* inner = F.innerIndexPtr();
-  const float* value = F.valuePtr();
-  RADWALK_FUZZ_CHECK(outer[0] == 0 && outer[n] == F.nonZeros(), "offsets do not span the entries");
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string row = "row " + std::to_string(i);
-    RADWALK_FUZZ_CHECK(outer[i] <= outer[i + 1], row + ": offsets not monotone");
-    double sum = 0;
-    for (std::int32_t k = outer[i]; k < outer[i + 1]; ++k) {
-      RADWALK_FUZZ_CHECK(inner[k] >= 0 && inner[k] < F.cols(), row + ": column out of range");
-      RADWALK_FUZZ_CHECK(k == outer[i] || inner[k - 1] < inner[k], row + ": columns not strictly increasing");
-      RADWALK_FUZZ_CHECK(value[k] >= 0 && value[k] <= 1, row + ": value outside [0, 1]");
-      sum += value[k];
-    }
-    RADWALK_FUZZ_CHECK(sum <= kMaxRowSum, row + ": sums to more than 1 + 1e-6");
-  }
+  check_form_factor_csr(F, n);
 }
 
 void check_round_trip(const SparseF& F, std::size_t n) {
@@ -103,15 +87,7 @@ void check_round_trip(const SparseF& F, std::size_t n) {
   SparseF G;
   const bool read_back = accepts([&] { G = read_matrix_market(path, n); }, {path});
   RADWALK_FUZZ_CHECK(read_back, "radwalk refuses the file it wrote");
-  const auto nnz = static_cast<std::size_t>(F.nonZeros());
-  RADWALK_FUZZ_CHECK(G.rows() == F.rows() && G.nonZeros() == F.nonZeros() && G.isCompressed(),
-                     "size changed");
-  RADWALK_FUZZ_CHECK(std::equal(F.outerIndexPtr(), F.outerIndexPtr() + n + 1, G.outerIndexPtr()),
-                     "offsets changed");
-  RADWALK_FUZZ_CHECK(std::equal(F.innerIndexPtr(), F.innerIndexPtr() + nnz, G.innerIndexPtr()),
-                     "columns changed");
-  RADWALK_FUZZ_CHECK(nnz == 0 || std::memcmp(F.valuePtr(), G.valuePtr(), nnz * sizeof(float)) == 0,
-                     "values changed (not bit for bit)");
+  check_same_matrix(F, G);
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/read_scene.h"
 #include "mesh/text_scan.h"
 
@@ -186,4 +187,36 @@ TEST_CASE("numbers: underflow rounds to zero, overflow is out of range, not 'not
   CHECK(parse_number("0.73").value == 0.73);
   CHECK(parse_integral("2.0") == 2);
   CHECK(!parse_integral("2.5"));
+}
+
+TEST_CASE("messages quote at most 80 characters of a long token, line or name, with an ellipsis", "[mesh][read]") {
+  // A malformed token or name of a megabyte was echoed whole into the one-line message.
+  const std::string long_text(1 << 20, 'x');
+  CHECK(excerpt("short") == "short");
+  CHECK(excerpt(long_text) == std::string(kExcerptChars, 'x') + "...");
+  // Cut before a UTF-8 character, never inside it (an e-acute straddling byte 80 is left out whole).
+  CHECK(excerpt(std::string(79, 'a') + "\xc3\xa9" + long_text) == std::string(79, 'a') + "...");
+  const fs::path dir = scratch("long_tokens");
+  const auto message = [&](const std::string& name, const std::string& text) {
+    write(dir / name, text);
+    try {
+      (void)load_scene((dir / name).string());
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  write(dir / "m.mtl", "newmtl a\nKd " + long_text + " 0 0\n");
+  for (const std::string& m : {message("vertex.obj", "v 1 2 " + long_text + "\n"),
+                               message("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 " + long_text + "\n"),
+                               message("kd.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n"),
+                               message("name.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl " + long_text + "\nf 1 2 3\n"),
+                               message("header.ply", "ply\nformat ascii 1.0\n" + long_text + "\nend_header\n"),
+                               message("format.ply", "ply\nformat " + long_text + " 1.0\nend_header\n")}) {
+    INFO(m.substr(0, 300));
+    CHECK(m != "accepted");
+    CHECK(m.size() < 400);
+    CHECK(m.find("xxx...") != std::string::npos);
+  }
+  fs::remove_all(dir);
 }
