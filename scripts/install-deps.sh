@@ -9,6 +9,7 @@ packages=(
   python3-venv python3-pip python3-setuptools  # pip install . (pyproject.toml, setup.py)
   openmpi-bin libopenmpi-dev  # MPI runs (src/core/distributed.h) and the mpi test label (tests/mpi)
   clang libclang-rt-14-dev llvm-14  # the fuzz harnesses (tests/fuzz): libFuzzer, sanitizer runtimes, symbolizer
+  mkdocs  # the manual as a site (scripts/build-docs.sh, mkdocs.yml) and the docs test label (tests/docs)
 )
 missing=()
 for p in "${packages[@]}"; do
