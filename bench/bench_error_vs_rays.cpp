@@ -1,7 +1,7 @@
 // bench_error_vs_rays: error against rays traced and against CPU and wall seconds, for every ray-kernel
 // random-walk method and sampler, on the bundled Cornell box. Not a test.
 //
-// Error measure (README, "Which method when"): with x the reference and y the estimate per patch, channel means
+// Error measure (docs/measurements.md, "Which method when"): with x the reference and y the estimate per patch, channel means
 // xbar_i, ybar_i,
 //   e = sqrt( sum_i A_i (ybar_i - xbar_i)^2 / sum_i A_i xbar_i^2 ),
 // over the patches that are not emitters and not fully enclosed (all of 64 rays from the patch hit a back face).

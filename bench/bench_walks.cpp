@@ -14,8 +14,7 @@
 // Target: matrix kernel >= 20 M transitions/s per core. Each rate is given per wall-clock second and per CPU
 // second of the process (CLOCK_PROCESS_CPUTIME_ID) over the same timed region, the per-core figure that stays
 // meaningful on a shared machine. Then the ratio of the ray kernel's transitions to the better raw Embree rate
-// (single rays or packets), per CPU second, 1 thread and all threads: the target is >= 0.8 (README,
-// "Benchmarks").
+// (single rays or packets), per CPU second, 1 thread and all threads: the target is >= 0.8 (docs/benchmarks.md).
 // Then the six estimators side by side on the same scene and F (compare_random_walks: R = 4 runs, 200 walks per
 // patch, matrix kernel, exact variances and the dense solve as reference).
 // Every rate is the best of R runs (--repeat R, default 3), the ray rows and the raw rows alike.

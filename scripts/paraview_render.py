@@ -13,7 +13,7 @@ Colours: the display array B_srgb that radwalk writes (sRGB of the radiance B/pi
 mapping of `radwalk pathtrace --image x.png`) shown with Map Scalars off, no lighting. With --exposure other than
 1, or for a file without B_srgb, the same mapping is computed from B by ParaView's Calculator (exact sRGB:
 12.92 c below 0.0031308, 1.055 c^(1/2.4) - 0.055 above). --smooth uses the point fields (per smoothing group,
-see README) instead of the cell fields. A file without the field B is refused with a message.
+see docs/paraview.md) instead of the cell fields. A file without the field B is refused with a message.
 
 Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the Cornell box's own camera (position
 (278, 273, -800), looking along +z, 39.3 degree vertical field of view) when the file's field data name a scene

@@ -86,7 +86,7 @@ def fmt(v, digits=6):
 
 
 def median_spread(values):
-    """Median and the (min, max) of repeated measurements (timings: at least 3 repeats, README convention)."""
+    """Median and the (min, max) of repeated measurements (timings: at least 3 repeats, docs/experiments.md convention)."""
     v = np.asarray(values, dtype=float)
     return float(np.median(v)), float(v.min()), float(v.max())
 

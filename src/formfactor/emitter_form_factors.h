@@ -1,5 +1,5 @@
 #pragma once
-// Form factors with the columns of the emitters exact where unoccluded (the README's recommended form-factor route):
+// Form factors with the columns of the emitters exact where unoccluded (the recommended form-factor route, docs/measurements.md "Which method when"):
 // the cosine rays of estimate_form_factors (form_factors.h) estimate every entry, then each entry F_ie of an
 // emitter column e (a patch with E_e > 0 in some channel) is replaced by the VisibleFormFactor estimate
 // (visible_form_factor.h: Lambert's point-to-polygon form factor at Sobol points x of patch i, corrected for

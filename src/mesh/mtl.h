@@ -7,7 +7,7 @@
 // Kd is the diffuse reflectance rho, Ke the emitted radiance L_e (so the emitted radiosity is E = pi * Ke).
 // Numbers are read exactly (correctly rounded, see text_scan.h).
 // radwalk's own statement: `radwalk_two_sided 1` (or 0, the default) makes the material's faces two-sided, a
-// front and a back patch each (patch/patch_set.h; README, "One- and two-sided surfaces"). Other programs ignore it.
+// front and a back patch each (patch/patch_set.h; docs/two-sided.md). Other programs ignore it.
 //
 // BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
 //   illum 4, 6 or 7 (refraction)              -> dielectric (Ni = index of refraction)

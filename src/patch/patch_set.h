@@ -5,7 +5,7 @@
 // radiosity E = pi * Ke (W/m^2 in the mesh's length unit). With no subdivision, patch i is input face i.
 // The normal is the unit normal given by the corner order (counter-clockwise seen from the front).
 //
-// Sides (README, "One- and two-sided surfaces"): a patch of a one-sided face is seen from its front only; the
+// Sides (docs/two-sided.md): a patch of a one-sided face is seen from its front only; the
 // back of a one-sided face absorbs what reaches it and emits nothing (a "back hit"). A two-sided face is two
 // patches at the same place, its front (Side::front) and its back (Side::back: the corners in reverse order, so
 // the normal is reversed), each with its own B; each of the two is seen from its own front only, so a ray that

@@ -1,4 +1,4 @@
-// The form-factor options end to end (README, "Form factors"): --sobol-rays and --emitter-columns M
+// The form-factor options end to end (docs/form-factors.md): --sobol-rays and --emitter-columns M
 // run, report their emitter columns and shadow rays in the JSON summary, give the same CSV on 1 and 2 threads and
 // change the result (they are recorded options); a non-positive M is refused with exit 2.
 #include <catch2/catch.hpp>

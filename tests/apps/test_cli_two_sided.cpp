@@ -1,4 +1,4 @@
-// One- and two-sided surfaces on the command line (README, "One- and two-sided surfaces"): the MTL statement
+// One- and two-sided surfaces on the command line (docs/two-sided.md): the MTL statement
 // radwalk_two_sided, --two-sided, and what the outputs say about sides (the side column, back_patches).
 #include <catch2/catch.hpp>
 

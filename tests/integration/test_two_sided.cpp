@@ -1,4 +1,4 @@
-// One- and two-sided surfaces (patch/patch_set.h, "Sides"; README, "One- and two-sided surfaces") in every
+// One- and two-sided surfaces (patch/patch_set.h, "Sides"; docs/two-sided.md) in every
 // solver: the MTL statement, back patches, reciprocity across sides, and a thin panel in a closed box lit from
 // both sides (a furnace), where the direct solve, the ray-kernel walks, the path tracer and the light tracer must
 // agree per side; a one-sided back is black to the camera. The direct solve against the path tracer per side is in

@@ -1,4 +1,4 @@
-// radwalk over MPI (issue 17; README, "Running on several processes (MPI)"; docs/scaling.md, "Over MPI"): with
+// radwalk over MPI (docs/mpi.md; docs/scaling.md, "Over MPI"): with
 // 1, 2 and 3 ranks (mpirun --oversubscribe: more ranks than this machine's cores) every output of the distributed
 // stages is the same byte for byte as one process's (form factors, random walks on both kernels, path-traced patch
 // averages and images, Jacobi), except the documented fields that record how a run went (the .vtp's timing

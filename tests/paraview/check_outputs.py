@@ -7,7 +7,7 @@ data; that ParaView's Calculator evaluates the array names; the ParaView state f
 Cornell box's camera with scripts/paraview_render.py, comparing the image with the path tracer's PNG of the same
 view region by region. Writes WORK/screenshots/*.png. Exit 0 when every check passed, 1 otherwise.
 
-Image tolerance (documented in README): the radiosity solution is constant per patch and its form factors are
+Image tolerance (documented in docs/paraview.md): the radiosity solution is constant per patch and its form factors are
 Monte Carlo estimates, the path tracer's image is noisy and box-filtered, so pixels differ; region means do not.
 For each of five regions (left wall, right wall, back wall, ceiling, floor) the mean sRGB colour of the ParaView
 render must be within 8/255 per channel of the path tracer's (measured: within 2/255), the left wall must be red

@@ -20,7 +20,7 @@ needs none of them: it writes its own room the way exporters do (metres, y up):
             normal or texture coordinate), so nothing is shared by index;
   materials: several, some with one-letter names that are substrings of the MTL keywords (w, e, l, t); one object
             per piece of furniture with groups; the sheets' materials are two-sided (`radwalk_two_sided 1`), as the
-            README recommends for thin parts.
+            manual recommends for thin parts (docs/two-sided.md).
 
 The JSON manifest lists what was put in (counts per defect, input faces per object, the room's faces as
 rectangles), so the test can compute its expectations from it.

@@ -186,7 +186,7 @@ def in_view(camera, points, aspect):
 
 
 def split_count(face, L):
-    """Patches of one face under --max-edge L (README "Patching")."""
+    """Patches of one face under --max-edge L (docs/patching.md)."""
     dist = lambda a, b: math.sqrt(sum((a[i] - b[i]) ** 2 for i in range(3)))
     if len(face) == 4:
         lu = max(dist(face[1], face[0]), dist(face[2], face[3]))
