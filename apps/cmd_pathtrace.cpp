@@ -14,6 +14,7 @@
 #include "apps/scene_camera.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "io/exr_writer.h"
@@ -41,28 +42,14 @@ void write_image(const std::string& path, const RenderResult& r, const std::stri
   note("wrote " + path);
 }
 
-// Images hold a mean and a standard error of 3 doubles per pixel (48 bytes), and the writers and the light
-// tracer's tallies more: at most 2^26 pixels (8192 x 8192, 3.2 GB for the two images), refused up front with the
-// bytes the size would need (O4).
-constexpr std::uint64_t kMaxPixels = std::uint64_t{1} << 26;
-constexpr std::uint64_t kImageBytesPerPixel = 2 * 3 * sizeof(double);
-
-void check_image_size(int width, int height) {
-  const std::uint64_t pixels = std::uint64_t(width) * std::uint64_t(height);
-  if (pixels <= kMaxPixels) return;
-  throw InputError("--width " + std::to_string(width) + " --height " + std::to_string(height) + ": " +
-                   std::to_string(pixels) + " pixels would need at least " +
-                   std::to_string(pixels * kImageBytesPerPixel) + " bytes (" +
-                   std::to_string(kImageBytesPerPixel) + " per pixel for the image and its standard error); at most " +
-                   std::to_string(kMaxPixels) + " pixels (e.g. 8192 x 8192)");
-}
-
 }  // namespace
 
 int run_pathtrace(const PathtraceCommand& command) {
   if (!command.camera.empty() && command.camera.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
-  if (!command.image.empty()) check_image_size(command.width, command.height);
+  if (!command.image.empty())  // refused up front with the bytes the size would need (O4)
+    check_image_size(command.width, command.height,
+                     "--width " + std::to_string(command.width) + " --height " + std::to_string(command.height));
   RunSummary summary("pathtrace", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
   ThreadLimit limit(command.scene.threads);

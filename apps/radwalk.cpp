@@ -26,6 +26,7 @@
 #include "core/did_you_mean.h"
 #include "core/distributed.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/path_length.h"
 #include "core/progress.h"
 #include "io/run_summary.h"
@@ -87,8 +88,8 @@ CLI::Validator whole_number(std::uint64_t lo, std::uint64_t hi) {
       },
       "INT");
 }
-// Threads: at most 1024 (more only costs memory: every TBB thread has its own stack).
-const CLI::Validator kThreads = whole_number(0, 1024);
+// Threads: at most kMaxThreads (core/parallel.h).
+const CLI::Validator kThreads = whole_number(0, kMaxThreads);
 const CLI::Validator kSeed = whole_number(0, ~std::uint64_t{0});
 // Samples per patch or pixel: from 2 (a standard error needs two) to 2^32, beyond any run's time and far from overflowing what they multiply.
 const CLI::Validator kSamples = whole_number(2, std::uint64_t{1} << 32);  // 2: a variance needs two

@@ -9,10 +9,13 @@
 //   measure_bindings.cpp      radwalk.measure -> Measurement (M = <R, B>_A by any method of `radwalk measure`)
 //   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
 //   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
-// Conventions: every computation releases the GIL and runs under ThreadLimit(threads) (0 = all cores); the
+//   interruptible.cpp         Ctrl-C: computations run on a worker thread, signals are checked every 50 ms
+// Conventions: every computation runs without the GIL through interruptible() (KeyboardInterrupt within about
+// 50 ms plus one chunk of work) under ThreadLimit(threads) (0 = all cores, at most kMaxThreads: check_run); the
 // library's InputError becomes radwalk.InputError (a ValueError) carrying the CLI's one-line text,
 // NumericalError radwalk.NumericalError (an ArithmeticError), InternalError radwalk.InternalError (a
-// RuntimeError).
+// RuntimeError). A solve that diverged or was refused raises NumericalError with its message (check_solved), as
+// the CLI exits 3.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -61,12 +64,24 @@ struct Result {
   std::string metadata;  // a JSON object: the CLI's "solution" object and the run's options
 };
 
+// The checks before every computation on `scene`: `threads` from 0 to kMaxThreads (core/parallel.h, the CLI's
+// bounds) and the scene's rho and E as a material could hold them (patch/patch_set.h check_radiometry: Scene.rho
+// and Scene.E are writable). InputError naming the patch and value, or the thread count.
+void check_run(const Scene& scene, long long threads);
+
+// Raises NumericalError with the solver's message when it diverged or was refused (the CLI's exit code 3);
+// "converged" and "max-iterations" (the CLI's exit 1) return.
+void check_solved(const Solution& solution);
+
 // A read-only numpy view of an N x 3 PatchRgb owned by `base` (an N x 3 array of zeros' shape (0, 3) when empty).
 py::array_t<double> rgb_view(const PatchRgb& values, py::handle base);
 
-// The form factors a computation on `scene` uses: those of a FormFactors object or of a scipy.sparse matrix
-// (converted to float32 CSR: a copy), or, for None, estimated with `rays` rays per patch and `seed` (GIL released,
-// timed into `timings` as "embree_scene" and "form_factors"). An N x N check names the sizes that disagree.
+// The form factors a computation on `scene` uses: those of a FormFactors object, of a scipy.sparse matrix of any
+// format or of a 2-D array (converted to float32 CSR: a copy), or, for None, estimated with `rays` rays per patch
+// and `seed` (GIL released, timed into `timings` as "embree_scene" and "form_factors"). A matrix given by the
+// caller is checked before scipy reads its structure: shape N x N, real values, index arrays of integers within
+// [0, N) (and, compressed, an indptr of N + 1 non-decreasing offsets from 0), at most 2^31 - 1 entries, values
+// finite and >= 0 (also after the conversion to float32). InputError naming what is wrong.
 SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, std::uint64_t seed, int threads,
                            std::map<std::string, double>& timings);
 

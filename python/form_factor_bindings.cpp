@@ -1,6 +1,11 @@
 // radwalk.form_factors and the FormFactors type: F as a scipy.sparse.csr_matrix viewing the library's CSR arrays.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
 #include "bindings.h"
 #include "core/error.h"
+#include "interruptible.h"
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_diagnostics.h"
@@ -31,16 +36,171 @@ py::object csr_view(const SparseF& F, py::handle base) {
 
 FormFactors estimate(const Scene& scene, const FormFactorOptions& options, int threads,
                      std::map<std::string, double>& timings) {
-  py::gil_scoped_release release;
-  ThreadLimit limit(threads);
-  Timer timer;
-  const EmbreeVisibility visibility(scene.patches);
-  timings["embree_scene"] = timer.seconds();
-  timer.reset();
-  FormFactors ff = estimate_form_factors(scene.patches, visibility, options);
-  timings["form_factors"] = timer.seconds();
-  return ff;
+  check_thread_count(threads, "threads");
+  return interruptible([&] {
+    ThreadLimit limit(threads);
+    Timer timer;
+    const EmbreeVisibility visibility(scene.patches);
+    timings["embree_scene"] = timer.seconds();
+    timer.reset();
+    FormFactors ff = estimate_form_factors(scene.patches, visibility, options);
+    timings["form_factors"] = timer.seconds();
+    return ff;
+  });
 }
+
+// --- A caller's F, checked before scipy reads its structure ---------------------------------------------------
+// scipy.sparse checks neither the range of a matrix's indices nor the order of its indptr, and its conversions
+// (tocsr, sum_duplicates) index memory by them: a bad index reads or writes outside the arrays. So the arrays are
+// read here first, as int64 (a wider index type would wrap), and the conversion happens only when they are sound.
+
+template <class T>
+using CArray = py::array_t<T, py::array::c_style | py::array::forcecast>;
+
+constexpr std::int64_t kMaxEntries = std::numeric_limits<std::int32_t>::max();  // F's CSR uses 32-bit offsets
+
+std::string dtype_text(const py::object& array) { return py::str(array.attr("dtype")).cast<std::string>(); }
+
+// `array` (an attribute of F named `what`) as a 1-D int64 array; InputError unless it holds integers that fit.
+CArray<std::int64_t> index_array(const py::object& array, const std::string& what) {
+  const py::module_ np = py::module_::import("numpy");
+  const py::object a = np.attr("asarray")(array);
+  if (!np.attr("issubdtype")(a.attr("dtype"), np.attr("integer")).cast<bool>())
+    throw InputError("F." + what + " must hold integers, not " + dtype_text(a));
+  if (a.attr("ndim").cast<int>() != 1) throw InputError("F." + what + " must be a 1-D array");
+  if (a.attr("dtype").attr("kind").cast<std::string>() == "u" && a.attr("size").cast<long long>() > 0 &&
+      a.attr("max")().cast<py::int_>() > py::int_(std::numeric_limits<std::int64_t>::max()))
+    throw InputError("F." + what + " holds a value above 2^63 - 1");
+  return a.cast<CArray<std::int64_t>>();
+}
+
+// Refuses a value dtype that is not real (complex, object, strings) and values that are not finite or negative.
+void check_values(const py::object& data, std::int64_t count) {
+  const py::module_ np = py::module_::import("numpy");
+  const py::object a = np.attr("asarray")(data);
+  const std::string kind = a.attr("dtype").attr("kind").cast<std::string>();
+  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
+    throw InputError("F's values must be real numbers, not " + dtype_text(a));
+  const auto v = np.attr("ravel")(a).cast<CArray<double>>();
+  if (count > v.size()) throw InputError("F has fewer values than entries");
+  for (std::int64_t k = 0; k < count; ++k)
+    if (!(std::isfinite(v.data()[k]) && v.data()[k] >= 0))
+      throw InputError("F holds the value " + number_text(v.data()[k]) + " (entry " + std::to_string(k) +
+                       " of its data): form factors must be finite and >= 0");
+}
+
+// Compressed storage (CSR over rows, CSC over columns, BSR over blocks): `major` offsets + 1 in indptr, from 0,
+// non-decreasing, the last (the entry count) at most the length of indices and data; indices in [0, minor).
+// Each entry holds `values_per_entry` values (BSR: a block).
+void check_compressed(const py::object& F, std::int64_t major, std::int64_t minor, const std::string& over,
+                      std::int64_t values_per_entry = 1) {
+  const CArray<std::int64_t> indptr = index_array(F.attr("indptr"), "indptr");
+  const CArray<std::int64_t> indices = index_array(F.attr("indices"), "indices");
+  if (indptr.size() != major + 1)
+    throw InputError("F.indptr has " + std::to_string(indptr.size()) + " offsets; " + std::to_string(major + 1) +
+                     " expected (one per " + over + ", plus one)");
+  const std::int64_t* p = indptr.data();
+  if (p[0] != 0) throw InputError("F.indptr starts at " + std::to_string(p[0]) + ", not 0");
+  for (std::int64_t r = 0; r < major; ++r)
+    if (p[r + 1] < p[r])
+      throw InputError("F.indptr decreases at " + over + " " + std::to_string(r) + " (" + std::to_string(p[r]) +
+                       " then " + std::to_string(p[r + 1]) + ")");
+  const std::int64_t count = p[major];
+  if (count > indices.size())
+    throw InputError("F.indptr ends at " + std::to_string(count) + " but F.indices has only " +
+                     std::to_string(indices.size()) + " entries");
+  if (count > kMaxEntries) throw InputError("F has more than 2^31 - 1 entries");
+  for (std::int64_t k = 0; k < count; ++k)
+    if (indices.data()[k] < 0 || indices.data()[k] >= minor)
+      throw InputError("F.indices[" + std::to_string(k) + "] = " + std::to_string(indices.data()[k]) +
+                       " is outside [0, " + std::to_string(minor) + ")");
+  const std::int64_t data_length = py::len(F.attr("data"));
+  if (data_length < count)
+    throw InputError("F.data has " + std::to_string(data_length) + " entries for " + std::to_string(count));
+  check_values(F.attr("data"), count * values_per_entry);
+}
+
+// Coordinate storage: row, col and data of equal lengths, every index in [0, n).
+void check_coordinates(const py::object& coo, std::int64_t n) {
+  const CArray<std::int64_t> row = index_array(coo.attr("row"), "row"), col = index_array(coo.attr("col"), "col");
+  const std::int64_t count = py::len(coo.attr("data"));
+  if (row.size() != count || col.size() != count)
+    throw InputError("F.row, F.col and F.data differ in length (" + std::to_string(row.size()) + ", " +
+                     std::to_string(col.size()) + ", " + std::to_string(count) + ")");
+  if (count > kMaxEntries) throw InputError("F has more than 2^31 - 1 entries");
+  for (std::int64_t k = 0; k < count; ++k)
+    if (row.data()[k] < 0 || row.data()[k] >= n || col.data()[k] < 0 || col.data()[k] >= n)
+      throw InputError("F's entry " + std::to_string(k) + " at (" + std::to_string(row.data()[k]) + ", " +
+                       std::to_string(col.data()[k]) + ") is outside [0, " + std::to_string(n) + ")^2");
+  check_values(coo.attr("data"), count);
+}
+
+// A scipy call on a checked matrix; the ValueError or TypeError it may still raise (a malformed object scipy
+// itself refuses) becomes InputError.
+template <class Call>
+py::object scipy_call(const std::string& what, Call&& call) {
+  try {
+    return call();
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError) && !e.matches(PyExc_IndexError) &&
+        !e.matches(PyExc_AttributeError))
+      throw;
+    throw InputError("F: " + what + ": " + printable(py::str(e.value()).cast<std::string>()));
+  }
+}
+
+// The caller's F (a scipy.sparse matrix or array of any format, or a 2-D array of numbers) as canonical float32
+// CSR (sorted, duplicates summed; a copy), after the checks above.
+py::object checked_csr(const py::object& F, std::int64_t n) {
+  const py::module_ np = py::module_::import("numpy");
+  const py::module_ sparse = py::module_::import("scipy.sparse");
+  const auto shape_text = [](const py::object& shape) { return py::str(shape).cast<std::string>(); };
+  const std::string sizes = " but the scene has " + std::to_string(n) + " patches";
+  py::object source;
+  if (sparse.attr("issparse")(F).cast<bool>()) {
+    const py::tuple shape = F.attr("shape");
+    const py::object rows = shape.size() == 2 ? py::object(shape[0]) : py::none(),
+                     cols = shape.size() == 2 ? py::object(shape[1]) : py::none();
+    if (shape.size() != 2 || rows.not_equal(py::int_(n)) || cols.not_equal(py::int_(n)))
+      throw InputError("F is " + shape_text(shape) + sizes);
+    const std::string format = F.attr("format").cast<std::string>();
+    if (format == "csr" || format == "csc") {
+      check_compressed(F, n, n, format == "csr" ? "row" : "column");
+      source = F;
+    } else if (format == "bsr") {
+      const auto block = F.attr("blocksize").cast<std::pair<std::int64_t, std::int64_t>>();
+      if (block.first < 1 || block.second < 1 || n % block.first != 0 || n % block.second != 0)
+        throw InputError("F's blocks (" + std::to_string(block.first) + " x " + std::to_string(block.second) +
+                         ") do not tile " + std::to_string(n) + " x " + std::to_string(n));
+      check_compressed(F, n / block.first, n / block.second, "block row", block.first * block.second);
+      source = F;
+    } else {
+      // COO as it is; DIA, DOK and LIL through their own tocoo (no index of theirs is used to address memory).
+      source = format == "coo" ? F : scipy_call("tocoo", [&] { return F.attr("tocoo")(); });
+      check_coordinates(source, n);
+    }
+  } else {
+    const py::object a = scipy_call("not a FormFactors, a scipy.sparse matrix or an array of numbers",
+                                    [&] { return np.attr("asarray")(F); });
+    if (a.attr("ndim").cast<int>() != 2 || a.attr("shape").cast<py::tuple>()[0].cast<std::int64_t>() != n ||
+        a.attr("shape").cast<py::tuple>()[1].cast<std::int64_t>() != n)
+      throw InputError("F is an array of shape " + shape_text(a.attr("shape")) + sizes +
+                       " (F must be a FormFactors, a scipy.sparse matrix or an N x N array of numbers)");
+    check_values(a, a.attr("size").cast<std::int64_t>());
+    source = a;
+  }
+  const py::object csr = scipy_call("conversion to CSR", [&] {
+    return sparse.attr("csr_matrix")(source, py::arg("dtype") = np.attr("float32"), py::arg("copy") = true);
+  });
+  // Canonical whatever flags the caller's matrix carried: sorted columns, duplicates summed.
+  csr.attr("has_sorted_indices") = false;
+  csr.attr("has_canonical_format") = false;
+  csr.attr("sum_duplicates")();
+  if (csr.attr("nnz").cast<std::int64_t>() > kMaxEntries) throw InputError("F has more than 2^31 - 1 entries");
+  return csr;
+}
+
+
 
 // The CLI's per-patch form-factor fields (apps/pipeline.cpp form_factor_fields), in its order.
 py::dict diagnostics(const FormFactorsResult& r) {
@@ -62,7 +222,8 @@ py::dict diagnostics(const FormFactorsResult& r) {
 }
 
 FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_area, long min_rays,
-                               std::uint64_t seed, bool reciprocity, bool stratified, int threads) {
+                               std::uint64_t seed, bool reciprocity, bool stratified, long long threads) {
+  check_thread_count(threads, "threads");
   FormFactorsResult r;
   r.area = scene.patches.area;
   FormFactorOptions o;
@@ -71,10 +232,9 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
   o.min_rays = min_rays;
   o.seed = seed;
   o.stratified = stratified;
-  r.ff = estimate(scene, o, threads, r.timings);
+  r.ff = estimate(scene, o, static_cast<int>(threads), r.timings);
   if (reciprocity) {
-    py::gil_scoped_release release;
-    const ReciprocityChange change = enforce_reciprocity(r.ff.F, r.area);
+    const ReciprocityChange change = interruptible([&] { return enforce_reciprocity(r.ff.F, r.area); });
     r.info["reciprocity_max_relative_change"] = change.max_relative_change;
     r.info["reciprocity_mean_relative_change"] = change.mean_relative_change;
     r.info["reciprocity_rows_rescaled"] = static_cast<double>(change.rows_rescaled);
@@ -100,20 +260,19 @@ SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, s
                        std::to_string(n) + " patches");
     return f;
   }
-  // A scipy.sparse matrix: canonical float32 CSR with int32 indices (a copy), then its arrays into Eigen's layout.
-  const py::module_ np = py::module_::import("numpy");
-  const py::object csr = py::module_::import("scipy.sparse")
-                             .attr("csr_matrix")(F, py::arg("dtype") = np.attr("float32"), py::arg("copy") = true);
-  csr.attr("sum_duplicates")();  // sorts the indices of every row as well
-  const auto shape = csr.attr("shape").cast<std::pair<long, long>>();
-  if (shape.first != n || shape.second != n)
-    throw InputError("F is " + std::to_string(shape.first) + " x " + std::to_string(shape.second) +
-                     " but the scene has " + std::to_string(n) + " patches");
-  const auto data = csr.attr("data").cast<py::array_t<float, py::array::c_style | py::array::forcecast>>();
-  const auto indices = csr.attr("indices").cast<py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>>();
-  const auto indptr = csr.attr("indptr").cast<py::array_t<std::int32_t, py::array::c_style | py::array::forcecast>>();
-  const Eigen::Map<const SparseF::Base> map(n, n, static_cast<Eigen::Index>(data.size()), indptr.data(), indices.data(),
-                                            data.data());
+  // A caller's matrix: checked, canonical float32 CSR with int32 indices (a copy), then its arrays into Eigen's
+  // layout; the float32 values checked again (a float64 above 3.4e38, or a sum of duplicates, becomes inf).
+  const py::object csr = checked_csr(F, n);
+  const auto data = csr.attr("data").cast<CArray<float>>();
+  const auto indices = csr.attr("indices").cast<CArray<std::int32_t>>();
+  const auto indptr = csr.attr("indptr").cast<CArray<std::int32_t>>();
+  const std::int32_t nnz = indptr.data()[n];
+  for (Eigen::Index i = 0; i < n; ++i)
+    for (std::int32_t k = indptr.data()[i]; k < indptr.data()[i + 1]; ++k)
+      if (!(std::isfinite(data.data()[k]) && data.data()[k] >= 0))
+        throw InputError("F(" + std::to_string(i) + ", " + std::to_string(indices.data()[k]) + ") = " +
+                         number_text(data.data()[k]) + " as float32: form factors must be finite and >= 0");
+  const Eigen::Map<const SparseF::Base> map(n, n, nnz, indptr.data(), indices.data(), data.data());
   return SparseF(map);
 }
 

@@ -7,7 +7,9 @@
 #include "apps/run_metadata.h"
 #include "bindings.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/parallel.h"
+#include "interruptible.h"
 #include "io/run_summary.h"
 #include "solve/problem.h"
 #include "visibility/embree_visibility.h"
@@ -35,14 +37,31 @@ Response response_of(const Scene& scene, const py::object& response, const std::
     throw InputError("camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
   if (py::isinstance<py::str>(response)) {
     const std::string spec = response.cast<std::string>();
+    if (spec == "camera")
+      check_image_size(width, height, "width=" + std::to_string(width) + ", height=" + std::to_string(height));
     app::SceneCamera fitted;
-    py::gil_scoped_release release;
-    Response r = app::measure_response(spec, scene.path, scene.patches, scene.group, scene.groups, camera, width,
-                                       height, &fitted);
+    Response r = interruptible([&] {
+      return app::measure_response(spec, scene.path, scene.patches, scene.group, scene.groups, camera, width,
+                                   height, &fitted);
+    });
     if (spec == "camera") metadata["camera"] = app::camera_json(fitted, scene.patches, width, height);
     return r;
   }
-  const auto w = response.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  const py::module_ np = py::module_::import("numpy");
+  py::object weights;
+  try {
+    weights = np.attr("asarray")(response);
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
+    throw InputError("response must be a spec (str) or an (N,) array of weights");
+  }
+  const std::string kind = weights.attr("dtype").attr("kind").cast<std::string>();
+  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
+    throw InputError("response weights must be real numbers, not " +
+                     py::str(weights.attr("dtype")).cast<std::string>());
+  if (weights.attr("ndim").cast<int>() != 1)
+    throw InputError("response weights must be an (N,) array, one weight per patch");
+  const auto w = weights.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
   Response r{Eigen::VectorXd(static_cast<Eigen::Index>(w.size())), "weights given in Python"};
   std::copy(w.data(), w.data() + w.size(), r.R.data());
   check_response(r, scene.patches.size());
@@ -52,7 +71,9 @@ Response response_of(const Scene& scene, const py::object& response, const std::
 MeasureResult measure(const Scene& scene, const py::object& response, const py::object& F, const std::string& method,
                       long walks, const std::string& kernel, const std::string& survival, double survival_constant,
                       int importance_sweeps, double defensive, bool theory, const std::vector<double>& camera,
-                      int width, int height, long rays, std::uint64_t seed, int threads) {
+                      int width, int height, long rays, std::uint64_t seed, long long threads_arg) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   MeasureOptions o;
   o.method = method;
   o.walks = walks;
@@ -70,14 +91,13 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
   SparseF f = measure_needs_form_factors(o) ? form_factor_matrix(F, scene, rays, seed, threads, r.timings)
                                             : SparseF(n, n);
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     std::unique_ptr<EmbreeVisibility> visibility;
     if (!measure_needs_form_factors(o)) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
     r.measurement = measure_by_method(problem, &scene.patches, visibility.get(), r.response, o);
-  }
+  });
   r.timings["measure"] = r.measurement.estimate.seconds;
   metadata["measurement"] = app::measurement_json(r.measurement, r.response, theory);
   if (is_importance_measure(method))

@@ -2,7 +2,10 @@
 #include <pybind11/pybind11.h>
 
 #include "bindings.h"
+#include "core/cancellation.h"
 #include "core/error.h"
+#include "core/parallel.h"
+#include "patch/radiometry_check.h"
 #include "core/progress.h"
 #include "walk/walk_method.h"
 
@@ -14,6 +17,17 @@ py::array_t<double> rgb_view(const PatchRgb& values, py::handle base) {
                         values.size() ? values.data() : nullptr, base);
   py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
   return a;
+}
+
+void check_run(const Scene& scene, long long threads) {
+  check_thread_count(threads, "threads");
+  check_radiometry(scene.patches);
+}
+
+void check_solved(const Solution& solution) {
+  if (solution.status == SolveStatus::diverged || solution.status == SolveStatus::refused)
+    throw NumericalError(solution.message.empty() ? solution.method + ": " + to_string(solution.status)
+                                                  : solution.message);
 }
 
 py::object json_to_python(const std::string& json_text) {
@@ -41,8 +55,10 @@ numbers, byte for byte in the CSV):
 
 Units as in the CLI: lengths in the mesh's unit, rho = Kd, E = pi * Ke, B in W per unit length squared.
 Every computation releases the GIL and honours threads= (0: all cores; the output does not depend on it).
-Bad input raises radwalk.InputError, a ValueError whose text is the CLI's one-line message; numerical failures
-raise radwalk.NumericalError (an ArithmeticError). Progress lines go to stderr as in the CLI (set_progress).)doc";
+Bad input raises radwalk.InputError, a ValueError whose text is the CLI's one-line message (also for values
+written into Scene.rho or Scene.E that a material could not hold, and for a malformed F); a solve that diverged or
+was refused raises radwalk.NumericalError (an ArithmeticError) with the solver's message, where the CLI exits 3.
+Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus one chunk of its work. Progress lines go to stderr as in the CLI (set_progress).)doc";
   m.attr("__version__") = RADWALK_VERSION;
 
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
@@ -60,6 +76,8 @@ raise radwalk.NumericalError (an ArithmeticError). Progress lines go to stderr a
       numerical_error(e.what());
     } catch (const InternalError& e) {
       internal_error(e.what());
+    } catch (const Cancelled&) {  // a computation stopped by another thread's Ctrl-C (interruptible.h)
+      PyErr_SetNone(PyExc_KeyboardInterrupt);
     }
   });
 

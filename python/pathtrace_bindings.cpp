@@ -4,8 +4,10 @@
 #include "apps/scene_camera.h"
 #include "bindings.h"
 #include "core/error.h"
+#include "core/image.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "interruptible.h"
 #include "pathtrace/light_tracer.h"
 #include "pathtrace/patch_average.h"
 #include "pathtrace/render.h"
@@ -32,16 +34,22 @@ py::array_t<double> image_array(const RgbImage& image) {
 
 PathtraceResult pathtrace(const Scene& scene, long spp, const std::string& integrator_name, std::uint64_t seed,
                           bool averages, bool image, int width, int height, const std::vector<double>& camera_numbers,
-                          int threads, bool progress) {
+                          long long threads_arg, bool progress) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   if (!camera_numbers.empty() && camera_numbers.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
+  // Samples as the CLI's: from 2 (a standard error needs two) to 2^32, so spp x pixels and spp x N cannot overflow.
+  if (spp < 2 || spp > (1L << 32))
+    throw InputError("spp " + std::to_string(spp) + ": expected a whole number from 2 to 4294967296");
+  if (image)  // the CLI's limit (core/image.h), before anything is traced
+    check_image_size(width, height, "width=" + std::to_string(width) + ", height=" + std::to_string(height));
   const bool light = integrator_name == "light";
   IntegratorOptions integrator;
   if (!light) integrator.kind = parse_integrator_kind(integrator_name);
   PathtraceResult r;
   Solution s;
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     Timer timer;
     const EmbreeVisibility visibility(scene.patches);
@@ -84,7 +92,7 @@ PathtraceResult pathtrace(const Scene& scene, long spp, const std::string& integ
       }
       r.timings["patch_averages"] = s.seconds;
     }
-  }
+  });
   if (averages) {
     Result a;
     a.solution = std::move(s);
@@ -126,7 +134,8 @@ radiance and its per-pixel standard error (copies), or None; rays, seconds: of t
 As `radwalk pathtrace`: spp samples per patch (averages) and per pixel (image); integrator "mis", "nee",
 "implicit" or "light" (light tracing: spp x N particles for the averages, spp x width x height for the image);
 camera: 10 numbers (position, target, up, vertical fov in degrees) or empty for the scene's own (the Cornell
-camera for cornell_box*, else a view of the bounding box). Returns a PathtraceResult; its averages are a Result.)doc");
+camera for cornell_box*, else a view of the bounding box); width x height at most 2^26 pixels, as the CLI
+(InputError before anything is traced). Returns a PathtraceResult; its averages are a Result.)doc");
 }
 
 }  // namespace radwalk::python

@@ -8,6 +8,7 @@
 #include "apps/run_metadata.h"
 #include "bindings.h"
 #include "core/parallel.h"
+#include "interruptible.h"
 #include "formfactor/reciprocity.h"
 #include "io/run_summary.h"
 #include "solve/adaptive_refinement.h"
@@ -29,7 +30,9 @@ struct AdaptiveResult {
 AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int steps, long max_patches,
                                  double floor_fraction, double noise_z, const std::string& solver, double tol,
                                  long max_iterations, long rays, double rays_per_area, long min_rays,
-                                 bool reciprocity, std::uint64_t seed, int threads) {
+                                 bool reciprocity, std::uint64_t seed, long long threads_arg) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   RefineOptions r;
   r.tol = refine_tol;
   r.max_steps = steps;
@@ -53,11 +56,11 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
     return ff;
   };
   RefinedSolution refined;
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     refined = solve_adaptive(scene.patches, stage, o, r);
-  }
+  });
+  check_solved(refined.solution);
   AdaptiveResult a;
   // The refined patches keep their input face, hence its group.
   std::unordered_map<std::int32_t, std::int32_t> group_of_face;

@@ -5,7 +5,9 @@
 
 #include "bindings.h"
 #include "core/error.h"
+#include "interruptible.h"
 #include "mesh/read_scene.h"
+#include "mesh/validate.h"
 #include "patch/patch_scene.h"
 #include "solve/response_spec.h"
 
@@ -35,8 +37,7 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
            bool contact_cut) {
   const std::string path = file.string();
   Scene scene;
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ReadOptions read;
     read.strict = strict;
     ScenePatchingOptions patching;
@@ -49,7 +50,7 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
     scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
     scene.groups = patched.mesh.groups;
     scene.warnings = patched.mesh.warnings;
-  }
+  });
   scene.path = path;
   scene.max_edge = max_edge;
   scene.max_area = max_area;
@@ -68,11 +69,56 @@ std::size_t material_index(const Scene& scene, const py::object& material) {
       if (materials[k].name == name) return k;
     throw InputError("unknown material '" + name + "' (the scene's materials are listed in Scene.materials)");
   }
-  const long k = material.cast<long>();
+  if (!py::isinstance<py::int_>(material) || py::isinstance<py::bool_>(material))
+    throw InputError("a material is named by its name (str) or its index (int) into Scene.materials");
+  int overflow = 0;
+  const long long k = PyLong_AsLongLongAndOverflow(material.ptr(), &overflow);
+  if (overflow != 0)
+    throw InputError("material index " + py::str(material).cast<std::string>() + " is outside [0, " +
+                     std::to_string(materials.size()) + ")");
   if (k < 0 || static_cast<std::size_t>(k) >= materials.size())
     throw InputError("material index " + std::to_string(k) + " is outside [0, " + std::to_string(materials.size()) +
                      ")");
   return static_cast<std::size_t>(k);
+}
+
+// An RGB argument of set_material: a number (the same in every channel) or 3 numbers; None: not given.
+std::optional<Rgb> rgb_argument(const py::object& value, const char* name) {
+  if (value.is_none()) return std::nullopt;
+  const py::module_ np = py::module_::import("numpy");
+  py::object a;
+  try {
+    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"));
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
+    throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b)");
+  }
+  const auto v = a.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  if (v.ndim() == 0) return Rgb::Constant(v.data()[0]);
+  if (v.ndim() == 1 && v.shape(0) == 3) return Rgb(v.data()[0], v.data()[1], v.data()[2]);
+  throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b), got " + std::to_string(v.size()) +
+                   " numbers");
+}
+
+// Sets Kd and/or Ke of a material after checking them as validate_mesh checks an MTL's (rho in [0, 1), Ke finite,
+// >= 0 and at most kMaxKe), then derives every patch's rho and E again.
+void set_material(Scene& s, const py::object& material, const py::object& rho_value, const py::object& Ke_value) {
+  Material& mat = s.patches.materials[material_index(s, material)];
+  const std::optional<Rgb> rho = rgb_argument(rho_value, "rho"), Ke = rgb_argument(Ke_value, "Ke");
+  const std::string at = "material '" + printable(mat.name) + "': ";
+  if (rho)
+    for (int c = 0; c < 3; ++c)
+      if (!((*rho)[c] >= 0 && (*rho)[c] < 1))
+        throw InputError(at + "rho = " + number_text((*rho)[c]) + " in channel " + std::to_string(c) +
+                         " is outside [0, 1) (Kd)");
+  if (Ke)
+    for (int c = 0; c < 3; ++c)
+      if (!((*Ke)[c] >= 0 && (*Ke)[c] <= kMaxKe))
+        throw InputError(at + "Ke = " + number_text((*Ke)[c]) + " in channel " + std::to_string(c) +
+                         " must be finite, >= 0 and at most " + number_text(kMaxKe));
+  if (rho) mat.Kd = *rho;
+  if (Ke) mat.Ke = *Ke;
+  set_radiometry_from_materials(s.patches);
 }
 
 }  // namespace
@@ -96,8 +142,8 @@ Per-patch numpy arrays are views of the C++ arrays (no copy; they keep the Scene
   read-only;
   rho (N, 3) and E (N, 3): WRITABLE in place. Every later computation (form_factors excepted: F does not depend on
   them) uses the values as they are then, e.g. scene.rho[scene.material == 2] = 0.5. Values outside what an MTL
-  may hold (rho outside [0, 1), E < 0) are not refused here; the solvers report what they do (negative or
-  non-finite values raise InputError).
+  may hold are not refused when written but by every computation before it starts (InputError naming the patch,
+  channel and value): rho in [0, 1), E = pi Ke finite, >= 0 and at most pi x 1e300.
 Per material: set_material(name, rho=..., Ke=...), which acts as the same scene with an edited MTL.)doc")
       .def_readonly("path", &Scene::path)
       .def_readonly("max_edge", &Scene::max_edge)
@@ -167,17 +213,12 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
           [](py::object self, py::object values) { assign(self.attr("E"), values); },
           "Emitted radiosity E = pi * Ke (N, 3), W per unit length squared, writable in place.")
       .def(
-          "set_material",
-          [](Scene& s, const py::object& material, std::optional<std::array<double, 3>> rho,
-             std::optional<std::array<double, 3>> Ke) {
-            Material& mat = s.patches.materials[material_index(s, material)];
-            if (rho) mat.Kd = Rgb((*rho)[0], (*rho)[1], (*rho)[2]);
-            if (Ke) mat.Ke = Rgb((*Ke)[0], (*Ke)[1], (*Ke)[2]);
-            set_radiometry_from_materials(s.patches);
-          },
+          "set_material", &set_material,
           py::arg("material"), py::arg("rho") = py::none(), py::arg("Ke") = py::none(),
           R"doc(Sets a material's Kd (rho) and/or Ke (emitted radiance), by name or index, as an edited MTL would.
 
+rho and Ke: a number (all three channels) or (r, g, b); refused (InputError) outside what an MTL may hold:
+rho in [0, 1), Ke finite, >= 0 and at most 1e300.
 Then every patch's rho and E are derived again from its material (rho = Kd, E = pi * Ke: the library's
 set_radiometry_from_materials), so per-patch edits of rho or E made before are replaced.)doc")
       .def("__repr__", [](const Scene& s) {

@@ -3,7 +3,7 @@
 
 #include "bindings.h"
 #include "core/parallel.h"
-#include "io/run_summary.h"
+#include "interruptible.h"
 #include "io/run_summary.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
@@ -18,11 +18,12 @@ py::object rgb_or_none(py::object self, const PatchRgb& values) {
 }
 
 Result solve(const Scene& scene, const py::object& F, const std::string& solver, double tol, long max_iterations,
-             long rays, std::uint64_t seed, int threads) {
+             long rays, std::uint64_t seed, long long threads_arg) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   Result r;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings);
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     SolveOptions o;
     o.solver = solver;
@@ -30,7 +31,8 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
     o.max_iterations = max_iterations > 0 ? max_iterations : default_max_iterations(solver, scene.patches.size());
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     r.solution = solve_radiosity(problem, o);
-  }
+  });
+  check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;
   nlohmann::json run = {{"solver", solver}, {"tol", tol}, {"seed", seed}, {"threads", threads}};
   r.metadata = result_metadata(r, scene, run);
@@ -55,9 +57,10 @@ void bind_solvers(py::module_& m) {
 B (N, 3): radiosity per patch and channel (W per unit length squared); B_se, var, var_theory (N, 3): standard
 error, per-walk variance and exact per-walk variance (Monte Carlo results; None where not computed). These are
 read-only views of the C++ result (no copy) that keep it alive; np.array(r.B) gives a writable copy.
-method, status ("converged", "max-iterations", "diverged", "refused"), message, iterations, residual,
-residual_history, walks_total, steps, seconds, info: as the CLI's JSON "solution" object (a status other than
-"converged" is not an exception: the CLI's exit code 1 or 3).
+method, status ("converged" or "max-iterations"), message, iterations, residual, residual_history, walks_total,
+steps, seconds, info: as the CLI's JSON "solution" object ("max-iterations" is not an exception: the CLI's exit
+code 1; a solve that diverged or was refused raises radwalk.NumericalError with its message instead, where the
+CLI exits 3).
 timings: stage -> seconds; metadata: the JSON the CLI writes for the run (its "solution" object, options, timings_s).
 fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp.)doc")
       .def_property_readonly("B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); })
@@ -110,7 +113,8 @@ solver: "auto" (direct up to a few thousand patches, else Gauss-Seidel), "direct
   "southwell" (the CLI's --solver); tol: relative residual to stop at (--tol);
   max_iterations: sweeps or shots, 0 = the CLI's default (10000, or 1000 x N shots for southwell).
 threads: 0 = all cores. The GIL is released during the solve.
-Raises radwalk.InputError (a ValueError) for an unknown solver, bad options or bad values (rho < 0, NaN, ...).
+Raises radwalk.InputError (a ValueError) for an unknown solver, bad options or bad values (rho outside [0, 1),
+NaN, a malformed F, ...); radwalk.NumericalError when the solve diverged or was refused (its message).
 For random walks use random_walk; for the continuous reference, pathtrace.)doc");
 }
 

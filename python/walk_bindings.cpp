@@ -2,9 +2,12 @@
 // The method names are those of the one method table (walk/walk_method.h, radwalk.walk_methods()).
 #include <limits>
 #include <memory>
+#include <optional>
 
 #include "bindings.h"
+#include "core/error.h"
 #include "core/parallel.h"
+#include "interruptible.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
@@ -53,11 +56,20 @@ SparseF walk_form_factors(const py::object& F, const Scene& scene, WalkKernel ke
 }
 
 Result random_walk(const Scene& scene, const py::object& F, const std::string& method, const std::string& kernel,
-                   long walks_per_patch, long particles, std::uint64_t seed, const std::string& survival,
-                   double survival_constant, bool theory, const std::vector<int>& patches, long rays, int threads,
-                   bool progress, bool control_variate, const std::string& sampler, int replicates,
-                   bool direct_light, long shadow_rays) {
-  WalkOptions w = walk_options(method, kernel, walks_per_patch, particles, seed, survival, survival_constant, patches);
+                   std::optional<long> walks_per_patch, std::optional<long> particles, std::uint64_t seed,
+                   const std::string& survival, double survival_constant, bool theory,
+                   const std::vector<int>& patches, long rays, long long threads_arg, bool progress,
+                   bool control_variate, const std::string& sampler, int replicates, bool direct_light,
+                   long shadow_rays) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
+  WalkOptions w = walk_options(method, kernel, walks_per_patch.value_or(1000), particles.value_or(1000), seed,
+                               survival, survival_constant, patches);
+  // The count the method does not read is refused, as the CLI refuses --particles with gathering walks.
+  if (is_gathering(w.method) && particles)
+    throw InputError("particles counts shooting particles; gathering walks (" + method + ") take walks_per_patch");
+  if (!is_gathering(w.method) && walks_per_patch)
+    throw InputError("walks_per_patch counts gathering walks; shooting walks (" + method + ") take particles");
   w.theory = theory;
   w.progress = progress;
   w.control_variate = control_variate;
@@ -68,14 +80,14 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
   check_walk_options(w, scene.patches.size());  // before any form factor is traced, as the CLI
   Result r;
   SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings);
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     std::unique_ptr<EmbreeVisibility> visibility;
     if (w.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
     r.solution = solve_random_walk(problem, &scene.patches, visibility.get(), w);
-  }
+  });
+  check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;
   const WalkMethodRow& row = method_row(w.method);
   nlohmann::json run = {{"solver", "random-walk"},
@@ -98,7 +110,9 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
 Comparison compare(const Scene& scene, const py::object& F, const std::optional<std::vector<std::string>>& methods,
                    int runs, long walks_per_patch, const std::string& kernel, std::uint64_t seed,
                    const std::string& survival, double survival_constant, bool theory,
-                   const std::vector<int>& patches, long rays, int threads, bool progress) {
+                   const std::vector<int>& patches, long rays, long long threads_arg, bool progress) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   CompareOptions o;
   if (methods) {
     o.methods.clear();
@@ -112,20 +126,20 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
   Comparison c;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, c.timings);  // the reference needs F either way
   CompareResult result;
-  {
-    py::gil_scoped_release release;
+  interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     // The reference, as `radwalk compare`: the direct solve of the same discrete system.
     SolveOptions direct;
     direct.solver = "direct";
     const Solution reference = solve_radiosity(problem, direct);
+    check_solved(reference);
     c.timings["reference solve"] = reference.seconds;
     c.B_reference = reference.B;
     std::unique_ptr<EmbreeVisibility> visibility;
     if (o.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
     result = compare_random_walks(problem, &scene.patches, visibility.get(), o, reference.B);
-  }
+  });
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
   const double nan = std::numeric_limits<double>::quiet_NaN();
   double walks_seconds = 0;
@@ -153,17 +167,17 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
 
 py::array_t<double> exact_variance(const Scene& scene, const py::object& F, const std::string& method,
                                    const std::string& survival, double survival_constant, long rays,
-                                   std::uint64_t seed, int threads) {
+                                   std::uint64_t seed, long long threads_arg) {
+  check_run(scene, threads_arg);
+  const int threads = static_cast<int>(threads_arg);
   WalkOptions w = walk_options(method, "matrix", 1000, 1000, seed, survival, survival_constant, {});
   std::map<std::string, double> timings;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, timings);
-  PatchRgb var;
-  {
-    py::gil_scoped_release release;
+  const PatchRgb var = interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
-    var = theoretical_variance(problem, w, dense_radiosity(problem));
-  }
+    return theoretical_variance(problem, w, dense_radiosity(problem));
+  });
   py::array_t<double> out({static_cast<py::ssize_t>(var.rows()), py::ssize_t{3}});
   std::copy(var.data(), var.data() + var.size(), out.mutable_data());
   return out;
@@ -264,8 +278,8 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
       .def_readonly("timings", &Comparison::timings);
 
   m.def("random_walk", &random_walk, py::arg("scene"), py::arg("F") = py::none(),
-        py::arg("method") = "gather-collision", py::arg("kernel") = "matrix", py::arg("walks_per_patch") = 1000,
-        py::arg("particles") = 1000, py::arg("seed") = 1, py::arg("survival") = "analog",
+        py::arg("method") = "gather-collision", py::arg("kernel") = "matrix", py::arg("walks_per_patch") = py::none(),
+        py::arg("particles") = py::none(), py::arg("seed") = 1, py::arg("survival") = "analog",
         py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
         py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
         py::arg("control_variate") = false, py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
@@ -274,8 +288,9 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
         R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
 
 method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): "gather-absorption",
-  "gather-collision", "gather-expected-value" (walks from each estimated patch, walks_per_patch of them) or
-  "shoot-collision", "shoot-absorption", "shoot-survival" (particles from the emitters, `particles` in total);
+  "gather-collision", "gather-expected-value" (walks from each estimated patch, walks_per_patch of them, default
+  1000) or "shoot-collision", "shoot-absorption", "shoot-survival" (particles from the emitters, `particles` in
+  total, default 1000); the count the method does not read is refused (InputError), as in the CLI;
   the CLI's --walk D --estimator E is method "D-E".
 kernel: "matrix" (stored F, alias tables) or "ray" (Embree traces every step, F is not used or estimated).
 F: a FormFactors, a scipy.sparse matrix, or None (estimated with `rays` and `seed`, as the CLI).
@@ -291,7 +306,8 @@ sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler
   the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
   receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
   replicates nor shadow_rays, and direct_light needs sobol or jacobi (InputError, as the CLI).
-Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count.)doc");
+Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count;
+radwalk.NumericalError when the walks refuse the system (spectral radius >= 1), with the walks' message.)doc");
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),
         py::arg("runs") = 5, py::arg("walks_per_patch") = 1000, py::arg("kernel") = "matrix", py::arg("seed") = 1,

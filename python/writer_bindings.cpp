@@ -2,9 +2,13 @@
 #include "apps/distinct_files.h"
 #include <pybind11/stl/filesystem.h>
 
+#include <cctype>
+
 #include "bindings.h"
 #include "core/error.h"
+#include "formfactor/form_factor_file.h"
 #include "formfactor/matrix_market.h"
+#include "interruptible.h"
 #include "io/cell_field.h"
 #include "io/csv_writer.h"
 #include "io/vtp_writer.h"
@@ -21,22 +25,59 @@ void check_not_an_input(const std::string& path, const Scene& scene) {
   if (!clash.empty()) throw InputError(clash);
 }
 
+// Refuses a field or metadata name the .vtp (and a CSV header) cannot hold: one ParaView accepts as an identifier
+// (io/cell_field.h: letters, digits and underscores, not starting with a digit, not a reserved word). The
+// message escapes control characters (printable), as every message does.
+void check_field_name(const std::string& name, const char* what) {
+  if (name.empty() || paraview_name(name) != name || is_calculator_reserved(name) ||
+      std::isdigit(static_cast<unsigned char>(name[0])))
+    throw InputError(std::string(what) + " '" + printable(name) +
+                     "' is not a name ParaView's Calculator accepts (letters, digits and '_', not starting with a "
+                     "digit, not a reserved word such as var)");
+}
+
+// A CSV column name: no control character, comma or quote (the header is one line of plain names).
+void check_csv_name(const std::string& name) {
+  for (const char c : name)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f || c == ',' || c == '"')
+      throw InputError("CSV name '" + printable(name) +
+                       "' holds a control character, a comma or a quote, which a CSV header cannot hold");
+  if (name.empty()) throw InputError("a CSV name must not be empty");
+}
+
 // dict name -> array (N,) or (N, 3), or -> (array, csv_name): CellFields in the dict's order. Integer arrays are
 // counts (FieldKind::count: Int64 in the .vtp), floating ones quantities.
-std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n) {
+// Names are checked for the file they go to: `vtp` ParaView identifiers (check_field_name), else CSV names.
+std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n, bool vtp) {
   std::vector<CellField> out;
   const py::module_ np = py::module_::import("numpy");
   for (const auto& [key, value] : fields) {
     CellField f;
+    if (!py::isinstance<py::str>(key)) throw InputError("field names must be str");
     f.name = key.cast<std::string>();
+    if (vtp)
+      check_field_name(f.name, "field name");
+    else
+      check_csv_name(f.name);
     py::object array = py::reinterpret_borrow<py::object>(value);
     if (py::isinstance<py::tuple>(array)) {
       const py::tuple t = array.cast<py::tuple>();
       if (t.size() != 2) throw InputError("field '" + f.name + "': expected an array or (array, csv_name)");
       array = t[0];
+      if (!py::isinstance<py::str>(t[1])) throw InputError("field '" + f.name + "': csv_name must be str");
       f.csv_name = t[1].cast<std::string>();
+      check_csv_name(f.csv_name);
     }
-    array = np.attr("asarray")(array);
+    try {
+      array = np.attr("asarray")(array);
+    } catch (const py::error_already_set& e) {
+      if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
+      throw InputError("field '" + f.name + "': not an array of numbers");
+    }
+    const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
+    if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
+      throw InputError("field '" + f.name + "': values must be real numbers, not " +
+                       py::str(array.attr("dtype")).cast<std::string>());
     if (np.attr("issubdtype")(array.attr("dtype"), np.attr("integer")).cast<bool>()) f.kind = FieldKind::count;
     const auto a = array.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
     const bool rgb = a.ndim() == 2 && a.shape(1) == 3;
@@ -50,10 +91,18 @@ std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n) {
   return out;
 }
 
+// An int metadata value as int64 (a Python int beyond it is refused, not wrapped).
+std::int64_t integer_value(const std::string& name, const py::handle& value) {
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0) throw InputError("metadata '" + name + "': the integer does not fit in 64 bits");
+  return v;
+}
+
 void write_csv(const std::filesystem::path& file, const Scene& scene, const py::dict& fields) {
   const std::string path = file.string();
   check_not_an_input(path, scene);
-  const std::vector<CellField> f = cell_fields(fields, scene.patches.size());
+  const std::vector<CellField> f = cell_fields(fields, scene.patches.size(), false);
   py::gil_scoped_release release;
   write_patch_csv(path, scene.patches, f);
 }
@@ -62,12 +111,14 @@ void write_vtp(const std::filesystem::path& file, const Scene& scene, const py::
   const std::string path = file.string();
   check_not_an_input(path, scene);
   std::vector<CellField> all = patch_fields(scene.patches);
-  for (CellField& f : cell_fields(fields, scene.patches.size())) all.push_back(std::move(f));
+  for (CellField& f : cell_fields(fields, scene.patches.size(), true)) all.push_back(std::move(f));
   VtpMetadata m;
   for (const auto& [key, value] : metadata) {
+    if (!py::isinstance<py::str>(key)) throw InputError("metadata names must be str");
     const std::string k = key.cast<std::string>();
+    check_field_name(k, "metadata name");
     if (py::isinstance<py::bool_>(value) || py::isinstance<py::int_>(value))
-      m.set_integer(k, value.cast<std::int64_t>());
+      m.set_integer(k, integer_value(k, value));
     else if (py::isinstance<py::float_>(value))
       m.set_real(k, value.cast<double>());
     else
@@ -111,13 +162,13 @@ B_var, not var), and `metadata` (str/int/float values) as field data. A field B 
       [](const std::filesystem::path& path, const Scene& scene) {
         FormFactorsResult r;
         r.area = scene.patches.area;
-        py::gil_scoped_release release;
-        r.ff.F = read_matrix_market(path.string(), scene.patches.size());
+        r.ff.F = interruptible([&] { return radwalk::read_form_factors(path.string(), scene.patches.size()); });
         return r;
       },
       py::arg("path"), py::arg("scene"),
-      "Reads a Matrix Market F for the scene (the CLI's --form-factors): a FormFactors without ray counts. "
-      "InputError with the CLI's message for a malformed file or a size that is not N x N.");
+      "Reads F for the scene as the CLI's --form-factors does, its format chosen by the extension (.npz: binary "
+      "CSR as scipy.sparse.save_npz(..., compressed=False) writes it; anything else: Matrix Market): a FormFactors "
+      "without ray counts. InputError with the CLI's message for a malformed file or a size that is not N x N.");
 }
 
 }  // namespace radwalk::python

@@ -3,7 +3,8 @@
 //
 // Work [0, n) is cut into fixed chunks of `chunk` items that do not depend on the thread count; chunks run in
 // parallel (TBB) and per-chunk results are combined in chunk order, so floating-point sums are bit-identical
-// for 1 or many threads.
+// for 1 or many threads. Every chunk first polls the cancellation request (core/cancellation.h: throws Cancelled,
+// which TBB carries to the calling thread after cancelling the other chunks).
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -17,7 +18,15 @@
 #include <utility>
 #include <vector>
 
+#include "core/cancellation.h"
+
 namespace radwalk {
+
+// The most threads a caller may ask for (more only costs memory: every TBB thread has its own stack).
+constexpr int kMaxThreads = 1024;
+
+// Throws InputError unless 0 <= threads <= kMaxThreads (0: all cores), naming `what` (e.g. "--threads").
+void check_thread_count(long long threads, const char* what);
 
 // Limits TBB to `threads` worker threads while alive; threads <= 0 means all cores.
 class ThreadLimit {
@@ -44,7 +53,10 @@ void parallel_chunks(std::size_t n, std::size_t chunk, Body&& body) {
   tbb::parallel_for(
       tbb::blocked_range<std::size_t>(0, chunks, 1),
       [&](const tbb::blocked_range<std::size_t>& r) {
-        for (std::size_t k = r.begin(); k != r.end(); ++k) body(k * chunk, std::min(n, (k + 1) * chunk));
+        for (std::size_t k = r.begin(); k != r.end(); ++k) {
+          throw_if_cancelled();
+          body(k * chunk, std::min(n, (k + 1) * chunk));
+        }
       },
       tbb::simple_partitioner());
 }
@@ -86,7 +98,10 @@ void ordered_reduce(std::size_t chunks, std::size_t in_flight, Map&& map, Combin
                                                                return chunks;
                                                              }) &
                              tbb::make_filter<std::size_t, Part>(tbb::filter_mode::parallel,
-                                                                 [&](std::size_t c) { return map(c); }) &
+                                                                 [&](std::size_t c) {
+                                                                   throw_if_cancelled();
+                                                                   return map(c);
+                                                                 }) &
                              tbb::make_filter<Part, void>(tbb::filter_mode::serial_in_order,
                                                           [&](Part part) { combine(std::move(part)); }));
 }

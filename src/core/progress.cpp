@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <exception>
 
+#include "core/cancellation.h"
+
 namespace radwalk {
 namespace {
 
@@ -121,6 +123,7 @@ void Progress::report(const std::string& text, bool last) {
 }
 
 void Progress::advance(std::size_t done_items) {
+  throw_if_cancelled();  // every long stage reports here (core/cancellation.h)
   const std::size_t done = done_ += done_items;
   if (!output_.enabled) return;
   const double t = now();

@@ -421,7 +421,7 @@ void check_materials(Mesh& mesh, FindingLog& log) {
                     ", emitted radiance must be finite and >= 0");
     // E = pi Ke must be finite too, and leave room for the radiosity it drives (found by fuzz_validate_patch:
     // Ke 1e308 passed and made E infinite).
-    else if (!(m.Ke.maxCoeff() <= 1e300))
+    else if (!(m.Ke.maxCoeff() <= kMaxKe))
       log.error("emission too large", f,
                 "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
                     ", above the 1e300 radwalk computes with (E = pi Ke would overflow)");

@@ -60,6 +60,10 @@ struct ValidationTolerances {
   bool strict = false;
 };
 
+// The largest emitted radiance Ke a material may hold (validate_mesh refuses more): E = pi Ke must stay finite and
+// leave room for the radiosity it drives.
+constexpr double kMaxKe = 1e300;
+
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances = {});
 
 // The repairs and warnings among `findings` as lines grouped by kind, at most per_kind of each and then

@@ -49,6 +49,7 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
           const auto pixel = static_cast<std::uint64_t>(py) * options.width + px;
           Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
           for (long s = 0; s < options.spp; ++s) {
+            if (s % 1024 == 0) throw_if_cancelled();  // a row can hold width x spp paths (core/cancellation.h)
             Rng rng = stream(options.seed, StreamDomain::render_pixel, pixel, static_cast<std::uint64_t>(s));
             const double u = rng.uniform(), v = rng.uniform();
             const Rgb L = integrator.radiance(pinhole.generate_ray(px + u, py + v), rng, counters) * inverse_scale;

@@ -22,6 +22,7 @@
 #include <span>
 #include <type_traits>
 
+#include "core/cancellation.h"
 #include "walk/transition_kernel.h"
 
 namespace radwalk {
@@ -54,12 +55,17 @@ PatchIndex sample_one(const K& kernel, Walk& walk, WalkCounters& counters) {
   return kernel.sample(walk.from(), walk.rng(), counters);
 }
 
+// Both poll the cancellation request (core/cancellation.h) every this many walks started: a chunk of a shooting
+// run can hold millions of particles.
+constexpr std::size_t kWalksPerCancellationPoll = 1024;
+
 // The walks one at a time (run_lockstep with lanes = 1; a function of its own, small enough for the compiler to
 // inline the kernel and the walk into it).
 template <TransitionKernel K, class Make, class Step, class Finish>
 void run_singly(const K& kernel, std::size_t count, Make&& make, Step&& step, Finish&& finish,
                 WalkCounters& counters) {
   for (std::size_t w = 0; w < count; ++w) {
+    if (w % kWalksPerCancellationPoll == 0) throw_if_cancelled();
     auto walk = make(w);
     while (!walk.done()) step(walk, w, sample_one(kernel, walk, counters));
     finish(w, walk);
@@ -78,6 +84,7 @@ void run_lockstep(const K& kernel, std::size_t count, std::size_t lanes, Make&& 
   // Starts walks in order in `lane` until one is still running (true) or none is left (false).
   auto fill = [&](std::size_t lane) {
     while (next < count) {
+      if (next % kWalksPerCancellationPoll == 0) throw_if_cancelled();
       index[lane] = next;
       walk[lane] = make(next++);
       if (!walk[lane].done()) return true;

@@ -54,19 +54,3 @@ def test_writers_refuse_to_overwrite_the_scene(cube):
     with pytest.raises(ValueError):
         radwalk.write_csv(cube.with_suffix(".mtl"), scene)
 
-
-def test_walks_and_measure_refuse_a_divergent_system_in_one_message():
-    """rho = 1 in the red channel of a closed cube: no finite B. random_walk reports it as a diverged solution and
-    measure raises NumericalError, both with the one refusal of the walks (walk/random_walk_solver.h,
-    check_walks_converge), which names the channel."""
-    scene = radwalk.load(mesh("cube.obj"))
-    ff = radwalk.form_factors(scene, rays=300, seed=4)
-    scene.rho[:, 0] = 1.0
-    for method in ("gather-collision", "shoot-collision"):
-        walk = radwalk.random_walk(scene, ff, method=method, walks_per_patch=50, particles=50)
-        assert walk.metadata["solution"]["status"] == "diverged"
-        message = walk.metadata["solution"]["message"]
-        assert message.startswith(method + " refused: ") and "channel 0" in message
-        with pytest.raises(radwalk.NumericalError) as refused:
-            radwalk.measure(scene, "patches:0", ff, method=method, walks=50)
-        assert str(refused.value) == message
