@@ -122,27 +122,6 @@ TEST_CASE("measure --response csv: a patch listed twice, a column named twice an
   refused("patch,w,x\n0,1\n", "2: --response csv:" + (s.dir / "r.csv").string() + ":w: the row has 2 cells");
 }
 
-namespace {
-
-// Peak resident memory (KiB) of one radwalk run, which must succeed.
-double peak_kib(const std::string& args) {
-  const std::string cmd = std::string(RADWALK_BINARY) + " -q " + args + " > /dev/null 2>&1";
-  const pid_t pid = fork();
-  REQUIRE(pid >= 0);
-  if (pid == 0) {
-    execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-    _exit(127);
-  }
-  int status = 0;
-  struct rusage usage {};
-  REQUIRE(wait4(pid, &status, 0, &usage) == pid);
-  REQUIRE(WIFEXITED(status));
-  REQUIRE(WEXITSTATUS(status) == 0);
-  return static_cast<double>(usage.ru_maxrss);
-}
-
-}  // namespace
-
 TEST_CASE("O4: path-tracer memory does not grow with the samples per patch", "[cli][limits]") {
   // The per-block sums of every patch were all held at once: 48 bytes per 256 samples of every patch, so the
   // documented maximum --spp 2^32 needed 0.19 bytes per sample. Two facing unit squares, 2^25 samples each: the

@@ -173,21 +173,6 @@ TEST_CASE("O4: form-factor memory does not grow with the rays of one patch", "[c
   // chunks of front hits): the peak memory of the process must stay below 8 bytes per ray above that of a run
   // with 1000 rays (the old buffers held 24 to 32 bytes per ray of a row with one thread), and the estimate must
   // agree with the analytic F = 0.199824896 (C-11).
-  const auto peak_kib = [](const std::string& args) {
-    const std::string cmd = std::string(RADWALK_BINARY) + " -q " + args + " > /dev/null 2>&1";
-    const pid_t pid = fork();
-    REQUIRE(pid >= 0);
-    if (pid == 0) {
-      execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    int status = 0;
-    struct rusage usage {};
-    REQUIRE(wait4(pid, &status, 0, &usage) == pid);
-    REQUIRE(WIFEXITED(status));
-    REQUIRE(WEXITSTATUS(status) == 0);
-    return static_cast<double>(usage.ru_maxrss);
-  };
   const fs::path csv = scratch() / "rays.csv";
   const long rays = 3L << 20;
   const std::string scene = source("meshes/parallel_squares.obj") + " --threads 1 ";

@@ -14,7 +14,6 @@
 //       the CSR invariants: offsets from 0 to nnz and monotone, columns in range and strictly increasing
 //       within a row, values in [0, 1], row sums <= kMaxRowSum; and write_matrix_market then
 //       read_matrix_market gives it back exactly (offsets, columns and the bits of every value).
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -34,24 +33,6 @@ namespace {
 
 constexpr long long kMaxPatches = 100'000;
 
-// This process's scratch directory, created on first use and removed at exit.
-const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    namespace fs = std::filesystem;
-    const char* tmpdir = std::getenv("TMPDIR");
-    const fs::path base = tmpdir && *tmpdir              ? fs::path(tmpdir)
-                          : fs::is_directory("/dev/shm") ? "/dev/shm"
-                                                         : "/tmp";
-    fs::path d = base / ("radwalk-fuzz-mm-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(scratch(), ignored);
-    });
-    return d;
-  }();
-  return dir;
-}
 
 // The three integers of the size line, as far as they parse (0 otherwise).
 struct Declared {
@@ -82,7 +63,7 @@ void check_csr(const SparseF& F, std::size_t n, long long entries) {
 }
 
 void check_round_trip(const SparseF& F, std::size_t n) {
-  const std::string path = (scratch() / "round_trip.mtx").string();
+  const std::string path = (scratch_directory("mm") / "round_trip.mtx").string();
   write_matrix_market(path, F);
   SparseF G;
   const bool read_back = accepts([&] { G = read_matrix_market(path, n); }, {path});
@@ -94,7 +75,7 @@ void check_round_trip(const SparseF& F, std::size_t n) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text = as_text(data, size);
-  const std::string path = (scratch() / "input.mtx").string();
+  const std::string path = (scratch_directory("mm") / "input.mtx").string();
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(text.data(), static_cast<std::streamsize>(text.size()));

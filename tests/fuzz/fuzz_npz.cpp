@@ -14,7 +14,6 @@
 //   (c) an accepted matrix is expected_n x expected_n, compressed, with the CSR invariants (offsets from 0 to
 //       nnz and monotone, columns in range and strictly increasing within a row, values in [0, 1], row sums <=
 //       kMaxRowSum); write_npz then read_npz gives it back exactly (offsets, columns, the bits of every value).
-#include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
@@ -36,24 +35,6 @@ namespace {
 
 constexpr std::int64_t kMaxPatches = 100'000;
 
-// This process's scratch directory, created on first use and removed at exit.
-const std::filesystem::path& scratch() {
-  static const std::filesystem::path dir = [] {
-    namespace fs = std::filesystem;
-    const char* tmpdir = std::getenv("TMPDIR");
-    const fs::path base = tmpdir && *tmpdir              ? fs::path(tmpdir)
-                          : fs::is_directory("/dev/shm") ? "/dev/shm"
-                                                         : "/tmp";
-    fs::path d = base / ("radwalk-fuzz-npz-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(scratch(), ignored);
-    });
-    return d;
-  }();
-  return dir;
-}
 
 std::uint64_t le(std::string_view b, std::size_t at, int width) {
   std::uint64_t v = 0;
@@ -112,7 +93,7 @@ std::optional<std::string> with_crcs_recomputed(std::string b) {
 }
 
 void check_round_trip(const SparseF& F, std::size_t n) {
-  const std::string path = (scratch() / "round_trip.npz").string();
+  const std::string path = (scratch_directory("npz") / "round_trip.npz").string();
   write_npz(path, F);
   SparseF G;
   const bool read_back = accepts([&] { G = read_npz(path, n); }, {path});
@@ -121,7 +102,7 @@ void check_round_trip(const SparseF& F, std::size_t n) {
 }
 
 void read_one(std::string_view bytes, const std::string& name, std::size_t n) {
-  const std::string path = (scratch() / name).string();
+  const std::string path = (scratch_directory("npz") / name).string();
   {
     std::ofstream out(path, std::ios::binary | std::ios::trunc);
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
