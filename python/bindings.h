@@ -45,7 +45,8 @@ struct Scene {
   bool contact_cut = false;  // faces cut along the footprints of objects standing on them (--contact-cut)
   PatchSet patches;
   std::vector<std::int32_t> group;    // per patch: the group index of its input face, -1 outside any
-  std::vector<std::string> groups;    // "object 'chair', group 'seat'"
+  std::vector<std::string> groups;       // "object 'chair', group 'seat'" (what --response group:NAME matches)
+  std::vector<std::string> group_names;  // the same groups as the user named them: "chair/seat", "chair", "seat"
   std::vector<std::string> warnings;  // validation's repairs and notices (the CLI's "radwalk: warning:" lines)
 };
 

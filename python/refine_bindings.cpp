@@ -72,6 +72,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
   a.scene.two_sided = scene.two_sided;
   a.scene.contact_cut = scene.contact_cut;
   a.scene.groups = scene.groups;
+  a.scene.group_names = scene.group_names;
   a.scene.patches = std::move(refined.patches);
   a.scene.group.resize(a.scene.patches.size());
   for (std::size_t i = 0; i < a.scene.patches.size(); ++i) a.scene.group[i] = group_of_face.at(a.scene.patches.face[i]);

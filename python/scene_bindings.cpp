@@ -1,11 +1,15 @@
 // radwalk.load and the Scene type: the PatchSet of a validated, patched scene, with numpy views of its arrays.
+#include <algorithm>
 #include <filesystem>
+#include <functional>
+#include <limits>
 
 #include <pybind11/stl/filesystem.h>
 
 #include "bindings.h"
 #include "core/error.h"
 #include "interruptible.h"
+#include "mesh/mesh_from_arrays.h"
 #include "mesh/read_scene.h"
 #include "mesh/validate.h"
 #include "patch/patch_scene.h"
@@ -31,24 +35,45 @@ py::array_t<T> view(const T* data, std::size_t n, std::size_t columns, std::size
 // target[...] = values (numpy broadcasting), for `scene.rho = values`.
 void assign(py::object target, py::object values) { py::module_::import("numpy").attr("copyto")(target, values); }
 
-// Reads, validates and patches the scene as every CLI command does (load_scene, then patch_scene: the CLI's
-// load_patches without its notes).
-Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
-           bool contact_cut) {
-  const std::string path = file.string();
+// Scene.groups and Scene.group_names: the mesh's groups that hold a patch (an OBJ `o desk` directly followed by
+// `g top` declares the object alone too, a group without faces), renumbered in order, each named as the user named
+// it: "object/group", or the one of the two the file gives.
+void keep_used_groups(const Mesh& mesh, Scene& scene) {
+  std::vector<std::int32_t> renumbered(mesh.groups.size(), -1);
+  for (std::int32_t g : scene.group)
+    if (g >= 0) renumbered[static_cast<std::size_t>(g)] = 0;
+  for (std::size_t g = 0; g < mesh.groups.size(); ++g) {
+    if (renumbered[g] < 0) continue;
+    renumbered[g] = static_cast<std::int32_t>(scene.groups.size());
+    scene.groups.push_back(mesh.groups[g]);
+    const std::string object = g < mesh.group_object.size() ? mesh.group_object[g] : "";
+    const std::string name = g < mesh.group_name.size() ? mesh.group_name[g] : "";
+    scene.group_names.push_back(object.empty() ? name : name.empty() ? object : object + "/" + name);
+  }
+  for (std::int32_t& g : scene.group)
+    if (g >= 0) g = renumbered[static_cast<std::size_t>(g)];
+}
+
+// The Scene of a mesh: validated and patched as every CLI command does (validate_mesh, then patch_scene: the CLI's
+// load_patches without its notes); its repairs and notices are one UserWarning that counts them (the lines are in
+// Scene.warnings).
+Scene patched_scene(std::function<Mesh()> read, const std::string& path, double max_edge, double max_area,
+                    bool strict, bool two_sided, bool contact_cut) {
   Scene scene;
   interruptible([&] {
-    ReadOptions read;
-    read.strict = strict;
+    Mesh mesh = read();
+    ValidationTolerances tolerances;
+    tolerances.strict = strict;
+    validate_mesh(mesh, tolerances);
     ScenePatchingOptions patching;
     patching.split.max_edge = max_edge;
     patching.split.max_area = max_area;
     patching.contact_cut = contact_cut;
     patching.two_sided = two_sided;
-    PatchedScene patched = patch_scene(load_scene(path, read), patching);
+    PatchedScene patched = patch_scene(std::move(mesh), patching);
     scene.patches = std::move(patched.patches);
     scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
-    scene.groups = patched.mesh.groups;
+    keep_used_groups(patched.mesh, scene);
     scene.warnings = patched.mesh.warnings;
   });
   scene.path = path;
@@ -57,8 +82,122 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
   scene.strict = strict;
   scene.two_sided = two_sided;
   scene.contact_cut = contact_cut;
-  for (const std::string& w : scene.warnings) PyErr_WarnEx(PyExc_UserWarning, w.c_str(), 1);
+  if (!scene.warnings.empty()) {
+    const std::string summary = path + ": " + std::to_string(scene.warnings.size()) +
+                                (scene.warnings.size() == 1 ? " repair or notice" : " repairs or notices") +
+                                " (Scene.warnings lists them): " + scene.warnings.front() +
+                                (scene.warnings.size() > 1 ? " ..." : "");
+    PyErr_WarnEx(PyExc_UserWarning, summary.c_str(), 1);
+  }
   return scene;
+}
+
+// Reads, validates and patches a scene file (load_scene's read, then patched_scene).
+Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
+           bool contact_cut) {
+  const std::string path = file.string();
+  return patched_scene(
+      [&] {
+        if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
+        ReadOptions read;
+        read.strict = strict;
+        return read_scene(path, read);
+      },
+      path, max_edge, max_area, strict, two_sided, contact_cut);
+}
+
+// A float64 array of shape (rows, columns) from any array-like (a (rows,) array or a number is repeated over the
+// columns when `broadcast`); InputError naming `what` otherwise. Non-finite values are left to validation.
+std::vector<double> float_rows(const py::object& value, std::size_t rows, std::size_t columns, const char* what,
+                               bool broadcast) {
+  const py::module_ np = py::module_::import("numpy");
+  py::array_t<double, py::array::c_style | py::array::forcecast> a;
+  try {
+    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"))
+            .cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
+    throw InputError(std::string(what) + " must be an array of numbers");
+  }
+  std::vector<double> out(rows * columns);
+  const double* d = a.data();
+  if (broadcast && a.ndim() == 0) {
+    std::fill(out.begin(), out.end(), d[0]);
+  } else if (broadcast && a.ndim() == 1 && static_cast<std::size_t>(a.shape(0)) == rows) {
+    for (std::size_t r = 0; r < rows; ++r)
+      for (std::size_t c = 0; c < columns; ++c) out[r * columns + c] = d[r];
+  } else if (a.ndim() == 2 && static_cast<std::size_t>(a.shape(0)) == rows &&
+             static_cast<std::size_t>(a.shape(1)) == columns) {
+    std::copy(d, d + rows * columns, out.begin());
+  } else {
+    std::string shape = "(";
+    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(a.shape(k));
+    shape += a.ndim() == 1 ? ",)" : ")";
+    throw InputError(std::string(what) + " has shape " + shape + "; expected (" + std::to_string(rows) + ", " +
+                     std::to_string(columns) + ")" + (broadcast ? " or (" + std::to_string(rows) + ",)" : ""));
+  }
+  return out;
+}
+
+// The faces argument: an (F, k) integer array (k >= 3) or a sequence of sequences of vertex indices.
+std::vector<std::vector<std::int64_t>> face_lists(const py::object& faces) {
+  const py::module_ np = py::module_::import("numpy");
+  std::vector<std::vector<std::int64_t>> out;
+  const auto integer_list = [&](const py::handle& row) {
+    const py::array a = np.attr("asarray")(row);
+    if (a.ndim() != 1) throw InputError("faces: a face must be a list of vertex indices");
+    if (a.size() == 0) return std::vector<std::int64_t>{};
+    const std::string kind = py::str(a.dtype().attr("kind"));
+    if (kind != "i" && kind != "u")
+      throw InputError("faces: vertex indices must be integers, got dtype " + std::string(py::str(a.dtype())));
+    if (kind == "u" && a.itemsize() == 8 &&
+        np.attr("max")(a).cast<unsigned long long>() > static_cast<unsigned long long>(
+                                                           std::numeric_limits<std::int64_t>::max()))
+      throw InputError("faces: a vertex index does not fit in 64 bits");
+    const auto v = a.attr("astype")("int64").cast<py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>>();
+    return std::vector<std::int64_t>(v.data(), v.data() + v.size());
+  };
+  if (py::isinstance<py::array>(faces) && py::array(faces).ndim() == 2) {
+    const py::array a(faces);
+    for (py::ssize_t f = 0; f < a.shape(0); ++f) out.push_back(integer_list(a.attr("__getitem__")(f)));
+    return out;
+  }
+  try {
+    for (const py::handle row : py::iter(faces)) out.push_back(integer_list(row));
+  } catch (const py::error_already_set& e) {
+    if (!e.matches(PyExc_TypeError) && !e.matches(PyExc_ValueError)) throw;
+    throw InputError("faces must be an (F, 3) or (F, 4) integer array or a list of lists of vertex indices");
+  }
+  return out;
+}
+
+// Scene.from_arrays: the FaceArrays of mesh/mesh_from_arrays.h from numpy arguments, then patched_scene.
+Scene from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                  const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                  double max_area, bool strict, bool contact_cut) {
+  FaceArrays arrays;
+  const py::module_ np = py::module_::import("numpy");
+  const py::array v = np.attr("asarray")(vertices, py::arg("dtype") = np.attr("float64"));
+  if (v.ndim() != 2 || v.shape(1) != 3) throw InputError("vertices must be a (V, 3) array of coordinates");
+  const std::vector<double> xyz = float_rows(vertices, static_cast<std::size_t>(v.shape(0)), 3, "vertices", false);
+  for (std::size_t k = 0; k + 2 < xyz.size(); k += 3) arrays.vertices.emplace_back(xyz[k], xyz[k + 1], xyz[k + 2]);
+  arrays.faces = face_lists(faces);
+  const std::size_t n = arrays.faces.size();
+  const std::vector<double> r = float_rows(rho, n, 3, "rho", true);
+  for (std::size_t f = 0; f < n; ++f) arrays.rho.emplace_back(r[3 * f], r[3 * f + 1], r[3 * f + 2]);
+  if (!emission.is_none()) {
+    const std::vector<double> e = float_rows(emission, n, 3, "emission", true);
+    for (std::size_t f = 0; f < n; ++f) arrays.emission.emplace_back(e[3 * f], e[3 * f + 1], e[3 * f + 2]);
+  }
+  if (!groups.is_none()) {
+    for (const py::handle g : py::iter(groups)) {
+      if (!py::isinstance<py::str>(g)) throw InputError("groups: one name (str) per face");
+      arrays.group.push_back(g.cast<std::string>());
+    }
+  }
+  const std::string name = "<arrays>";
+  return patched_scene([&] { ReadOptions read; read.strict = strict; return mesh_from_arrays(arrays, name, read); },
+                       name, max_edge, max_area, strict, two_sided, contact_cut);
 }
 
 std::size_t material_index(const Scene& scene, const py::object& material) {
@@ -152,9 +291,26 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
       .def_readonly("two_sided", &Scene::two_sided)
       .def_readonly("contact_cut", &Scene::contact_cut)
       .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, one line each (as the CLI's).")
-      .def_readonly("groups", &Scene::groups, "Group names, indexed by Scene.group.")
+      .def_readonly("groups", &Scene::group_names,
+                    "Group names, indexed by Scene.group: the groups that hold a patch, each as the file names it: "
+                    "'desk' (an OBJ object or a group alone), 'desk/top' (group 'top' within object 'desk').")
       .def_property_readonly("materials", [](const Scene& s) { return s.patches.materials; },
                              "The materials (copies), indexed by Scene.material.")
+      .def_static("from_arrays", &from_arrays, py::arg("vertices"), py::arg("faces"), py::arg("rho"),
+                  py::arg("emission") = py::none(), py::arg("groups") = py::none(), py::arg("two_sided") = false,
+                  py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false,
+                  py::arg("contact_cut") = false,
+                  R"doc(A Scene from numpy arrays, validated and patched as radwalk.load would the same mesh as a file.
+
+vertices: (V, 3) float coordinates, in the mesh's length unit.
+faces: (F, 3) or (F, 4) integer array of 0-based vertex indices (counter-clockwise seen from the front), or a
+  list of F lists of 3 or more indices (polygons are triangulated as the readers do).
+rho: reflectance per face, (F, 3) or (F,) (grey) or one number, each in [0, 1).
+emission: emitted radiosity E per face in W/m^2 (exitance: Ke = E / pi), (F, 3), (F,) or one number; None: 0.
+groups: None or one name (str) per face ("" for none), as OBJ `g NAME`.
+two_sided, max_edge, max_area, strict, contact_cut: as radwalk.load.
+The materials are the distinct (rho, E) pairs, named "material_0", ... in the order of their first face; the OBJ
+and MTL that say the same give the same patches and the same repairs, warnings and refusals (InputError).)doc")
       .def("__len__", [](const Scene& s) { return s.patches.size(); }, "The number of patches N.")
       .def_property_readonly("total_area", [](const Scene& s) { return s.patches.total_area(); })
       .def_property_readonly(
@@ -238,7 +394,7 @@ two_sided: every material two-sided (a front and a back patch per face), as --tw
   `radwalk_two_sided 1` in their MTL block are two-sided either way.
 contact_cut: cut the faces that objects stand on along their footprints before splitting (only when max_edge or
   max_area splits faces), as --contact-cut.
-Repairs are reported as UserWarnings and kept in Scene.warnings; refusals raise radwalk.InputError (a
+Repairs are reported as one UserWarning that counts them and kept in Scene.warnings; refusals raise radwalk.InputError (a
 ValueError) with the CLI's one-line message ("FILE:LINE: face F: what is wrong").)doc");
 }
 

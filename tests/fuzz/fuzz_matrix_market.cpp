@@ -24,6 +24,7 @@
 
 #include "form_factor_oracles.h"
 #include "formfactor/matrix_market.h"
+#include "fuzz_scratch.h"
 #include "fuzz_support.h"
 
 using namespace radwalk;

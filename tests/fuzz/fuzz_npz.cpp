@@ -26,6 +26,7 @@
 
 #include "formfactor/npz.h"
 #include "form_factor_oracles.h"
+#include "fuzz_scratch.h"
 #include "fuzz_support.h"
 
 using namespace radwalk;

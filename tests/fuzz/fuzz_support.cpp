@@ -4,11 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
-#include <string>
-#include <system_error>
-
-#include <unistd.h>
 #include <limits>
 
 #include "mesh/face_geometry.h"
@@ -244,22 +239,5 @@ void check_patches(const Mesh& mesh, const PatchSet& patches, double max_edge) {
   RADWALK_FUZZ_CHECK(i == n, "patches after the last face, or out of face order");
 }
 
-const std::filesystem::path& scratch_directory(const std::string& harness) {
-  static const std::filesystem::path dir = [&harness] {
-    namespace fs = std::filesystem;
-    const char* tmpdir = std::getenv("TMPDIR");
-    const fs::path base = tmpdir && *tmpdir              ? fs::path(tmpdir)
-                          : fs::is_directory("/dev/shm") ? "/dev/shm"
-                                                         : "/tmp";
-    fs::path d = base / ("radwalk-fuzz-" + harness + "-" + std::to_string(::getpid()));
-    fs::create_directories(d);
-    std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(scratch_directory(""), ignored);
-    });
-    return d;
-  }();
-  return dir;
-}
 
 }  // namespace radwalk::fuzz

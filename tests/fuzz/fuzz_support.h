@@ -9,7 +9,6 @@
 // LLVMFuzzerTestOneInput; the same source is built twice: with libFuzzer (RADWALK_FUZZ=ON, clang, ASan +
 // UBSan) and, in the normal build, with replay_main.cpp, which runs it over the committed corpus.
 #include <cstddef>
-#include <filesystem>
 #include <cstdint>
 #include <exception>
 #include <string>
@@ -58,10 +57,6 @@ void check_refusal_message(const std::string& message, const std::vector<std::st
 // Runs body(). True when it returned; false when it threw an InputError whose message passes
 // check_refusal_message(message, files) (files is read after body ran, so a body may add the files it
 // opened). Any other exception (InternalError, NumericalError, std::bad_alloc, ...) is a finding.
-// This process's scratch directory for a harness's temporary files, "radwalk-fuzz-HARNESS-PID" in $TMPDIR (else
-// /dev/shm, else /tmp): created on the first call and removed at exit. One per process (the first name given).
-const std::filesystem::path& scratch_directory(const std::string& harness);
-
 template <class Body>
 bool accepts(Body&& body, const std::vector<std::string>& files);
 

@@ -89,3 +89,17 @@ def test_groups_follow_the_input_face_through_repairs(tmp_path):
     by_face = {int(f): {n for n, ff in zip(names, scene.face) if ff == f} for f in set(scene.face)}
     assert {f: len(v) for f, v in by_face.items()} == {0: 1, 1: 1, 2: 1}
     assert "first" in by_face[0].pop() and "pentagon" in by_face[1].pop() and "last" in by_face[2].pop()
+
+
+def test_group_names_are_the_files_names_without_empty_duplicates(tmp_path):
+    # `o desk` then `g top` declares the object alone too (no face is in it): only groups holding patches are
+    # listed, named as the file names them.
+    obj = tmp_path / "named.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                   "o desk\ng top\nf 1 2 3 4\no lamp\nf 5 6 7 8\ng shade\nf 8 7 6 5\n")
+    scene = radwalk.load(str(obj))
+    assert scene.groups == ["desk/top", "lamp", "lamp/shade"]
+    assert [scene.groups[g] for g in scene.group] == ["desk/top", "lamp", "lamp/shade"]
+    # --response group:NAME still finds them by the names the file gives.
+    m = radwalk.measure(scene, radwalk.form_factors(scene, rays=100, seed=1), response="group:lamp", method="direct")
+    assert m.M is not None
