@@ -57,6 +57,7 @@ if [ -z "$display" ]; then
   cat "$work/xvfb.log" >&2
   exit 70
 fi
+rm -rf "$work"  # no longer needed (the server keeps its open log), so that even SIGKILL leaves no folder
 
 # COMMAND runs in the background so that the traps above run as soon as a signal arrives.
 DISPLAY=":$display" RADWALK_XVFB_PID=$server setpriv --pdeathsig KILL -- "$@" &

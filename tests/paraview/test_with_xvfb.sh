@@ -100,5 +100,14 @@ kill -KILL "$pid"
 wait "$pid"
 expect_server_gone "4 (SIGKILL)" "$work/record.kill"
 
+echo "5. no temporary folder of the wrapper is left"
+left=$(find "${TMPDIR:-/tmp}" -maxdepth 1 -name 'radwalk_xvfb.*' -newer "$work/bin/pvpython" 2>/dev/null)
+if [ -n "$left" ]; then
+  echo "FAIL 5: left behind: $left" >&2
+  failures=$((failures + 1))
+else
+  echo "ok   5: none"
+fi
+
 [ "$failures" -eq 0 ] && echo "every case passed" || echo "$failures case(s) failed"
 [ "$failures" -eq 0 ]
