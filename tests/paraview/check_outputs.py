@@ -49,8 +49,8 @@ def path(name):
     return os.path.join(WORK, name)
 
 
-def load_render_script():
-    spec = importlib.util.spec_from_file_location("paraview_render", os.path.join(SOURCE, "scripts", "paraview_render.py"))
+def load_render_script(name="paraview_render"):
+    spec = importlib.util.spec_from_file_location(name, os.path.join(SOURCE, "scripts", name + ".py"))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -315,6 +315,7 @@ def check_state(name, vtp, label):
 
 def main():
     render = load_render_script()
+    render_vtp = load_render_script("render_vtp")
 
     print("solve .vtp (direct, Cornell box, 975 patches)", flush=True)
     reader, data = open_vtp("solve.vtp")
@@ -367,6 +368,11 @@ def main():
         camera = render.render(path(name + ".vtp"), os.path.join(SHOTS, f"camera_rule_{name}.png"), 200, 200)
         check(np.allclose(camera, state_camera, rtol=1e-9, atol=1e-9),
               f"{label}: paraview_render.py's default camera == the state's ({camera} vs {state_camera})")
+        reader, data = open_vtp(name + ".vtp")
+        camera = render_vtp.fit_camera(data)
+        check(np.allclose(camera, state_camera, rtol=1e-9, atol=1e-9),
+              f"{label}: render_vtp.py's default camera == the state's ({camera} vs {state_camera})")
+        pv.Delete(reader)
 
     print("paraview_render.py: solve.vtp against the path tracer's image", flush=True)
     shot = os.path.join(WORK, "paraview_128.png")
