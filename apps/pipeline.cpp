@@ -4,7 +4,7 @@
 #include <cstdint>
 #include "apps/rank_agreement.h"
 #include "apps/run_metadata.h"
-#include "apps/scene_camera.h"
+#include "apps/view_camera.h"
 #include "io/paraview_state.h"
 
 #include <cstdio>
@@ -530,10 +530,11 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
     write_vtp_fields(options.vtp, patches, all, m, &mesh);
     note("wrote " + options.vtp);
     if (!options.paraview_state.empty()) {
-      const Camera camera = scene_camera(options.scene, patches);
-      const ViewPoint view{camera.position, camera_focal_point(camera, patches), camera.up,
-                           camera.vfov * 180.0 / kPi};
-      write_paraview_state(options.paraview_state, options.vtp, view, run_id_of(summary));
+      StateColouring colouring;
+      for (const CellField& f : fields)
+        if (f.name == "B" && f.components == 3) colouring = radiosity_colouring(patches, f.values);
+      write_paraview_state(options.paraview_state, options.vtp, view_camera(options.scene, patches), colouring,
+                           run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
     }
   }

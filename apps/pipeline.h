@@ -56,7 +56,8 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 // per-patch results; both files also carry the patch description (patch_fields: patch, face, area, normal, rho,
 // E), which the CSV writes as its fixed leading columns. The .vtp's field data are run_metadata (run_metadata.h)
 // and then `metadata` (the command's own: method, walks, spp, ...); --paraview-state FILE.py writes a ParaView
-// state for the .vtp from the scene's camera (scene_camera.h).
+// state for the .vtp (io/paraview_state.h): coloured by B (radiosity_colouring of the field B, if given), from the
+// camera of the one camera rule (view_camera.h).
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary, const VtpMetadata& metadata = {});
 

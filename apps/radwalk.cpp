@@ -215,7 +215,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
     cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)")
         ->check(output_file(OutputFile::json));
     cmd->add_option("--paraview-state", o.paraview_state,
-                    "Write a ParaView state FILE.py that opens the .vtp coloured by B_srgb from the scene's camera")
+                    "Write a ParaView state FILE.py that opens the .vtp as a figure: B in Viridis over the non-emitters' range, "
+                    "colour bar with unit, smooth, from the one camera rule (README)")
         ->check(kPathFits);
   }
 }

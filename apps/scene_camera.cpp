@@ -181,12 +181,13 @@ SceneCamera fit_scene_camera(const std::string& scene, const PatchSet& patches, 
   Vec3 lo, hi;
   bounding_box(patches, lo, hi);
   const Vec3 center = 0.5 * (lo + hi);
+  // The scene built here when the caller has none: it lives to the end, through the outside view's probes.
+  std::unique_ptr<EmbreeVisibility> own;
+  if (patches.size() > 0 && !visibility) {
+    own = std::make_unique<EmbreeVisibility>(patches);
+    visibility = own.get();
+  }
   if (patches.size() > 0) {
-    std::unique_ptr<EmbreeVisibility> own;
-    if (!visibility) {
-      own = std::make_unique<EmbreeVisibility>(patches);
-      visibility = own.get();
-    }
     std::vector<Hit> hits;
     const Vec3 q = 0.25 * (hi - lo);
     for (const Vec3& p : {center, Vec3(center + Vec3(q.x(), 0, 0)), Vec3(center - Vec3(q.x(), 0, 0)),
@@ -214,11 +215,6 @@ SceneCamera fit_scene_camera(const std::string& scene, const PatchSet& patches, 
   };
   cam = view_from(Vec3(0, 0, 1));
   if (patches.size() > 0) {
-    std::unique_ptr<EmbreeVisibility> own;
-    if (!visibility) {
-      own = std::make_unique<EmbreeVisibility>(patches);
-      visibility = own.get();
-    }
     constexpr int n = 24;
     double best = -1;
     for (const Vec3& d : {Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, -1, 0), Vec3(0, 1, 0),

@@ -16,5 +16,5 @@ cd, pd, fd = p.GetCellData(), p.GetPointData(), p.GetFieldData()
 print("cell arrays", [cd.GetArrayName(i) for i in range(cd.GetNumberOfArrays())], "scalars", cd.GetScalars().GetName())
 print("point arrays", [pd.GetArrayName(i) for i in range(pd.GetNumberOfArrays())])
 print("field data", [fd.GetAbstractArray(i).GetName() for i in range(fd.GetNumberOfArrays())])
-A = vtk_to_numpy(cd.GetArray("area")); B = vtk_to_numpy(cd.GetArray("B"))
+A = vtk_to_numpy(cd.GetArray("area")); B = vtk_to_numpy(cd.GetArray("B_rgb"))  # B is the channel mean
 print("area-weighted mean B =", (A[:, None] * B).sum(axis=0) / A.sum())

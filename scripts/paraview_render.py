@@ -4,22 +4,24 @@
 Run it with ParaView's pvpython under an X server; scripts/pvpython.sh fetches Debian 12's ParaView beside the
 system VTK (it never installs it) and runs the unpacked pvpython:
 
-    xvfb-run -a -s "-screen 0 1024x768x24" scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
-    xvfb-run -a -s "-screen 0 1024x768x24" scripts/pvpython.sh scripts/paraview_render.py series/solve.pvd s.png --step 3
+    scripts/with_xvfb.sh scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
+    scripts/with_xvfb.sh scripts/pvpython.sh scripts/paraview_render.py series/solve.pvd s.png --step 3
 
-(any other pvpython works too). tests/paraview/ runs it in CTest and compares the image with the path tracer's.
+(scripts/with_xvfb.sh gives it an X server of its own and ends that server whatever happens: crash, signal,
+timeout; any other pvpython works too). tests/paraview/ runs it in CTest and compares the image with the path tracer's.
 
 Colours: the display array B_srgb that radwalk writes (sRGB of the radiance B/pi, clamped, exposure 1: the
 mapping of `radwalk pathtrace --image x.png`) shown with Map Scalars off, no lighting. With --exposure other than
-1, or for a file without B_srgb, the same mapping is computed from B by ParaView's Calculator (exact sRGB:
-12.92 c below 0.0031308, 1.055 c^(1/2.4) - 0.055 above). --smooth uses the point fields (per smoothing group,
-see docs/paraview.md) instead of the cell fields. A file without the field B is refused with a message.
+1, or for a file without B_srgb, the same mapping is computed from the RGB triple B_rgb by ParaView's Calculator
+(exact sRGB: 12.92 c below 0.0031308, 1.055 c^(1/2.4) - 0.055 above). --smooth uses the point fields (per
+smoothing group, see docs/paraview.md) instead of the cell fields. A file without the radiosity (B_rgb) is refused with a
+message.
 
-Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the Cornell box's own camera (position
-(278, 273, -800), looking along +z, 39.3 degree vertical field of view) when the file's field data name a scene
-cornell_box* (or, without field data, for data in millimetres the size of that box); otherwise a view of the
-bounding box from its -z side with a 40 degree field of view, as `radwalk pathtrace` chooses. ParaView resets the
-camera on the first render, so the camera is set after it. Background: --background (default black), applied
+Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the one camera rule (scripts/camera_rule.py; the
+ParaView state's and render_vtp.py's too): the Cornell box's own camera when the file's field data name a scene
+cornell_box*; inside a closed scene, from the centre of its front (-z) side looking at the centre, 60 degrees;
+otherwise from outside along +z, framing the bounding box, 40 degrees. ParaView resets the camera on the first
+render, so the camera is set after it. Background: --background (default black), applied
 with UseColorPaletteForBackground = 0 (ParaView ignores Background otherwise).
 """
 import argparse
@@ -29,7 +31,8 @@ import sys
 
 from paraview import simple as pv  # noqa: E402  (pvpython only)
 
-CORNELL = [278, 273, -800, 278, 273, 0, 0, 1, 0, 2 * math.degrees(math.atan(0.0125 / 0.035))]
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from camera_rule import camera_rule  # noqa: E402  (the one camera rule, shared with render_vtp.py)
 
 
 def srgb_expression(array, component, k):
@@ -56,32 +59,13 @@ def open_data(path, step=None):
     return reader, None
 
 
-def field_data_text(reader, name):
-    info = reader.GetFieldDataInformation()
-    if name not in info.keys():
-        return None
+def default_camera(reader):
+    """The one camera rule (scripts/camera_rule.py) for the data the reader gives."""
     from paraview import servermanager
     data = servermanager.Fetch(reader)
     if data.IsA("vtkMultiBlockDataSet"):
         data = data.GetBlock(0)
-    a = data.GetFieldData().GetAbstractArray(name)
-    return a.GetVariantValue(0).ToString() if a is not None else None
-
-
-def default_camera(reader):
-    b = reader.GetDataInformation().GetBounds()
-    scene = field_data_text(reader, "scene")
-    if scene is not None:
-        cornell = os.path.basename(scene).startswith("cornell_box")
-    else:
-        cornell = b[1] - b[0] > 400 and b[1] < 700
-    if cornell:
-        return CORNELL
-    lo, hi = [b[0], b[2], b[4]], [b[1], b[3], b[5]]
-    c = [(lo[d] + hi[d]) / 2 for d in range(3)]
-    radius = 0.5 * math.dist(lo, hi)
-    z = c[2] - (radius / math.tan(math.radians(20)) + 0.5 * (hi[2] - lo[2]))
-    return [c[0], c[1], z, c[0], c[1], c[2], 0, 1, 0, 40]
+    return camera_rule(data)
 
 
 def render(path, png, width=512, height=512, exposure=1.0, smooth=False, camera=None, background=(0, 0, 0),
@@ -90,7 +74,8 @@ def render(path, png, width=512, height=512, exposure=1.0, smooth=False, camera=
     reader, t = open_data(path, step)
     association = "POINTS" if smooth else "CELLS"
     data = reader.PointData if smooth else reader.CellData
-    if "B" not in data.keys():
+    rgb = "B_rgb" if "B_rgb" in data.keys() else "B"  # B was the RGB triple before it became one component
+    if rgb not in data.keys() or data[rgb].GetNumberOfComponents() != 3:
         sys.exit(f"{path}: no {'point' if smooth else 'cell'} field B to render (arrays: {', '.join(data.keys())}); "
                  "B is written by 'radwalk solve -o', 'radwalk pathtrace -o' and --progressive series")
     source, colour = reader, "B_srgb"
@@ -100,10 +85,10 @@ def render(path, png, width=512, height=512, exposure=1.0, smooth=False, camera=
         calc.ResultArrayName = "display_srgb"
         k = exposure / math.pi
         # Component variables follow the array's component names (R, G, B in radwalk's files; X, Y, Z in old ones).
-        names = [data["B"].GetComponentName(c) or "XYZ"[c] for c in range(3)]
+        names = [data[rgb].GetComponentName(c) or "XYZ"[c] for c in range(3)]
         if any(n in ("", None) or not n.isidentifier() for n in names):
             names = ["X", "Y", "Z"]
-        calc.Function = " + ".join(f"{v}*({srgb_expression('B', n, k)})"
+        calc.Function = " + ".join(f"{v}*({srgb_expression(rgb, n, k)})"
                                    for v, n in zip(("iHat", "jHat", "kHat"), names))
         source, colour = calc, "display_srgb"
 

@@ -9,8 +9,9 @@
 #   PYTHONPATH=<tree>/usr/lib/python3/dist-packages  (ParaView's own paraview and vtkmodules come first)
 #   LD_LIBRARY_PATH=<tree>/usr/lib/<multiarch>       (its -pv5.11 VTK libraries and the Qt libraries it adds)
 # The rest (Python 3.11, Qt5 core, MPI, ...) comes from the system, where radwalk's dependencies put it.
-# Debian's ParaView renders through X: run it under xvfb-run where there is no display, e.g.
-#   xvfb-run -a -s "-screen 0 1024x768x24" scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
+# Debian's ParaView renders through X: run it under scripts/with_xvfb.sh (an X server of its own, always ended) where
+# there is no display, e.g.
+#   scripts/with_xvfb.sh scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
 #
 # Cache: $RADWALK_PARAVIEW_CACHE, default ${XDG_CACHE_HOME:-$HOME/.cache}/radwalk/paraview (outside any build).
 # `scripts/pvpython.sh --fetch` only fetches and unpacks; `--print-env` prints the environment as shell exports.

@@ -1,14 +1,20 @@
 #pragma once
-// A ParaView Python state file (.py) that opens a radwalk .vtp ready to look at: coloured by the display array
-// B_srgb with "Map Scalars" off (true colours), no lighting (the colour is the patch's own radiance), black
-// background (UseColorPaletteForBackground = 0), and the given camera, set after the first render (ParaView resets
-// the camera on it). A file without B_srgb is shown with ParaView's defaults, from the same camera.
+// A ParaView Python state file (.py) that opens a radwalk .vtp as a figure, in one step: coloured by the
+// one-component radiosity B (vtp_writer.h: the channel mean, W per square length unit) with a perceptual colour
+// map (Viridis), over a range that leaves the emitters out (StateColouring: the min..max of B over the
+// non-emitting patches, computed when writing), a colour bar titled with the field's name and unit, smooth
+// shading (the point field B, Gouraud interpolation, when the file has it; else the cell field), unlit (the
+// colour is the value itself), black background (UseColorPaletteForBackground = 0), and the given camera
+// (apps/view_camera.h: the one camera rule), set after the first render (ParaView resets the camera on it). A
+// file without the field is shown with ParaView's defaults, from the same camera.
 // Load it with File > Load State (Python state file), `paraview --state=FILE.py`, or `pvpython FILE.py`.
 // The data file is looked up next to the state file first (by its name), then at the path given here, so the two
 // can be moved together. Written atomically.
 #include <string>
+#include <vector>
 
 #include "core/types.h"
+#include "patch/patch_set.h"
 
 namespace radwalk {
 
@@ -19,8 +25,19 @@ struct ViewPoint {
   double view_angle_deg = 30;  // vertical field of view
 };
 
+struct StateColouring {
+  std::string field;  // the one-component array to colour by ("B"); empty: ParaView's defaults
+  std::string title;  // the colour bar's title: the field's name and unit
+  double lo = 0, hi = 1;  // the colour map's range, lo < hi
+};
+
+// The colouring of the radiosity: B's channel mean over the patches that emit nothing (E = 0 in every channel;
+// over all patches when every patch emits), titled "B [W/unit^2]" (unit: the scene's length unit). B_rgb holds
+// N x 3 values, patch-major. A range of one value is widened to lo < hi.
+StateColouring radiosity_colouring(const PatchSet& patches, const std::vector<double>& B_rgb);
+
 // run_id: when not empty, the comment line "# run_id RUN_ID" (the run of the .vtp, apps/run_metadata.h).
 void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view,
-                          const std::string& run_id = "");
+                          const StateColouring& colouring = {}, const std::string& run_id = "");
 
 }  // namespace radwalk

@@ -49,7 +49,11 @@ struct ArrayLayout {
   int components = 1;
   bool rgb = false;            // component names R, G, B
   std::size_t tuples_attr = 0;  // > 0: NumberOfTuples attribute (field data)
+  const char* units = nullptr;  // the array's vtkDataArray::UNITS_LABEL, or none
 };
+
+// The unit of the radiosity arrays B and B_rgb: W per square length unit of the scene (W/m^2 for metres).
+constexpr const char* kRadiosityUnits = "W/unit^2";
 
 // ' RangeMin="..." RangeMax="..."' as VTK writes them: the range of the values (one component) or of the tuples'
 // Euclidean norms, over the finite ones; "" when none is finite.
@@ -85,7 +89,11 @@ void write_data_array(std::ostream& out, const std::string& indent, const std::s
   if (layout.tuples_attr > 0) out << " NumberOfTuples=\"" << layout.tuples_attr << "\"";
   out << " format=\"binary\"" << range_attributes(values, tuples, layout.components) << ">\n" << indent << "  ";
   write_vtk_compressed_base64(out, values, tuples * static_cast<std::size_t>(layout.components) * sizeof(T));
-  out << "\n" << indent << "</DataArray>\n";
+  out << "\n";
+  if (layout.units)  // after the data, as vtkXMLWriter writes an array's information keys
+    out << indent << "  <InformationKey name=\"UNITS_LABEL\" location=\"vtkDataArray\">" << layout.units
+        << "</InformationKey>\n";
+  out << indent << "</DataArray>\n";
 }
 
 // The run's metadata as one-tuple arrays (vtp_metadata.h): a string array holds its text and a terminating NUL,
@@ -116,7 +124,33 @@ std::vector<unsigned char> srgb_of(const std::vector<double>& rgb) {
   return s;
 }
 
-bool is_radiosity(const CellField& f) { return f.name == "B" && f.components == 3; }
+ArrayLayout rgb_layout() {
+  ArrayLayout l;
+  l.components = 3;
+  l.rgb = true;
+  return l;
+}
+
+bool is_radiosity(const CellField& f) { return f.name == "B" && f.components == 3 && f.kind == FieldKind::quantity; }
+
+// The channel mean (R + G + B) / 3 of each tuple of an RGB array: the one-component B.
+std::vector<double> channel_mean(const std::vector<double>& rgb) {
+  std::vector<double> mean(rgb.size() / 3);
+  for (std::size_t k = 0; k < mean.size(); ++k) mean[k] = (rgb[3 * k] + rgb[3 * k + 1] + rgb[3 * k + 2]) / 3.0;
+  return mean;
+}
+
+// The radiosity B given as RGB, as three arrays: B (the channel mean, the active scalars), B_rgb (the triple), both
+// with the unit kRadiosityUnits as their UNITS_LABEL, and B_srgb (its display colour).
+void write_radiosity(std::ostream& out, const std::string& indent, const std::vector<double>& rgb, std::size_t n) {
+  ArrayLayout mean;
+  mean.units = kRadiosityUnits;
+  ArrayLayout triple = rgb_layout();
+  triple.units = kRadiosityUnits;
+  write_data_array(out, indent, "B", channel_mean(rgb).data(), n, mean);
+  write_data_array(out, indent, "B_rgb", rgb.data(), n, triple);
+  write_data_array(out, indent, "B_srgb", srgb_of(rgb).data(), n, rgb_layout());
+}
 
 ArrayLayout layout_of(const CellField& f) {
   ArrayLayout l;
@@ -125,14 +159,7 @@ ArrayLayout layout_of(const CellField& f) {
   return l;
 }
 
-ArrayLayout rgb_layout() {
-  ArrayLayout l;
-  l.components = 3;
-  l.rgb = true;
-  return l;
-}
-
-// The point data: each quantity field averaged at the display points, and B_srgb of the average of B; each
+// The point data: each quantity field averaged at the display points (B as B, B_rgb, B_srgb of the average); each
 // computed, written and freed before the next.
 void write_point_data(std::ostream& out, const DisplayMesh& mesh, const PatchSet& patches,
                       const std::vector<const CellField*>& fields, const std::string& path) {
@@ -141,18 +168,20 @@ void write_point_data(std::ostream& out, const DisplayMesh& mesh, const PatchSet
   for (const CellField* f : fields) {
     if (f->kind != FieldKind::quantity) continue;
     const std::vector<double> at_points = point_average(mesh, patches, f->values, f->components);
-    write_data_array(out, "        ", f->name, at_points.data(), m, layout_of(*f));
-    if (is_radiosity(*f)) write_data_array(out, "        ", "B_srgb", srgb_of(at_points).data(), m, rgb_layout());
+    if (is_radiosity(*f))
+      write_radiosity(out, "        ", at_points, m);
+    else
+      write_data_array(out, "        ", f->name, at_points.data(), m, layout_of(*f));
     if (!out) throw InputError(path + ": write failed (disk full?)");
   }
   out << "      </PointData>\n";
 }
 
-// The cell data: every field, counts as Int64, the others as Float64, B_srgb after B.
+// The cell data: every field, counts as Int64, the others as Float64, the radiosity as B, B_rgb, B_srgb.
 void write_cell_data(std::ostream& out, std::size_t n, const std::vector<const CellField*>& fields,
                      const std::string& path) {
   bool radiosity = false;
-  for (const CellField* f : fields) radiosity = radiosity || (is_radiosity(*f) && f->kind == FieldKind::quantity);
+  for (const CellField* f : fields) radiosity = radiosity || is_radiosity(*f);
   out << "      <CellData" << (radiosity ? " Scalars=\"B\"" : "") << ">\n";
   for (const CellField* f : fields) {
     if (f->kind == FieldKind::count) {
@@ -161,9 +190,10 @@ void write_cell_data(std::ostream& out, std::size_t n, const std::vector<const C
       write_data_array(out, "        ", f->name, counts.data(), n, layout_of(*f));
       continue;
     }
-    write_data_array(out, "        ", f->name, f->values.data(), n, layout_of(*f));
-    if (f->kind == FieldKind::quantity && is_radiosity(*f))
-      write_data_array(out, "        ", "B_srgb", srgb_of(f->values).data(), n, rgb_layout());
+    if (is_radiosity(*f))
+      write_radiosity(out, "        ", f->values, n);
+    else
+      write_data_array(out, "        ", f->name, f->values.data(), n, layout_of(*f));
     if (!out) throw InputError(path + ": write failed (disk full?)");
   }
   out << "      </CellData>\n";
@@ -184,8 +214,12 @@ void write_vtp_fields(const std::string& path, const PatchSet& patches, const st
                       const VtpMetadata& metadata, const DisplayMesh* given_mesh) {
   const std::size_t n = patches.size();
   // Everything that can be refused is checked before the file is created.
+  bool radiosity = false;
+  for (const CellField* f : fields) radiosity = radiosity || is_radiosity(*f);
   for (const CellField* f : fields) {
     check_name(f->name);
+    if (radiosity && (f->name == "B_rgb" || f->name == "B_srgb"))
+      throw std::logic_error("write_vtp: '" + f->name + "' is written from the radiosity B; give B (RGB) only");
     RADWALK_CHECK_EQ(f->values.size(), n * static_cast<std::size_t>(f->components));  // a value per patch, component
   }
   for (const auto& entry : metadata.entries) check_name(entry.first);

@@ -5,16 +5,21 @@
 // points split per smoothing group (plane, material, emitter status), T-junction points inserted into the
 // polygons' edges.
 // Cell data: every field (FieldKind::count as Int64, the others as Float64); 3-component quantities have the
-// component names R, G, B. When a 3-component quantity B (radiosity) is given, the cell array B is the active
-// scalars (ParaView colours by it on Apply) and a display array B_srgb is added: unsigned char x 3 (R, G, B),
-// srgb8_from_radiosity(B) per channel (core/srgb.h: radiance B / pi, exposure 1, clamped to [0, 1], exact sRGB;
-// the mapping of the path tracer's PNG), so that ParaView shows true colours with "Map Scalars" off.
+// component names R, G, B. The radiosity, given as the 3-component quantity field B (RGB, W per square length
+// unit), is written as three arrays: B, one component, the channel mean (B_R + B_G + B_B) / 3 in the same unit
+// (for grey data the radiosity itself), the active scalars (ParaView colours by it on Apply); B_rgb, the RGB
+// triple (both with the information key vtkDataArray::UNITS_LABEL "W/unit^2"); and the display array B_srgb:
+// unsigned char x 3 (R, G, B), srgb8_from_radiosity(B_rgb) per channel (core/srgb.h: radiance B / pi, exposure 1,
+// clamped to [0, 1], exact sRGB; the mapping of the path tracer's PNG), so that ParaView shows true colours with
+// "Map Scalars" off.
 // Point data: each FieldKind::quantity field averaged over the patches of one smoothing group at each display
-// point (area-weighted; for smooth display: the cell data are the solution), and B_srgb of the point field B.
+// point (area-weighted; for smooth display: the cell data are the solution), the radiosity again as B, B_rgb and
+// B_srgb of the averaged triple.
 // No point fields for counts and geometry.
 // Field data: the metadata (vtp_metadata.h).
 // Throws std::logic_error for a field of the wrong size or with a name that is not usable in ParaView
-// (paraview_name(name) != name, or the Calculator's reserved word `var`), before the file is created.
+// (paraview_name(name) != name, or the Calculator's reserved word `var`), or a field B_rgb or B_srgb beside the
+// radiosity B (the writer makes them), before the file is created.
 // Memory: the file is encoded as it is written (one array at a time, each compressed in blocks; io/vtk_binary.h),
 // so besides the fields the writer holds the display mesh, one point field and one compressed array at a time.
 #include <string>

@@ -214,7 +214,12 @@ TEST_CASE("radwalk --paraview-state: a Python state beside the .vtp, other uses 
   std::ifstream in(dir / "b.py");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(text.find("name = 'b.vtp'") != std::string::npos);
-  CHECK(text.find("B_srgb") != std::string::npos);
+  CHECK(text.find("field = 'B'") != std::string::npos);
+  CHECK(text.find("title = 'B [W/unit^2]'") != std::string::npos);
+  // The one camera rule (apps/view_camera.h): the closed cube is seen from inside, from its front side's centre.
+  CHECK(text.find("view.CameraPosition = [0.5, 0.5, 0.050000000000000003]") != std::string::npos);
+  CHECK(text.find("view.CameraFocalPoint = [0.5, 0.5, 0.5]") != std::string::npos);
+  CHECK(text.find("view.CameraViewAngle = 60") != std::string::npos);
   for (const std::string& args : {"solve " + cube + " -o " + (dir / "c.vtp").string() + " --paraview-state s.pvsm",
                                  "solve " + cube + " --paraview-state s.py"}) {
     const Run bad = run(args);

@@ -2,6 +2,8 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationStringKey.h>
 #include <vtkPointData.h>
 #include <vtkStringArray.h>
 
@@ -46,7 +48,7 @@ TEST_CASE("write_vtp: cell arrays read back with VTK's reader, with their types 
   REQUIRE(poly->GetNumberOfPoints() == 7);
   vtkCellData* cells = poly->GetCellData();
   vtkPointData* points = poly->GetPointData();
-  for (const char* name : {"patch", "face", "area", "normal", "rho", "E", "B", "B_srgb", "rays"}) {
+  for (const char* name : {"patch", "face", "area", "normal", "rho", "E", "B", "B_rgb", "B_srgb", "rays"}) {
     INFO(name);
     REQUIRE(cells->GetArray(name) != nullptr);
   }
@@ -59,7 +61,7 @@ TEST_CASE("write_vtp: cell arrays read back with VTK's reader, with their types 
   CHECK(cells->GetArray("rays")->GetComponent(1, 0) == 2000);
   CHECK(points->GetArray("area") == nullptr);
   CHECK(points->GetArray("normal") == nullptr);
-  for (const char* name : {"rho", "E", "B", "B_srgb"}) {
+  for (const char* name : {"rho", "E", "B_rgb", "B_srgb"}) {
     INFO(name);
     REQUIRE(points->GetArray(name) != nullptr);
     CHECK(std::string(cells->GetArray(name)->GetComponentName(0)) == "R");
@@ -77,7 +79,7 @@ TEST_CASE("write_vtp: cell arrays read back with VTK's reader, with their types 
   CHECK(area->GetComponent(1, 0) == Approx(0.5));
   CHECK(cells->GetArray("rho")->GetComponent(0, 0) == 0.73);  // exact: doubles are stored as doubles
   CHECK(cells->GetArray("E")->GetComponent(1, 2) == Approx(3 * kPi));
-  vtkDataArray* b = cells->GetArray("B");
+  vtkDataArray* b = cells->GetArray("B_rgb");
   CHECK(b->GetNumberOfComponents() == 3);
   CHECK(b->GetComponent(1, 1) == 5.5);
   CHECK(cells->GetArray("normal")->GetComponent(0, 2) == Approx(1.0));
@@ -89,7 +91,46 @@ TEST_CASE("write_vtp: cell arrays read back with VTK's reader, with their types 
   CHECK(srgb->GetComponent(1, 2) == 255);
   CHECK(int(srgb8_from_linear(1.5 / kPi)) == 184);  // 255 * (1.055 * 0.47746^(1/2.4) - 0.055) = 183.68
   // Point data: no point is shared here, so each point carries its patch's value.
-  CHECK(points->GetArray("B")->GetComponent(0, 0) == Approx(1.5));
+  CHECK(points->GetArray("B_rgb")->GetComponent(0, 0) == Approx(1.5));
+  CHECK(points->GetArray("B")->GetComponent(0, 0) == Approx(2.5));
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("write_vtp: the active scalar B is one component, the channel mean of the RGB radiosity", "[io][vtp]") {
+  // What ParaView colours by on Apply must mean what its name says: for grey data the radiosity itself, not the
+  // magnitude sqrt(3) B of the RGB triple.
+  const PatchSet patches = two_patches();
+  PatchRgb B(2, 3);
+  B << 365, 365, 365, 1.0, 2.0, 6.0;
+  const auto path = temp_file("radwalk_test_mean.vtp");
+  write_vtp(path, patches, {rgb_field("B", B)});
+  const auto poly = read_vtp(path);
+  for (vtkDataSetAttributes* data : {static_cast<vtkDataSetAttributes*>(poly->GetCellData()),
+                                     static_cast<vtkDataSetAttributes*>(poly->GetPointData())}) {
+    vtkDataArray* mean = data->GetArray("B");
+    REQUIRE(mean != nullptr);
+    CHECK(mean->GetNumberOfComponents() == 1);
+    vtkDataArray* rgb = data->GetArray("B_rgb");
+    REQUIRE(rgb != nullptr);
+    CHECK(rgb->GetNumberOfComponents() == 3);
+    CHECK(std::string(rgb->GetComponentName(1)) == "G");
+    for (vtkDataArray* a : {mean, rgb}) {  // the unit travels with the arrays
+      INFO(a->GetName());
+      REQUIRE(a->GetInformation()->Has(vtkDataArray::UNITS_LABEL()));
+      CHECK(std::string(a->GetInformation()->Get(vtkDataArray::UNITS_LABEL())) == "W/unit^2");
+    }
+  }
+  vtkDataArray* scalars = poly->GetCellData()->GetScalars();
+  REQUIRE(scalars != nullptr);
+  CHECK(std::string(scalars->GetName()) == "B");
+  CHECK(scalars->GetComponent(0, 0) == 365.0);  // grey: B itself
+  CHECK(scalars->GetComponent(1, 0) == 3.0);    // (1 + 2 + 6) / 3
+  double range[2];
+  scalars->GetRange(range, 0);
+  CHECK(range[1] == 365.0);  // what ParaView's colour map spans
+  // B_rgb and B_srgb are the writer's: a caller's own is refused beside B.
+  CHECK_THROWS_AS(write_vtp(temp_file("radwalk_bad.vtp"), patches, {rgb_field("B", B), rgb_field("B_rgb", B)}),
+                  std::logic_error);
   std::filesystem::remove(path);
 }
 
@@ -129,22 +170,50 @@ TEST_CASE("write_vtp refuses names ParaView's Calculator cannot use", "[io][vtp]
   CHECK(with_csv_name(rgb_field("B_var", PatchRgb::Zero(2, 3)), "var").column_name() == "var");
 }
 
-TEST_CASE("write_paraview_state: a Python state naming the data, B_srgb and the camera", "[io][vtp]") {
+TEST_CASE("write_paraview_state: a Python state naming the data, the colouring and the camera", "[io][vtp]") {
   const auto path = temp_file("radwalk_state.py");
-  write_paraview_state(path, "results/cb.vtp", {Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 39.3});
+  StateColouring colouring;
+  colouring.field = "B";
+  colouring.title = "B [W/unit^2]";
+  colouring.lo = 0.25;
+  colouring.hi = 3.5;
+  write_paraview_state(path, "results/cb.vtp", {Vec3(278, 273, -800), Vec3(278, 273, 0), Vec3(0, 1, 0), 39.3},
+                       colouring);
   std::ifstream in(path);
   std::stringstream text;
   text << in.rdbuf();
   const std::string s = text.str();
   CHECK(s.find("name = 'cb.vtp'") != std::string::npos);
-  CHECK(s.find("ColorBy(display, ('CELLS', 'B_srgb'))") != std::string::npos);
-  CHECK(s.find("display.MapScalars = 0") != std::string::npos);
+  CHECK(s.find("field = 'B'") != std::string::npos);
+  CHECK(s.find("title = 'B [W/unit^2]'") != std::string::npos);
+  CHECK(s.find("value_range = [0.25, 3.5]") != std::string::npos);
+  CHECK(s.find("ApplyPreset('Viridis (matplotlib)', True)") != std::string::npos);
+  CHECK(s.find("AutomaticRescaleRangeMode = 'Never'") < s.find("RescaleTransferFunction(value_range[0]"));
+  CHECK(s.find("SetScalarBarVisibility(view, True)") != std::string::npos);
+  CHECK(s.find("display.Interpolation = 'Gouraud'") != std::string::npos);
   CHECK(s.find("UseColorPaletteForBackground = 0") != std::string::npos);
   CHECK(s.find("view.CameraPosition = [278, 273, -800]") != std::string::npos);
   CHECK(s.find("view.CameraViewAngle = 39.299999999999997") != std::string::npos);
   // The camera is set after the first render (which resets it).
   CHECK(s.find("simple.Render(view)") < s.find("view.CameraPosition"));
   std::filesystem::remove(path);
+}
+
+TEST_CASE("radiosity_colouring: the range of B's channel mean without the emitters", "[io][vtp]") {
+  const PatchSet patches = two_patches();  // patch 0 white, patch 1 a light
+  const StateColouring c = radiosity_colouring(patches, {1.0, 2.0, 6.0, 500, 600, 700});
+  CHECK(c.field == "B");
+  CHECK(c.title.find("W/") != std::string::npos);  // the unit is in the colour bar's title
+  CHECK(c.lo == 3.0);
+  CHECK(c.hi > 3.0);
+  CHECK(c.hi < 3.0001);  // the light's 600 is left out; one value is widened to a range
+  PatchBuilder b;
+  const int light = b.add_material("light", Rgb(0.5, 0.5, 0.5), Rgb(1, 1, 1));
+  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, light);
+  b.add_quad({0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}, light);
+  const StateColouring all = radiosity_colouring(b.build(), {1, 1, 1, 4, 4, 4});  // every patch emits
+  CHECK(all.lo == 1.0);
+  CHECK(all.hi == 4.0);
 }
 
 TEST_CASE("write_vtp on a full disk fails in one line and keeps the old file", "[io][vtp][fault]") {

@@ -185,11 +185,13 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
   CHECK(poly->GetVerts()->GetNumberOfCells() == 0);
   CHECK(poly->GetLines()->GetNumberOfCells() == 0);
 
-  // Cell data: every field with its type and names, B_srgb, the active scalars B.
+  // Cell data: every field with its type and names (the radiosity's triple as B_rgb), B_srgb, the active scalars B
+  // (the channel mean).
+  const auto array_name = [](const CellField& f) { return f.name == "B" ? std::string("B_rgb") : f.name; };
   vtkCellData* cells = poly->GetCellData();
   for (const CellField& f : fields) {
     INFO(f.name);
-    vtkDataArray* a = cells->GetArray(f.name.c_str());
+    vtkDataArray* a = cells->GetArray(array_name(f).c_str());
     REQUIRE(a != nullptr);
     CHECK(a->GetDataType() == (f.kind == FieldKind::count ? VTK_LONG_LONG : VTK_DOUBLE));
     if (f.kind == FieldKind::count) {
@@ -202,10 +204,13 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
     CHECK((a->GetComponentName(0) != nullptr) == rgb);
     if (rgb) CHECK(std::string(a->GetComponentName(2)) == "B");
   }
-  CHECK(cells->GetNumberOfArrays() == int(fields.size()) + 1);
+  CHECK(cells->GetNumberOfArrays() == int(fields.size()) + 2);
   REQUIRE(cells->GetScalars() != nullptr);
   CHECK(std::string(cells->GetScalars()->GetName()) == "B");
   const std::vector<double>& b = fields[fields.size() - 3].values;
+  std::vector<double> b_mean(b.size() / 3);
+  for (std::size_t k = 0; k < b_mean.size(); ++k) b_mean[k] = (b[3 * k] + b[3 * k + 1] + b[3 * k + 2]) / 3.0;
+  check_values(cells->GetScalars(), b_mean, 1);
   std::vector<unsigned char> srgb(b.size());
   for (std::size_t k = 0; k < b.size(); ++k) srgb[k] = srgb8_from_radiosity(b[k]);
   REQUIRE(cells->GetArray("B_srgb") != nullptr);
@@ -221,14 +226,16 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
       continue;
     }
     ++quantities;
-    check_values(points->GetArray(f.name.c_str()), point_average(mesh, patches, f.values, f.components),
+    check_values(points->GetArray(array_name(f).c_str()), point_average(mesh, patches, f.values, f.components),
                  f.components);
   }
   const std::vector<double> b_points = point_average(mesh, patches, b, 3);
   std::vector<unsigned char> srgb_points(b_points.size());
   for (std::size_t k = 0; k < b_points.size(); ++k) srgb_points[k] = srgb8_from_radiosity(b_points[k]);
   check_values(points->GetArray("B_srgb"), srgb_points, 3);
-  CHECK(points->GetNumberOfArrays() == quantities + 1);
+  REQUIRE(points->GetArray("B") != nullptr);
+  CHECK(points->GetArray("B")->GetNumberOfComponents() == 1);
+  CHECK(points->GetNumberOfArrays() == quantities + 2);
   CHECK(points->GetScalars() == nullptr);
 
   // Field data: text (the empty one too), real and a 64-bit integer, in the order set.
@@ -249,11 +256,11 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
   CHECK(fd->GetArray("seed")->GetDataType() == VTK_LONG_LONG);
   CHECK(vtkArrayDownCast<vtkTypeInt64Array>(fd->GetArray("seed"))->GetValue(0) == -(std::int64_t{1} << 50));
 
-  // The layout is the one asked for: UInt64 headers, and B is cut into several blocks.
+  // The layout is the one asked for: UInt64 headers, and B_rgb is cut into several blocks.
   const std::string s = file_text(path);
   CHECK(s.find("header_type=\"UInt64\"") != std::string::npos);
   CHECK(s.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
-  const std::size_t at = s.find("<DataArray type=\"Float64\" Name=\"B\"", s.find("<CellData"));
+  const std::size_t at = s.find("<DataArray type=\"Float64\" Name=\"B_rgb\"", s.find("<CellData"));
   REQUIRE(at != std::string::npos);
   const std::size_t begin = s.find_first_not_of(" \n", s.find('>', at) + 1);
   std::size_t used = 0;

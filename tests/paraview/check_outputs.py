@@ -2,10 +2,14 @@
 
 Usage (run_paraview_test.sh does this, under xvfb-run): pvpython check_outputs.py WORK SOURCE_DIR
 WORK holds the outputs run_paraview_test.sh made with radwalk. Checks, for each file: the arrays, their types,
-components and component names, their ranges, the active scalars (what ParaView colours by on Apply), the field
-data; that ParaView's Calculator evaluates the array names; the ParaView state file; and renders B_srgb from the
-Cornell box's camera with scripts/paraview_render.py, comparing the image with the path tracer's PNG of the same
-view region by region. Writes WORK/screenshots/*.png. Exit 0 when every check passed, 1 otherwise.
+components and component names, their ranges, the active scalars (what ParaView colours by on Apply: the
+one-component B, the channel mean of B_rgb, with its unit), the field data; that ParaView's Calculator evaluates
+the array names; the ParaView state files (the figure in one step: the point field B in Viridis over the range of
+the non-emitting patches, a colour bar titled with the unit, smooth shading, and the camera of the one camera rule,
+scripts/camera_rule.py, which paraview_render.py uses too: Cornell box, a closed cube, open parallel squares); and
+renders B_srgb from the Cornell box's camera with scripts/paraview_render.py, comparing the image with the path
+tracer's PNG of the same view region by region. Writes WORK/screenshots/*.png. Exit 0 when every check passed, 1
+otherwise.
 
 Image tolerance (documented in docs/paraview.md): the radiosity solution is constant per patch and its form factors are
 Monte Carlo estimates, the path tracer's image is noisy and box-filtered, so pixels differ; region means do not.
@@ -45,8 +49,8 @@ def path(name):
     return os.path.join(WORK, name)
 
 
-def load_render_script():
-    spec = importlib.util.spec_from_file_location("paraview_render", os.path.join(SOURCE, "scripts", "paraview_render.py"))
+def load_render_script(name="paraview_render"):
+    spec = importlib.util.spec_from_file_location(name, os.path.join(SOURCE, "scripts", name + ".py"))
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     return module
@@ -81,7 +85,9 @@ def check_array(data, where, name, kind, components, lo=None, hi=None):
     types = {"int": (VTK_LONG_LONG, VTK_LONG, VTK_ID_TYPE), "real": (VTK_DOUBLE,), "uchar": (VTK_UNSIGNED_CHAR,)}
     check(a.GetDataType() in types[kind] and a.GetDataTypeSize() == (1 if kind == "uchar" else 8),
           f"{where} array {name} is {kind} (got {a.GetDataTypeAsString()})")
-    check(a.GetNumberOfComponents() == components, f"{where} array {name} has {components} components")
+    if not check(a.GetNumberOfComponents() == components, f"{where} array {name} has {components} components "
+                                                          f"(got {a.GetNumberOfComponents()})"):
+        return None
     if components == 3 and kind != "int" and name != "normal":
         names = [a.GetComponentName(c) for c in range(3)]
         check(names == ["R", "G", "B"], f"{where} array {name} components are R, G, B (got {names})")
@@ -106,20 +112,31 @@ def check_names_usable(data, label):
 
 
 def check_ready(reader, data, label, patches=None):
-    """Common to every file with B: active scalars B, B_srgb = sRGB(B / pi), ParaView colours by B on Show."""
+    """Common to every file with the radiosity: the active scalars B, one component, the channel mean of the RGB
+    triple B_rgb (W per square length unit: for grey data the radiosity itself, not the magnitude sqrt(3) B);
+    B_srgb = sRGB(B_rgb / pi); ParaView colours by B on Show, over B's range. Returns B_rgb (N x 3)."""
     n = data.GetNumberOfCells()
     if patches is not None:
         check(n == patches, f"{label}: {patches} cells (got {n})")
     scalars = data.GetCellData().GetScalars()
     check(scalars is not None and scalars.GetName() == "B", f"{label}: active cell scalars are B")
-    B = check_array(data, "cell", "B", "real", 3, lo=0)
+    mean = check_array(data, "cell", "B", "real", 1, lo=0)
+    if mean is not None:
+        from vtkmodules.vtkCommonCore import vtkDataArray
+        info = data.GetCellData().GetArray("B").GetInformation()
+        units = info.Get(vtkDataArray.UNITS_LABEL()) if info.Has(vtkDataArray.UNITS_LABEL()) else None
+        check(units == "W/unit^2", f"{label}: B's UNITS_LABEL is W/unit^2 (got {units!r})")
+    B = check_array(data, "cell", "B_rgb", "real", 3, lo=0)
+    if mean is not None and B is not None:
+        check(np.allclose(mean[:, 0], B.mean(axis=1), rtol=1e-15, atol=0), f"{label}: B == mean of B_rgb's channels")
     srgb = check_array(data, "cell", "B_srgb", "uchar", 3, lo=0, hi=255)
     if B is not None and srgb is not None:
-        check(np.array_equal(srgb, srgb8(B / math.pi)), f"{label}: B_srgb == sRGB(B / pi) exactly")
-    Bp = check_array(data, "point", "B", "real", 3, lo=0)
+        check(np.array_equal(srgb, srgb8(B / math.pi)), f"{label}: B_srgb == sRGB(B_rgb / pi) exactly")
+    check_array(data, "point", "B", "real", 1, lo=0)
+    Bp = check_array(data, "point", "B_rgb", "real", 3, lo=0)
     sp = check_array(data, "point", "B_srgb", "uchar", 3)
     if Bp is not None and sp is not None:
-        check(np.array_equal(sp, srgb8(Bp / math.pi)), f"{label}: point B_srgb == sRGB(point B / pi)")
+        check(np.array_equal(sp, srgb8(Bp / math.pi)), f"{label}: point B_srgb == sRGB(point B_rgb / pi)")
     patch = check_array(data, "cell", "patch", "int", 1, lo=0, hi=n - 1)
     if patch is not None:
         check(np.array_equal(patch[:, 0], np.arange(n)), f"{label}: patch = cell index")
@@ -136,6 +153,11 @@ def check_ready(reader, data, label, patches=None):
     display = pv.Show(reader, view)
     check(list(display.ColorArrayName) == ["CELLS", "B"], f"{label}: ParaView colours by cell B on Show "
                                                               f"(got {list(display.ColorArrayName)})")
+    info = reader.CellData["B"] if "B" in reader.CellData.keys() else None
+    check(info is not None and info.GetNumberOfComponents() == 1, f"{label}: the colouring array B has 1 component")
+    if info is not None and mean is not None:
+        check(np.allclose(info.GetRange(0), [np.nanmin(mean), np.nanmax(mean)]),
+              f"{label}: ParaView's range of B is the channel mean's ({info.GetRange(0)})")
     pv.Delete(view)
     return B
 
@@ -181,7 +203,8 @@ def check_series(pvd, label, time_key, expect_steps=None):
     times = [times] if isinstance(times, float) else list(times)
     check(times == [t for t, _ in entries], f"{label}: ParaView reads the {len(entries)} times")
     reader.UpdatePipeline(times[-1])
-    check("B" in reader.CellData.keys() and "B_srgb" in reader.CellData.keys(), f"{label}: last step has B, B_srgb")
+    check(all(k in reader.CellData.keys() for k in ("B", "B_rgb", "B_srgb")), f"{label}: last step has B, B_rgb, B_srgb")
+    check(reader.CellData["B"].GetNumberOfComponents() == 1, f"{label}: last step's B has one component")
     steps = []
     for t, f in entries:
         _, data = open_vtp(os.path.join(os.path.dirname(pvd), f))
@@ -240,8 +263,59 @@ def compare_with_path_tracer(paraview_png, path_traced_png):
         check(not (la & ~grown).any(), "every ParaView light pixel within 1 pixel of a path-traced one")
 
 
+VIRIDIS_LOW = (0.267004, 0.004874, 0.329415)  # the first colour of ParaView's "Viridis (matplotlib)"
+
+
+def bounds_of(name):
+    reader, data = open_vtp(name)
+    b = data.GetBounds()
+    pv.Delete(reader)
+    return (b[0], b[2], b[4]), (b[1], b[3], b[5])
+
+
+def check_state(name, vtp, label):
+    """Loads the state `name` (written for `vtp`) as ParaView does and checks the figure: coloured by the
+    one-component B (the point field, smooth), Viridis over the range of B on the non-emitting cells (so below
+    every emitter's B), a visible colour bar titled B with its unit, and the camera of the one camera rule
+    (scripts/camera_rule.py on the data). Returns (view, camera as 10 numbers)."""
+    import camera_rule  # scripts/, on sys.path once paraview_render.py is loaded
+    for proxy in list(pv.GetSources().values()):
+        pv.Delete(proxy)
+    state = path(name)
+    namespace = {"__file__": state, "__name__": "__radwalk_state__"}
+    exec(compile(open(state).read(), state, "exec"), namespace)
+    view, display = namespace["view"], namespace["display"]
+    data = servermanager.Fetch(namespace["reader"])
+    B = vtk_to_numpy(data.GetCellData().GetArray("B")).astype(float)
+    emits = (vtk_to_numpy(data.GetCellData().GetArray("E")) > 0).any(axis=1)
+    lit = B[~emits] if (~emits).any() else B
+    check(B.ndim == 1, f"{label}: B has one component")
+    check(list(display.ColorArrayName) == ["POINTS", "B"], f"{label}: coloured by the point field B "
+                                                           f"(got {list(display.ColorArrayName)})")
+    check(display.Interpolation == "Gouraud", f"{label}: smooth shading (got {display.Interpolation})")
+    lut = pv.GetColorTransferFunction("B")
+    points = list(lut.RGBPoints)
+    check(np.isclose(points[0], lit.min()) and np.isclose(points[-4], lit.max()),
+          f"{label}: colour map range {points[0]:.4g}..{points[-4]:.4g} == B over the non-emitting patches "
+          f"{lit.min():.4g}..{lit.max():.4g}")
+    if emits.any() and (~emits).any():
+        check(points[-4] < B[emits].min(), f"{label}: the range excludes the emitters ({points[-4]:.4g} < "
+                                           f"{B[emits].min():.4g})")
+    check(np.allclose(points[1:4], VIRIDIS_LOW, atol=2e-3), f"{label}: Viridis (first colour {points[1:4]})")
+    bar = pv.GetScalarBar(lut, view)
+    check(bar.Visibility == 1, f"{label}: the colour bar is visible")
+    check(bar.Title.startswith("B") and "W/" in bar.Title, f"{label}: colour bar title with the unit ({bar.Title!r})")
+    camera = (list(view.CameraPosition) + list(view.CameraFocalPoint) + list(view.CameraViewUp) +
+              [view.CameraViewAngle])
+    rule = camera_rule.camera_rule(data)
+    check(np.allclose(camera, rule, rtol=1e-9, atol=1e-9),
+          f"{label}: the state's camera == scripts/camera_rule.py's ({camera} vs {rule})")
+    return view, camera
+
+
 def main():
     render = load_render_script()
+    render_vtp = load_render_script("render_vtp")
 
     print("solve .vtp (direct, Cornell box, 975 patches)", flush=True)
     reader, data = open_vtp("solve.vtp")
@@ -257,10 +331,10 @@ def main():
         check_no_point_array(data, name)
     if B is not None:
         check(B.max() > 50 and np.median(B) < 5, "solve.vtp: B range: the light (> 50) above the room (median < 5)")
-    r = calculator_range(reader, "Cell Data", "B_R - E_R")
-    check(r is not None and r[0] > -1e-9, f"solve.vtp: Calculator evaluates B_R - E_R >= 0 (got {r})")
+    r = calculator_range(reader, "Cell Data", "B_rgb_R - E_R")
+    check(r is not None and r[0] > -1e-9, f"solve.vtp: Calculator evaluates B_rgb_R - E_R >= 0 (got {r})")
     # Smooth point field: across the light's edge, the ceiling's points never take the light's values.
-    points = check_array(data, "point", "B", "real", 3)
+    points = check_array(data, "point", "B_rgb", "real", 3)
     emitter = vtk_to_numpy(data.GetCellData().GetArray("E"))[:, 0] > 0
     if points is not None:
         from vtkmodules.vtkCommonCore import vtkIdList
@@ -275,24 +349,30 @@ def main():
                                      f"light {light_min:.3g})")
     pv.Delete(reader)
 
-    print("ParaView state (solve.py)", flush=True)
-    for proxy in list(pv.GetSources().values()):
-        pv.Delete(proxy)
-    state = path("solve.py")
-    namespace = {"__file__": state, "__name__": "__radwalk_state__"}
-    exec(compile(open(state).read(), state, "exec"), namespace)
-    view, display = namespace["view"], namespace["display"]
-    check(list(display.ColorArrayName) == ["CELLS", "B_srgb"], "state: coloured by cell B_srgb")
-    check(display.MapScalars == 0, "state: Map Scalars off")
-    check(np.allclose(view.CameraPosition, [278, 273, -800]), f"state: Cornell camera (got {view.CameraPosition})")
-    check(abs(view.CameraViewAngle - 39.3077) < 1e-3, f"state: view angle 39.31 (got {view.CameraViewAngle})")
+    print("ParaView states: the figure in one step, and the one camera rule", flush=True)
+    view, state_camera = check_state("solve.py", "solve.vtp", "state (Cornell box)")
+    check(np.allclose(state_camera[:3], [278, 273, -800]), f"state: Cornell camera (got {state_camera[:3]})")
+    check(abs(state_camera[9] - 39.3077) < 1e-3, f"state: view angle 39.31 (got {state_camera[9]})")
     view.ViewSize = [400, 400]
     pv.Render(view)
     pv.SaveScreenshot(os.path.join(SHOTS, "state_cornell_box.png"), view, ImageResolution=[400, 400],
                       TransparentBackground=0)
     check(np.allclose(view.CameraPosition, [278, 273, -800]), "state: camera kept after rendering")
-    pv.Delete(namespace["reader"])
     pv.Delete(view)
+    for name, label, where in (("cube", "closed cube", "inside"), ("squares", "parallel squares", "outside")):
+        view, state_camera = check_state(name + ".py", name + ".vtp", f"state ({label})")
+        pv.Delete(view)
+        lo, hi = bounds_of(name + ".vtp")
+        inside = all(lo[d] < state_camera[d] < hi[d] for d in range(3))
+        check(inside == (where == "inside"), f"state ({label}): camera {where} ({state_camera[:3]})")
+        camera = render.render(path(name + ".vtp"), os.path.join(SHOTS, f"camera_rule_{name}.png"), 200, 200)
+        check(np.allclose(camera, state_camera, rtol=1e-9, atol=1e-9),
+              f"{label}: paraview_render.py's default camera == the state's ({camera} vs {state_camera})")
+        reader, data = open_vtp(name + ".vtp")
+        camera = render_vtp.fit_camera(data)
+        check(np.allclose(camera, state_camera, rtol=1e-9, atol=1e-9),
+              f"{label}: render_vtp.py's default camera == the state's ({camera} vs {state_camera})")
+        pv.Delete(reader)
 
     print("paraview_render.py: solve.vtp against the path tracer's image", flush=True)
     shot = os.path.join(WORK, "paraview_128.png")

@@ -7,9 +7,11 @@
 # 2. Makes every kind of radwalk output in WORK_DIR: solve .vtp (+ ParaView state), progressive .pvd, random-walk
 #    .vtp with error bars (+ its convergence series), compare .vtp, path-tracer .vtp (+ series) and the path
 #    tracer's PNG from the Cornell box's camera, form-factor diagnostics .vtp, an adaptively refined .vtp
-#    (T-junctions) and a patch .vtp without B.
-# 3. Runs tests/paraview/check_outputs.py in pvpython under xvfb-run (once more if it dies other than by failing
-#    its checks: an X server start occasionally fails on a loaded machine). It leaves WORK_DIR/screenshots/*.png.
+#    (T-junctions), a patch .vtp without B, and solve .vtp files with states of a closed scene (the cube) and an
+#    open one (the parallel squares) for the one camera rule.
+# 3. Runs tests/paraview/check_outputs.py in pvpython under scripts/with_xvfb.sh (once more if it dies other than
+#    by failing its checks: an X server start occasionally fails on a loaded machine). It leaves
+#    WORK_DIR/screenshots/*.png.
 set -euo pipefail
 radwalk=$1
 src=$2
@@ -22,7 +24,7 @@ if [ "$status" -ne 0 ]; then
   [ "$status" -eq "$skip" ] && echo "SKIP: ParaView packages cannot be fetched here (see above)" >&2
   exit "$status"
 fi
-if ! command -v xvfb-run >/dev/null; then
+if ! command -v Xvfb >/dev/null; then
   if [ "$(id -u)" -eq 0 ] && command -v apt-get >/dev/null; then
     echo "installing xvfb (xvfb-run) with apt" >&2
     export DEBIAN_FRONTEND=noninteractive
@@ -30,7 +32,7 @@ if ! command -v xvfb-run >/dev/null; then
       { apt-get update -qq >/dev/null 2>&1 && apt-get install -y -qq --no-install-recommends xvfb xauth >/dev/null 2>&1; } ||
       { echo "SKIP: xvfb cannot be installed here" >&2; exit "$skip"; }
   else
-    echo "SKIP: xvfb-run is missing and cannot be installed (not root)" >&2
+    echo "SKIP: Xvfb is missing and cannot be installed (not root)" >&2
     exit "$skip"
   fi
 fi
@@ -51,10 +53,11 @@ run pathtrace "$cb" --image pathtrace_128.png --width 128 --height 128 --spp 256
 run formfactors "$cb" --max-edge 100 --rays 500 --vtp formfactors.vtp
 run solve "$cb" --refine 0.2 --refine-steps 3 --rays 4000 -o refined.vtp
 run patch "$cb" --max-edge 100 -o patches.vtp
+run solve "$src/meshes/cube.obj" --max-edge 0.25 --rays 500 -o cube.vtp --paraview-state cube.py
+run solve "$src/meshes/parallel_squares.obj" --max-edge 0.25 --rays 500 -o squares.vtp --paraview-state squares.py
 
 attempt() {
-  xvfb-run -a -s "-screen 0 1024x768x24" "$src/scripts/pvpython.sh" "$src/tests/paraview/check_outputs.py" \
-    "$work" "$src"
+  "$src/scripts/with_xvfb.sh" "$src/scripts/pvpython.sh" "$src/tests/paraview/check_outputs.py" "$work" "$src"
 }
 # Exit 1 is the checks' verdict (or a Python error); anything else (an abort in the X or OpenGL start) is retried.
 status=0
