@@ -44,7 +44,7 @@ std::array<Vec3, 4> square(double x, double y, double s, double z = 0) {
 
 }  // namespace
 
-TEST_CASE("coplanar faces that overlap are found with their shared area; neighbours and near-parallel faces are not",
+TEST_CASE("coplanar faces that overlap are found with their shared area, neighbours and near-parallel faces are not",
           "[mesh][overlaps]") {
   // Squares of side 1: B overlaps A by half (area 0.5), C shares an edge with A, D lies 1e-9 above A, E is A
   // reversed and shifted by a quarter (back to back, area 0.75).

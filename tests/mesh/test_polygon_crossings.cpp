@@ -149,7 +149,7 @@ TEST_CASE("a 37-gon whose outline crosses itself is split into simple pieces of 
   CHECK(refused.pieces.empty());
 }
 
-TEST_CASE("a figure-eight through one corner and a pentagram are split; a simple polygon is left whole",
+TEST_CASE("a figure-eight through one corner and a pentagram are split, a simple polygon is left whole",
           "[mesh][crossings]") {
   // Corner 0 visited twice: lobes (0,0) (-1,1) (-1,-1) [+1] and (0,0) (1,1) (1,-1) [-1]. Without touches it is
   // simple (no proper crossing); with them, two lobes of area 1.
@@ -191,7 +191,7 @@ TEST_CASE("a figure-eight through one corner and a pentagram are split; a simple
         PolygonPieces::Status::simple);
 }
 
-TEST_CASE("reading a self-intersecting polygon repairs it with a finding naming the face, object and area; --strict "
+TEST_CASE("reading a self-intersecting polygon repairs it with a finding naming the face, object and area, --strict "
           "refuses it",
           "[mesh][crossings]") {
   const std::string obj =
@@ -226,7 +226,7 @@ TEST_CASE("reading a self-intersecting polygon repairs it with a finding naming 
   CHECK_THROWS_WITH(validate_mesh(refused), Catch::StartsWith("eight.obj:12: face 0: has 6 vertices"));
 }
 
-TEST_CASE("a planar bow-tie quad is split into its two lobes; a folded one and --strict refuse it", "[mesh][crossings]") {
+TEST_CASE("a planar bow-tie quad is split into its two lobes, a folded one and --strict refuse it", "[mesh][crossings]") {
   // v 0 0 0 / v 1 0 0 / v 1 1 0 / v 2 1 0 / f 1 2 3 4: edges 1-2 and 3-0 cross at (1, 0.5); lobes of 0.25 each,
   // opposite windings (vector area 0). Formerly refused.
   auto bowtie = [](double lift) {

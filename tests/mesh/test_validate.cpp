@@ -231,7 +231,7 @@ TEST_CASE("scenes too large, too small or far from the origin for single precisi
   CHECK(!warning_with(far, {"far from the origin", "move the origin"}).empty());
 }
 
-TEST_CASE("a self-intersecting (bow-tie) quad off its plane is refused; a planar one is split", "[mesh][validate]") {
+TEST_CASE("a self-intersecting (bow-tie) quad off its plane is refused, a planar one is split", "[mesh][validate]") {
   // W3: v 0 0 0 / v 1 0 0 / v 1 1 0 / v 2 1 0 / f 1 2 3 4 has zero vector area and passed validation. Planar, it is
   // now split at its crossing into its two lobes (tests/mesh/test_polygon_crossings.cpp).
   Mesh mesh;
