@@ -38,7 +38,7 @@ int run_compare(const CompareCommand& command) {
   std::unique_ptr<EmbreeVisibility> visibility;
   if (options.walk.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(patches);
   const CompareResult result = compare_random_walks(problem, &patches, visibility.get(), options, reference.B);
-  refuse_overflow(result.rows, max_emission(patches));
+  refuse_overflow(result.rows, patches.max_emission());
   double total = 0;
   for (const auto& s : result.summary) total += s.seconds;
   summary.add_timing("walks", total);

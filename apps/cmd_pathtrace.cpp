@@ -93,7 +93,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     if (std::all_of(r.mean.pixels.begin(), r.mean.pixels.end(), [](const Rgb& p) { return (p == 0).all(); }))
       warn(summary, "every pixel of " + command.image + " is black: the camera sees no lit surface (no emitter, " +
                         "or the camera is outside a closed scene or inside an object); set one with --camera");
-    refuse_overflow(r.mean, r.se, command.image, max_emission(patches));
+    refuse_overflow(r.mean, r.se, command.image, patches.max_emission());
     write_image(command.image, r, run_id_of(summary));
   }
 
@@ -115,7 +115,7 @@ int run_pathtrace(const PathtraceCommand& command) {
       return estimate_patch_averages(patches, visibility, o);
     };
     const Solution s = estimate(command.spp);
-    refuse_overflow(s, "pathtrace", max_emission(patches));
+    refuse_overflow(s, "pathtrace", patches.max_emission());
     summary.add_timing("patch_averages", s.seconds);
     if (!command.progressive.empty())
       write_convergence_series(command.progressive, "pathtrace.pvd", command.scene.scene, patches, command.spp, s,

@@ -199,7 +199,7 @@ int run_solve(const SolveCommand& command) {
     }
   }
   summary.add_timing("solve", solution.seconds);
-  refuse_overflow(solution, "solve", max_emission(patches));
+  refuse_overflow(solution, "solve", patches.max_emission());
   if (walks && too_few_particles(solution))
     warn(summary, solution.method + ": " + std::to_string(static_cast<long>(solution.info.at("unreached_patches"))) +
                       " of the " + std::to_string(static_cast<long>(solution.info.at("reflecting_patches"))) +

@@ -21,12 +21,6 @@ std::string advice(double max_E) {
 
 }  // namespace
 
-double max_emission(const PatchSet& patches) {
-  double largest = 0;
-  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
-  return largest;
-}
-
 void refuse_overflow(const Solution& s, const std::string& command, double max_E) {
   const std::pair<const PatchRgb*, const char*> named[] = {
       {&s.B, "the radiosity B"}, {&s.B_se, "the standard error B_se"}, {&s.var, "the per-sample variance var"}};

@@ -18,9 +18,6 @@
 
 namespace radwalk::app {
 
-// The largest emitted radiosity of any patch and channel (for the messages).
-double max_emission(const PatchSet& patches);
-
 // B, B_se and var of a solver, walk or path tracer: NumericalError naming `command`, the first infinite entry and
 // max E when one of them is +-inf.
 void refuse_overflow(const Solution& solution, const std::string& command, double max_E);

@@ -182,9 +182,11 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     set_input_observer([&input_bytes, &inputs_read, &inputs](const std::string& path, const std::string& bytes) {
       input_bytes.add(bytes);
       inputs_read.push_back({"an input read", path});
-      Digest file;
-      file.add(bytes);
-      inputs.files.push_back({path, file.value()});
+      if (distributed::size() > 1) {  // only the ranks of an MPI run compare their files (agree_on_inputs)
+        Digest file;
+        file.add(bytes);
+        inputs.files.push_back({path, file.value()});
+      }
     });
     mesh = read_scene(options.scene, read);
     set_input_observer({});

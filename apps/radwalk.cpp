@@ -298,14 +298,12 @@ const std::set<std::string> kOutputOptions = {"--output", "--csv",   "--json",  
 const std::set<std::string> kInputOptions = {"scene", "--form-factors"};
 
 std::string canonical_options(const CLI::App* cmd) {
-  const std::set<std::string>& kIgnored = kPerRunIrrelevant;
-  const std::set<std::string>& kOutputs = kOutputOptions;
   std::string canonical = cmd->get_name();
   for (const CLI::Option* o : cmd->get_options()) {
     const std::string name = o->get_name();
-    if (kIgnored.count(name)) continue;
+    if (kPerRunIrrelevant.count(name)) continue;
     std::string value;
-    if (kOutputs.count(name)) {
+    if (kOutputOptions.count(name)) {
       value = o->count() > 0 ? "given" : "";
     } else if (o->count() > 0) {
       for (const std::string& r : o->results()) value += (value.empty() ? "" : "\x1f") + r;

@@ -66,7 +66,7 @@ struct Result {
 };
 
 // The checks before every computation on `scene`: `threads` from 0 to kMaxThreads (core/parallel.h, the CLI's
-// bounds) and the scene's rho and E as a material could hold them (patch/patch_set.h check_radiometry: Scene.rho
+// bounds) and the scene's rho and E as a material could hold them (patch/radiometry_check.h check_radiometry: Scene.rho
 // and Scene.E are writable). InputError naming the patch and value, or the thread count.
 void check_run(const Scene& scene, long long threads);
 

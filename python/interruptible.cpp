@@ -59,15 +59,9 @@ void run_interruptible(const std::function<void()>& work) {
     clear_cancellation();
     throw std::move(*raised);
   }
-  if (error) {
-    try {
-      std::rethrow_exception(error);
-    } catch (const Cancelled&) {
-      // Another thread's Ctrl-C stopped this computation too.
-      PyErr_SetNone(PyExc_KeyboardInterrupt);
-      throw py::error_already_set();
-    }
-  }
+  // The module's translators map work's exceptions (Cancelled, when another thread's Ctrl-C stopped this
+  // computation too, to KeyboardInterrupt).
+  if (error) std::rethrow_exception(error);
 }
 
 }  // namespace radwalk::python

@@ -537,7 +537,6 @@ void write_npz(const std::string& path, const SparseF& F, const std::string& run
   write_atomically(path, [&](std::ostream& os) { write_members(os, members); });
 }
 
-
 SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row_blocks) {
   const InputFileReader file(path);  // refuses FIFOs, devices and files above kMaxInputBytes
   const Reader reader(file);

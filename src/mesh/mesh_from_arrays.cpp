@@ -63,7 +63,7 @@ Mesh mesh_from_arrays(const FaceArrays& arrays, const std::string& name, const R
       Material m;
       m.name = "material_" + std::to_string(mesh.materials.size());
       m.Kd = rho;
-      m.Ke = E / M_PI;
+      m.Ke = E / kPi;
       mesh.materials.push_back(m);
     }
     const std::int32_t material = it->second;

@@ -6,7 +6,6 @@
 
 namespace radwalk {
 
-
 void PolygonFaces::push(const std::array<std::int32_t, 4>& corners, long line, std::int32_t material,
                         std::int32_t group, std::int32_t source) {
   mesh_.faces.push_back(corners);

@@ -23,6 +23,12 @@ double PatchSet::scene_extent() const {
   return (hi - lo).maxCoeff();
 }
 
+double PatchSet::max_emission() const {
+  double largest = 0;
+  for (const Rgb& e : E) largest = std::max(largest, e.maxCoeff());
+  return largest;
+}
+
 void compute_patch_geometry(PatchSet& patches) {
   const std::size_t n = patches.corners.size();
   patches.centroid.resize(n);

@@ -55,6 +55,9 @@ struct PatchSet {
   double total_area() const;
   // Largest extent of the bounding box of all points (for scale-aware epsilons).
   double scene_extent() const;
+  // Largest emitted radiosity E of any patch and channel (0 for none): the scale of the estimators' moments
+  // (core/moments.h moment_scale) and of the overflow messages.
+  double max_emission() const;
 };
 
 // rho = Kd and E = pi Ke (Ke is emitted radiance) of every patch's material.

@@ -142,16 +142,9 @@ struct CameraSplat {
   }
 };
 
-// The scale of the scores' moments (core/moments.h moment_scale) from the largest emitted radiosity.
-double score_scale(const PatchSet& patches) {
-  double largest = 0;
-  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
-  return moment_scale(largest);
-}
-
 // Runs `particles` particles in fixed chunks; trace(k, rng, scores, counters) fills one particle's scores.
 // Per-bin sums of scores / scale and of their squares are combined in chunk order (bit-identical for any thread
-// count); scale is a power of two (score_scale), so the division is exact.
+// count); scale is a power of two (moment_scale of the largest emission), so the division is exact.
 template <class Trace>
 void run_particles(std::size_t bins, const LightTraceOptions& options, std::size_t batch, const char* label,
                    double scale, Tally& total, Trace&& trace) {
@@ -215,7 +208,7 @@ Solution light_trace_patches(const PatchSet& patches, const SurfaceGeometry& geo
   const std::size_t n = patches.size();
 
   Tally total(n);
-  const double scale = score_scale(patches);
+  const double scale = moment_scale(patches.max_emission());
   if (!integrator.lights().empty())
     run_particles(n, options, kBatch, "light tracing", scale, total, [&](Rng& rng, Scores& scores, PathCounters& c) {
       PatchTally visit{patches, scores};
@@ -267,7 +260,7 @@ RenderResult light_trace_image(const PatchSet& patches, const Visibility& visibi
   const PathIntegrator integrator(patches, facets, visibility, io);
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
   Tally total(pixels);
-  const double scale = score_scale(patches);
+  const double scale = moment_scale(patches.max_emission());
   if (!integrator.lights().empty())
     run_particles(pixels, options, kImageBatch, "light tracing image", scale, total,
                   [&](Rng& rng, Scores& scores, PathCounters& c) {

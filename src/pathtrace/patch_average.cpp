@@ -31,13 +31,6 @@ constexpr std::size_t kLanes = 32;
 // whatever the sample count.
 constexpr std::size_t kWaveItems = std::size_t(1) << 15;
 
-// The scale of the samples' moments (core/moments.h moment_scale) from the largest emitted radiosity.
-double score_scale(const PatchSet& patches) {
-  double largest = 0;
-  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
-  return moment_scale(largest);
-}
-
 struct Partial {
   Rgb sum = Rgb::Zero();    // sum of rho E_irr_hat
   Rgb sum2 = Rgb::Zero();   // sum of its squares
@@ -147,7 +140,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   // The tasks run in waves of at most kWaveItems items; a wave's sums are added to its patches' totals in item
   // order, so every patch adds its items in the same order as one pass over all items would.
   const std::size_t wave_tasks = std::max<std::size_t>(1, kWaveItems / per_task);
-  const double inverse_scale = 1 / score_scale(patches);
+  const double inverse_scale = 1 / moment_scale(patches.max_emission());
   std::vector<Rgb> sum(n, Rgb::Zero()), sum2(n, Rgb::Zero());
   std::vector<Partial> parts;
   PathCounters total;

@@ -36,9 +36,7 @@ RenderResult render_image(const PatchSet& patches, const Visibility& visibility,
   const double m = static_cast<double>(options.spp);
   // Radiances are summed and squared as L / scale (core/moments.h moment_scale: a power of two, exact), so that
   // an emission up to pi 1e300 gives a finite mean and standard error.
-  double largest = 0;
-  for (const Rgb& e : patches.E) largest = std::max(largest, e.maxCoeff());
-  const double scale = moment_scale(largest), inverse_scale = 1 / scale;
+  const double scale = moment_scale(patches.max_emission()), inverse_scale = 1 / scale;
   parallel_for(
       mine.size(),
       [&](std::size_t local) {

@@ -21,6 +21,8 @@ struct RadiosityProblem {
   PatchRgb E;            // N x 3 emitted radiosity
   Eigen::VectorXd area;  // N patch areas
   std::size_t size() const { return static_cast<std::size_t>(area.size()); }
+  // Largest emitted radiosity of any patch and channel (0 for none): the scale of the walks' moments.
+  double max_emission() const { return E.size() > 0 ? E.maxCoeff() : 0.0; }
 };
 
 // Takes rho, E and area from the patches and F as given (with its row blocks, when row-distributed); F must be

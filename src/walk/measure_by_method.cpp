@@ -130,7 +130,7 @@ Measurement measure_unscaled(const RadiosityProblem& problem, const PatchSet* pa
 // multiplied back by s r, the variances by (s r)^2; then refuse_overflow.
 Measurement measure_by_method(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                               const Response& response, const MeasureOptions& o) {
-  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  const double s = moment_scale(problem.max_emission());
   const double r = moment_scale(response.R.size() > 0 ? response.R.maxCoeff() : 0.0);
   Measurement m;
   if (s == 1 && r == 1) {

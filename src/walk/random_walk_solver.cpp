@@ -656,7 +656,7 @@ Solution solve_unscaled(const RadiosityProblem& problem, const PatchSet* patches
 // the problem is used as it is.
 Solution solve(const RadiosityProblem& problem, const PatchSet* patches, const Visibility* visibility,
                const WalkOptions& options, Progress* progress) {
-  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  const double s = moment_scale(problem.max_emission());
   if (s == 1) return solve_unscaled(problem, patches, visibility, options, progress);
   RadiosityProblem scaled = problem;
   scaled.E /= s;

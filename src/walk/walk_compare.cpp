@@ -177,7 +177,7 @@ CompareResult compare_unscaled(const RadiosityProblem& problem, const PatchSet* 
 CompareResult compare_random_walks(const RadiosityProblem& problem, const PatchSet* patches,
                                    const Visibility* visibility, const CompareOptions& options,
                                    const PatchRgb& B_reference) {
-  const double s = moment_scale(problem.E.size() > 0 ? problem.E.maxCoeff() : 0.0);
+  const double s = moment_scale(problem.max_emission());
   if (s == 1) return compare_unscaled(problem, patches, visibility, options, B_reference);
   RadiosityProblem scaled = problem;
   scaled.E /= s;

@@ -34,7 +34,6 @@ namespace {
 
 constexpr long long kMaxPatches = 100'000;
 
-
 // The three integers of the size line, as far as they parse (0 otherwise).
 struct Declared {
   long long rows = 0, entries = 0;

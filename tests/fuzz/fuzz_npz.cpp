@@ -36,7 +36,6 @@ namespace {
 
 constexpr std::int64_t kMaxPatches = 100'000;
 
-
 std::uint64_t le(std::string_view b, std::size_t at, int width) {
   std::uint64_t v = 0;
   for (int k = width - 1; k >= 0; --k) v = v << 8 | static_cast<unsigned char>(b[at + std::size_t(k)]);

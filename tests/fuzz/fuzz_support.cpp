@@ -239,5 +239,4 @@ void check_patches(const Mesh& mesh, const PatchSet& patches, double max_edge) {
   RADWALK_FUZZ_CHECK(i == n, "patches after the last face, or out of face order");
 }
 
-
 }  // namespace radwalk::fuzz

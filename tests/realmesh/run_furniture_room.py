@@ -363,15 +363,13 @@ def main():
         reader.SetFileName(j("solve_%g_1.vtp" % L_COARSE))
         reader.Update()
         poly = reader.GetOutput()
-        import camera_rule
-        c = render_vtp.fit_camera(poly, poly.GetCellData().GetArray("B"))
+        c = render_vtp.camera_rule(poly)
         vtp_camera = {"position": c[0:3], "look_at": c[3:6], "up": c[6:9], "vertical_fov_deg": c[9]}
         seen = in_view(vtp_camera, furniture, 1.0)
         # The .vtp renderers use the one camera rule of the state file (scripts/camera_rule.py: inside a closed scene
         # from the middle of its -z side): it frames a furnished room less well than pathtrace's fit above (about
-        # 22 % of the furniture's patch centres here against 71 %); reported, and the rule checked to be the one used.
+        # 22 % of the furniture's patch centres here against 71 %): reported.
         print("render_vtp.py camera %s: %.0f %% of the furniture's patch centres in the image" % (vtp_camera, 100 * seen))
-        expect(list(c) == list(camera_rule.camera_rule(poly)), "render_vtp.py: the camera is the one camera rule's")
         expect(seen > 0, "render_vtp.py: the camera rule's view holds some of the furniture")
 
     if failures:
