@@ -10,11 +10,57 @@
 #include "apps/scene_camera.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/timer.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
 #include "solve/response_spec.h"
+#include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
 #include "walk/measure_by_method.h"
 
 namespace radwalk::app {
+namespace {
+
+// Adds the form factors' noise to the measurement's standard error (solve/form_factor_error.h; independent of the
+// walks' own noise given F, so the variances add) and records it in the JSON's "error_estimate"; returns what the
+// printed standard error then covers (", with the form factors' noise" or, for F read from a file, that it does
+// not include it).
+std::string add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
+                                  const Response& response, Measurement& measurement, RunSummary& summary) {
+  auto& j = summary.json()["error_estimate"]["statistical"];
+  if (!has_noise_model(ff)) {
+    j["form_factors"] = "not included: F was read from a file, which does not record how it was sampled";
+    return ", without the noise of the form factors read from the file";
+  }
+  Timer timer;
+  // The radiosity the variance formula weighs the rays' targets with (to 1e-4: it needs only a few digits).
+  SolveOptions o;
+  o.tol = 1e-4;
+  o.max_iterations = default_max_iterations(o.solver, patches.size());
+  const Solution b = solve_radiosity(problem, o);
+  if (b.B.rows() != static_cast<Eigen::Index>(patches.size()))
+    throw InputError("error estimate: the radiosity for the form factors' noise could not be solved: " + b.message);
+  const EmbreeVisibility visibility(patches);
+  const Eigen::VectorXd W = problem.area.cwiseProduct(response.R);
+  const MeasurementError e = measurement_form_factor_error(patches, visibility, ff, problem, b.B, W);
+  MeasureEstimate& est = measurement.estimate;
+  const Rgb walks_se = est.se;
+  est.se = (walks_se.square() + e.variance).sqrt();
+  j["form_factors_M_se"] = {std::sqrt(e.variance(0)), std::sqrt(e.variance(1)), std::sqrt(e.variance(2))};
+  j["walks_M_se"] = {walks_se(0), walks_se(1), walks_se(2)};
+  j["sampling_factor_rays"] = e.calibration.factors.rays;
+  j["sampling_factor_emitter"] = e.calibration.factors.emitter;
+  j["calibration_rows"] = e.calibration.rows;
+  j["calibration_replicates"] = e.calibration.replicates;
+  j["adjoint_sweeps"] = e.sweeps;
+  j["method"] = "first-order propagation of each row's gather variance through the adjoint: Var(M) = "
+                "sum_j (Psi_j rho_j)^2 V_j (docs/theory/error_estimate.md)";
+  summary.add_timing("error_estimate", timer.seconds());
+  return ", with the form factors' noise";
+}
+
+}  // namespace
+
 int run_measure(const MeasureCommand& command) {
   RunSummary summary("measure", command.scene.argv);
   Mesh mesh;
@@ -36,6 +82,7 @@ int run_measure(const MeasureCommand& command) {
   check_measure_options(options, patches.size());  // before any form factor is traced
   ThreadLimit limit(command.scene.threads);
   Measurement measurement;
+  std::string form_factor_part;  // what the standard error covers besides the walks
   if (!measure_needs_form_factors(options)) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
@@ -45,6 +92,7 @@ int run_measure(const MeasureCommand& command) {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     measurement = measure_by_method(problem, nullptr, nullptr, response, options);
+    form_factor_part = add_form_factor_error(patches, ff, problem, response, measurement, summary);
   }
   const MeasureEstimate& est = measurement.estimate;
   const bool deterministic = measurement.deterministic;
@@ -57,8 +105,11 @@ int run_measure(const MeasureCommand& command) {
 
   std::printf("%s: M = <R, B>_A over %s = (%.9g, %.9g, %.9g)", command.method.c_str(), response.what.c_str(),
               est.M(0), est.M(1), est.M(2));
-  if (!deterministic)
-    std::printf(" +- (%.3g, %.3g, %.3g) (standard error, %ld walks)", est.se(0), est.se(1), est.se(2), est.walks);
+  if (!deterministic || !form_factor_part.empty()) {
+    std::printf(" +- (%.3g, %.3g, %.3g) (standard error", est.se(0), est.se(1), est.se(2));
+    if (!deterministic) std::printf(", %ld walks", est.walks);
+    std::printf("%s)", form_factor_part.c_str());
+  }
   std::printf(", %.3f s\n", est.seconds);
   if (command.theory && !deterministic)
     std::printf("exact per-walk variance (%.6g, %.6g, %.6g), sample (%.6g, %.6g, %.6g)\n", est.var_theory(0),

@@ -9,6 +9,7 @@
 #include "apps/pipeline.h"
 #include "apps/progressive_series.h"
 #include "apps/run_metadata.h"
+#include "apps/statistical_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "formfactor/emitter_form_factors.h"
@@ -155,6 +156,7 @@ int run_solve(const SolveCommand& command) {
   // The form-factor diagnostics (a transpose of F and a pass over it) only when a per-patch file is written.
   const bool per_patch_output = !command.scene.vtp.empty() || !command.scene.csv.empty();
   Solution solution;
+  std::string error_line;  // the estimated error, printed after the solver's line
   if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
@@ -176,6 +178,7 @@ int run_solve(const SolveCommand& command) {
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F), std::move(ff.row_blocks));
     if (walks) {
       solution = run_walks(command, walk, problem, patches, nullptr, summary);
+      error_line = add_statistical_error(patches, ff, problem, solution, summary);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
@@ -191,6 +194,8 @@ int run_solve(const SolveCommand& command) {
         o.iterate_every = std::max(1L, static_cast<long>(patches.size()) / 10);
       }
       solution = solve_radiosity(problem, o);
+      if (solution.status != SolveStatus::refused)
+        error_line = add_statistical_error(patches, ff, problem, solution, summary);
       if (series) {
         const std::size_t steps = series->finish();
         summary.json()["progressive"] = {{"pvd", series->pvd_path()}, {"steps", steps}, {"stride", series->stride()}};
@@ -228,6 +233,7 @@ int run_solve(const SolveCommand& command) {
         mean += (patches.area[i] / patches.total_area()) * solution.B.row(static_cast<Eigen::Index>(i)).transpose();
     }
     std::printf("area-weighted mean B = (%.6g, %.6g, %.6g) W/m^2\n", mean[0], mean[1], mean[2]);
+    if (!error_line.empty()) std::printf("%s\n", error_line.c_str());
     j["mean_B"] = {mean[0], mean[1], mean[2]};
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));

@@ -2,10 +2,12 @@
 
 #include <algorithm>
 
+#include "walk/measure_by_method.h"
+
 namespace radwalk::app {
 namespace {
 
-// Options that apply only when `applies` holds; `used_only` completes "... is ignored (used only ...)".
+// Options that apply only when `applies` holds; `used_only` completes "... does not apply here (used only ...)".
 template <class Command>
 struct Rule {
   std::vector<std::string> options;
@@ -43,6 +45,28 @@ const std::vector<Rule<CompareCommand>> kCompareRules = {
     {{"--min-rays"}, [](const CompareCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
 };
 
+bool walk_method(const MeasureCommand& c) {
+  return !is_deterministic_measure(c.method) && !is_importance_measure(c.method);
+}
+
+const std::vector<Rule<MeasureCommand>> kMeasureRules = {
+    {{"--kernel", "--survival", "--survival-constant"}, walk_method,
+     "by the walk methods (--method gather-*, shoot-*); direct, adjoint-direct and the importance walks use the "
+     "matrix of form factors"},
+    {{"--walks", "--theory"}, [](const MeasureCommand& c) { return !is_deterministic_measure(c.method); },
+     "by the Monte Carlo methods, not by --method direct or adjoint-direct"},
+    {{"--importance-sweeps", "--defensive"}, [](const MeasureCommand& c) { return is_importance_measure(c.method); },
+     "with --method importance-gather or importance-shoot"},
+    {{"--survival-constant"}, [](const MeasureCommand& c) { return c.walk.survival.rule == SurvivalRule::constant; },
+     "with --survival constant"},
+    {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns"},
+     [](const MeasureCommand& c) { return !(walk_method(c) && c.walk.kernel == WalkKernel::ray); },
+     "for form factors, which --kernel ray does not use"},
+    {{"--min-rays"}, [](const MeasureCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
+    {{"--camera", "--width", "--height"}, [](const MeasureCommand& c) { return c.response == "camera"; },
+     "with --response camera"},
+};
+
 const std::vector<Rule<PathtraceCommand>> kPathtraceRules = {
     {{"--width", "--height", "--camera"}, [](const PathtraceCommand& c) { return !c.image.empty(); },
      "with --image"},
@@ -61,8 +85,8 @@ std::vector<std::string> apply(const std::vector<Rule<Command>>& rules, const Co
     std::string names;
     for (std::size_t k = 0; k < ignored.size(); ++k)
       names += (k == 0 ? "" : k + 1 == ignored.size() ? " and " : ", ") + ignored[k];
-    warnings.push_back(names + (ignored.size() == 1 ? " is" : " are") + " ignored (used only " + rule.used_only +
-                       ")");
+    warnings.push_back(names + (ignored.size() == 1 ? " does" : " do") + " not apply here (used only " +
+                       rule.used_only + "): remove " + (ignored.size() == 1 ? "it" : "them"));
     reported.insert(reported.end(), ignored.begin(), ignored.end());
   }
   return warnings;
@@ -78,6 +102,9 @@ std::vector<std::string> ignored_options(const FormFactorsCommand& command, cons
 }
 std::vector<std::string> ignored_options(const CompareCommand& command, const OptionGiven& given) {
   return apply(kCompareRules, command, given);
+}
+std::vector<std::string> ignored_options(const MeasureCommand& command, const OptionGiven& given) {
+  return apply(kMeasureRules, command, given);
 }
 std::vector<std::string> ignored_options(const PathtraceCommand& command, const OptionGiven& given) {
   return apply(kPathtraceRules, command, given);

@@ -3,8 +3,8 @@
 //   failure detected (singular or divergent system), 4 internal error.
 // This is the command-line boundary: before any command runs, a parse error is one line naming the unknown
 // command, option or value with a "did you mean" (apps/command_line.h) and pointing at the command's own --help;
-// output file names are checked against what is written (apps/output_files.h); options the chosen method ignores
-// are warned about (apps/ignored_options.h).
+// output file names are checked against what is written (apps/output_files.h); options the chosen method cannot
+// honour are refused (apps/ignored_options.h).
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <charconv>
@@ -152,19 +152,18 @@ std::string parse_error_message(const CLI::ParseError& e, const std::vector<std:
   return what;
 }
 
-// Warns about the options `cmd` was given that its method ignores (apps/ignored_options.h) and keeps the
-// warnings for the JSON summary.
+// Refuses the options `cmd` was given that its method cannot honour (apps/ignored_options.h): one InputError
+// naming them all.
 template <class Command>
-void warn_ignored(const CLI::App* cmd, const Command& command, SceneOptions& scene) {
+void refuse_inapplicable(const CLI::App* cmd, const Command& command) {
   const OptionGiven given = [cmd](const std::string& name) {
     const CLI::Option* o = cmd->get_option_no_throw(name);
     if (!o) throw InternalError("ignored-options table names " + name + ", which '" + cmd->get_name() + "' lacks");
     return o->count() > 0;
   };
-  for (const std::string& w : ignored_options(command, given)) {
-    std::fprintf(stderr, "radwalk: warning: %s\n", w.c_str());
-    scene.warnings.push_back(w);
-  }
+  std::string message;
+  for (const std::string& m : ignored_options(command, given)) message += (message.empty() ? "" : "; ") + m;
+  if (!message.empty()) throw InputError(message);
 }
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
@@ -726,10 +725,11 @@ int run_main(int argc, char** argv) {
   }
 
   try {
-    if (*ff_cmd) warn_ignored(ff_cmd, ff, ff.scene);
-    if (*solve_cmd) warn_ignored(solve_cmd, solve, solve.scene);
-    if (*compare_cmd) warn_ignored(compare_cmd, compare, compare.scene);
-    if (*pt_cmd) warn_ignored(pt_cmd, pt, pt.scene);
+    if (*ff_cmd) refuse_inapplicable(ff_cmd, ff);
+    if (*solve_cmd) refuse_inapplicable(solve_cmd, solve);
+    if (*compare_cmd) refuse_inapplicable(compare_cmd, compare);
+    if (*pt_cmd) refuse_inapplicable(pt_cmd, pt);
+    if (*measure_cmd) refuse_inapplicable(measure_cmd, measure);
 
     // --quiet: the count of the scene warnings it did not print (they are in --json).
     auto counted = [](int code) {

@@ -82,9 +82,11 @@ py::array_t<double> rgb_view(const PatchRgb& values, py::handle base);
 // and `seed` (GIL released, timed into `timings` as "embree_scene" and "form_factors"). A matrix given by the
 // caller is checked before scipy reads its structure: shape N x N, real values, index arrays of integers within
 // [0, N) (and, compressed, an indptr of N + 1 non-decreasing offsets from 0), at most 2^31 - 1 entries, values
-// finite and >= 0 (also after the conversion to float32). InputError naming what is wrong.
+// finite and >= 0 (also after the conversion to float32). InputError naming what is wrong. With `sampling`, how
+// F was traced (a FormFactors without its F: rays, options, emitter columns) when radwalk traced it (None or a
+// FormFactors estimated by rays; empty rays otherwise), for its error (solve/form_factor_error.h).
 SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, std::uint64_t seed, int threads,
-                           std::map<std::string, double>& timings);
+                           std::map<std::string, double>& timings, FormFactors* sampling = nullptr);
 
 // The metadata of a result as a JSON text: `run` (the options) plus the CLI's "solution" object, scene, max_edge,
 // patches and timings_s.

@@ -245,19 +245,27 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
 }  // namespace
 
 SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, std::uint64_t seed, int threads,
-                           std::map<std::string, double>& timings) {
+                           std::map<std::string, double>& timings, FormFactors* sampling) {
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
   if (F.is_none()) {
     FormFactorOptions o;
     o.rays_per_patch = rays;
     o.seed = seed;
-    return estimate(scene, o, threads, timings).F;
+    FormFactors ff = estimate(scene, o, threads, timings);
+    SparseF f = std::move(ff.F);
+    if (sampling) *sampling = std::move(ff);
+    return f;
   }
   if (py::isinstance<FormFactorsResult>(F)) {
-    const SparseF& f = F.cast<const FormFactorsResult&>().ff.F;
+    const FormFactors& ff = F.cast<const FormFactorsResult&>().ff;
+    const SparseF& f = ff.F;
     if (f.rows() != n)
       throw InputError("F is " + std::to_string(f.rows()) + " x " + std::to_string(f.cols()) + " but the scene has " +
                        std::to_string(n) + " patches");
+    if (sampling) {
+      *sampling = ff;
+      sampling->F = SparseF();  // the record only: the caller has F
+    }
     return f;
   }
   // A caller's matrix: checked, canonical float32 CSR with int32 indices (a copy), then its arrays into Eigen's

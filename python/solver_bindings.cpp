@@ -5,13 +5,17 @@
 #include "core/parallel.h"
 #include "interruptible.h"
 #include "io/run_summary.h"
+#include "core/timer.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
+#include "visibility/embree_visibility.h"
 
 namespace radwalk::python {
 namespace {
 
-// An N x 3 field of the result, or None when the solver does not give it (e.g. B_se of a deterministic solve).
+// An N x 3 field of the result, or None when the solver does not give it (e.g. B_se of a solve from a caller's F).
 py::object rgb_or_none(py::object self, const PatchRgb& values) {
   if (values.size() == 0) return py::none();
   return rgb_view(values, self);
@@ -22,7 +26,8 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
   check_run(scene, threads_arg);
   const int threads = static_cast<int>(threads_arg);
   Result r;
-  SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings);
+  FormFactors sampling;
+  SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings, &sampling);
   interruptible([&] {
     ThreadLimit limit(threads);
     SolveOptions o;
@@ -31,6 +36,16 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
     o.max_iterations = max_iterations > 0 ? max_iterations : default_max_iterations(solver, scene.patches.size());
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     r.solution = solve_radiosity(problem, o);
+    // B_se: the traced form factors' noise propagated through the solve (as the CLI's solve).
+    if (has_noise_model(sampling) && r.solution.B.rows() == static_cast<Eigen::Index>(scene.patches.size())) {
+      Timer timer;
+      const EmbreeVisibility visibility(scene.patches);
+      const FormFactorError error = form_factor_error(scene.patches, visibility, sampling, problem, r.solution.B);
+      r.solution.B_se = error.variance.sqrt();
+      r.solution.info["sampling_factor_rays"] = error.calibration.factors.rays;
+      r.solution.info["sampling_factor_emitter"] = error.calibration.factors.emitter;
+      r.timings["error_estimate"] = timer.seconds();
+    }
   });
   check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;
@@ -54,8 +69,10 @@ std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json 
 void bind_solvers(py::module_& m) {
   py::class_<Result>(m, "Result", R"doc(What a solver, a random walk or the path tracer returns.
 
-B (N, 3): radiosity per patch and channel (W per unit length squared); B_se, var, var_theory (N, 3): standard
-error, per-walk variance and exact per-walk variance (Monte Carlo results; None where not computed). These are
+B (N, 3): radiosity per patch and channel (W per unit length squared); B_se (N, 3): its statistical standard error
+(1 standard deviation: the walks' or path tracer's own noise, or for radwalk.solve from form factors radwalk traced,
+their noise propagated through the solve, docs/accuracy.md; None for a caller's F); var, var_theory (N, 3):
+per-walk variance and exact per-walk variance (Monte Carlo results; None where not computed). These are
 read-only views of the C++ result (no copy) that keep it alive; np.array(r.B) gives a writable copy.
 method, status ("converged" or "max-iterations"), message, iterations, residual, residual_history, walks_total,
 steps, seconds, info: as the CLI's JSON "solution" object ("max-iterations" is not an exception: the CLI's exit
@@ -113,6 +130,8 @@ solver: "auto" (direct up to a few thousand patches, else Gauss-Seidel), "direct
   "southwell" (the CLI's --solver); tol: relative residual to stop at (--tol);
   max_iterations: sweeps or shots, 0 = the CLI's default (10000, or 1000 x N shots for southwell).
 threads: 0 = all cores. The GIL is released during the solve.
+Result.B_se: for F traced by radwalk (None, or a FormFactors from form_factors) the form factors' noise
+  propagated through the solve, as the CLI's B_se (docs/accuracy.md); None for a caller's matrix.
 Raises radwalk.InputError (a ValueError) for an unknown solver, bad options or bad values (rho outside [0, 1),
 NaN, a malformed F, ...); radwalk.NumericalError when the solve diverged or was refused (its message).
 For random walks use random_walk; for the continuous reference, pathtrace.)doc");

@@ -23,7 +23,8 @@ struct Solution {
   SolveStatus status = SolveStatus::converged;
   std::string message;      // why it stopped, in words, and what to do if it failed
   PatchRgb B;               // radiosity B = E + rho * (F B), W/m^2, one row per patch
-  PatchRgb B_se;            // standard error of B (Monte Carlo methods); empty for deterministic ones
+  PatchRgb B_se;            // statistical standard error of B (Monte Carlo methods; deterministic solvers from traced
+                            // form factors: their noise, apps/statistical_error.h); empty when unknown
   PatchRgb var;             // per-walk (per-sample) variance (Monte Carlo methods); empty otherwise
   PatchRgb var_theory;      // exact per-walk variance where computable; empty otherwise
   long iterations = 0;      // sweeps or shots (deterministic)

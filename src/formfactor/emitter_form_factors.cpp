@@ -12,6 +12,34 @@
 
 namespace radwalk {
 
+std::vector<std::size_t> emitter_patches(const PatchSet& patches) {
+  std::vector<std::size_t> emitters;
+  for (std::size_t e = 0; e < patches.size(); ++e)
+    if (patches.E[e].maxCoeff() > 0) emitters.push_back(e);
+  return emitters;
+}
+
+std::vector<EmitterEntry> estimate_emitter_row(const PatchSet& patches, const VisibleFormFactor& visible,
+                                               const FormFactorOptions& options, long shadow_samples_per_patch,
+                                               const std::vector<std::size_t>& emitters, std::size_t i, long& rays) {
+  // The columns this row can see at all (some corner of i strictly in front of e's plane and some corner of e
+  // strictly in front of i's plane: otherwise F(x -> e) = 0 for every x of i), the samples split evenly over them.
+  std::vector<EmitterEntry> entries;
+  for (std::size_t e : emitters)
+    if (e != i && patch_may_see(patches, i, e)) entries.push_back({e, 0.0, 0.0});
+  if (entries.empty()) return entries;
+  const long M = std::max<long>(1, shadow_samples_per_patch / static_cast<long>(entries.size()));
+  for (EmitterEntry& entry : entries) {
+    Rng rng = stream(options.seed, StreamDomain::emitter_form_factor, i, entry.column);
+    SobolShift shift;
+    for (auto& w : shift.word) w = rng.next_u32();
+    const VisibleFormFactor::Estimate estimate = visible.estimate_with_spread(i, entry.column, M, shift, rays);
+    entry.value = estimate.mean;
+    entry.variance = estimate.variance_of_mean;
+  }
+  return entries;
+}
+
 EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
                                                  const FormFactorOptions& options, long shadow_samples_per_patch) {
   if (shadow_samples_per_patch < 1)
@@ -19,44 +47,41 @@ EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const 
                      std::to_string(shadow_samples_per_patch));
   EmitterFormFactors out;
   out.form_factors = estimate_form_factors(patches, visibility, options);
+  out.form_factors.emitter_samples = shadow_samples_per_patch;
   const std::size_t N = patches.size();
-  std::vector<std::size_t> emitters;
+  const std::vector<std::size_t> emitters = emitter_patches(patches);
   std::vector<std::int32_t> column_of(N, -1);  // emitter rank of a patch, -1 for a non-emitter
-  for (std::size_t e = 0; e < N; ++e)
-    if (patches.E[e].maxCoeff() > 0) {
-      column_of[e] = static_cast<std::int32_t>(emitters.size());
-      emitters.push_back(e);
-    }
+  for (std::size_t k = 0; k < emitters.size(); ++k) column_of[emitters[k]] = static_cast<std::int32_t>(k);
   out.emitter_columns = emitters.size();
+  for (std::size_t e : emitters) out.form_factors.emitter_columns.push_back(static_cast<std::int32_t>(e));
   if (emitters.empty()) return out;
   const std::size_t m = emitters.size();
-  // The replaced entries, row by row (N x m), and the rays per row.
-  std::vector<double> value(N * m, 0.0);
+  // The replaced entries, row by row (N x m), their variances, and the rays per row.
+  std::vector<double> value(N * m, 0.0), variance(N * m, 0.0);
   std::vector<long> rays(N, 0);
   const VisibleFormFactor visible(patches, visibility);
   parallel_for(
       N,
       [&](std::size_t i) {
-        // The columns this row can see at all (some corner of i strictly in front of e's plane and some corner of
-        // e strictly in front of i's plane: otherwise F(x -> e) = 0 for every x of i), the samples split evenly
-        // over them.
-        std::vector<std::size_t> seen;
-        for (std::size_t k = 0; k < m; ++k) {
-          const std::size_t e = emitters[k];
-          if (e == i) continue;
-          if (patch_may_see(patches, i, e)) seen.push_back(k);
-        }
-        if (seen.empty()) return;
-        const long M = std::max<long>(1, shadow_samples_per_patch / static_cast<long>(seen.size()));
-        for (std::size_t k : seen) {
-          Rng rng = stream(options.seed, StreamDomain::emitter_form_factor, i, emitters[k]);
-          SobolShift shift;
-          for (auto& w : shift.word) w = rng.next_u32();
-          value[i * m + k] = std::max(0.0, visible.estimate(i, emitters[k], M, shift, rays[i]));
+        for (const EmitterEntry& entry :
+             estimate_emitter_row(patches, visible, options, shadow_samples_per_patch, emitters, i, rays[i])) {
+          const auto k = static_cast<std::size_t>(column_of[entry.column]);
+          value[i * m + k] = std::max(0.0, entry.value);
+          variance[i * m + k] = entry.variance;
         }
       },
       1);
   for (long r : rays) out.shadow_rays += r;
+  // The variances as a sparse N x N matrix (emitter columns only; an entry wherever the row sees the emitter).
+  std::vector<Eigen::Triplet<float>> triplets;
+  for (std::size_t i = 0; i < N; ++i)
+    for (std::size_t k = 0; k < m; ++k)
+      if (variance[i * m + k] > 0)
+        triplets.emplace_back(static_cast<int>(i), static_cast<int>(emitters[k]),
+                              static_cast<float>(variance[i * m + k]));
+  SparseF V(static_cast<Eigen::Index>(N), static_cast<Eigen::Index>(N));
+  V.setFromTriplets(triplets.begin(), triplets.end());
+  out.form_factors.emitter_variance = std::move(V);
   // Rebuild the CSR: each row keeps its non-emitter entries and takes its emitter entries from `value`
   // (columns stay sorted: a merge of the two sorted lists).
   const SparseF& F = out.form_factors.F;

@@ -17,8 +17,10 @@
 // rays, unchanged. Emitter patches' own rows are treated like every other row. Deterministic: the result does not
 // depend on the thread count.
 #include <cstdint>
+#include <vector>
 
 #include "formfactor/form_factors.h"
+#include "formfactor/visible_form_factor.h"
 
 namespace radwalk {
 
@@ -28,8 +30,24 @@ struct EmitterFormFactors {
   long shadow_rays = 0;       // shadow rays traced for the replaced columns (all rows)
 };
 
-// The cosine rays per patch come from `options`; shadow_samples_per_patch >= 1 (InputError otherwise).
+// The cosine rays per patch come from `options`; shadow_samples_per_patch >= 1 (InputError otherwise). The result's
+// form_factors also record the replaced columns and each replaced entry's variance (form_factors.h).
 EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
                                                  const FormFactorOptions& options, long shadow_samples_per_patch);
+
+// The emitters: the patches with E > 0 in some channel, increasing.
+std::vector<std::size_t> emitter_patches(const PatchSet& patches);
+
+// Row i's emitter entries as estimate_emitter_form_factors computes them (the same streams of options.seed):
+// for each emitter e (of `emitters`) that i may see, the raw estimate of F_ie (before the clamp at 0) and its
+// variance (VisibleFormFactor::estimate_with_spread); the shadow rays are added to `rays`.
+struct EmitterEntry {
+  std::size_t column = 0;
+  double value = 0;
+  double variance = 0;
+};
+std::vector<EmitterEntry> estimate_emitter_row(const PatchSet& patches, const VisibleFormFactor& visible,
+                                               const FormFactorOptions& options, long shadow_samples_per_patch,
+                                               const std::vector<std::size_t>& emitters, std::size_t i, long& rays);
 
 }  // namespace radwalk

@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 
+#include "core/check.h"
 #include "core/distributed.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -207,6 +208,27 @@ std::uint32_t ray_count(const FormFactorOptions& options, double area) {
   return std::uint32_t(n);
 }
 
+FormFactorRow trace_form_factor_row(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& options,
+                                    std::size_t i) {
+  check_options(options);
+  RADWALK_CHECK(i < ps.size());
+  int sort_passes = 0;
+  for (std::size_t v = ps.size(); v > 0; v >>= 8) ++sort_passes;
+  FormFactorRow row;
+  row.rays = ray_count(options, ps.area[i]);
+  const std::size_t room = std::min<std::size_t>(row.rays, ps.size());
+  row.cols.resize(room);
+  row.counts.resize(room);
+  RowScratch scratch;
+  const RowResult r = trace_row(ps, vis, options, ray_epsilon(ps), sort_passes, i, row.rays, scratch, row.cols.data(),
+                                row.counts.data());
+  row.cols.resize(r.nnz);
+  row.counts.resize(r.nnz);
+  row.escaped = r.escaped;
+  row.back_hits = r.back_hits;
+  return row;
+}
+
 FormFactors estimate_form_factors(const PatchSet& ps, const Visibility& vis, const FormFactorOptions& options) {
   FormFactors out = estimate_form_factor_rows(ps, vis, options);
   gather_whole_rows(out.F, out.row_blocks);  // over MPI: every rank gets every row
@@ -219,6 +241,7 @@ FormFactors estimate_form_factor_rows(const PatchSet& ps, const Visibility& vis,
   if (N > std::size_t(std::numeric_limits<std::int32_t>::max()))
     throw InputError(locate(ps.source, 0, -1, "more than 2^31-1 patches"));
   FormFactors out;
+  out.options = options;
   out.rays.resize(N);
   out.escaped.resize(N);
   out.back_hits.resize(N);

@@ -52,7 +52,25 @@ struct FormFactors {
   // Over MPI: the rank blocks of F's rows when F holds only this rank's rows (form_factor_rows.h); empty when
   // every rank holds every row.
   RowBlocks row_blocks;
+  // How F was estimated, for its error (form_factor_noise.h); rays is empty when F was read from a file. With
+  // emitter columns (emitter_form_factors.h): the shadow samples per patch, the replaced columns (increasing) and
+  // the variance of each replaced entry's estimate (N x N, non-zeros in those columns only); empty otherwise.
+  FormFactorOptions options;
+  long emitter_samples = 0;
+  std::vector<std::int32_t> emitter_columns;
+  SparseF emitter_variance;
 };
+
+// One row of F exactly as estimate_form_factors traces it (the same stream, so the same rays): the columns hit
+// (increasing) with their counts, and the ray outcomes. For replicates of a row with another seed
+// (formfactor/sampling_factor.h).
+struct FormFactorRow {
+  std::vector<std::int32_t> cols;
+  std::vector<std::uint32_t> counts;
+  std::uint32_t rays = 0, escaped = 0, back_hits = 0;
+};
+FormFactorRow trace_form_factor_row(const PatchSet& patches, const Visibility& visibility,
+                                    const FormFactorOptions& options, std::size_t i);
 
 // n_i for a patch of area `area` under `options` (checked: InputError for options out of range).
 std::uint32_t ray_count(const FormFactorOptions& options, double area);

@@ -35,7 +35,19 @@ class VisibleFormFactor {
 
   // The estimate above of F_ie from M >= 1 samples with the given shift, for receiving patch i (its normal the
   // cos_x side) and target patch e != i. Adds the shadow rays traced to `rays`. Thread-safe (const).
-  double estimate(std::size_t i, std::size_t e, long M, const SobolShift& shift, long& rays) const;
+  double estimate(std::size_t i, std::size_t e, long M, const SobolShift& shift, long& rays) const {
+    return estimate_with_spread(i, e, M, shift, rays).mean;
+  }
+
+  // The same estimate (bit-identical mean) with the spread of its samples: variance_of_mean = s^2 / M, s^2 the
+  // unbiased sample variance of the scores f_s (0 for M = 1). For independent uniform samples it is an unbiased
+  // estimate of the mean's variance; the Sobol points make the true variance smaller, by a factor that
+  // formfactor/sampling_factor.h measures.
+  struct Estimate {
+    double mean = 0;
+    double variance_of_mean = 0;
+  };
+  Estimate estimate_with_spread(std::size_t i, std::size_t e, long M, const SobolShift& shift, long& rays) const;
 
  private:
   const PatchSet& patches_;

@@ -200,7 +200,8 @@ Solution DirectSolver::solve(const RadiosityProblem& p) const {
   s.message = std::string(m.dense ? "dense" : "sparse") + " LU of I - diag(rho) F (" +
               std::to_string(m.dense ? m.dense_lu.size() : m.sparse_lu.size()) +
               " factorisation(s)); relative residual " + fmt(s.residual) + ", condition number kappa_inf " +
-              fmt(m.kappa) + ", so the relative error of B is at most about " + fmt(m.kappa * s.residual);
+              fmt(m.kappa) + ", so the solve's own (rounding) error of B is at most about " + fmt(m.kappa * s.residual) +
+              " relative (the form factors' noise is a separate error, estimated apart)";
   if (!s.B.allFinite()) {  // cannot happen after the checks above; never hand out NaN
     s.status = SolveStatus::refused;
     s.message = "direct solve refused: the solution is not finite. " + s.message;

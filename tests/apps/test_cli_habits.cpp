@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -112,33 +113,33 @@ TEST_CASE("radwalk: an output whose extension does not match what is written is 
   CHECK(run("patch " + missing + " -o p.obj").out.find("no such file") != std::string::npos);
 }
 
-TEST_CASE("radwalk: options the chosen method ignores are warned about, on stderr and in the JSON summary", "[cli]") {
-  const fs::path json = scratch() / "ignored.json";
-  const Run r = run("solve " + source("meshes/cube.obj") + " --walk shoot --solver direct --tol 1e-3 --refine-steps 2 --json " +
-                    json.string());
+TEST_CASE("radwalk: options the chosen method cannot honour are refused in one line naming them", "[cli]") {
+  const Run r = run("solve " + source("meshes/cube.obj") + " --walk shoot --solver direct --tol 1e-3 --refine-steps 2");
   INFO(r.out);
-  REQUIRE(r.exit_code == 0);
-  const std::string walk = "--walk is ignored (used only with --solver random-walk)";
-  const std::string tol = "--tol is ignored (used only by the iterative solvers";
-  const std::string refine = "--refine-steps is ignored (used only with --refine)";
-  CHECK(r.out.find("radwalk: warning: " + walk) != std::string::npos);
-  CHECK(r.out.find("radwalk: warning: " + tol) != std::string::npos);
-  CHECK(r.out.find("radwalk: warning: " + refine) != std::string::npos);
-  std::ifstream in(json);
-  const auto j = nlohmann::json::parse(in);
-  int found = 0;
-  for (const auto& w : j["warnings"]) found += w.get<std::string>().rfind(walk, 0) == 0;
-  CHECK(found == 1);
+  CHECK(r.exit_code == 2);
+  CHECK(r.out.rfind("radwalk: error: ", 0) == 0);
+  CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+  CHECK(r.out.find("--walk does not apply here (used only with --solver random-walk): remove it") != std::string::npos);
+  CHECK(r.out.find("--tol does not apply here (used only by the iterative solvers") != std::string::npos);
+  CHECK(r.out.find("--refine-steps does not apply here (used only with --refine)") != std::string::npos);
 
-  // Options that apply raise no warning; several ignored options of one kind share a line.
-  CHECK(run("solve " + source("meshes/cube.obj") + " --solver jacobi --tol 1e-6").out.find("warning") ==
-        std::string::npos);
+  // Options that apply pass; several of one kind share a clause.
+  CHECK(run("solve " + source("meshes/cube.obj") + " --solver jacobi --tol 1e-6").exit_code == 0);
   const Run pt = run("pathtrace " + source("meshes/cube.obj") + " --spp 2 --width 8 --height 8");
-  CHECK(pt.out.find("radwalk: warning: --width and --height are ignored (used only with --image)") != std::string::npos);
+  CHECK(pt.exit_code == 2);
+  CHECK(pt.out.find("radwalk: error: --width and --height do not apply here (used only with --image): remove them") !=
+        std::string::npos);
   const Run ray =
       run("solve " + source("meshes/cube.obj") + " --solver random-walk --kernel ray --walks-per-patch 10 --rays 10");
-  CHECK(ray.out.find("radwalk: warning: --rays is ignored (used only for form factors, which --kernel ray does not "
-                     "use)") != std::string::npos);
+  CHECK(ray.out.find("radwalk: error: --rays does not apply here (used only for form factors, which --kernel ray "
+                     "does not use)") != std::string::npos);
+  // measure: the kernel of a method that does not walk (it ran on the matrix kernel before, silently).
+  const Run importance = run("measure " + source("meshes/cube.obj") +
+                             " --response patches:0 --method importance-gather --kernel ray --walks 100");
+  CHECK(importance.exit_code == 2);
+  CHECK(importance.out.find("--kernel does not apply here (used only by the walk methods") != std::string::npos);
+  CHECK(run("measure " + source("meshes/cube.obj") + " --response patches:0 --method gather-expected-value "
+            "--kernel ray --walks 100").exit_code == 0);
 }
 
 TEST_CASE("radwalk: progress lines when stderr is a file, none for quick stages or with -q", "[cli]") {

@@ -1,0 +1,84 @@
+#include "apps/statistical_error.h"
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "apps/pipeline.h"
+#include "core/timer.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
+#include "visibility/embree_visibility.h"
+
+namespace radwalk::app {
+namespace {
+
+std::string percent(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
+  return text;
+}
+
+}  // namespace
+
+double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
+  double error = 0, size = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (patches.E[i].maxCoeff() > 0 || !(patches.rho[i].maxCoeff() > 0)) continue;
+    const auto row = static_cast<Eigen::Index>(i);
+    error += patches.area[i] * d.row(row).square().sum();
+    size += patches.area[i] * B.row(row).square().sum();
+  }
+  return size > 0 ? std::sqrt(error / size) : 0.0;
+}
+
+std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
+                           Solution& solution, RunSummary& summary) {
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
+  if (solution.B.rows() != N) return {};
+  auto& j = summary.json()["error_estimate"];
+  auto& stat = j["statistical"];
+  const bool walks = solution.B_se.rows() == N;
+  const PatchRgb own_se = walks ? solution.B_se : PatchRgb::Zero(N, 3);
+  if (walks) stat["walks_relative"] = relative_error(patches, solution.B, own_se);
+  if (!has_noise_model(ff)) {
+    stat["form_factors"] = "not included: F was read from a file, which does not record how it was sampled";
+    solution.B_se = own_se;
+    const double total = relative_error(patches, solution.B, solution.B_se);
+    stat["relative"] = total;
+    return "estimated statistical error " + percent(total) + (walks ? " (the walks' own; " : " (") +
+           "the noise of the form factors read from the file is not included)";
+  }
+  Timer timer;
+  const RadiosityProblem whole = problem.row_blocks.empty() ? RadiosityProblem() : whole_problem(problem);
+  const RadiosityProblem& p = problem.row_blocks.empty() ? problem : whole;
+  const EmbreeVisibility visibility(patches);
+  const FormFactorError error = form_factor_error(patches, visibility, ff, p, solution.B);
+  const SamplingCalibration& calibration = error.calibration;
+  const PropagatedVariance& propagated = error.propagation;
+  const PatchRgb F_se = propagated.variance.sqrt();
+  solution.B_se = (own_se.square() + propagated.variance).sqrt();
+  const double total = relative_error(patches, solution.B, solution.B_se);
+  const double from_F = relative_error(patches, solution.B, F_se);
+  stat["relative"] = total;
+  stat["form_factors_relative"] = from_F;
+  stat["sampling_factor_rays"] = calibration.factors.rays;
+  stat["sampling_factor_rays_measured"] = calibration.rays_measured;
+  stat["sampling_factor_emitter"] = calibration.factors.emitter;
+  stat["sampling_factor_emitter_measured"] = calibration.emitter_measured;
+  stat["calibration_rows"] = calibration.rows;
+  stat["calibration_replicates"] = calibration.replicates;
+  stat["calibration_rays"] = calibration.rays;
+  stat["probes"] = propagated.probes;
+  stat["propagation_sweeps"] = propagated.sweeps;
+  stat["method"] = "first-order propagation of each row's gather variance, Var(B_i) = sum_j G_ij^2 rho_j^2 V_j "
+                   "(docs/theory/error_estimate.md)";
+  summary.add_timing("error_estimate", timer.seconds());
+  std::string line = "estimated statistical error e = " + percent(total) +
+                     " (1 standard deviation, relative to B over the reflecting patches; from the form factors' noise " +
+                     percent(from_F);
+  if (walks) line += ", the walks' own " + percent(relative_error(patches, solution.B, own_se));
+  return line + ")";
+}
+
+}  // namespace radwalk::app

@@ -1,0 +1,32 @@
+#pragma once
+// The statistical error of a solution from form factors traced by rays: their noise propagated to B
+// (formfactor/form_factor_noise.h, formfactor/sampling_factor.h, solve/error_propagation.h), combined with the
+// solver's own Monte Carlo error where it has one (matrix-kernel walks: independent of F's noise given F, so the
+// variances add: Var(B) = E[Var(B | F)] + Var(E[B | F])).
+//
+// Sets solution.B_se to the total statistical standard error (1 standard deviation, all sources); records in the
+// JSON's "error_estimate" the parts (relative_error below), the sampling factors with their rows and replicates,
+// the probes and the seconds; and returns the summary line to print. With F read from a file (no ray counts) F's
+// noise is unknown: B_se keeps the solver's own part only, and the line and the JSON say that F's noise is not
+// included.
+#include <string>
+
+#include "core/solution.h"
+#include "formfactor/form_factors.h"
+#include "io/run_summary.h"
+#include "patch/patch_set.h"
+#include "solve/problem.h"
+
+namespace radwalk::app {
+
+// `ff` describes how problem.F was obtained (its F may have been moved into the problem). Collective over MPI
+// when problem.F is row-distributed (the whole F is gathered for the propagation).
+std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
+                                  Solution& solution, RunSummary& summary);
+
+// The relative error e of the benchmarks (docs/benchmarks.md) for a per-patch error d:
+//   e = sqrt(sum_{i,c} A_i d_ic^2 / sum_{i,c} A_i B_ic^2)
+// over the reflecting (rho > 0), non-emitting patches (0 when there are none, or B is 0 there).
+double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d);
+
+}  // namespace radwalk::app

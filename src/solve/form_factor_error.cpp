@@ -1,0 +1,51 @@
+#include "solve/form_factor_error.h"
+
+#include <algorithm>
+
+#include "core/check.h"
+#include "core/error.h"
+#include "formfactor/form_factor_noise.h"
+
+namespace radwalk {
+
+FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
+                                  const RadiosityProblem& p, const PatchRgb& B, int probes) {
+  FormFactorError out;
+  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, B);
+  const GatherVariance gathers = gather_variance(p.F, ff, B);
+  out.propagation = propagate_gather_variance(p, gathers.scaled(out.calibration.factors), probes, ff.options.seed);
+  out.variance = out.propagation.variance;
+  return out;
+}
+
+MeasurementError measurement_form_factor_error(const PatchSet& patches, const Visibility& visibility,
+                                               const FormFactors& ff, const RadiosityProblem& p, const PatchRgb& B,
+                                               const Eigen::VectorXd& W) {
+  const Eigen::Index N = static_cast<Eigen::Index>(p.size());
+  RADWALK_CHECK_EQ(W.size(), N);
+  RADWALK_CHECK(p.row_blocks.empty());
+  MeasurementError out;
+  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, B);
+  const PatchRgb V = gather_variance(p.F, ff, B).scaled(out.calibration.factors);
+  // Psi = W + F^T (rho Psi), all channels at once; F^T applied by scattering F's rows.
+  PatchRgb psi(N, 3), next(N, 3);
+  for (int c = 0; c < 3; ++c) psi.col(c) = W.array();
+  for (;;) {
+    for (int c = 0; c < 3; ++c) next.col(c) = W.array();
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const auto source = (p.rho.row(i) * psi.row(i)).eval();
+      for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source;
+    }
+    ++out.sweeps;
+    const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
+    psi.swap(next);
+    if (!(change > 1e-10 * size)) break;
+    if (out.sweeps >= 100000)
+      throw InputError("error estimate: the adjoint of the measurement did not converge in 100,000 sweeps "
+                       "(spectral radius of diag(rho) F near 1)");
+  }
+  out.variance = ((psi * p.rho).square() * V).colwise().sum().transpose();
+  return out;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,40 @@
+#pragma once
+// The variance of a radiosity solution B caused by the Monte Carlo noise of the traced form factors it was solved
+// with: the sampling factors measured on replicated rows (formfactor/sampling_factor.h), each row's gather variance
+// (formfactor/form_factor_noise.h) and its first-order propagation through (I - diag(rho) F)^{-1}
+// (solve/error_propagation.h). Derivation: docs/theory/error_estimate.md.
+#include "formfactor/form_factors.h"
+#include "formfactor/sampling_factor.h"
+#include "patch/patch_set.h"
+#include "solve/error_propagation.h"
+#include "solve/problem.h"
+#include "visibility/visibility.h"
+
+namespace radwalk {
+
+struct FormFactorError {
+  PatchRgb variance;  // Var(B_i) per patch and channel from F's noise
+  SamplingCalibration calibration;
+  PropagatedVariance propagation;
+};
+
+// p: the problem B solves (its F the estimate, every row: whole_problem over MPI); ff: how that F was traced
+// (has_noise_model(ff); its own F may have been moved into p); B: the solution (N x 3); `visibility` of `patches`.
+FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
+                                  const RadiosityProblem& p, const PatchRgb& B, int probes = 16);
+
+// The variance of a measurement M_c = sum_i W_i B_ic (W = A R, solve/measurement.h) from F's noise: with
+// Psi = (I - H)^{-T} W (the adjoint, by Jacobi sweeps of Psi = W + F^T diag(rho) Psi to a relative change below
+// 1e-10), dM = sum_j Psi_j rho_j dg_j and so
+//   Var(M_c) = sum_j (Psi_jc rho_jc)^2 V_jc                       (V: the scaled gather variance, as above),
+// exact to first order (no probes). B: the radiosity (any accurate estimate: V needs it only to a few per cent).
+struct MeasurementError {
+  Rgb variance = Rgb::Zero();
+  SamplingCalibration calibration;
+  long sweeps = 0;
+};
+MeasurementError measurement_form_factor_error(const PatchSet& patches, const Visibility& visibility,
+                                               const FormFactors& ff, const RadiosityProblem& p, const PatchRgb& B,
+                                               const Eigen::VectorXd& W);
+
+}  // namespace radwalk
