@@ -15,20 +15,12 @@
 namespace radwalk::python {
 namespace {
 
-// A read-only 1-D numpy view of n values at data, owned by base.
-template <class T>
-py::array_t<T> view(const T* data, std::size_t n, py::handle base) {
-  py::array_t<T> a({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data, base);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
 // F (compressed) as scipy.sparse.csr_matrix((data, indices, indptr)) with views of its three arrays.
 py::object csr_view(const SparseF& F, py::handle base) {
   const auto n = static_cast<std::size_t>(F.rows());
   const auto nnz = static_cast<std::size_t>(F.nonZeros());
-  const py::object data = view(F.valuePtr(), nnz, base), indices = view(F.innerIndexPtr(), nnz, base),
-                   indptr = view(F.outerIndexPtr(), n + 1, base);
+  const py::object data = view(F.valuePtr(), nnz, 1, base), indices = view(F.innerIndexPtr(), nnz, 1, base),
+                   indptr = view(F.outerIndexPtr(), n + 1, 1, base);
   return py::module_::import("scipy.sparse")
       .attr("csr_matrix")(py::make_tuple(data, indices, indptr), py::arg("shape") = py::make_tuple(n, F.cols()),
                           py::arg("copy") = false);
@@ -77,10 +69,7 @@ CArray<std::int64_t> index_array(const py::object& array, const std::string& wha
 // Refuses a value dtype that is not real (complex, object, strings) and values that are not finite or negative.
 void check_values(const py::object& data, std::int64_t count) {
   const py::module_ np = py::module_::import("numpy");
-  const py::object a = np.attr("asarray")(data);
-  const std::string kind = a.attr("dtype").attr("kind").cast<std::string>();
-  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-    throw InputError("F's values must be real numbers, not " + dtype_text(a));
+  const py::array a = real_array(data, "F's values must be real numbers", "F's values must be real numbers, not");
   const auto v = np.attr("ravel")(a).cast<CArray<double>>();
   if (count > v.size()) throw InputError("F has fewer values than entries");
   for (std::int64_t k = 0; k < count; ++k)
@@ -206,17 +195,17 @@ py::object checked_csr(const py::object& F, std::int64_t n) {
 py::dict diagnostics(const FormFactorsResult& r) {
   const FormFactorDiagnostics d = diagnose_form_factors(r.ff.F, r.area, r.ff.rays, r.ff.back_hits);
   py::dict out;
-  out["row_sum"] = py::array_t<double>(d.row_sum.size(), d.row_sum.data());
-  out["reciprocity_error"] = py::array_t<double>(d.reciprocity_error.size(), d.reciprocity_error.data());
+  out["row_sum"] = copy_array(d.row_sum);
+  out["reciprocity_error"] = copy_array(d.reciprocity_error);
   if (!r.ff.rays.empty()) {
     const auto counts = [](const std::vector<std::uint32_t>& c) {
       std::vector<std::int64_t> v(c.begin(), c.end());
-      return py::array_t<std::int64_t>(v.size(), v.data());
+      return copy_array(v);
     };
     out["rays"] = counts(r.ff.rays);
     out["escaped"] = counts(r.ff.escaped);
     out["back_hits"] = counts(r.ff.back_hits);
-    out["row_std_error"] = py::array_t<double>(d.row_std_error.size(), d.row_std_error.data());
+    out["row_std_error"] = copy_array(d.row_std_error);
   }
   return out;
 }
@@ -289,15 +278,15 @@ Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: 
       .def_property_readonly("F", [](py::object self) { return csr_view(self.cast<const FormFactorsResult&>().ff.F, self); })
       .def_property_readonly("rays", [](py::object self) {
         const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.rays.data(), ff.rays.size(), self);
+        return view(ff.rays.data(), ff.rays.size(), 1, self);
       }, "Rays traced from each patch (n_i).")
       .def_property_readonly("escaped", [](py::object self) {
         const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.escaped.data(), ff.escaped.size(), self);
+        return view(ff.escaped.data(), ff.escaped.size(), 1, self);
       }, "Rays from each patch that hit nothing.")
       .def_property_readonly("back_hits", [](py::object self) {
         const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.back_hits.data(), ff.back_hits.size(), self);
+        return view(ff.back_hits.data(), ff.back_hits.size(), 1, self);
       }, "Rays from each patch whose first hit was the back of a patch.")
       .def_property_readonly("nnz", [](const FormFactorsResult& r) { return r.ff.F.nonZeros(); })
       .def_readonly("timings", &FormFactorsResult::timings, "Stage -> seconds (embree_scene, form_factors).")

@@ -47,21 +47,9 @@ Response response_of(const Scene& scene, const py::object& response, const std::
     if (spec == "camera") metadata["camera"] = app::camera_json(fitted, scene.patches, width, height);
     return r;
   }
-  const py::module_ np = py::module_::import("numpy");
-  py::object weights;
-  try {
-    weights = np.attr("asarray")(response);
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError("response must be a spec (str) or an (N,) array of weights");
-  }
-  const std::string kind = weights.attr("dtype").attr("kind").cast<std::string>();
-  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-    throw InputError("response weights must be real numbers, not " +
-                     py::str(weights.attr("dtype")).cast<std::string>());
-  if (weights.attr("ndim").cast<int>() != 1)
-    throw InputError("response weights must be an (N,) array, one weight per patch");
-  const auto w = weights.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  const DoubleArray w = double_array(response, "response must be a spec (str) or an (N,) array of weights",
+                                     "response weights must be real numbers, not");
+  if (w.ndim() != 1) throw InputError("response weights must be an (N,) array, one weight per patch");
   Response r{Eigen::VectorXd(static_cast<Eigen::Index>(w.size())), "weights given in Python"};
   std::copy(w.data(), w.data() + w.size(), r.R.data());
   check_response(r, scene.patches.size());
@@ -72,8 +60,7 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
                       long walks, const std::string& kernel, const std::string& survival, double survival_constant,
                       int importance_sweeps, double defensive, bool theory, const std::vector<double>& camera,
                       int width, int height, long rays, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   MeasureOptions o;
   o.method = method;
   o.walks = walks;
@@ -138,7 +125,7 @@ R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI'
       .def_property_readonly("deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; })
       .def_property_readonly("response", [](const MeasureResult& r) { return r.response.what; })
       .def_property_readonly("R", [](const MeasureResult& r) {
-        return py::array_t<double>(r.response.R.size(), r.response.R.data());
+        return py::array_t<double>(r.response.R.size(), r.response.R.data());  // a copy of the Eigen vector
       })
       .def_readonly("timings", &MeasureResult::timings)
       .def_property_readonly("metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); })

@@ -11,17 +11,10 @@
 
 namespace radwalk::python {
 
-py::array_t<double> rgb_view(const PatchRgb& values, py::handle base) {
-  const auto rows = static_cast<py::ssize_t>(values.rows());
-  py::array_t<double> a({rows, py::ssize_t{3}}, {py::ssize_t{3 * sizeof(double)}, py::ssize_t{sizeof(double)}},
-                        values.size() ? values.data() : nullptr, base);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
-void check_run(const Scene& scene, long long threads) {
+int check_run(const Scene& scene, long long threads) {
   check_thread_count(threads, "threads");
   check_radiometry(scene.patches);
+  return static_cast<int>(threads);
 }
 
 void check_solved(const Solution& solution) {
@@ -94,4 +87,5 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   bind_measure(m);
   bind_pathtrace(m);
   bind_writers(m);
+  bind_meshio(m);
 }

@@ -35,8 +35,7 @@ py::array_t<double> image_array(const RgbImage& image) {
 PathtraceResult pathtrace(const Scene& scene, long spp, const std::string& integrator_name, std::uint64_t seed,
                           bool averages, bool image, int width, int height, const std::vector<double>& camera_numbers,
                           long long threads_arg, bool progress) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   if (!camera_numbers.empty() && camera_numbers.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
   // Samples as the CLI's: from 2 (a standard error needs two) to 2^32, so spp x pixels and spp x N cannot overflow.

@@ -31,8 +31,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
                                  double floor_fraction, double noise_z, const std::string& solver, double tol,
                                  long max_iterations, long rays, double rays_per_area, long min_rays,
                                  bool reciprocity, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   RefineOptions r;
   r.tol = refine_tol;
   r.max_steps = steps;
@@ -121,7 +120,7 @@ scene: a Scene of the final (refined) patches, each keeping its input face, grou
       .def_readonly("scene", &AdaptiveResult::scene)
       .def_readonly("form_factors", &AdaptiveResult::form_factors)
       .def_readonly("result", &AdaptiveResult::result)
-      .def_property_readonly("jump", [](const AdaptiveResult& a) { return py::array_t<double>(a.jump.size(), a.jump.data()); })
+      .def_property_readonly("jump", [](const AdaptiveResult& a) { return copy_array(a.jump); })
       .def_property_readonly("steps", [](const AdaptiveResult& a) {
         py::list l;
         for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));

@@ -18,20 +18,6 @@
 namespace radwalk::python {
 namespace {
 
-// A numpy view of n rows of `columns` values of type T starting at data, owned by base; read-only unless writable.
-template <class T>
-py::array_t<T> view(const T* data, std::size_t n, std::size_t columns, std::size_t row_stride, py::handle base,
-                    bool writable) {
-  std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(n)}, strides = {static_cast<py::ssize_t>(row_stride)};
-  if (columns > 1) {
-    shape.push_back(static_cast<py::ssize_t>(columns));
-    strides.push_back(sizeof(T));
-  }
-  py::array_t<T> a(shape, strides, data, base);
-  if (!writable) py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
 // target[...] = values (numpy broadcasting), for `scene.rho = values`.
 void assign(py::object target, py::object values) { py::module_::import("numpy").attr("copyto")(target, values); }
 
@@ -110,15 +96,8 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
 // columns when `broadcast`); InputError naming `what` otherwise. Non-finite values are left to validation.
 std::vector<double> float_rows(const py::object& value, std::size_t rows, std::size_t columns, const char* what,
                                bool broadcast) {
-  const py::module_ np = py::module_::import("numpy");
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"))
-            .cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError(std::string(what) + " must be an array of numbers");
-  }
+  const DoubleArray a = double_array(value, std::string(what) + " must be an array of numbers",
+                                     std::string(what) + " must hold real numbers, not");
   std::vector<double> out(rows * columns);
   const double* d = a.data();
   if (broadcast && a.ndim() == 0) {
@@ -130,10 +109,7 @@ std::vector<double> float_rows(const py::object& value, std::size_t rows, std::s
              static_cast<std::size_t>(a.shape(1)) == columns) {
     std::copy(d, d + rows * columns, out.begin());
   } else {
-    std::string shape = "(";
-    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(a.shape(k));
-    shape += a.ndim() == 1 ? ",)" : ")";
-    throw InputError(std::string(what) + " has shape " + shape + "; expected (" + std::to_string(rows) + ", " +
+    throw InputError(std::string(what) + " has shape " + shape_text(a) + "; expected (" + std::to_string(rows) + ", " +
                      std::to_string(columns) + ")" + (broadcast ? " or (" + std::to_string(rows) + ",)" : ""));
   }
   return out;
@@ -171,10 +147,11 @@ std::vector<std::vector<std::int64_t>> face_lists(const py::object& faces) {
   return out;
 }
 
-// Scene.from_arrays: the FaceArrays of mesh/mesh_from_arrays.h from numpy arguments, then patched_scene.
-Scene from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
-                  const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
-                  double max_area, bool strict, bool contact_cut) {
+}  // namespace
+
+Scene scene_from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                        const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                        double max_area, bool strict, bool contact_cut, const std::string& name) {
   FaceArrays arrays;
   const py::module_ np = py::module_::import("numpy");
   const py::array v = np.attr("asarray")(vertices, py::arg("dtype") = np.attr("float64"));
@@ -195,9 +172,18 @@ Scene from_arrays(const py::object& vertices, const py::object& faces, const py:
       arrays.group.push_back(g.cast<std::string>());
     }
   }
-  const std::string name = "<arrays>";
   return patched_scene([&] { ReadOptions read; read.strict = strict; return mesh_from_arrays(arrays, name, read); },
                        name, max_edge, max_area, strict, two_sided, contact_cut);
+}
+
+namespace {
+
+// Scene.from_arrays (scene_from_arrays, named "<arrays>").
+Scene from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                  const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                  double max_area, bool strict, bool contact_cut) {
+  return scene_from_arrays(vertices, faces, rho, emission, groups, two_sided, max_edge, max_area, strict, contact_cut,
+                           "<arrays>");
 }
 
 std::size_t material_index(const Scene& scene, const py::object& material) {
@@ -224,15 +210,8 @@ std::size_t material_index(const Scene& scene, const py::object& material) {
 // An RGB argument of set_material: a number (the same in every channel) or 3 numbers; None: not given.
 std::optional<Rgb> rgb_argument(const py::object& value, const char* name) {
   if (value.is_none()) return std::nullopt;
-  const py::module_ np = py::module_::import("numpy");
-  py::object a;
-  try {
-    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"));
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b)");
-  }
-  const auto v = a.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  const std::string must = std::string(name) + " must be a number or 3 numbers (r, g, b)";
+  const DoubleArray v = double_array(value, must, must + ", not");
   if (v.ndim() == 0) return Rgb::Constant(v.data()[0]);
   if (v.ndim() == 1 && v.shape(0) == 3) return Rgb(v.data()[0], v.data()[1], v.data()[2]);
   throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b), got " + std::to_string(v.size()) +
@@ -316,55 +295,54 @@ and MTL that say the same give the same patches and the same repairs, warnings a
       .def_property_readonly(
           "areas", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.area.data(), s.patches.size(), 1, sizeof(double), self, false);
+            return view(s.patches.area.data(), s.patches.size(), 1, self, false, sizeof(double));
           }, "Patch areas (N,), in the mesh's unit squared.")
       .def_property_readonly(
           "centroids", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.centroid.data()->data(), s.patches.size(), 3, sizeof(Vec3), self, false);
+            return view(s.patches.centroid.data()->data(), s.patches.size(), 3, self, false, sizeof(Vec3));
           }, "Area centroids (N, 3).")
       .def_property_readonly(
           "normals", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.normal.data()->data(), s.patches.size(), 3, sizeof(Vec3), self, false);
+            return view(s.patches.normal.data()->data(), s.patches.size(), 3, self, false, sizeof(Vec3));
           }, "Unit normals (N, 3), from the corner order (counter-clockwise seen from the front).")
       .def_property_readonly(
           "points", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.points.data()->data(), s.patches.points.size(), 3, sizeof(Vec3), self, false);
+            return view(s.patches.points.data()->data(), s.patches.points.size(), 3, self, false, sizeof(Vec3));
           }, "Corner points (P, 3), shared between patches.")
       .def_property_readonly(
           "corners", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.corners.data()->data(), s.patches.size(), 4, 4 * sizeof(std::int32_t), self,
-                        false);
+            return view(s.patches.corners.data()->data(), s.patches.size(), 4, self, false, 4 * sizeof(std::int32_t));
           }, "Corner indices into points (N, 4); corners[i, 3] == -1 for a triangle.")
       .def_property_readonly(
           "face", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.face.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
+            return view(s.patches.face.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
           }, "Input face of every patch (N,), counted from 0 in file order.")
       .def_property_readonly(
           "material", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.material.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
+            return view(s.patches.material.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
           }, "Material index of every patch (N,), into Scene.materials.")
       .def_property_readonly(
           "group", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.group.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
+            return view(s.group.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
           }, "Group index of every patch (N,), into Scene.groups; -1 outside any group.")
       .def_property(
           "rho", [](py::object self) {
             Scene& s = self.cast<Scene&>();
-            return view(s.patches.rho.data()->data(), s.patches.size(), 3, sizeof(Rgb), self, true);
+            return view(s.patches.rho.data()->data(), s.patches.size(), 3, self, true, sizeof(Rgb));
           },
           [](py::object self, py::object values) { assign(self.attr("rho"), values); },
           "Diffuse reflectance (N, 3), writable in place: scene.rho[i] = (r, g, b), scene.rho[:] *= 0.9.")
       .def_property(
           "E", [](py::object self) {
             Scene& s = self.cast<Scene&>();
-            return view(s.patches.E.data()->data(), s.patches.size(), 3, sizeof(Rgb), self, true);
+            return view(s.patches.E.data()->data(), s.patches.size(), 3, self, true, sizeof(Rgb));
           },
           [](py::object self, py::object values) { assign(self.attr("E"), values); },
           "Emitted radiosity E = pi * Ke (N, 3), W per unit length squared, writable in place.")

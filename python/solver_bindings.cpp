@@ -19,8 +19,7 @@ py::object rgb_or_none(py::object self, const PatchRgb& values) {
 
 Result solve(const Scene& scene, const py::object& F, const std::string& solver, double tol, long max_iterations,
              long rays, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   Result r;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings);
   interruptible([&] {
@@ -75,8 +74,7 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
       .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; })
       .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; })
       .def_property_readonly("residual_history", [](const Result& r) {
-        const auto& h = r.solution.residual_history;
-        return py::array_t<double>(h.size(), h.data());
+        return copy_array(r.solution.residual_history);
       })
       .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; })
       .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; })

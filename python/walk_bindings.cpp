@@ -13,10 +13,14 @@
 #include "visibility/embree_visibility.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_compare.h"
+#include "walk/walk_method.h"
 #include "walk/walk_variance.h"
 
 namespace radwalk::python {
 namespace {
+
+// The method random_walk, compare and exact_variance use when none is named (the CLI's default too).
+constexpr WalkMethod kDefaultMethod = WalkMethod::gather_collision;
 
 // The per-method part of a comparison: its summary and its per-patch arrays (NaN where it estimated nothing).
 struct EstimatorComparison {
@@ -61,8 +65,7 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
                    const std::vector<int>& patches, long rays, long long threads_arg, bool progress,
                    bool control_variate, const std::string& sampler, int replicates, bool direct_light,
                    long shadow_rays) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   WalkOptions w = walk_options(method, kernel, walks_per_patch.value_or(1000), particles.value_or(1000), seed,
                                survival, survival_constant, patches);
   // The count the method does not read is refused, as the CLI refuses --particles with gathering walks.
@@ -111,15 +114,14 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
                    int runs, long walks_per_patch, const std::string& kernel, std::uint64_t seed,
                    const std::string& survival, double survival_constant, bool theory,
                    const std::vector<int>& patches, long rays, long long threads_arg, bool progress) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   CompareOptions o;
   if (methods) {
     o.methods.clear();
     for (const std::string& name : *methods) o.methods.push_back(parse_walk_method(name));
   }
   o.runs = runs;
-  o.walk = walk_options("gather-collision", kernel, walks_per_patch, 1000, seed, survival, survival_constant, patches);
+  o.walk = walk_options(std::string(method_name(kDefaultMethod)), kernel, walks_per_patch, 1000, seed, survival, survival_constant, patches);
   o.theory = theory;
   o.progress = progress;
   check_compare_options(o, scene.patches.size());
@@ -168,8 +170,7 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
 py::array_t<double> exact_variance(const Scene& scene, const py::object& F, const std::string& method,
                                    const std::string& survival, double survival_constant, long rays,
                                    std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   WalkOptions w = walk_options(method, "matrix", 1000, 1000, seed, survival, survival_constant, {});
   std::map<std::string, double> timings;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, timings);
@@ -186,6 +187,37 @@ py::array_t<double> exact_variance(const Scene& scene, const py::object& F, cons
 }  // namespace
 
 void bind_walks(py::module_& m) {
+  // The method names in the docstrings come from the method table (walk/walk_method.h), never spelled here.
+  const auto methods_of = [](WalkDirection direction) {
+    std::string list;
+    for (const WalkMethodRow& row : kWalkMethods)
+      if (row.direction == direction) list += (list.empty() ? "\"" : ", \"") + std::string(row.name) + "\"";
+    return list;
+  };
+  static const std::string random_walk_doc = std::string(R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
+
+method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): )doc" +
+                                      methods_of(WalkDirection::gather) + R"doc( (walks from each
+  estimated patch, walks_per_patch of them, default 1000) or )doc" + methods_of(WalkDirection::shoot) + R"doc(
+  (particles from the emitters, `particles` in total, default 1000); the count the method does not read is
+  refused (InputError), as in the CLI;
+  the CLI's --walk D --estimator E is method "D-E".
+kernel: "matrix" (stored F, alias tables) or "ray" (Embree traces every step, F is not used or estimated).
+F: a FormFactors, a scipy.sparse matrix, or None (estimated with `rays` and `seed`, as the CLI).
+survival: "analog", "max" or "constant" (with survival_constant), the roulette rule; theory: also the exact
+  per-walk variance var_theory (matrix kernel, N <= 2000); patches: gathering only, the patches to estimate
+  (empty: all; the others are NaN); seed: as the CLI's --seed (same seed, same B for any thread count).
+control_variate: gathering, matrix kernel: walk B - c from the shifted source and add the constant c back, as the
+  CLI's --control-variate (docs/theory/control_variate.md).
+sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler, --replicates, --direct-light
+  and --shadow-rays (src/walk/walk_options.h): sampler "random" (i.i.d. particles), "sobol" (stratified
+  emission, randomised Sobol first rays) or "jacobi" (stochastic Jacobi, shoot-collision only); with sobol or
+  jacobi, `replicates` independent randomisations (>= 2) give B_se from their spread, and direct_light computes
+  the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
+  receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
+  replicates nor shadow_rays, and direct_light needs sobol or jacobi (InputError, as the CLI).
+Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count;
+radwalk.NumericalError when the walks refuse the system (spectral radius >= 1), with the walks' message.)doc");
   py::class_<EstimatorComparison>(m, "EstimatorComparison",
                                   R"doc(One method of a compare(): per-patch arrays and its summary.
 
@@ -278,36 +310,14 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
       .def_readonly("timings", &Comparison::timings);
 
   m.def("random_walk", &random_walk, py::arg("scene"), py::arg("F") = py::none(),
-        py::arg("method") = "gather-collision", py::arg("kernel") = "matrix", py::arg("walks_per_patch") = py::none(),
+        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("kernel") = "matrix", py::arg("walks_per_patch") = py::none(),
         py::arg("particles") = py::none(), py::arg("seed") = 1, py::arg("survival") = "analog",
         py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
         py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
         py::arg("control_variate") = false, py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
         py::arg("replicates") = WalkOptions{}.replicates, py::arg("direct_light") = WalkOptions{}.direct_light,
         py::arg("shadow_rays") = WalkOptions{}.shadow_rays,
-        R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory).
-
-method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): "gather-absorption",
-  "gather-collision", "gather-expected-value" (walks from each estimated patch, walks_per_patch of them, default
-  1000) or "shoot-collision", "shoot-absorption", "shoot-survival" (particles from the emitters, `particles` in
-  total, default 1000); the count the method does not read is refused (InputError), as in the CLI;
-  the CLI's --walk D --estimator E is method "D-E".
-kernel: "matrix" (stored F, alias tables) or "ray" (Embree traces every step, F is not used or estimated).
-F: a FormFactors, a scipy.sparse matrix, or None (estimated with `rays` and `seed`, as the CLI).
-survival: "analog", "max" or "constant" (with survival_constant), the roulette rule; theory: also the exact
-  per-walk variance var_theory (matrix kernel, N <= 2000); patches: gathering only, the patches to estimate
-  (empty: all; the others are NaN); seed: as the CLI's --seed (same seed, same B for any thread count).
-control_variate: gathering, matrix kernel: walk B - c from the shifted source and add the constant c back, as the
-  CLI's --control-variate (docs/theory/control_variate.md).
-sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler, --replicates, --direct-light
-  and --shadow-rays (src/walk/walk_options.h): sampler "random" (i.i.d. particles), "sobol" (stratified
-  emission, randomised Sobol first rays) or "jacobi" (stochastic Jacobi, shoot-collision only); with sobol or
-  jacobi, `replicates` independent randomisations (>= 2) give B_se from their spread, and direct_light computes
-  the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
-  receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
-  replicates nor shadow_rays, and direct_light needs sobol or jacobi (InputError, as the CLI).
-Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count;
-radwalk.NumericalError when the walks refuse the system (spectral radius >= 1), with the walks' message.)doc");
+        random_walk_doc.c_str());
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),
         py::arg("runs") = 5, py::arg("walks_per_patch") = 1000, py::arg("kernel") = "matrix", py::arg("seed") = 1,
@@ -321,7 +331,7 @@ total as particles for shooting ones; run r uses seed + r; the reference is the 
 methods: names of radwalk.walk_methods() (None: all six); the other options as random_walk.)doc");
 
   m.def("exact_variance", &exact_variance, py::arg("scene"), py::arg("F") = py::none(),
-        py::arg("method") = "gather-collision", py::arg("survival") = "analog", py::arg("survival_constant") = 0.5,
+        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("survival") = "analog", py::arg("survival_constant") = 0.5,
         py::arg("rays") = 1000, py::arg("seed") = 1, py::arg("threads") = 0,
         R"doc(The exact per-walk (gathering) or per-particle (shooting) variance of a method with the matrix kernel.
 

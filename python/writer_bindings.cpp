@@ -68,18 +68,10 @@ std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n, bool v
       f.csv_name = t[1].cast<std::string>();
       check_csv_name(f.csv_name);
     }
-    try {
-      array = np.attr("asarray")(array);
-    } catch (const py::error_already_set& e) {
-      if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-      throw InputError("field '" + f.name + "': not an array of numbers");
-    }
-    const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
-    if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-      throw InputError("field '" + f.name + "': values must be real numbers, not " +
-                       py::str(array.attr("dtype")).cast<std::string>());
+    array = real_array(array, "field '" + f.name + "': not an array of numbers",
+                       "field '" + f.name + "': values must be real numbers, not");
     if (np.attr("issubdtype")(array.attr("dtype"), np.attr("integer")).cast<bool>()) f.kind = FieldKind::count;
-    const auto a = array.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+    const auto a = array.cast<DoubleArray>();
     const bool rgb = a.ndim() == 2 && a.shape(1) == 3;
     if (!(a.ndim() == 1 || rgb) || static_cast<std::size_t>(a.shape(0)) != n)
       throw InputError("field '" + f.name + "': expected shape (" + std::to_string(n) + ",) or (" +
