@@ -4,7 +4,7 @@
 #include <cstdint>
 #include "apps/rank_agreement.h"
 #include "apps/run_metadata.h"
-#include "apps/view_camera.h"
+#include "apps/scene_camera.h"
 #include "io/paraview_state.h"
 
 #include <cstdio>
@@ -543,8 +543,8 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
       StateColouring colouring;
       for (const CellField& f : fields)
         if (f.name == "B" && f.components == 3) colouring = radiosity_colouring(patches, f.values);
-      write_paraview_state(options.paraview_state, options.vtp, view_camera(options.scene, patches), colouring,
-                           run_id_of(summary));
+      const ViewPoint view = view_point(scene_camera(options.scene, patches), patches);  // pathtrace's camera
+      write_paraview_state(options.paraview_state, options.vtp, view, colouring, run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
     }
   }

@@ -58,7 +58,7 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 // E), which the CSV writes as its fixed leading columns. The .vtp's field data are run_metadata (run_metadata.h)
 // and then `metadata` (the command's own: method, walks, spp, ...); --paraview-state FILE.py writes a ParaView
 // state for the .vtp (io/paraview_state.h): coloured by B (radiosity_colouring of the field B, if given), from the
-// camera of the one camera rule (view_camera.h).
+// camera of the one camera rule (scene_camera.h, as pathtrace fits it).
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary, const VtpMetadata& metadata = {});
 

@@ -249,4 +249,13 @@ Vec3 camera_focal_point(const Camera& camera, const PatchSet& patches) {
   return camera.position + distance * d;
 }
 
+ViewPoint view_point(const Camera& camera, const PatchSet& patches) {
+  ViewPoint view;
+  view.position = camera.position;
+  view.focal_point = camera_focal_point(camera, patches);
+  view.up = camera.up;
+  view.view_angle_deg = camera.vfov * 180.0 / kPi;
+  return view;
+}
+
 }  // namespace radwalk::app
