@@ -75,9 +75,11 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   });
 
   m.def("set_progress", &Progress::set_enabled, py::arg("enabled"),
-        "Turns the progress lines on stderr on or off (the CLI's -q is set_progress(False)); on by default.");
+        "Turns the progress lines on stderr on or off (enabled: bool; the CLI's -q is set_progress(False)); on by "
+        "default.");
   m.def("walk_methods", &walk_method_names,
-        "The random-walk methods' names, in the order of the one method table (src/walk/walk_method.h).");
+        "The random-walk methods' names (a list of str), in the order of the one method table "
+        "(src/walk/walk_method.h).");
 
   bind_scene(m);
   bind_form_factors(m);
