@@ -85,6 +85,7 @@ py::object to_meshio(const py::object& self, const Scene& scene) {
   if (static_cast<std::size_t>(r.solution.B.rows()) != n)
     throw InputError("to_meshio: the result has " + std::to_string(r.solution.B.rows()) + " patches, the scene " +
                      std::to_string(n) + " (pass the scene the result was computed on)");
+  if (n == 0) throw InputError("to_meshio: the scene has no patches");
   // Per patch: B (the channel mean, as the .vtp's active scalar), B_rgb, the Monte Carlo fields where computed,
   // and the patch description.
   std::vector<std::pair<std::string, py::object>> fields;
@@ -95,8 +96,9 @@ py::object to_meshio(const py::object& self, const Scene& scene) {
   if (r.solution.var.size()) fields.emplace_back("B_var", np.attr("array")(rgb_view(r.solution.var, self)));
   if (r.solution.var_theory.size())
     fields.emplace_back("B_var_theory", np.attr("array")(rgb_view(r.solution.var_theory, self)));
-  fields.emplace_back("rho", np.attr("array")(rgb_view(p.rho, self)));
-  fields.emplace_back("E", np.attr("array")(rgb_view(p.E, self)));
+  // Copies of the scene's rho and E (the views' base is the result, so they are copied at once).
+  fields.emplace_back("rho", np.attr("array")(view(p.rho.data()->data(), n, 3, self, false, sizeof(Rgb))));
+  fields.emplace_back("E", np.attr("array")(view(p.E.data()->data(), n, 3, self, false, sizeof(Rgb))));
   fields.emplace_back("area", copy_array(p.area));
   std::vector<std::int64_t> index(n), face(p.face.begin(), p.face.end());
   for (std::size_t i = 0; i < n; ++i) index[i] = static_cast<std::int64_t>(i);

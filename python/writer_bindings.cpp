@@ -131,7 +131,8 @@ then each field of `fields` in its order: name -> (N,) array (one column) or (N,
 NAME_b) of real numbers (any real dtype, written as float64; integer dtypes as counts), or name -> (array,
 csv_name) for a different CSV name. Lengths in mesh units, rho dimensionless, E in W per unit length squared. 12 significant digits, empty cells for non-finite
 values. The CLI's solve CSV is write_csv(path, scene, {**ff.diagnostics, **result.fields}), byte for byte.
-Refuses (InputError) to write over the scene or its MTL.)doc");
+Refuses (InputError) to write over the scene or its MTL. path "-" writes to standard output (file descriptor 1,
+not sys.stdout), as the CLI's --csv -.)doc");
   m.def("write_vtp", &write_vtp, py::arg("path"), py::arg("scene"), py::arg("fields") = py::dict(),
         py::arg("metadata") = py::dict(),
         R"doc(Writes a .vtp for ParaView (io/vtp_writer.h): the patch fields (patch, face, area, normal, rho, E), then
