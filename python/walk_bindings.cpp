@@ -246,7 +246,7 @@ mean_var_per_walk, efficiency = walks_per_estimate / (mean_var_per_walk x second
       .def_property_readonly("z", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().z, self); },
                              "(mean - B_reference) / sqrt(var / walks) (N, 3) float64, dimensionless.")
       .def_property_readonly("runs", [](const EstimatorComparison& e) { return e.summary.runs; },
-                             "Runs made (int).")
+                             "The number of runs made (int), run r with seed + r.")
       .def_property_readonly("walks_total", [](const EstimatorComparison& e) { return e.summary.walks; },
                              "Walks or particles over all runs and estimated patches (int).")
       .def_property_readonly("walks_per_estimate", [](const EstimatorComparison& e) { return e.summary.walks_per_estimate; },

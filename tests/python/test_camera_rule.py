@@ -66,7 +66,7 @@ Kd 0.3 0.4 0.5
 def pathtrace_camera_and_vtp(scene, tmp_path, extra=()):
     """The camera `radwalk pathtrace --image` fits (its JSON) and the .vtp of the same patches."""
     js, vtp = tmp_path / "run.json", tmp_path / "run.vtp"
-    subprocess.run([CLI, "-q", "pathtrace", str(scene), "--spp", "1", "--image", str(tmp_path / "img.png"),
+    subprocess.run([CLI, "-q", "pathtrace", str(scene), "--spp", "2", "--image", str(tmp_path / "img.png"),
                     "--width", "8", "--height", "8", "--json", str(js), "-o", str(vtp), *extra], check=True)
     with open(js) as f:
         camera = json.load(f)["camera"]
