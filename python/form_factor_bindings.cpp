@@ -316,7 +316,8 @@ ray counts.
 
 The CLI's `radwalk formfactors` and the F of `solve`/`compare`, with the same options and the same result for the
 same seed (bit-identical for any thread count):
-  rays: rays per patch (--rays); rays_per_area > 0: max(min_rays, round(rays_per_area * area)) instead
+  rays: rays per patch (--rays); rays_per_area > 0 (rays per mesh length unit squared):
+  max(min_rays, round(rays_per_area * area)) instead
   (--rays-per-area, --min-rays); seed (--seed); reciprocity: average A_i F_ij and A_j F_ji (--reciprocity);
   stratified=False draws plain binomial counts (tests); threads: 0 = all cores.
 F depends only on the geometry: edits of Scene.rho or Scene.E do not call for new form factors.

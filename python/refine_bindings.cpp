@@ -149,6 +149,9 @@ FLOOR_FRACTION --refine-noise NOISE_Z --solver SOLVER --tol TOL --rays RAYS --se
 adaptive_refinement.h): every step estimates its own form factors with rays/rays_per_area/min_rays/seed
 (reciprocity: --reciprocity) and solves with a deterministic solver ("auto", "direct", "jacobi",
 "gauss-seidel", "southwell"); max_iterations 0 = the CLI's default. The same seed gives the CLI's B.
+refine_tol, floor_fraction and noise_z are dimensionless: the relative jump of B across an edge that splits, the
+floor of that difference as a fraction of the mean irradiance, and a number of form-factor standard errors;
+rays_per_area is per mesh length unit squared; max_patches and steps are counts.
 The scene passed in is not changed; the result's scene has the final N patches and its B is (N, 3) float64 in W
 per unit length squared. The GIL is released during the whole refinement.
 Raises radwalk.InputError for options out of range.)doc");
