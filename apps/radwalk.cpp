@@ -386,7 +386,8 @@ int run_main(int argc, char** argv) {
   SceneOptions check;
   auto* check_cmd = app.add_subcommand("check", "Validate a scene and report what is wrong or was repaired");
   add_scene_options(check_cmd, check, false, false);
-  check_cmd->add_option("--json", check.json, "Write the findings as JSON ('-': to standard output)")->check(output_file(OutputFile::json));
+  check_cmd->add_option("--json", check.json, "Write the findings as JSON ('-': to standard output)")
+      ->check(output_file(OutputFile::json));
 
   PatchCommand patch;
   auto* patch_cmd = app.add_subcommand("patch", "Validate and split a scene into patches; write them");
