@@ -62,27 +62,42 @@ code 1; a solve that diverged or was refused raises radwalk.NumericalError with 
 CLI exits 3).
 timings: stage -> seconds; metadata: the JSON the CLI writes for the run (its "solution" object, options, timings_s).
 fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp.)doc")
-      .def_property_readonly("B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); },
-                             "Radiosity (N, 3) float64 per patch and channel, W per unit length squared (read-only view).")
-      .def_property_readonly("B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); },
-                             "Standard error of B (N, 3) float64, W per unit length squared; None for a deterministic solve.")
-      .def_property_readonly("var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); },
-                             "Sample variance per walk or particle (N, 3) float64, (W per unit length squared)^2; None where not computed.")
-      .def_property_readonly("var_theory", [](py::object self) {
-        return rgb_or_none(self, self.cast<const Result&>().solution.var_theory);
-      }, "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2; None unless theory=True.")
-      .def_property_readonly("method", [](const Result& r) { return r.solution.method; }, "The method that computed it (str): the solver, walk method or integrator name.")
-      .def_property_readonly("status", [](const Result& r) { return std::string(to_string(r.solution.status)); }, "\"converged\" or \"max-iterations\" (str), as the CLI's JSON solution.status.")
-      .def_property_readonly("message", [](const Result& r) { return r.solution.message; }, "The solver's one-line account of the run (str).")
-      .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; }, "Sweeps, shots or steps the solver made (int; 0 for a direct solve or a walk).")
-      .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; }, "The relative residual at the end (float; NaN where not computed), as the CLI's JSON solution.residual.")
+      .def_property_readonly(
+          "B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); },
+          "Radiosity (N, 3) float64 per patch and channel, W per unit length squared (read-only view).")
+      .def_property_readonly(
+          "B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); },
+          "Standard error of B (N, 3) float64, W per unit length squared; None for a deterministic solve.")
+      .def_property_readonly(
+          "var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); },
+          "Sample variance per walk or particle (N, 3) float64, (W per unit length squared)^2; None where not "
+          "computed.")
+      .def_property_readonly(
+          "var_theory",
+          [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var_theory); },
+          "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2; None unless theory=True.")
+      .def_property_readonly("method", [](const Result& r) { return r.solution.method; },
+                             "The method that computed it (str): the solver, walk method or integrator name.")
+      .def_property_readonly("status", [](const Result& r) { return std::string(to_string(r.solution.status)); },
+                             "\"converged\" or \"max-iterations\" (str), as the CLI's JSON solution.status.")
+      .def_property_readonly("message", [](const Result& r) { return r.solution.message; },
+                             "The solver's one-line account of the run (str).")
+      .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; },
+                             "Sweeps, shots or steps the solver made (int; 0 for a direct solve or a walk).")
+      .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; },
+                             "The relative residual at the end (float; NaN where not computed), as the CLI's JSON "
+                             "solution.residual.")
       .def_property_readonly("residual_history", [](const Result& r) {
         return copy_array(r.solution.residual_history);
       }, "The relative residual after each iteration (K,) float64 (a copy; empty for a direct solve).")
-      .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; }, "Walks or particles in all (int; 0 for a deterministic solve).")
-      .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; }, "Walk steps in all (int), the random walks' cost.")
-      .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; }, "Wall time of the solve (float, s).")
-      .def_property_readonly("info", [](const Result& r) { return r.solution.info; }, "Solver-specific numbers (dict str -> float), as the CLI's JSON solution.info.")
+      .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; },
+                             "Walks or particles in all (int; 0 for a deterministic solve).")
+      .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; },
+                             "Walk steps in all (int), the random walks' cost.")
+      .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; },
+                             "Wall time of the solve (float, s).")
+      .def_property_readonly("info", [](const Result& r) { return r.solution.info; },
+                             "Solver-specific numbers (dict str -> float), as the CLI's JSON solution.info.")
       .def_readonly("timings", &Result::timings, "Stage -> wall time (dict str -> float, s), as the JSON's timings_s.")
       .def_property_readonly("metadata", [](const Result& r) { return json_to_python(r.metadata); },
                              "The JSON the CLI writes for the run (dict): its \"solution\" object, the options, "
