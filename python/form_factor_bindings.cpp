@@ -275,32 +275,46 @@ F: scipy.sparse.csr_matrix, N x N, F[i, j] = fraction of the power leaving patch
 rays, escaped, back_hits: per-patch counts (uint32 views; empty when F was read from a file).
 diagnostics: the per-patch form-factor fields of the CLI's CSV, in its order.
 Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: that skips the conversion.)doc")
-      .def_property_readonly("F", [](py::object self) { return csr_view(self.cast<const FormFactorsResult&>().ff.F, self); },
-                             "F as a scipy.sparse.csr_matrix (N, N) float32 (dimensionless fractions), over views "
-                             "of the library's arrays (no copy).")
-      .def_property_readonly("rays", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.rays.data(), ff.rays.size(), 1, self);
-      }, "Rays traced from each patch n_i, (N,) uint32 view (empty, shape (0,), when F was read).")
-      .def_property_readonly("escaped", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.escaped.data(), ff.escaped.size(), 1, self);
-      }, "Rays from each patch that hit nothing, (N,) uint32 view (empty when F was read).")
-      .def_property_readonly("back_hits", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.back_hits.data(), ff.back_hits.size(), 1, self);
-      }, "Rays from each patch whose first hit was the back of a patch, (N,) uint32 view (empty when F was read).")
-      .def_property_readonly("nnz", [](const FormFactorsResult& r) { return r.ff.F.nonZeros(); },
-                             "The number of stored entries of F (int).")
-      .def_readonly("timings", &FormFactorsResult::timings, "Stage -> wall time (dict str -> float, s): embree_scene, form_factors.")
-      .def_readonly("info", &FormFactorsResult::info,
-                    "The reciprocity change when enforced (dict str -> float, the JSON's reciprocity_* keys); empty otherwise.")
+      .def_property_readonly(
+          "F", [](py::object self) { return csr_view(self.cast<const FormFactorsResult&>().ff.F, self); },
+          "F as a scipy.sparse.csr_matrix (N, N) float32 (dimensionless fractions), over views "
+          "of the library's arrays (no copy).")
+      .def_property_readonly(
+          "rays",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.rays.data(), ff.rays.size(), 1, self);
+          },
+          "Rays traced from each patch n_i, (N,) uint32 view (empty, shape (0,), when F was read).")
+      .def_property_readonly(
+          "escaped",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.escaped.data(), ff.escaped.size(), 1, self);
+          },
+          "Rays from each patch that hit nothing, (N,) uint32 view (empty when F was read).")
+      .def_property_readonly(
+          "back_hits",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.back_hits.data(), ff.back_hits.size(), 1, self);
+          },
+          "Rays from each patch whose first hit was the back of a patch, (N,) uint32 view (empty when F was read).")
+      .def_property_readonly(
+          "nnz", [](const FormFactorsResult& r) { return r.ff.F.nonZeros(); },
+          "The number of stored entries of F (int).")
+      .def_readonly("timings", &FormFactorsResult::timings,
+                    "Stage -> wall time (dict str -> float, s): embree_scene, form_factors.")
+      .def_readonly(
+          "info", &FormFactorsResult::info,
+          "The reciprocity change when enforced (dict str -> float, the JSON's reciprocity_* keys); empty otherwise.")
       .def_property_readonly("diagnostics", &diagnostics,
                              "Per-patch diagnostics as a dict of (N,) numpy arrays, in the order of the CLI's CSV: "
                              "row_sum, reciprocity_error (float64, dimensionless), and when F was estimated rays, "
                              "escaped, back_hits (int64), row_std_error (float64) "
                              "(formfactor/form_factor_diagnostics.h). Computed on access.")
-      .def("__len__", [](const FormFactorsResult& r) { return r.ff.F.rows(); }, "The number of patches N (int).")
+      .def(
+          "__len__", [](const FormFactorsResult& r) { return r.ff.F.rows(); }, "The number of patches N (int).")
       .def("__repr__", [](const FormFactorsResult& r) {
         return "<radwalk.FormFactors " + std::to_string(r.ff.F.rows()) + " x " + std::to_string(r.ff.F.cols()) +
                ", " + std::to_string(r.ff.F.nonZeros()) + " non-zeros>";

@@ -105,7 +105,8 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
 }  // namespace
 
 void bind_measure(py::module_& m) {
-  py::class_<MeasureResult>(m, "Measurement", R"doc(What measure() returns: M = <R, B>_A per channel and its error bar.
+  py::class_<MeasureResult>(m, "Measurement",
+                            R"doc(What measure() returns: M = <R, B>_A per channel and its error bar.
 
 M, M_se, var_per_walk, var_per_walk_theory: (3,) arrays (per channel): the estimate (W for a response of weight
 1; the mean pixel radiance for response="camera"), its standard error, the sample variance of one walk's score and
@@ -113,35 +114,48 @@ the exact one (NaN where not computed, +inf where infinite); deterministic metho
 walks_total (walks or particles in all; per channel for importance walks), steps, seconds, method, response (what
 R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI's JSON "measurement" object (and
 "importance", "camera" where the CLI writes them), same keys (docs/json-schema.md).)doc")
-      .def_property_readonly("M", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.M); },
-                             "The estimate M per channel, (3,) float64: W for a response of weight 1 (R_i dimensionless), the mean pixel radiance for response=\"camera\".")
-      .def_property_readonly("M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); },
-                             "Standard error of M, (3,) float64, in M's unit (0 for a deterministic method).")
-      .def_property_readonly("var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); },
-                             "Sample variance of one walk's score, (3,) float64, in M's unit squared.")
-      .def_property_readonly("var_per_walk_theory",
-                             [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var_theory); },
-                             "The exact per-walk variance, (3,) float64, in M's unit squared (NaN where not "
-                             "computed, +inf where infinite).")
-      .def_property_readonly("walks_total", [](const MeasureResult& r) { return r.measurement.estimate.walks; },
-                             "Walks or particles in all (int; per channel for importance walks).")
-      .def_property_readonly("steps", [](const MeasureResult& r) { return r.measurement.estimate.counters.steps; },
-                             "Walk steps in all (int).")
-      .def_property_readonly("seconds", [](const MeasureResult& r) { return r.measurement.estimate.seconds; },
-                             "Wall time of the measurement (float, s).")
-      .def_property_readonly("method", [](const MeasureResult& r) { return r.measurement.estimate.method; },
-                             "The method (str), one of measure_methods().")
-      .def_property_readonly("deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; },
-                             "Whether the method is deterministic (bool: direct, adjoint-direct).")
-      .def_property_readonly("response", [](const MeasureResult& r) { return r.response.what; },
-                             "What R is, in words (str).")
-      .def_property_readonly("R", [](const MeasureResult& r) {
-        return py::array_t<double>(r.response.R.size(), r.response.R.data());  // a copy of the Eigen vector
-      }, "The response weights R_i, (N,) float64 (a copy), dimensionless.")
+      .def_property_readonly(
+          "M", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.M); },
+          "The estimate M per channel, (3,) float64: W for a response of weight 1 (R_i dimensionless), the mean "
+          "pixel radiance for response=\"camera\".")
+      .def_property_readonly(
+          "M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); },
+          "Standard error of M, (3,) float64, in M's unit (0 for a deterministic method).")
+      .def_property_readonly(
+          "var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); },
+          "Sample variance of one walk's score, (3,) float64, in M's unit squared.")
+      .def_property_readonly(
+          "var_per_walk_theory", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var_theory); },
+          "The exact per-walk variance, (3,) float64, in M's unit squared (NaN where not "
+          "computed, +inf where infinite).")
+      .def_property_readonly(
+          "walks_total", [](const MeasureResult& r) { return r.measurement.estimate.walks; },
+          "Walks or particles in all (int; per channel for importance walks).")
+      .def_property_readonly(
+          "steps", [](const MeasureResult& r) { return r.measurement.estimate.counters.steps; },
+          "Walk steps in all (int).")
+      .def_property_readonly(
+          "seconds", [](const MeasureResult& r) { return r.measurement.estimate.seconds; },
+          "Wall time of the measurement (float, s).")
+      .def_property_readonly(
+          "method", [](const MeasureResult& r) { return r.measurement.estimate.method; },
+          "The method (str), one of measure_methods().")
+      .def_property_readonly(
+          "deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; },
+          "Whether the method is deterministic (bool: direct, adjoint-direct).")
+      .def_property_readonly(
+          "response", [](const MeasureResult& r) { return r.response.what; }, "What R is, in words (str).")
+      .def_property_readonly(
+          "R",
+          [](const MeasureResult& r) {
+            return py::array_t<double>(r.response.R.size(), r.response.R.data());  // a copy of the Eigen vector
+          },
+          "The response weights R_i, (N,) float64 (a copy), dimensionless.")
       .def_readonly("timings", &MeasureResult::timings, "Stage -> wall time (dict str -> float, s).")
-      .def_property_readonly("metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); },
-                             "The CLI's JSON \"measurement\" object (dict), with \"importance\" and \"camera\" "
-                             "where the CLI writes them (docs/json-schema.md).")
+      .def_property_readonly(
+          "metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); },
+          "The CLI's JSON \"measurement\" object (dict), with \"importance\" and \"camera\" "
+          "where the CLI writes them (docs/json-schema.md).")
       .def("__repr__", [](const MeasureResult& r) {
         return "<radwalk.Measurement " + r.measurement.estimate.method + " over " + r.response.what + ">";
       });

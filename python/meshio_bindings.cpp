@@ -23,7 +23,9 @@ py::module_ meshio_module() {
 }
 
 // The cell types that are surface polygons, as meshio names them.
-bool surface_cell_type(const std::string& type) { return type == "triangle" || type == "quad" || type == "polygon"; }
+bool surface_cell_type(const std::string& type) {
+  return type == "triangle" || type == "quad" || type == "polygon";
+}
 
 // A per-cell value of the mesh: `value` itself when it is not a str (a number or an array, one row per cell in the
 // order of mesh.cells), or, for a str, the cell_data of that name, its blocks concatenated in that order.
@@ -34,17 +36,16 @@ py::object per_cell(const py::object& mesh, const py::object& value, const char*
   if (!cell_data.contains(key)) {
     std::string keys;
     for (const auto& item : cell_data) keys += (keys.empty() ? "" : ", ") + py::str(item.first).cast<std::string>();
-    throw InputError(std::string(argument) + "='" + key + "': the mesh has no cell_data '" + key + "' (it has: " +
-                     (keys.empty() ? "none" : keys) + ")");
+    throw InputError(std::string(argument) + "='" + key + "': the mesh has no cell_data '" + key +
+                     "' (it has: " + (keys.empty() ? "none" : keys) + ")");
   }
   const py::module_ np = py::module_::import("numpy");
   return np.attr("concatenate")(cell_data[key.c_str()]);
 }
 
 // Scene.from_meshio: the mesh's surface cells as the faces of scene_from_arrays, in the order of mesh.cells.
-Scene from_meshio(const py::object& mesh, const py::object& rho, const py::object& emission,
-                  const py::object& groups, bool two_sided, double max_edge, double max_area, bool strict,
-                  bool contact_cut) {
+Scene from_meshio(const py::object& mesh, const py::object& rho, const py::object& emission, const py::object& groups,
+                  bool two_sided, double max_edge, double max_area, bool strict, bool contact_cut) {
   meshio_module();
   if (!py::hasattr(mesh, "points") || !py::hasattr(mesh, "cells") || !py::hasattr(mesh, "cell_data"))
     throw InputError("from_meshio takes a meshio.Mesh (points, cells, cell_data)");
@@ -117,8 +118,8 @@ py::object to_meshio(const py::object& self, const Scene& scene) {
     corners.reserve((end - begin) * k);
     for (std::size_t i = begin; i < end; ++i)
       for (std::size_t c = 0; c < k; ++c) corners.push_back(p.corners[i][c]);
-    const py::object block = copy_array(corners).attr("reshape")(static_cast<py::ssize_t>(end - begin),
-                                                                static_cast<py::ssize_t>(k));
+    const py::object block =
+        copy_array(corners).attr("reshape")(static_cast<py::ssize_t>(end - begin), static_cast<py::ssize_t>(k));
     cells.append(py::make_tuple(triangle ? "triangle" : "quad", block));
     const py::slice rows(static_cast<py::ssize_t>(begin), static_cast<py::ssize_t>(end), 1);
     for (const auto& f : fields) cell_data[f.first.c_str()].cast<py::list>().append(f.second[rows]);
@@ -135,8 +136,7 @@ void bind_meshio(py::module_& m) {
   scene.attr("from_meshio") = py::staticmethod(py::cpp_function(
       &from_meshio, py::name("from_meshio"), py::scope(scene), py::arg("mesh"), py::arg("rho"),
       py::arg("emission") = py::none(), py::arg("groups") = py::none(), py::arg("two_sided") = false,
-      py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false,
-      py::arg("contact_cut") = false,
+      py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false, py::arg("contact_cut") = false,
       R"doc(A Scene from a meshio.Mesh (Debian's python3-meshio), through Scene.from_arrays.
 
 mesh: a meshio.Mesh whose points are (V, 3) float coordinates in the mesh's length unit and whose cells are

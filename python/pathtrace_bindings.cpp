@@ -111,23 +111,30 @@ void bind_pathtrace(py::module_& m) {
 
 averages: a Result (B, B_se, var per patch) or None; image, image_se: (height, width, 3) float64 arrays of
 radiance and its per-pixel standard error (copies), or None; rays, seconds: of the image; timings.)doc")
-      .def_property_readonly("averages", [](const PathtraceResult& r) { return r.averages; },
-                             "The patch averages as a Result (B, B_se, var (N, 3) float64, W per unit length "
-                             "squared), or None when averages=False.")
-      .def_property_readonly("image", [](const PathtraceResult& r) -> py::object {
-        if (!r.has_image) return py::none();
-        return image_array(r.image.mean);
-      }, "The image's radiance, (height, width, 3) float64 (a copy), W per unit length squared per sr; None "
-         "without image=True.")
-      .def_property_readonly("image_se", [](const PathtraceResult& r) -> py::object {
-        if (!r.has_image) return py::none();
-        return image_array(r.image.se);
-      }, "The per-pixel standard error of image, (height, width, 3) float64 (a copy), in its unit; None without "
-         "image=True.")
-      .def_property_readonly("rays", [](const PathtraceResult& r) { return r.image.rays; },
-                             "Rays traced for the image (int).")
-      .def_property_readonly("seconds", [](const PathtraceResult& r) { return r.image.seconds; },
-                             "Wall time of the image (float, s).")
+      .def_property_readonly(
+          "averages", [](const PathtraceResult& r) { return r.averages; },
+          "The patch averages as a Result (B, B_se, var (N, 3) float64, W per unit length "
+          "squared), or None when averages=False.")
+      .def_property_readonly(
+          "image",
+          [](const PathtraceResult& r) -> py::object {
+            if (!r.has_image) return py::none();
+            return image_array(r.image.mean);
+          },
+          "The image's radiance, (height, width, 3) float64 (a copy), W per unit length squared per sr; None "
+          "without image=True.")
+      .def_property_readonly(
+          "image_se",
+          [](const PathtraceResult& r) -> py::object {
+            if (!r.has_image) return py::none();
+            return image_array(r.image.se);
+          },
+          "The per-pixel standard error of image, (height, width, 3) float64 (a copy), in its unit; None without "
+          "image=True.")
+      .def_property_readonly(
+          "rays", [](const PathtraceResult& r) { return r.image.rays; }, "Rays traced for the image (int).")
+      .def_property_readonly(
+          "seconds", [](const PathtraceResult& r) { return r.image.seconds; }, "Wall time of the image (float, s).")
       .def_readonly("timings", &PathtraceResult::timings, "Stage -> wall time (dict str -> float, s).");
 
   m.def("pathtrace", &pathtrace, py::arg("scene"), py::arg("spp") = 64, py::arg("integrator") = "mis",

@@ -121,15 +121,19 @@ scene: a Scene of the final (refined) patches, each keeping its input face, grou
       .def_readonly("form_factors", &AdaptiveResult::form_factors, "The FormFactors of the final patches, (N, N).")
       .def_readonly("result", &AdaptiveResult::result,
                     "The Result of the last solve: B (N, 3) float64 in W per unit length squared, metadata, ...")
-      .def_property_readonly("jump", [](const AdaptiveResult& a) { return copy_array(a.jump); },
-                             "The refinement criterion jump_i of the last solve, (N,) float64 (a copy), in W per "
-                             "unit length squared.")
-      .def_property_readonly("steps", [](const AdaptiveResult& a) {
-        py::list l;
-        for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));
-        return l;
-      }, "One dict per solve (a list): step, patches, marked, split, max_jump, method, iterations, "
-         "form_factor_seconds, solve_seconds, refine_seconds, seconds (the JSON's refine.steps; times in s).")
+      .def_property_readonly(
+          "jump", [](const AdaptiveResult& a) { return copy_array(a.jump); },
+          "The refinement criterion jump_i of the last solve, (N,) float64 (a copy), in W per "
+          "unit length squared.")
+      .def_property_readonly(
+          "steps",
+          [](const AdaptiveResult& a) {
+            py::list l;
+            for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));
+            return l;
+          },
+          "One dict per solve (a list): step, patches, marked, split, max_jump, method, iterations, "
+          "form_factor_seconds, solve_seconds, refine_seconds, seconds (the JSON's refine.steps; times in s).")
       .def_readonly("stop_reason", &AdaptiveResult::stop_reason,
                     "Why the refinement stopped (str): \"converged\", \"steps\", \"max-patches\" or \"solver\".")
       .def("__repr__", [](const AdaptiveResult& a) {
@@ -137,12 +141,13 @@ scene: a Scene of the final (refined) patches, each keeping its input face, grou
                std::to_string(a.steps.size()) + " solves (" + a.stop_reason + ")>";
       });
 
-  m.def("solve_adaptive", &solve_adaptive_py, py::arg("scene"), py::arg("refine_tol") = 0.1, py::arg("steps") = 4,
-        py::arg("max_patches") = 20000, py::arg("floor_fraction") = kDefaultRefineFloorFraction,
-        py::arg("noise_z") = kDefaultRefineNoiseZ, py::arg("solver") = "auto", py::arg("tol") = 1e-10,
-        py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0,
-        py::arg("min_rays") = 16, py::arg("reciprocity") = false, py::arg("seed") = 1, py::arg("threads") = 0,
-        R"doc(Adaptive patching: solve, split the patches whose radiosity jumps across an edge, re-solve: an AdaptiveResult.
+  m.def(
+      "solve_adaptive", &solve_adaptive_py, py::arg("scene"), py::arg("refine_tol") = 0.1, py::arg("steps") = 4,
+      py::arg("max_patches") = 20000, py::arg("floor_fraction") = kDefaultRefineFloorFraction,
+      py::arg("noise_z") = kDefaultRefineNoiseZ, py::arg("solver") = "auto", py::arg("tol") = 1e-10,
+      py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0, py::arg("min_rays") = 16,
+      py::arg("reciprocity") = false, py::arg("seed") = 1, py::arg("threads") = 0,
+      R"doc(Adaptive patching: solve, split the patches whose radiosity jumps across an edge, re-solve: an AdaptiveResult.
 
 As `radwalk solve SCENE --refine REFINE_TOL --refine-steps STEPS --max-patches MAX_PATCHES --refine-floor
 FLOOR_FRACTION --refine-noise NOISE_Z --solver SOLVER --tol TOL --rays RAYS --seed SEED` (src/solve/

@@ -121,7 +121,8 @@ Comparison compare(const Scene& scene, const py::object& F, const std::optional<
     for (const std::string& name : *methods) o.methods.push_back(parse_walk_method(name));
   }
   o.runs = runs;
-  o.walk = walk_options(std::string(method_name(kDefaultMethod)), kernel, walks_per_patch, 1000, seed, survival, survival_constant, patches);
+  o.walk = walk_options(std::string(method_name(kDefaultMethod)), kernel, walks_per_patch, 1000, seed, survival,
+                        survival_constant, patches);
   o.theory = theory;
   o.progress = progress;
   check_compare_options(o, scene.patches.size());
@@ -194,12 +195,14 @@ void bind_walks(py::module_& m) {
       if (row.direction == direction) list += (list.empty() ? "\"" : ", \"") + std::string(row.name) + "\"";
     return list;
   };
-  static const std::string random_walk_doc = std::string(R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory), each (N, 3)
+  static const std::string random_walk_doc = std::string(
+      R"doc(Solves the radiosity system by discrete random walks: a Result with B, B_se, var (and var_theory), each (N, 3)
 float64 (B and B_se in W per unit length squared, the variances in its square).
 
 method: a name of radwalk.walk_methods() (the one table, src/walk/walk_method.h): )doc" +
-                                      methods_of(WalkDirection::gather) + R"doc( (walks from each
-  estimated patch, walks_per_patch of them, default 1000) or )doc" + methods_of(WalkDirection::shoot) + R"doc(
+      methods_of(WalkDirection::gather) + R"doc( (walks from each
+  estimated patch, walks_per_patch of them, default 1000) or )doc" +
+      methods_of(WalkDirection::shoot) + R"doc(
   (particles from the emitters, `particles` in total, default 1000); the count the method does not read is
   refused (InputError), as in the CLI;
   the CLI's --walk D --estimator E is method "D-E".
@@ -231,42 +234,56 @@ runs x walks_per_patch gathering, runs x particles shooting), steps, seconds, me
 unbiased method with right error bars), max_abs_z, var_over_theory (mean var / var_theory, about 1),
 spread_over_se (run-to-run standard deviation over the predicted standard error, about 1; NaN for one run),
 mean_var_per_walk, efficiency = walks_per_estimate / (mean_var_per_walk x seconds).)doc")
-      .def_property_readonly("method", [](const EstimatorComparison& e) { return std::string(method_name(e.summary.method)); },
-                             "The method's name (str), from radwalk.walk_methods().")
-      .def_property_readonly("mean", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().mean, self); },
-                             "Average of the runs' estimates (N, 3) float64, W per unit length squared; NaN where not estimated.")
-      .def_property_readonly("var", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var, self); },
-                             "Per-walk variance averaged over the runs (N, 3) float64, (W per unit length squared)^2.")
-      .def_property_readonly("var_se", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var_se, self); },
-                             "Standard error of var (N, 3) float64 from the spread of the runs' variances (NaN for one run).")
-      .def_property_readonly("var_theory", [](py::object self) {
-        return rgb_view(self.cast<const EstimatorComparison&>().var_theory, self);
-      },
-                             "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2 (NaN where not computable).")
-      .def_property_readonly("z", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().z, self); },
-                             "(mean - B_reference) / sqrt(var / walks) (N, 3) float64, dimensionless.")
-      .def_property_readonly("runs", [](const EstimatorComparison& e) { return e.summary.runs; },
-                             "The number of runs made (int), run r with seed + r.")
-      .def_property_readonly("walks_total", [](const EstimatorComparison& e) { return e.summary.walks; },
-                             "Walks or particles over all runs and estimated patches (int).")
-      .def_property_readonly("walks_per_estimate", [](const EstimatorComparison& e) { return e.summary.walks_per_estimate; },
-                             "Walks behind each patch's pooled estimate (int): runs x walks_per_patch or runs x particles.")
-      .def_property_readonly("steps", [](const EstimatorComparison& e) { return e.summary.steps; },
-                             "Walk steps over all runs (int).")
-      .def_property_readonly("seconds", [](const EstimatorComparison& e) { return e.summary.seconds; },
-                             "Wall time over all runs (float, s).")
-      .def_property_readonly("mean_abs_z", [](const EstimatorComparison& e) { return e.summary.mean_abs_z; },
-                             "Mean |z| over the estimated patches and channels (float; about 0.80 when unbiased with right error bars).")
-      .def_property_readonly("max_abs_z", [](const EstimatorComparison& e) { return e.summary.max_abs_z; },
-                             "Largest |z| (float).")
-      .def_property_readonly("var_over_theory", [](const EstimatorComparison& e) { return e.summary.var_ratio; },
-                             "Mean var / var_theory (float; about 1).")
-      .def_property_readonly("spread_over_se", [](const EstimatorComparison& e) { return e.summary.spread_ratio; },
-                             "Run-to-run standard deviation over the predicted standard error (float; about 1, NaN for one run).")
-      .def_property_readonly("mean_var_per_walk", [](const EstimatorComparison& e) { return e.summary.mean_var; },
-                             "Mean per-walk variance over patches and channels (float, (W per unit length squared)^2).")
-      .def_property_readonly("efficiency", [](const EstimatorComparison& e) { return e.summary.efficiency; },
-                             "walks_per_estimate / (mean_var_per_walk x seconds) (float, 1 / ((W per unit length squared)^2 s)).")
+      .def_property_readonly(
+          "method", [](const EstimatorComparison& e) { return std::string(method_name(e.summary.method)); },
+          "The method's name (str), from radwalk.walk_methods().")
+      .def_property_readonly(
+          "mean", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().mean, self); },
+          "Average of the runs' estimates (N, 3) float64, W per unit length squared; NaN where not estimated.")
+      .def_property_readonly(
+          "var", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var, self); },
+          "Per-walk variance averaged over the runs (N, 3) float64, (W per unit length squared)^2.")
+      .def_property_readonly(
+          "var_se", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var_se, self); },
+          "Standard error of var (N, 3) float64 from the spread of the runs' variances (NaN for one run).")
+      .def_property_readonly(
+          "var_theory",
+          [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().var_theory, self); },
+          "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2 (NaN where not computable).")
+      .def_property_readonly(
+          "z", [](py::object self) { return rgb_view(self.cast<const EstimatorComparison&>().z, self); },
+          "(mean - B_reference) / sqrt(var / walks) (N, 3) float64, dimensionless.")
+      .def_property_readonly(
+          "runs", [](const EstimatorComparison& e) { return e.summary.runs; },
+          "The number of runs made (int), run r with seed + r.")
+      .def_property_readonly(
+          "walks_total", [](const EstimatorComparison& e) { return e.summary.walks; },
+          "Walks or particles over all runs and estimated patches (int).")
+      .def_property_readonly(
+          "walks_per_estimate", [](const EstimatorComparison& e) { return e.summary.walks_per_estimate; },
+          "Walks behind each patch's pooled estimate (int): runs x walks_per_patch or runs x particles.")
+      .def_property_readonly(
+          "steps", [](const EstimatorComparison& e) { return e.summary.steps; }, "Walk steps over all runs (int).")
+      .def_property_readonly(
+          "seconds", [](const EstimatorComparison& e) { return e.summary.seconds; },
+          "Wall time over all runs (float, s).")
+      .def_property_readonly(
+          "mean_abs_z", [](const EstimatorComparison& e) { return e.summary.mean_abs_z; },
+          "Mean |z| over the estimated patches and channels (float; about 0.80 when unbiased with right error bars).")
+      .def_property_readonly(
+          "max_abs_z", [](const EstimatorComparison& e) { return e.summary.max_abs_z; }, "Largest |z| (float).")
+      .def_property_readonly(
+          "var_over_theory", [](const EstimatorComparison& e) { return e.summary.var_ratio; },
+          "Mean var / var_theory (float; about 1).")
+      .def_property_readonly(
+          "spread_over_se", [](const EstimatorComparison& e) { return e.summary.spread_ratio; },
+          "Run-to-run standard deviation over the predicted standard error (float; about 1, NaN for one run).")
+      .def_property_readonly(
+          "mean_var_per_walk", [](const EstimatorComparison& e) { return e.summary.mean_var; },
+          "Mean per-walk variance over patches and channels (float, (W per unit length squared)^2).")
+      .def_property_readonly(
+          "efficiency", [](const EstimatorComparison& e) { return e.summary.efficiency; },
+          "walks_per_estimate / (mean_var_per_walk x seconds) (float, 1 / ((W per unit length squared)^2 s)).")
       .def("__repr__", [](const EstimatorComparison& e) {
         return "<radwalk.EstimatorComparison " + std::string(method_name(e.summary.method)) + ">";
       });
@@ -277,68 +294,78 @@ B_reference (N, 3): the direct solve the z-scores are measured against; estimato
 EstimatorComparison, in the order asked; summary: the CLI's text table; rows: the CLI's long-format CSV as a
 dict of numpy columns (patch, estimator, channel 0..2, mean, var, var_theory, z, walks, steps, seconds,
 efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
-      .def_property_readonly("B_reference", [](py::object self) { return rgb_view(self.cast<const Comparison&>().B_reference, self); },
-                             "The direct solve of the same F (N, 3) float64, W per unit length squared.")
-      .def_property_readonly("estimators", [](py::object self) {
-        const Comparison& c = self.cast<const Comparison&>();
-        py::dict d;
-        for (std::size_t k = 0; k < c.names.size(); ++k)
-          d[py::str(c.names[k])] = py::cast(&c.estimators[k], py::return_value_policy::reference_internal, self);
-        return d;
-      }, "Method name -> EstimatorComparison (dict), in the order asked.")
-      .def_property_readonly("summary", [](const Comparison& c) {
-        std::vector<CompareSummary> s;
-        for (const auto& e : c.estimators) s.push_back(e.summary);
-        return format_compare_summary(s);
-      }, "The CLI's text table of the comparison (str).")
-      .def_property_readonly("rows", [](const Comparison& c) {
-        const std::size_t n = c.rows.size();
-        py::array_t<std::int64_t> patch(n), channel(n), walks(n), steps(n);
-        py::array_t<double> mean(n), var(n), var_se(n), var_theory(n), z(n), seconds(n), efficiency(n);
-        py::list estimator;
-        for (std::size_t i = 0; i < n; ++i) {
-          const CompareRow& r = c.rows[i];
-          patch.mutable_at(i) = r.patch;
-          channel.mutable_at(i) = r.channel;
-          walks.mutable_at(i) = r.walks;
-          steps.mutable_at(i) = r.steps;
-          mean.mutable_at(i) = r.mean;
-          var.mutable_at(i) = r.var;
-          var_se.mutable_at(i) = r.var_se;
-          var_theory.mutable_at(i) = r.var_theory;
-          z.mutable_at(i) = r.z;
-          seconds.mutable_at(i) = r.seconds;
-          efficiency.mutable_at(i) = r.efficiency;
-          estimator.append(py::str(std::string(method_name(r.method))));
-        }
-        py::dict d;
-        d["patch"] = patch;
-        d["estimator"] = estimator;
-        d["channel"] = channel;
-        d["mean"] = mean;
-        d["var"] = var;
-        d["var_se"] = var_se;
-        d["var_theory"] = var_theory;
-        d["z"] = z;
-        d["walks"] = walks;
-        d["steps"] = steps;
-        d["seconds"] = seconds;
-        d["efficiency"] = efficiency;
-        return d;
-      }, "The CLI's long-format CSV as columns (dict str -> (R,) array, R = patches x channels x methods): patch, "
-         "channel, walks, steps int64; estimator a list of str; mean, var, var_se, var_theory, z, seconds, "
-         "efficiency float64 (units as EstimatorComparison's).")
+      .def_property_readonly(
+          "B_reference", [](py::object self) { return rgb_view(self.cast<const Comparison&>().B_reference, self); },
+          "The direct solve of the same F (N, 3) float64, W per unit length squared.")
+      .def_property_readonly(
+          "estimators",
+          [](py::object self) {
+            const Comparison& c = self.cast<const Comparison&>();
+            py::dict d;
+            for (std::size_t k = 0; k < c.names.size(); ++k)
+              d[py::str(c.names[k])] = py::cast(&c.estimators[k], py::return_value_policy::reference_internal, self);
+            return d;
+          },
+          "Method name -> EstimatorComparison (dict), in the order asked.")
+      .def_property_readonly(
+          "summary",
+          [](const Comparison& c) {
+            std::vector<CompareSummary> s;
+            for (const auto& e : c.estimators) s.push_back(e.summary);
+            return format_compare_summary(s);
+          },
+          "The CLI's text table of the comparison (str).")
+      .def_property_readonly(
+          "rows",
+          [](const Comparison& c) {
+            const std::size_t n = c.rows.size();
+            py::array_t<std::int64_t> patch(n), channel(n), walks(n), steps(n);
+            py::array_t<double> mean(n), var(n), var_se(n), var_theory(n), z(n), seconds(n), efficiency(n);
+            py::list estimator;
+            for (std::size_t i = 0; i < n; ++i) {
+              const CompareRow& r = c.rows[i];
+              patch.mutable_at(i) = r.patch;
+              channel.mutable_at(i) = r.channel;
+              walks.mutable_at(i) = r.walks;
+              steps.mutable_at(i) = r.steps;
+              mean.mutable_at(i) = r.mean;
+              var.mutable_at(i) = r.var;
+              var_se.mutable_at(i) = r.var_se;
+              var_theory.mutable_at(i) = r.var_theory;
+              z.mutable_at(i) = r.z;
+              seconds.mutable_at(i) = r.seconds;
+              efficiency.mutable_at(i) = r.efficiency;
+              estimator.append(py::str(std::string(method_name(r.method))));
+            }
+            py::dict d;
+            d["patch"] = patch;
+            d["estimator"] = estimator;
+            d["channel"] = channel;
+            d["mean"] = mean;
+            d["var"] = var;
+            d["var_se"] = var_se;
+            d["var_theory"] = var_theory;
+            d["z"] = z;
+            d["walks"] = walks;
+            d["steps"] = steps;
+            d["seconds"] = seconds;
+            d["efficiency"] = efficiency;
+            return d;
+          },
+          "The CLI's long-format CSV as columns (dict str -> (R,) array, R = patches x channels x methods): patch, "
+          "channel, walks, steps int64; estimator a list of str; mean, var, var_se, var_theory, z, seconds, "
+          "efficiency float64 (units as EstimatorComparison's).")
       .def_readonly("timings", &Comparison::timings, "Stage -> wall time (dict str -> float, s).");
 
   m.def("random_walk", &random_walk, py::arg("scene"), py::arg("F") = py::none(),
-        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("kernel") = "matrix", py::arg("walks_per_patch") = py::none(),
-        py::arg("particles") = py::none(), py::arg("seed") = 1, py::arg("survival") = "analog",
-        py::arg("survival_constant") = 0.5, py::arg("theory") = false, py::arg("patches") = std::vector<int>{},
-        py::arg("rays") = 1000, py::arg("threads") = 0, py::arg("progress") = false,
-        py::arg("control_variate") = false, py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
+        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("kernel") = "matrix",
+        py::arg("walks_per_patch") = py::none(), py::arg("particles") = py::none(), py::arg("seed") = 1,
+        py::arg("survival") = "analog", py::arg("survival_constant") = 0.5, py::arg("theory") = false,
+        py::arg("patches") = std::vector<int>{}, py::arg("rays") = 1000, py::arg("threads") = 0,
+        py::arg("progress") = false, py::arg("control_variate") = false,
+        py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
         py::arg("replicates") = WalkOptions{}.replicates, py::arg("direct_light") = WalkOptions{}.direct_light,
-        py::arg("shadow_rays") = WalkOptions{}.shadow_rays,
-        random_walk_doc.c_str());
+        py::arg("shadow_rays") = WalkOptions{}.shadow_rays, random_walk_doc.c_str());
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),
         py::arg("runs") = 5, py::arg("walks_per_patch") = 1000, py::arg("kernel") = "matrix", py::arg("seed") = 1,
@@ -354,8 +381,8 @@ patches: the patch indices to estimate (a list of int; empty: all); F as random_
 scipy.sparse (N, N) matrix).)doc");
 
   m.def("exact_variance", &exact_variance, py::arg("scene"), py::arg("F") = py::none(),
-        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("survival") = "analog", py::arg("survival_constant") = 0.5,
-        py::arg("rays") = 1000, py::arg("seed") = 1, py::arg("threads") = 0,
+        py::arg("method") = std::string(method_name(kDefaultMethod)), py::arg("survival") = "analog",
+        py::arg("survival_constant") = 0.5, py::arg("rays") = 1000, py::arg("seed") = 1, py::arg("threads") = 0,
         R"doc(The exact per-walk (gathering) or per-particle (shooting) variance of a method with the matrix kernel.
 
 An (N, 3) float64 array in (W per unit length squared)^2, +inf where the variance is infinite (spectral radius of
