@@ -33,7 +33,8 @@ using namespace radwalk;
 using namespace radwalk::python;
 
 PYBIND11_MODULE(radwalk, m) {
-  m.doc() = R"doc(radwalk: the radiosity equation B = E + diag(rho) F B on meshes, from Python.
+  // The example names a walk method through the method table (walk/walk_method.h), never spelled here.
+  static const std::string module_doc = std::string(R"doc(radwalk: the radiosity equation B = E + diag(rho) F B on meshes, from Python.
 
 A thin layer over radwalk's C++ library (the same code as the `radwalk` program, so the same seed gives the same
 numbers, byte for byte in the CSV):
@@ -43,7 +44,8 @@ numbers, byte for byte in the CSV):
     ff = radwalk.form_factors(scene, rays=1000, seed=1) # FormFactors: ff.F is a scipy.sparse.csr_matrix
     exact = radwalk.solve(scene, ff)                    # Result: exact.B is an N x 3 numpy array
     scene.rho[:] *= 0.9                                 # edit reflectances in place (or scene.set_material)
-    walk = radwalk.random_walk(scene, ff, method="gather-collision", walks_per_patch=1000, seed=1)
+    walk = radwalk.random_walk(scene, ff, method=")doc" +
+                                                    std::string(method_name(WalkMethod::gather_collision)) + R"doc(", walks_per_patch=1000, seed=1)
     radwalk.write_csv("cube.csv", scene, {**ff.diagnostics, **walk.fields})
 
 Units as in the CLI: lengths in the mesh's unit, rho = Kd, E = pi * Ke, B in W per unit length squared.
@@ -51,7 +53,8 @@ Every computation releases the GIL and honours threads= (0: all cores; the outpu
 Bad input raises radwalk.InputError, a ValueError whose text is the CLI's one-line message (also for values
 written into Scene.rho or Scene.E that a material could not hold, and for a malformed F); a solve that diverged or
 was refused raises radwalk.NumericalError (an ArithmeticError) with the solver's message, where the CLI exits 3.
-Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus one chunk of its work. Progress lines go to stderr as in the CLI (set_progress).)doc";
+Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus one chunk of its work. Progress lines go to stderr as in the CLI (set_progress).)doc");
+  m.doc() = module_doc.c_str();
   m.attr("__version__") = RADWALK_VERSION;
 
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);

@@ -215,7 +215,8 @@ control_variate: gathering, matrix kernel: walk B - c from the shifted source an
   CLI's --control-variate (docs/theory/control_variate.md).
 sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler, --replicates, --direct-light
   and --shadow-rays (src/walk/walk_options.h): sampler "random" (i.i.d. particles), "sobol" (stratified
-  emission, randomised Sobol first rays) or "jacobi" (stochastic Jacobi, shoot-collision only); with sobol or
+  emission, randomised Sobol first rays) or "jacobi" (stochastic Jacobi, )doc" +
+      std::string(method_name(WalkMethod::shoot_collision)) + R"doc( only); with sobol or
   jacobi, `replicates` independent randomisations (>= 2) give B_se from their spread, and direct_light computes
   the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
   receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
