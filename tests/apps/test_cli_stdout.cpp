@@ -1,7 +1,7 @@
 // End-to-end: `--csv -` and `--json -` write to standard output (core/standard_output.h). The stream read from the
 // pipe is exactly the CSV or JSON, byte for byte what the same run writes to a file (the results' lines go to
 // stderr then); two outputs to '-' are refused in one line; a failed write (a full device, a closed pipe) is one
-// line on stderr and exit 2, never a silent death by SIGPIPE.
+// error line on stderr, after the results' lines, and exit 2, never a silent death by SIGPIPE.
 #include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
