@@ -48,7 +48,8 @@ Camera scene_camera(const std::string& scene, const PatchSet& patches, const std
 // of the box's diagonal in front of the camera.
 Vec3 camera_focal_point(const Camera& camera, const PatchSet& patches);
 
-// The camera as ParaView's view takes it: position, focal point (camera_focal_point), up and vertical field of
+// The camera as ParaView's view takes it: position, focal point (camera_focal_point), up made orthogonal to the
+// view direction (up - (up . d) d, normalised: the image's up, as PinholeCamera makes it) and vertical field of
 // view in degrees.
 ViewPoint view_point(const Camera& camera, const PatchSet& patches);
 

@@ -322,8 +322,16 @@ def fit_camera(poly):
     return cam[0], cam[1], cam[2], cam[3], "outside"
 
 
+def view_up(up, direction):
+    """up made orthogonal to the view direction, normalised (apps/scene_camera.h, view_point): the image's up."""
+    d = _unit(direction)
+    return _unit(_sub(up, _mul(_dot(up, d), d)))
+
+
 def camera_rule(poly):
-    """The camera for poly as [position, focal point, up, vertical fov in degrees]: see the module's doc."""
+    """The camera for poly as ParaView's view takes it, [position, focal point, view up (orthogonal to the view
+    direction), vertical fov in degrees]: see the module's doc (apps/scene_camera.h, view_point)."""
     position, direction, up, vfov, _ = fit_camera(poly)
     lo, hi = bounds(poly)
-    return list(position) + focal_point(lo, hi, position, direction) + list(up) + [math.degrees(vfov)]
+    return (list(position) + focal_point(lo, hi, position, direction) + view_up(up, direction) +
+            [math.degrees(vfov)])
