@@ -23,7 +23,7 @@ int run_check(const SceneOptions& options) {
     for (const Finding& f : mesh.findings) n += f.severity == s;
     if (n > 0) found += (found.empty() ? "" : ", ") + std::to_string(n) + " " + severity_name(s) + (n == 1 ? "" : "s");
   }
-  std::printf("%s: %zu faces (%zu triangles, %zu quads), %zu vertices, %zu materials, %zu emitting faces: %s\n",
+  std::fprintf(report_stream(), "%s: %zu faces (%zu triangles, %zu quads), %zu vertices, %zu materials, %zu emitting faces: %s\n",
               options.scene.c_str(), mesh.face_count(), mesh.face_count() - quads, quads, mesh.vertices.size(),
               mesh.materials.size(), emitters, found.empty() ? "clean" : found.c_str());
   summary.json()["emitting_faces"] = emitters;

@@ -7,6 +7,7 @@
 #include "apps/finite_outputs.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "core/standard_output.h"
 #include "apps/run_metadata.h"
 #include "core/parallel.h"
 #include "io/csv_writer.h"
@@ -43,7 +44,7 @@ int run_compare(const CompareCommand& command) {
   for (const auto& s : result.summary) total += s.seconds;
   summary.add_timing("walks", total);
 
-  std::printf("%s", format_compare_summary(result.summary).c_str());
+  std::fprintf(report_stream(), "%s", format_compare_summary(result.summary).c_str());
 
   if (!command.scene.csv.empty()) {
     static const char* kChannel[3] = {"r", "g", "b"};
@@ -57,7 +58,7 @@ int run_compare(const CompareCommand& command) {
                     {"patch", "estimator", "channel", "mean", "var", "var_se", "var_theory", "z", "walks", "steps",
                      "seconds", "efficiency"},
                     rows, run_id_of(summary));
-    note("wrote " + command.scene.csv);
+    note("wrote " + output_display_name(command.scene.csv));
   }
 
   // VTK: per method, fields mean_<m>, var_<m>, var_se_<m>, var_theory_<m>, z_<m> (3 components each), beside B_reference;

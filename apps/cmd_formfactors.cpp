@@ -37,7 +37,7 @@ int run_formfactors(const FormFactorsCommand& command) {
   const double min_row = *std::min_element(row_sum.begin(), row_sum.end());
   const double max_row = *std::max_element(row_sum.begin(), row_sum.end());
   const double max_recip = *std::max_element(recip.begin(), recip.end());
-  std::printf("%zu patches, %ld non-zeros (%.1f per row); row sums in [%.6f, %.6f]; max reciprocity error %.3g\n",
+  std::fprintf(report_stream(), "%zu patches, %ld non-zeros (%.1f per row); row sums in [%.6f, %.6f]; max reciprocity error %.3g\n",
               patches.size(), static_cast<long>(nonzeros), double(nonzeros) / patches.size(), min_row,
               max_row, max_recip);
   summary.json()["row_sum_min"] = min_row;

@@ -103,16 +103,16 @@ int run_measure(const MeasureCommand& command) {
                                     {"defensive", measurement.defensive}};
   summary.add_timing("measure", est.seconds);
 
-  std::printf("%s: M = <R, B>_A over %s = (%.9g, %.9g, %.9g)", command.method.c_str(), response.what.c_str(),
+  std::fprintf(report_stream(), "%s: M = <R, B>_A over %s = (%.9g, %.9g, %.9g)", command.method.c_str(), response.what.c_str(),
               est.M(0), est.M(1), est.M(2));
   if (!deterministic || !form_factor_part.empty()) {
-    std::printf(" +- (%.3g, %.3g, %.3g) (standard error", est.se(0), est.se(1), est.se(2));
-    if (!deterministic) std::printf(", %ld walks", est.walks);
-    std::printf("%s)", form_factor_part.c_str());
+    std::fprintf(report_stream(), " +- (%.3g, %.3g, %.3g) (standard error", est.se(0), est.se(1), est.se(2));
+    if (!deterministic) std::fprintf(report_stream(), ", %ld walks", est.walks);
+    std::fprintf(report_stream(), "%s)", form_factor_part.c_str());
   }
-  std::printf(", %.3f s\n", est.seconds);
+  std::fprintf(report_stream(), ", %.3f s\n", est.seconds);
   if (command.theory && !deterministic)
-    std::printf("exact per-walk variance (%.6g, %.6g, %.6g), sample (%.6g, %.6g, %.6g)\n", est.var_theory(0),
+    std::fprintf(report_stream(), "exact per-walk variance (%.6g, %.6g, %.6g), sample (%.6g, %.6g, %.6g)\n", est.var_theory(0),
                 est.var_theory(1), est.var_theory(2), est.var(0), est.var(1), est.var(2));
   if (command.theory && !deterministic && !est.var_theory.allFinite())
     warn(summary, command.method + ": the exact per-walk variance is infinite (its second-moment system does not "

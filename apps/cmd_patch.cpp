@@ -15,7 +15,7 @@ int run_patch(const PatchCommand& command) {
   const std::string ext = std::filesystem::path(command.output).extension().string();
   RunSummary summary("patch", command.scene.argv);
   const PatchSet patches = load_patches(command.scene, summary);
-  std::printf("%s: %zu faces -> %zu patches (max edge %g), total area %.6g\n", command.scene.scene.c_str(),
+  std::fprintf(report_stream(), "%s: %zu faces -> %zu patches (max edge %g), total area %.6g\n", command.scene.scene.c_str(),
               static_cast<std::size_t>(summary.json()["faces"]), patches.size(), command.scene.max_edge,
               patches.total_area());
   SceneOptions outputs = command.scene;

@@ -88,7 +88,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     summary.add_timing("render", r.seconds);
     summary.json()["image"] = {{"file", command.image}, {"width", command.width}, {"height", command.height},
                                {"samples_per_pixel", command.spp}, {"rays_total", r.rays}, {"seconds", r.seconds}};
-    std::printf("rendered %dx%d at %ld samples per pixel: %ld rays in %.2f s (%.2f Mrays/s)\n", command.width,
+    std::fprintf(report_stream(), "rendered %dx%d at %ld samples per pixel: %ld rays in %.2f s (%.2f Mrays/s)\n", command.width,
                 command.height, command.spp, r.rays, r.seconds, r.rays / std::max(r.seconds, 1e-9) / 1e6);
     if (std::all_of(r.mean.pixels.begin(), r.mean.pixels.end(), [](const Rgb& p) { return (p == 0).all(); }))
       warn(summary, "every pixel of " + command.image + " is black: the camera sees no lit surface (no emitter, " +
@@ -120,7 +120,7 @@ int run_pathtrace(const PathtraceCommand& command) {
     if (!command.progressive.empty())
       write_convergence_series(command.progressive, "pathtrace.pvd", command.scene.scene, patches, command.spp, s,
                                estimate, summary);
-    std::printf("%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
+    std::fprintf(report_stream(), "%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     summary.json()["solution"] = solution_json(s);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", s.var), "var"));  // CSV: var_*

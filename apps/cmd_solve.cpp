@@ -212,11 +212,11 @@ int run_solve(const SolveCommand& command) {
                       std::to_string(walk.particles) + " particles: use more --particles");
 
   // Report: method, status, cost, accuracy.
-  std::printf("%s: %s (%s)", solution.method.c_str(), to_string(solution.status), solution.message.c_str());
-  if (solution.iterations > 0) std::printf(", %ld iterations", solution.iterations);
-  if (solution.walks > 0) std::printf(", %ld walks, %ld steps", solution.walks, solution.steps);
-  if (solution.residual == solution.residual) std::printf(", relative residual %.3g", solution.residual);
-  std::printf(", %.3f s\n", solution.seconds);
+  std::fprintf(report_stream(), "%s: %s (%s)", solution.method.c_str(), to_string(solution.status), solution.message.c_str());
+  if (solution.iterations > 0) std::fprintf(report_stream(), ", %ld iterations", solution.iterations);
+  if (solution.walks > 0) std::fprintf(report_stream(), ", %ld walks, %ld steps", solution.walks, solution.steps);
+  if (solution.residual == solution.residual) std::fprintf(report_stream(), ", relative residual %.3g", solution.residual);
+  std::fprintf(report_stream(), ", %.3f s\n", solution.seconds);
   summary.json()["solution"] = solution_json(solution);
   auto& j = summary.json()["solution"];
 
@@ -232,8 +232,8 @@ int run_solve(const SolveCommand& command) {
       for (std::size_t i = 0; i < patches.size(); ++i)
         mean += (patches.area[i] / patches.total_area()) * solution.B.row(static_cast<Eigen::Index>(i)).transpose();
     }
-    std::printf("area-weighted mean B = (%.6g, %.6g, %.6g) W/m^2\n", mean[0], mean[1], mean[2]);
-    if (!error_line.empty()) std::printf("%s\n", error_line.c_str());
+    std::fprintf(report_stream(), "area-weighted mean B = (%.6g, %.6g, %.6g) W/m^2\n", mean[0], mean[1], mean[2]);
+    if (!error_line.empty()) std::fprintf(report_stream(), "%s\n", error_line.c_str());
     j["mean_B"] = {mean[0], mean[1], mean[2]};
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));

@@ -5,6 +5,7 @@
 #include <sys/stat.h>
 
 #include "core/atomic_write.h"
+#include "core/standard_output.h"
 
 namespace radwalk::app {
 namespace fs = std::filesystem;
@@ -36,6 +37,13 @@ std::vector<NamedFile> output_files_of(const std::string& role, const std::strin
 std::string check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs) {
   for (std::size_t k = 0; k < outputs.size(); ++k) {
     if (outputs[k].path.empty()) continue;
+    if (is_standard_output(outputs[k].path)) {  // a stream, not a file: never an input; one output at most
+      for (std::size_t l = 0; l < k; ++l)
+        if (is_standard_output(outputs[l].path))
+          return outputs[l].role + " - and " + outputs[k].role +
+                 " -: only one output can go to standard output; give the other a file name";
+      continue;
+    }
     for (const NamedFile& in : inputs)
       if (!in.path.empty() && same_file(outputs[k].path, in.path))
         return outputs[k].path + ": " + outputs[k].role + " would overwrite " + in.role +

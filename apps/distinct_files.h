@@ -20,7 +20,9 @@ struct NamedFile {
 std::vector<NamedFile> output_files_of(const std::string& role, const std::string& path);
 
 // "" when every output is a different file from every input and every other output, else one line naming the two.
-// Empty paths are skipped.
+// Empty paths are skipped. "-" (standard output, core/standard_output.h) is no file: it is compared with nothing but
+// another "-", and two outputs to standard output are refused ("--json - and --csv -: only one output can go to
+// standard output; ...").
 std::string check_distinct_files(const std::vector<NamedFile>& outputs, const std::vector<NamedFile>& inputs);
 
 }  // namespace radwalk::app

@@ -6,6 +6,7 @@
 #include "core/atomic_write.h"
 #include "core/error.h"
 #include "core/path_length.h"
+#include "core/standard_output.h"
 
 namespace radwalk::app {
 namespace {
@@ -35,6 +36,8 @@ const Format& format_of(OutputFile kind) {
 
 std::string check_output_file(const std::string& path, OutputFile kind) {
   if (path.empty()) return "";
+  // "-": standard output (core/standard_output.h), for the text outputs a pipeline reads.
+  if (is_standard_output(path) && (kind == OutputFile::csv || kind == OutputFile::json)) return "";
   if (const std::string too_long = path_length_problem(path); !too_long.empty()) return too_long;
   const Format& format = format_of(kind);
   const std::string ext = std::filesystem::path(path).extension().string();

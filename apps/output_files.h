@@ -18,7 +18,8 @@ enum class OutputFile {
 
 // "" when `path` may be written as `kind` (an empty path is no output), else one line saying why not:
 // "out.png: the file written is VTK XML PolyData, so its name must end in .vtp", the missing directory, or a path
-// too long to open (core/path_length.h).
+// too long to open (core/path_length.h). "-" is standard output (core/standard_output.h) for csv and json, and
+// refused for the others (it does not end in their extension).
 // Extensions are compared exactly (".vtp", not ".VTP"): the writers choose their format by the same rule.
 std::string check_output_file(const std::string& path, OutputFile kind);
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include "apps/rank_agreement.h"
 #include "apps/run_metadata.h"
-#include "apps/view_camera.h"
+#include "apps/scene_camera.h"
 #include "io/paraview_state.h"
 
 #include <cstdio>
@@ -21,6 +21,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/path_length.h"
+#include "core/standard_output.h"
 #include "core/timer.h"
 #include "core/parallel.h"
 #include "formfactor/emitter_form_factors.h"
@@ -45,6 +46,7 @@ namespace radwalk::app {
 namespace {
 bool g_quiet = false;
 long g_silenced = 0;
+std::FILE* g_report = stdout;
 }  // namespace
 
 void warn(RunSummary& summary, const std::string& message) {
@@ -67,6 +69,12 @@ void set_quiet(bool quiet) { g_quiet = quiet; }
 
 void note(const std::string& message) {
   if (!g_quiet) std::fprintf(stderr, "radwalk: %s\n", message.c_str());
+}
+
+std::FILE* report_stream() { return g_report; }
+
+void report_to_stderr_if_stdout_written(const SceneOptions& options) {
+  if (is_standard_output(options.csv) || is_standard_output(options.json)) g_report = stderr;
 }
 
 namespace {
@@ -217,7 +225,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
       for (const std::string& line : errors) std::fprintf(stderr, "radwalk: error: %s\n", line.c_str());
       message = options.scene + ": refused: " + count_by_kind(all, Severity::error) +
                 (options.strict ? " (--strict)" : "") + "; every finding is listed above" +
-                (json_writable() ? " and in " + options.json : "");
+                (json_writable() ? " and in " + output_display_name(options.json) : "");
     }
     refuse(all, message);
     throw InputError(message);
@@ -535,14 +543,14 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
       StateColouring colouring;
       for (const CellField& f : fields)
         if (f.name == "B" && f.components == 3) colouring = radiosity_colouring(patches, f.values);
-      write_paraview_state(options.paraview_state, options.vtp, view_camera(options.scene, patches), colouring,
-                           run_id_of(summary));
+      const ViewPoint view = view_point(scene_camera(options.scene, patches), patches);  // pathtrace's camera
+      write_paraview_state(options.paraview_state, options.vtp, view, colouring, run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");
     }
   }
   if (!options.csv.empty()) {
     write_patch_csv(options.csv, patches, fields, run_id_of(summary));
-    note("wrote " + options.csv);
+    note("wrote " + output_display_name(options.csv));
   }
   summary.add_timing("write", timer.seconds());
   if (distributed::size() > 1) {  // over MPI only (docs/json-schema.md): rank 0's traffic, gathers of the whole F
@@ -553,7 +561,7 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
   }
   if (!options.json.empty()) {
     summary.write(options.json);
-    note("wrote " + options.json);
+    note("wrote " + output_display_name(options.json));
   }
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // The stages every command shares: load + validate + patch a scene, obtain form factors, write outputs.
 // Each stage is timed into the RunSummary; warnings go to stderr and to the summary.
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -57,7 +58,7 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
 // E), which the CSV writes as its fixed leading columns. The .vtp's field data are run_metadata (run_metadata.h)
 // and then `metadata` (the command's own: method, walks, spp, ...); --paraview-state FILE.py writes a ParaView
 // state for the .vtp (io/paraview_state.h): coloured by B (radiosity_colouring of the field B, if given), from the
-// camera of the one camera rule (view_camera.h).
+// camera of the one camera rule (scene_camera.h, as pathtrace fits it).
 void write_outputs(const SceneOptions& options, const PatchSet& patches, const std::vector<CellField>& fields,
                    RunSummary& summary, const VtpMetadata& metadata = {});
 
@@ -72,5 +73,11 @@ long silenced_warnings();
 // Prints an informational line on stderr ("radwalk: ..."), unless set_quiet(true) (--quiet).
 void note(const std::string& message);
 void set_quiet(bool quiet);
+
+// Where a command prints its results for a reader (summary lines, tables): stdout, or stderr once
+// report_to_stderr_if_stdout_written saw --csv - or --json - (core/standard_output.h), so that stdout carries exactly
+// that output. Errors, warnings, notes and progress always go to stderr.
+std::FILE* report_stream();
+void report_to_stderr_if_stdout_written(const SceneOptions& options);
 
 }  // namespace radwalk::app

@@ -210,8 +210,11 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
       ->check(kSeed)
       ->capture_default_str();
   if (outputs) {
-    cmd->add_option("--csv", o.csv, "Write per-patch results as CSV")->check(output_file(OutputFile::csv));
-    cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings)")
+    cmd->add_option("--csv", o.csv, "Write per-patch results as CSV ('-': to standard output, the results' lines "
+                                    "then on stderr)")
+        ->check(output_file(OutputFile::csv));
+    cmd->add_option("--json", o.json, "Write a JSON summary (counts, timings, memory, warnings; '-': to standard "
+                                      "output)")
         ->check(output_file(OutputFile::json));
     cmd->add_option("--paraview-state", o.paraview_state,
                     "Write a ParaView state FILE.py that opens the .vtp as a figure: B in Viridis over the non-emitters' range, "
@@ -382,7 +385,8 @@ int run_main(int argc, char** argv) {
   SceneOptions check;
   auto* check_cmd = app.add_subcommand("check", "Validate a scene and report what is wrong or was repaired");
   add_scene_options(check_cmd, check, false, false);
-  check_cmd->add_option("--json", check.json, "Write the findings as JSON")->check(output_file(OutputFile::json));
+  check_cmd->add_option("--json", check.json, "Write the findings as JSON ('-': to standard output)")
+      ->check(output_file(OutputFile::json));
 
   PatchCommand patch;
   auto* patch_cmd = app.add_subcommand("patch", "Validate and split a scene into patches; write them");
@@ -639,8 +643,10 @@ int run_main(int argc, char** argv) {
   }
   Progress::set_enabled(!g_quiet);
   set_quiet(g_quiet);
-  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene, &measure.scene})
+  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene, &measure.scene}) {
     o->argv = args;
+    report_to_stderr_if_stdout_written(*o);  // --csv - or --json -: stdout carries that output alone
+  }
   // --paraview-state: a Python state file, and only beside a .vtp.
   for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
                                std::pair{&solve.scene, solve.scene.vtp}, std::pair{&compare.scene, compare.scene.vtp},

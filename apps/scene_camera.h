@@ -1,5 +1,8 @@
 #pragma once
-// The camera a scene is looked at from, shared by the path tracer's images and the ParaView state files:
+// The one camera rule: the camera a scene is looked at from, shared by the path tracer's images (pathtrace
+// --image, measure --response camera), the ParaView state files (--paraview-state) and, mirrored in Python by
+// scripts/camera_rule.py, scripts/render_vtp.py and scripts/paraview_render.py (tests/python/test_camera_rule.py
+// checks that the two agree):
 //   - --camera if given (px py pz tx ty tz ux uy uz fov_deg): source "option";
 //   - the Cornell box's own camera for a scene file named cornell_box*: source "cornell_box";
 //   - a closed scene (a point inside it from which every probe ray hits the front of a patch: the bounding box's
@@ -22,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "io/paraview_state.h"
 #include "pathtrace/camera.h"
 #include "patch/patch_set.h"
 #include "visibility/visibility.h"
@@ -43,5 +47,10 @@ Camera scene_camera(const std::string& scene, const PatchSet& patches, const std
 // A point the camera looks at: on its axis, level with the centre of the scene's bounding box, at least a quarter
 // of the box's diagonal in front of the camera.
 Vec3 camera_focal_point(const Camera& camera, const PatchSet& patches);
+
+// The camera as ParaView's view takes it: position, focal point (camera_focal_point), up made orthogonal to the
+// view direction (up - (up . d) d, normalised: the image's up, as PinholeCamera makes it) and vertical field of
+// view in degrees.
+ViewPoint view_point(const Camera& camera, const PatchSet& patches);
 
 }  // namespace radwalk::app

@@ -9,7 +9,9 @@
 //   measure_bindings.cpp      radwalk.measure -> Measurement (M = <R, B>_A by any method of `radwalk measure`)
 //   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
 //   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
+//   meshio_bindings.cpp       Scene.from_meshio, Result.to_meshio (Debian's python3-meshio, imported when called)
 //   interruptible.cpp         Ctrl-C: computations run on a worker thread, signals are checked every 50 ms
+//   arrays.h                  numpy views of C++ arrays and array arguments read into C++ (one set of conversions)
 // Conventions: every computation runs without the GIL through interruptible() (KeyboardInterrupt within about
 // 50 ms plus one chunk of work) under ThreadLimit(threads) (0 = all cores, at most kMaxThreads: check_run); the
 // library's InputError becomes radwalk.InputError (a ValueError) carrying the CLI's one-line text,
@@ -26,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "arrays.h"
 #include "core/solution.h"
 #include "core/types.h"
 #include "formfactor/form_factors.h"
@@ -65,17 +68,22 @@ struct Result {
   std::string metadata;  // a JSON object: the CLI's "solution" object and the run's options
 };
 
+// Scene.from_arrays (scene_bindings.cpp), the scene named `name` in messages: the FaceArrays of
+// mesh/mesh_from_arrays.h from numpy arguments (vertices (V, 3); faces (F, k) or F lists; rho and emission (F, 3),
+// (F,) or one number; groups None or F names), read, validated and patched as radwalk.load does a file.
+Scene scene_from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                        const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                        double max_area, bool strict, bool contact_cut, const std::string& name);
+
 // The checks before every computation on `scene`: `threads` from 0 to kMaxThreads (core/parallel.h, the CLI's
 // bounds) and the scene's rho and E as a material could hold them (patch/radiometry_check.h check_radiometry: Scene.rho
 // and Scene.E are writable). InputError naming the patch and value, or the thread count.
-void check_run(const Scene& scene, long long threads);
+// Returns the thread count as the int ThreadLimit takes (within [0, kMaxThreads] once checked).
+int check_run(const Scene& scene, long long threads);
 
 // Raises NumericalError with the solver's message when it diverged or was refused (the CLI's exit code 3);
 // "converged" and "max-iterations" (the CLI's exit 1) return.
 void check_solved(const Solution& solution);
-
-// A read-only numpy view of an N x 3 PatchRgb owned by `base` (an N x 3 array of zeros' shape (0, 3) when empty).
-py::array_t<double> rgb_view(const PatchRgb& values, py::handle base);
 
 // The form factors a computation on `scene` uses: those of a FormFactors object, of a scipy.sparse matrix of any
 // format or of a 2-D array (converted to float32 CSR: a copy), or, for None, estimated with `rays` rays per patch
@@ -103,5 +111,6 @@ void bind_refinement(py::module_& m);
 void bind_measure(py::module_& m);
 void bind_pathtrace(py::module_& m);
 void bind_writers(py::module_& m);
+void bind_meshio(py::module_& m);  // after bind_scene and bind_solvers: adds to Scene and Result
 
 }  // namespace radwalk::python

@@ -15,20 +15,12 @@
 namespace radwalk::python {
 namespace {
 
-// A read-only 1-D numpy view of n values at data, owned by base.
-template <class T>
-py::array_t<T> view(const T* data, std::size_t n, py::handle base) {
-  py::array_t<T> a({static_cast<py::ssize_t>(n)}, {static_cast<py::ssize_t>(sizeof(T))}, data, base);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
 // F (compressed) as scipy.sparse.csr_matrix((data, indices, indptr)) with views of its three arrays.
 py::object csr_view(const SparseF& F, py::handle base) {
   const auto n = static_cast<std::size_t>(F.rows());
   const auto nnz = static_cast<std::size_t>(F.nonZeros());
-  const py::object data = view(F.valuePtr(), nnz, base), indices = view(F.innerIndexPtr(), nnz, base),
-                   indptr = view(F.outerIndexPtr(), n + 1, base);
+  const py::object data = view(F.valuePtr(), nnz, 1, base), indices = view(F.innerIndexPtr(), nnz, 1, base),
+                   indptr = view(F.outerIndexPtr(), n + 1, 1, base);
   return py::module_::import("scipy.sparse")
       .attr("csr_matrix")(py::make_tuple(data, indices, indptr), py::arg("shape") = py::make_tuple(n, F.cols()),
                           py::arg("copy") = false);
@@ -77,10 +69,7 @@ CArray<std::int64_t> index_array(const py::object& array, const std::string& wha
 // Refuses a value dtype that is not real (complex, object, strings) and values that are not finite or negative.
 void check_values(const py::object& data, std::int64_t count) {
   const py::module_ np = py::module_::import("numpy");
-  const py::object a = np.attr("asarray")(data);
-  const std::string kind = a.attr("dtype").attr("kind").cast<std::string>();
-  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-    throw InputError("F's values must be real numbers, not " + dtype_text(a));
+  const py::array a = real_array(data, "F's values must be real numbers", "F's values must be real numbers, not");
   const auto v = np.attr("ravel")(a).cast<CArray<double>>();
   if (count > v.size()) throw InputError("F has fewer values than entries");
   for (std::int64_t k = 0; k < count; ++k)
@@ -206,17 +195,17 @@ py::object checked_csr(const py::object& F, std::int64_t n) {
 py::dict diagnostics(const FormFactorsResult& r) {
   const FormFactorDiagnostics d = diagnose_form_factors(r.ff.F, r.area, r.ff.rays, r.ff.back_hits);
   py::dict out;
-  out["row_sum"] = py::array_t<double>(d.row_sum.size(), d.row_sum.data());
-  out["reciprocity_error"] = py::array_t<double>(d.reciprocity_error.size(), d.reciprocity_error.data());
+  out["row_sum"] = copy_array(d.row_sum);
+  out["reciprocity_error"] = copy_array(d.reciprocity_error);
   if (!r.ff.rays.empty()) {
     const auto counts = [](const std::vector<std::uint32_t>& c) {
       std::vector<std::int64_t> v(c.begin(), c.end());
-      return py::array_t<std::int64_t>(v.size(), v.data());
+      return copy_array(v);
     };
     out["rays"] = counts(r.ff.rays);
     out["escaped"] = counts(r.ff.escaped);
     out["back_hits"] = counts(r.ff.back_hits);
-    out["row_std_error"] = py::array_t<double>(d.row_std_error.size(), d.row_std_error.data());
+    out["row_std_error"] = copy_array(d.row_std_error);
   }
   return out;
 }
@@ -294,28 +283,46 @@ F: scipy.sparse.csr_matrix, N x N, F[i, j] = fraction of the power leaving patch
 rays, escaped, back_hits: per-patch counts (uint32 views; empty when F was read from a file).
 diagnostics: the per-patch form-factor fields of the CLI's CSV, in its order.
 Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: that skips the conversion.)doc")
-      .def_property_readonly("F", [](py::object self) { return csr_view(self.cast<const FormFactorsResult&>().ff.F, self); })
-      .def_property_readonly("rays", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.rays.data(), ff.rays.size(), self);
-      }, "Rays traced from each patch (n_i).")
-      .def_property_readonly("escaped", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.escaped.data(), ff.escaped.size(), self);
-      }, "Rays from each patch that hit nothing.")
-      .def_property_readonly("back_hits", [](py::object self) {
-        const auto& ff = self.cast<const FormFactorsResult&>().ff;
-        return view(ff.back_hits.data(), ff.back_hits.size(), self);
-      }, "Rays from each patch whose first hit was the back of a patch.")
-      .def_property_readonly("nnz", [](const FormFactorsResult& r) { return r.ff.F.nonZeros(); })
-      .def_readonly("timings", &FormFactorsResult::timings, "Stage -> seconds (embree_scene, form_factors).")
-      .def_readonly("info", &FormFactorsResult::info,
-                    "The reciprocity change when enforced (the JSON's reciprocity_* keys); empty otherwise.")
+      .def_property_readonly(
+          "F", [](py::object self) { return csr_view(self.cast<const FormFactorsResult&>().ff.F, self); },
+          "F as a scipy.sparse.csr_matrix (N, N) float32 (dimensionless fractions), over views "
+          "of the library's arrays (no copy).")
+      .def_property_readonly(
+          "rays",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.rays.data(), ff.rays.size(), 1, self);
+          },
+          "Rays traced from each patch n_i, (N,) uint32 view (empty, shape (0,), when F was read).")
+      .def_property_readonly(
+          "escaped",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.escaped.data(), ff.escaped.size(), 1, self);
+          },
+          "Rays from each patch that hit nothing, (N,) uint32 view (empty when F was read).")
+      .def_property_readonly(
+          "back_hits",
+          [](py::object self) {
+            const auto& ff = self.cast<const FormFactorsResult&>().ff;
+            return view(ff.back_hits.data(), ff.back_hits.size(), 1, self);
+          },
+          "Rays from each patch whose first hit was the back of a patch, (N,) uint32 view (empty when F was read).")
+      .def_property_readonly(
+          "nnz", [](const FormFactorsResult& r) { return r.ff.F.nonZeros(); },
+          "The number of stored entries of F (int).")
+      .def_readonly("timings", &FormFactorsResult::timings,
+                    "Stage -> wall time (dict str -> float, s): embree_scene, form_factors.")
+      .def_readonly(
+          "info", &FormFactorsResult::info,
+          "The reciprocity change when enforced (dict str -> float, the JSON's reciprocity_* keys); empty otherwise.")
       .def_property_readonly("diagnostics", &diagnostics,
-                             "Per-patch diagnostics as a dict of numpy arrays, in the order of the CLI's CSV: "
-                             "row_sum, reciprocity_error, and when F was estimated rays, escaped, back_hits "
-                             "(int64), row_std_error (formfactor/form_factor_diagnostics.h). Computed on access.")
-      .def("__len__", [](const FormFactorsResult& r) { return r.ff.F.rows(); })
+                             "Per-patch diagnostics as a dict of (N,) numpy arrays, in the order of the CLI's CSV: "
+                             "row_sum, reciprocity_error (float64, dimensionless), and when F was estimated rays, "
+                             "escaped, back_hits (int64), row_std_error (float64) "
+                             "(formfactor/form_factor_diagnostics.h). Computed on access.")
+      .def(
+          "__len__", [](const FormFactorsResult& r) { return r.ff.F.rows(); }, "The number of patches N (int).")
       .def("__repr__", [](const FormFactorsResult& r) {
         return "<radwalk.FormFactors " + std::to_string(r.ff.F.rows()) + " x " + std::to_string(r.ff.F.cols()) +
                ", " + std::to_string(r.ff.F.nonZeros()) + " non-zeros>";
@@ -326,9 +333,13 @@ Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: 
         py::arg("threads") = 0,
         R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
 
+The FormFactors holds F, an (N, N) float32 scipy.sparse.csr_matrix of dimensionless fractions, and (N,) per-patch
+ray counts.
+
 The CLI's `radwalk formfactors` and the F of `solve`/`compare`, with the same options and the same result for the
 same seed (bit-identical for any thread count):
-  rays: rays per patch (--rays); rays_per_area > 0: max(min_rays, round(rays_per_area * area)) instead
+  rays: rays per patch (--rays); rays_per_area > 0 (rays per mesh length unit squared):
+  max(min_rays, round(rays_per_area * area)) instead
   (--rays-per-area, --min-rays); seed (--seed); reciprocity: average A_i F_ij and A_j F_ji (--reciprocity);
   stratified=False draws plain binomial counts (tests); threads: 0 = all cores.
 F depends only on the geometry: edits of Scene.rho or Scene.E do not call for new form factors.

@@ -47,21 +47,9 @@ Response response_of(const Scene& scene, const py::object& response, const std::
     if (spec == "camera") metadata["camera"] = app::camera_json(fitted, scene.patches, width, height);
     return r;
   }
-  const py::module_ np = py::module_::import("numpy");
-  py::object weights;
-  try {
-    weights = np.attr("asarray")(response);
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError("response must be a spec (str) or an (N,) array of weights");
-  }
-  const std::string kind = weights.attr("dtype").attr("kind").cast<std::string>();
-  if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-    throw InputError("response weights must be real numbers, not " +
-                     py::str(weights.attr("dtype")).cast<std::string>());
-  if (weights.attr("ndim").cast<int>() != 1)
-    throw InputError("response weights must be an (N,) array, one weight per patch");
-  const auto w = weights.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  const DoubleArray w = double_array(response, "response must be a spec (str) or an (N,) array of weights",
+                                     "response weights must be real numbers, not");
+  if (w.ndim() != 1) throw InputError("response weights must be an (N,) array, one weight per patch");
   Response r{Eigen::VectorXd(static_cast<Eigen::Index>(w.size())), "weights given in Python"};
   std::copy(w.data(), w.data() + w.size(), r.R.data());
   check_response(r, scene.patches.size());
@@ -72,8 +60,7 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
                       long walks, const std::string& kernel, const std::string& survival, double survival_constant,
                       int importance_sweeps, double defensive, bool theory, const std::vector<double>& camera,
                       int width, int height, long rays, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   MeasureOptions o;
   o.method = method;
   o.walks = walks;
@@ -118,7 +105,8 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
 }  // namespace
 
 void bind_measure(py::module_& m) {
-  py::class_<MeasureResult>(m, "Measurement", R"doc(What measure() returns: M = <R, B>_A per channel and its error bar.
+  py::class_<MeasureResult>(m, "Measurement",
+                            R"doc(What measure() returns: M = <R, B>_A per channel and its error bar.
 
 M, M_se, var_per_walk, var_per_walk_theory: (3,) arrays (per channel): the estimate (W for a response of weight
 1; the mean pixel radiance for response="camera"), its standard error, the sample variance of one walk's score and
@@ -126,28 +114,55 @@ the exact one (NaN where not computed, +inf where infinite); deterministic metho
 walks_total (walks or particles in all; per channel for importance walks), steps, seconds, method, response (what
 R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI's JSON "measurement" object (and
 "importance", "camera" where the CLI writes them), same keys (docs/json-schema.md).)doc")
-      .def_property_readonly("M", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.M); })
-      .def_property_readonly("M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); })
-      .def_property_readonly("var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); })
-      .def_property_readonly("var_per_walk_theory",
-                             [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var_theory); })
-      .def_property_readonly("walks_total", [](const MeasureResult& r) { return r.measurement.estimate.walks; })
-      .def_property_readonly("steps", [](const MeasureResult& r) { return r.measurement.estimate.counters.steps; })
-      .def_property_readonly("seconds", [](const MeasureResult& r) { return r.measurement.estimate.seconds; })
-      .def_property_readonly("method", [](const MeasureResult& r) { return r.measurement.estimate.method; })
-      .def_property_readonly("deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; })
-      .def_property_readonly("response", [](const MeasureResult& r) { return r.response.what; })
-      .def_property_readonly("R", [](const MeasureResult& r) {
-        return py::array_t<double>(r.response.R.size(), r.response.R.data());
-      })
-      .def_readonly("timings", &MeasureResult::timings)
-      .def_property_readonly("metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); })
+      .def_property_readonly(
+          "M", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.M); },
+          "The estimate M per channel, (3,) float64: W for a response of weight 1 (R_i dimensionless), the mean "
+          "pixel radiance for response=\"camera\".")
+      .def_property_readonly(
+          "M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); },
+          "Standard error of M, (3,) float64, in M's unit (0 for a deterministic method).")
+      .def_property_readonly(
+          "var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); },
+          "Sample variance of one walk's score, (3,) float64, in M's unit squared.")
+      .def_property_readonly(
+          "var_per_walk_theory", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var_theory); },
+          "The exact per-walk variance, (3,) float64, in M's unit squared (NaN where not "
+          "computed, +inf where infinite).")
+      .def_property_readonly(
+          "walks_total", [](const MeasureResult& r) { return r.measurement.estimate.walks; },
+          "Walks or particles in all (int; per channel for importance walks).")
+      .def_property_readonly(
+          "steps", [](const MeasureResult& r) { return r.measurement.estimate.counters.steps; },
+          "Walk steps in all (int).")
+      .def_property_readonly(
+          "seconds", [](const MeasureResult& r) { return r.measurement.estimate.seconds; },
+          "Wall time of the measurement (float, s).")
+      .def_property_readonly(
+          "method", [](const MeasureResult& r) { return r.measurement.estimate.method; },
+          "The method (str), one of measure_methods().")
+      .def_property_readonly(
+          "deterministic", [](const MeasureResult& r) { return r.measurement.deterministic; },
+          "Whether the method is deterministic (bool: direct, adjoint-direct).")
+      .def_property_readonly(
+          "response", [](const MeasureResult& r) { return r.response.what; }, "What R is, in words (str).")
+      .def_property_readonly(
+          "R",
+          [](const MeasureResult& r) {
+            return py::array_t<double>(r.response.R.size(), r.response.R.data());  // a copy of the Eigen vector
+          },
+          "The response weights R_i, (N,) float64 (a copy), dimensionless.")
+      .def_readonly("timings", &MeasureResult::timings, "Stage -> wall time (dict str -> float, s).")
+      .def_property_readonly(
+          "metadata", [](const MeasureResult& r) { return json_to_python(r.metadata); },
+          "The CLI's JSON \"measurement\" object (dict), with \"importance\" and \"camera\" "
+          "where the CLI writes them (docs/json-schema.md).")
       .def("__repr__", [](const MeasureResult& r) {
         return "<radwalk.Measurement " + r.measurement.estimate.method + " over " + r.response.what + ">";
       });
 
   m.def("measure_methods", &measure_method_names,
-        "The methods of measure(): direct, adjoint-direct, importance-gather, importance-shoot and the walk methods.");
+        "The methods of measure() (a list of str): direct, adjoint-direct, importance-gather, importance-shoot and "
+        "the walk methods.");
   m.def("measure", &measure, py::arg("scene"), py::arg("response"), py::arg("F") = py::none(),
         py::arg("method") = "adjoint-direct", py::arg("walks") = 100000, py::arg("kernel") = "matrix",
         py::arg("survival") = "analog", py::arg("survival_constant") = 0.5, py::arg("importance_sweeps") = -1,
@@ -159,14 +174,16 @@ R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI'
 As `radwalk measure SCENE --response RESPONSE --method METHOD --walks WALKS ...` (same seed, same M):
 response: a spec as the CLI's --response ("patches:0,3", "material:white", "group:desk", "csv:FILE:COLUMN",
   "camera": the mean pixel radiance of the view of `camera` (10 numbers as pathtrace's, empty: the scene's
-  own), width x height pixels) or an (N,) array of weights R_i >= 0.
+  own), width x height pixels) or an (N,) float array of dimensionless weights R_i >= 0.
 method: one of measure_methods(): "direct" (<R, B> from the LU solve), "adjoint-direct" (<Y, E> from the adjoint
   solve), a walk method of walk_methods() (gathering methods walk from the sensor, shooting ones from the
   sources; kernel "matrix" or "ray", survival as random_walk), "importance-gather" / "importance-shoot"
   (importance-driven walks; importance_sweeps -1: the exact importance (zero variance), K >= 0: K Jacobi sweeps;
   defensive: the analog fraction alpha, -1: 0 exact, 0.1 swept).
 walks: walks or particles in all (per channel for the importance walks); theory: also the exact per-walk variance
-  (matrix kernel, N <= 2000). F: a FormFactors, a scipy.sparse matrix, or None (estimated with rays and seed).
+  (matrix kernel, N <= 2000). F: a FormFactors, a scipy.sparse (N, N) matrix, or None (estimated with rays and
+  seed). Returns M, M_se as (3,) float64 arrays (W for weights of 1, the patches' B in W per unit length squared
+  times their areas).
 Raises radwalk.InputError for a bad response, method or option (the CLI's message).)doc");
 }
 

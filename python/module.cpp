@@ -11,17 +11,10 @@
 
 namespace radwalk::python {
 
-py::array_t<double> rgb_view(const PatchRgb& values, py::handle base) {
-  const auto rows = static_cast<py::ssize_t>(values.rows());
-  py::array_t<double> a({rows, py::ssize_t{3}}, {py::ssize_t{3 * sizeof(double)}, py::ssize_t{sizeof(double)}},
-                        values.size() ? values.data() : nullptr, base);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
-void check_run(const Scene& scene, long long threads) {
+int check_run(const Scene& scene, long long threads) {
   check_thread_count(threads, "threads");
   check_radiometry(scene.patches);
+  return static_cast<int>(threads);
 }
 
 void check_solved(const Solution& solution) {
@@ -40,7 +33,8 @@ using namespace radwalk;
 using namespace radwalk::python;
 
 PYBIND11_MODULE(radwalk, m) {
-  m.doc() = R"doc(radwalk: the radiosity equation B = E + diag(rho) F B on meshes, from Python.
+  // The example names a walk method through the method table (walk/walk_method.h), never spelled here.
+  static const std::string module_doc = std::string(R"doc(radwalk: the radiosity equation B = E + diag(rho) F B on meshes, from Python.
 
 A thin layer over radwalk's C++ library (the same code as the `radwalk` program, so the same seed gives the same
 numbers, byte for byte in the CSV):
@@ -50,7 +44,8 @@ numbers, byte for byte in the CSV):
     ff = radwalk.form_factors(scene, rays=1000, seed=1) # FormFactors: ff.F is a scipy.sparse.csr_matrix
     exact = radwalk.solve(scene, ff)                    # Result: exact.B is an N x 3 numpy array
     scene.rho[:] *= 0.9                                 # edit reflectances in place (or scene.set_material)
-    walk = radwalk.random_walk(scene, ff, method="gather-collision", walks_per_patch=1000, seed=1)
+    walk = radwalk.random_walk(scene, ff, method=")doc" +
+                                                    std::string(method_name(WalkMethod::gather_collision)) + R"doc(", walks_per_patch=1000, seed=1)
     radwalk.write_csv("cube.csv", scene, {**ff.diagnostics, **walk.fields})
 
 Units as in the CLI: lengths in the mesh's unit, rho = Kd, E = pi * Ke, B in W per unit length squared.
@@ -58,7 +53,8 @@ Every computation releases the GIL and honours threads= (0: all cores; the outpu
 Bad input raises radwalk.InputError, a ValueError whose text is the CLI's one-line message (also for values
 written into Scene.rho or Scene.E that a material could not hold, and for a malformed F); a solve that diverged or
 was refused raises radwalk.NumericalError (an ArithmeticError) with the solver's message, where the CLI exits 3.
-Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus one chunk of its work. Progress lines go to stderr as in the CLI (set_progress).)doc";
+Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus one chunk of its work. Progress lines go to stderr as in the CLI (set_progress).)doc");
+  m.doc() = module_doc.c_str();
   m.attr("__version__") = RADWALK_VERSION;
 
   static py::exception<InputError> input_error(m, "InputError", PyExc_ValueError);
@@ -82,9 +78,11 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   });
 
   m.def("set_progress", &Progress::set_enabled, py::arg("enabled"),
-        "Turns the progress lines on stderr on or off (the CLI's -q is set_progress(False)); on by default.");
+        "Turns the progress lines on stderr on or off (enabled: bool; the CLI's -q is set_progress(False)); on by "
+        "default.");
   m.def("walk_methods", &walk_method_names,
-        "The random-walk methods' names, in the order of the one method table (src/walk/walk_method.h).");
+        "The random-walk methods' names (a list of str), in the order of the one method table "
+        "(src/walk/walk_method.h).");
 
   bind_scene(m);
   bind_form_factors(m);
@@ -94,4 +92,5 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   bind_measure(m);
   bind_pathtrace(m);
   bind_writers(m);
+  bind_meshio(m);
 }

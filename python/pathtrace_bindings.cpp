@@ -35,8 +35,7 @@ py::array_t<double> image_array(const RgbImage& image) {
 PathtraceResult pathtrace(const Scene& scene, long spp, const std::string& integrator_name, std::uint64_t seed,
                           bool averages, bool image, int width, int height, const std::vector<double>& camera_numbers,
                           long long threads_arg, bool progress) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   if (!camera_numbers.empty() && camera_numbers.size() != 10)
     throw InputError("--camera takes 10 numbers: position (3), target (3), up (3), vertical fov in degrees");
   // Samples as the CLI's: from 2 (a standard error needs two) to 2^32, so spp x pixels and spp x N cannot overflow.
@@ -112,18 +111,31 @@ void bind_pathtrace(py::module_& m) {
 
 averages: a Result (B, B_se, var per patch) or None; image, image_se: (height, width, 3) float64 arrays of
 radiance and its per-pixel standard error (copies), or None; rays, seconds: of the image; timings.)doc")
-      .def_property_readonly("averages", [](const PathtraceResult& r) { return r.averages; })
-      .def_property_readonly("image", [](const PathtraceResult& r) -> py::object {
-        if (!r.has_image) return py::none();
-        return image_array(r.image.mean);
-      })
-      .def_property_readonly("image_se", [](const PathtraceResult& r) -> py::object {
-        if (!r.has_image) return py::none();
-        return image_array(r.image.se);
-      })
-      .def_property_readonly("rays", [](const PathtraceResult& r) { return r.image.rays; })
-      .def_property_readonly("seconds", [](const PathtraceResult& r) { return r.image.seconds; })
-      .def_readonly("timings", &PathtraceResult::timings);
+      .def_property_readonly(
+          "averages", [](const PathtraceResult& r) { return r.averages; },
+          "The patch averages as a Result (B, B_se, var (N, 3) float64, W per unit length "
+          "squared), or None when averages=False.")
+      .def_property_readonly(
+          "image",
+          [](const PathtraceResult& r) -> py::object {
+            if (!r.has_image) return py::none();
+            return image_array(r.image.mean);
+          },
+          "The image's radiance, (height, width, 3) float64 (a copy), W per unit length squared per sr; None "
+          "without image=True.")
+      .def_property_readonly(
+          "image_se",
+          [](const PathtraceResult& r) -> py::object {
+            if (!r.has_image) return py::none();
+            return image_array(r.image.se);
+          },
+          "The per-pixel standard error of image, (height, width, 3) float64 (a copy), in its unit; None without "
+          "image=True.")
+      .def_property_readonly(
+          "rays", [](const PathtraceResult& r) { return r.image.rays; }, "Rays traced for the image (int).")
+      .def_property_readonly(
+          "seconds", [](const PathtraceResult& r) { return r.image.seconds; }, "Wall time of the image (float, s).")
+      .def_readonly("timings", &PathtraceResult::timings, "Stage -> wall time (dict str -> float, s).");
 
   m.def("pathtrace", &pathtrace, py::arg("scene"), py::arg("spp") = 64, py::arg("integrator") = "mis",
         py::arg("seed") = 1, py::arg("averages") = true, py::arg("image") = false, py::arg("width") = 256,
@@ -133,9 +145,11 @@ radiance and its per-pixel standard error (copies), or None; rays, seconds: of t
 
 As `radwalk pathtrace`: spp samples per patch (averages) and per pixel (image); integrator "mis", "nee",
 "implicit" or "light" (light tracing: spp x N particles for the averages, spp x width x height for the image);
-camera: 10 numbers (position, target, up, vertical fov in degrees) or empty for the scene's own (the Cornell
-camera for cornell_box*, else a view of the bounding box); width x height at most 2^26 pixels, as the CLI
-(InputError before anything is traced). Returns a PathtraceResult; its averages are a Result.)doc");
+camera: 10 numbers, shape (10,) (position (3,) and target (3,) in mesh length units, up (3,), vertical fov in
+degrees) or empty for the one camera rule (pathtrace's fit, apps/scene_camera.h: the Cornell camera for
+cornell_box*, the objects of a closed room, else a view of the bounding box); width x height at most 2^26 pixels, as the CLI
+(InputError before anything is traced). Returns a PathtraceResult; its averages are a Result (B (N, 3) float64,
+W per unit length squared), its image a (height, width, 3) float64 radiance array.)doc");
 }
 
 }  // namespace radwalk::python

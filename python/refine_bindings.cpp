@@ -31,8 +31,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
                                  double floor_fraction, double noise_z, const std::string& solver, double tol,
                                  long max_iterations, long rays, double rays_per_area, long min_rays,
                                  bool reciprocity, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   RefineOptions r;
   r.tol = refine_tol;
   r.max_steps = steps;
@@ -114,38 +113,52 @@ void bind_refinement(py::module_& m) {
 
 scene: a Scene of the final (refined) patches, each keeping its input face, group and material (edit its rho and
   E to re-solve on the same mesh); form_factors: their FormFactors; result: their Result (B, ...; metadata holds
-  the CLI's JSON "solution" and "refine" objects); jump: (N,) the refinement criterion jump_i of the last solve
+  the CLI's JSON "solution" and "refine" objects); jump: (N,) float64 the refinement criterion jump_i of the last solve
   (the .vtp's `jump` field); steps: one dict per solve (step, patches, marked, split, max_jump, method,
   iterations, form_factor_seconds, solve_seconds, refine_seconds, seconds: the JSON's refine.steps);
   stop_reason: "converged", "steps", "max-patches" or "solver".)doc")
-      .def_readonly("scene", &AdaptiveResult::scene)
-      .def_readonly("form_factors", &AdaptiveResult::form_factors)
-      .def_readonly("result", &AdaptiveResult::result)
-      .def_property_readonly("jump", [](const AdaptiveResult& a) { return py::array_t<double>(a.jump.size(), a.jump.data()); })
-      .def_property_readonly("steps", [](const AdaptiveResult& a) {
-        py::list l;
-        for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));
-        return l;
-      })
-      .def_readonly("stop_reason", &AdaptiveResult::stop_reason)
+      .def_readonly("scene", &AdaptiveResult::scene, "The Scene of the final (refined) patches, N of them.")
+      .def_readonly("form_factors", &AdaptiveResult::form_factors, "The FormFactors of the final patches, (N, N).")
+      .def_readonly("result", &AdaptiveResult::result,
+                    "The Result of the last solve: B (N, 3) float64 in W per unit length squared, metadata, ...")
+      .def_property_readonly(
+          "jump", [](const AdaptiveResult& a) { return copy_array(a.jump); },
+          "The refinement criterion jump_i of the last solve, (N,) float64 (a copy), in W per "
+          "unit length squared.")
+      .def_property_readonly(
+          "steps",
+          [](const AdaptiveResult& a) {
+            py::list l;
+            for (const RefineStep& s : a.steps) l.append(json_to_python(app::refine_step_json(s).dump()));
+            return l;
+          },
+          "One dict per solve (a list): step, patches, marked, split, max_jump, method, iterations, "
+          "form_factor_seconds, solve_seconds, refine_seconds, seconds (the JSON's refine.steps; times in s).")
+      .def_readonly("stop_reason", &AdaptiveResult::stop_reason,
+                    "Why the refinement stopped (str): \"converged\", \"steps\", \"max-patches\" or \"solver\".")
       .def("__repr__", [](const AdaptiveResult& a) {
         return "<radwalk.AdaptiveResult " + std::to_string(a.scene.patches.size()) + " patches after " +
                std::to_string(a.steps.size()) + " solves (" + a.stop_reason + ")>";
       });
 
-  m.def("solve_adaptive", &solve_adaptive_py, py::arg("scene"), py::arg("refine_tol") = 0.1, py::arg("steps") = 4,
-        py::arg("max_patches") = 20000, py::arg("floor_fraction") = kDefaultRefineFloorFraction,
-        py::arg("noise_z") = kDefaultRefineNoiseZ, py::arg("solver") = "auto", py::arg("tol") = 1e-10,
-        py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0,
-        py::arg("min_rays") = 16, py::arg("reciprocity") = false, py::arg("seed") = 1, py::arg("threads") = 0,
-        R"doc(Adaptive patching: solve, split the patches whose radiosity jumps across an edge, re-solve: an AdaptiveResult.
+  m.def(
+      "solve_adaptive", &solve_adaptive_py, py::arg("scene"), py::arg("refine_tol") = 0.1, py::arg("steps") = 4,
+      py::arg("max_patches") = 20000, py::arg("floor_fraction") = kDefaultRefineFloorFraction,
+      py::arg("noise_z") = kDefaultRefineNoiseZ, py::arg("solver") = "auto", py::arg("tol") = 1e-10,
+      py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0, py::arg("min_rays") = 16,
+      py::arg("reciprocity") = false, py::arg("seed") = 1, py::arg("threads") = 0,
+      R"doc(Adaptive patching: solve, split the patches whose radiosity jumps across an edge, re-solve: an AdaptiveResult.
 
 As `radwalk solve SCENE --refine REFINE_TOL --refine-steps STEPS --max-patches MAX_PATCHES --refine-floor
 FLOOR_FRACTION --refine-noise NOISE_Z --solver SOLVER --tol TOL --rays RAYS --seed SEED` (src/solve/
 adaptive_refinement.h): every step estimates its own form factors with rays/rays_per_area/min_rays/seed
 (reciprocity: --reciprocity) and solves with a deterministic solver ("auto", "direct", "jacobi",
 "gauss-seidel", "southwell"); max_iterations 0 = the CLI's default. The same seed gives the CLI's B.
-The scene passed in is not changed. The GIL is released during the whole refinement.
+refine_tol, floor_fraction and noise_z are dimensionless: the relative jump of B across an edge that splits, the
+floor of that difference as a fraction of the mean irradiance, and a number of form-factor standard errors;
+rays_per_area is per mesh length unit squared; max_patches and steps are counts.
+The scene passed in is not changed; the result's scene has the final N patches and its B is (N, 3) float64 in W
+per unit length squared. The GIL is released during the whole refinement.
 Raises radwalk.InputError for options out of range.)doc");
 }
 

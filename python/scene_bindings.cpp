@@ -18,20 +18,6 @@
 namespace radwalk::python {
 namespace {
 
-// A numpy view of n rows of `columns` values of type T starting at data, owned by base; read-only unless writable.
-template <class T>
-py::array_t<T> view(const T* data, std::size_t n, std::size_t columns, std::size_t row_stride, py::handle base,
-                    bool writable) {
-  std::vector<py::ssize_t> shape = {static_cast<py::ssize_t>(n)}, strides = {static_cast<py::ssize_t>(row_stride)};
-  if (columns > 1) {
-    shape.push_back(static_cast<py::ssize_t>(columns));
-    strides.push_back(sizeof(T));
-  }
-  py::array_t<T> a(shape, strides, data, base);
-  if (!writable) py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
-  return a;
-}
-
 // target[...] = values (numpy broadcasting), for `scene.rho = values`.
 void assign(py::object target, py::object values) { py::module_::import("numpy").attr("copyto")(target, values); }
 
@@ -110,15 +96,8 @@ Scene load(const std::filesystem::path& file, double max_edge, double max_area, 
 // columns when `broadcast`); InputError naming `what` otherwise. Non-finite values are left to validation.
 std::vector<double> float_rows(const py::object& value, std::size_t rows, std::size_t columns, const char* what,
                                bool broadcast) {
-  const py::module_ np = py::module_::import("numpy");
-  py::array_t<double, py::array::c_style | py::array::forcecast> a;
-  try {
-    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"))
-            .cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError(std::string(what) + " must be an array of numbers");
-  }
+  const DoubleArray a = double_array(value, std::string(what) + " must be an array of numbers",
+                                     std::string(what) + " must hold real numbers, not");
   std::vector<double> out(rows * columns);
   const double* d = a.data();
   if (broadcast && a.ndim() == 0) {
@@ -130,10 +109,7 @@ std::vector<double> float_rows(const py::object& value, std::size_t rows, std::s
              static_cast<std::size_t>(a.shape(1)) == columns) {
     std::copy(d, d + rows * columns, out.begin());
   } else {
-    std::string shape = "(";
-    for (py::ssize_t k = 0; k < a.ndim(); ++k) shape += (k ? ", " : "") + std::to_string(a.shape(k));
-    shape += a.ndim() == 1 ? ",)" : ")";
-    throw InputError(std::string(what) + " has shape " + shape + "; expected (" + std::to_string(rows) + ", " +
+    throw InputError(std::string(what) + " has shape " + shape_text(a) + "; expected (" + std::to_string(rows) + ", " +
                      std::to_string(columns) + ")" + (broadcast ? " or (" + std::to_string(rows) + ",)" : ""));
   }
   return out;
@@ -171,10 +147,11 @@ std::vector<std::vector<std::int64_t>> face_lists(const py::object& faces) {
   return out;
 }
 
-// Scene.from_arrays: the FaceArrays of mesh/mesh_from_arrays.h from numpy arguments, then patched_scene.
-Scene from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
-                  const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
-                  double max_area, bool strict, bool contact_cut) {
+}  // namespace
+
+Scene scene_from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                        const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                        double max_area, bool strict, bool contact_cut, const std::string& name) {
   FaceArrays arrays;
   const py::module_ np = py::module_::import("numpy");
   const py::array v = np.attr("asarray")(vertices, py::arg("dtype") = np.attr("float64"));
@@ -195,9 +172,18 @@ Scene from_arrays(const py::object& vertices, const py::object& faces, const py:
       arrays.group.push_back(g.cast<std::string>());
     }
   }
-  const std::string name = "<arrays>";
   return patched_scene([&] { ReadOptions read; read.strict = strict; return mesh_from_arrays(arrays, name, read); },
                        name, max_edge, max_area, strict, two_sided, contact_cut);
+}
+
+namespace {
+
+// Scene.from_arrays (scene_from_arrays, named "<arrays>").
+Scene from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
+                  const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
+                  double max_area, bool strict, bool contact_cut) {
+  return scene_from_arrays(vertices, faces, rho, emission, groups, two_sided, max_edge, max_area, strict, contact_cut,
+                           "<arrays>");
 }
 
 std::size_t material_index(const Scene& scene, const py::object& material) {
@@ -224,15 +210,8 @@ std::size_t material_index(const Scene& scene, const py::object& material) {
 // An RGB argument of set_material: a number (the same in every channel) or 3 numbers; None: not given.
 std::optional<Rgb> rgb_argument(const py::object& value, const char* name) {
   if (value.is_none()) return std::nullopt;
-  const py::module_ np = py::module_::import("numpy");
-  py::object a;
-  try {
-    a = np.attr("asarray")(value, py::arg("dtype") = np.attr("float64"));
-  } catch (const py::error_already_set& e) {
-    if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-    throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b)");
-  }
-  const auto v = a.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+  const std::string must = std::string(name) + " must be a number or 3 numbers (r, g, b)";
+  const DoubleArray v = double_array(value, must, must + ", not");
   if (v.ndim() == 0) return Rgb::Constant(v.data()[0]);
   if (v.ndim() == 1 && v.shape(0) == 3) return Rgb(v.data()[0], v.data()[1], v.data()[2]);
   throw InputError(std::string(name) + " must be a number or 3 numbers (r, g, b), got " + std::to_string(v.size()) +
@@ -264,13 +243,14 @@ void set_material(Scene& s, const py::object& material, const py::object& rho_va
 
 void bind_scene(py::module_& m) {
   py::class_<Material>(m, "Material", "A material of the scene, as read from its MTL (or PLY colours).")
-      .def_readonly("name", &Material::name)
+      .def_readonly("name", &Material::name, "The material's name (str), as in the MTL's newmtl.")
       .def_property_readonly("Kd", [](const Material& x) { return std::vector<double>(x.Kd.begin(), x.Kd.end()); },
-                             "Diffuse reflectance rho (r, g, b).")
+                             "Diffuse reflectance rho = Kd, a list of 3 floats (r, g, b), each in [0, 1).")
       .def_property_readonly("Ke", [](const Material& x) { return std::vector<double>(x.Ke.begin(), x.Ke.end()); },
-                             "Emitted radiance L_e (r, g, b); E = pi * Ke.")
-      .def_readonly("file", &Material::file, "The MTL file that defines it (empty if none).")
-      .def_readonly("line", &Material::line, "Its line in that file (0 if none).")
+                             "Emitted radiance L_e = Ke, a list of 3 floats (r, g, b) in W per unit length squared per sr; "
+                             "the patches' E = pi * Ke.")
+      .def_readonly("file", &Material::file, "The MTL file that defines it (str; empty if none).")
+      .def_readonly("line", &Material::line, "Its line in that file (int, from 1; 0 if none).")
       .def("__repr__", [](const Material& x) { return "<radwalk.Material '" + x.name + "'>"; });
 
   py::class_<Scene>(m, "Scene", R"doc(A validated, patched scene (radwalk.load).
@@ -284,18 +264,21 @@ Per-patch numpy arrays are views of the C++ arrays (no copy; they keep the Scene
   may hold are not refused when written but by every computation before it starts (InputError naming the patch,
   channel and value): rho in [0, 1), E = pi Ke finite, >= 0 and at most pi x 1e300.
 Per material: set_material(name, rho=..., Ke=...), which acts as the same scene with an edited MTL.)doc")
-      .def_readonly("path", &Scene::path)
-      .def_readonly("max_edge", &Scene::max_edge)
-      .def_readonly("max_area", &Scene::max_area)
-      .def_readonly("strict", &Scene::strict)
-      .def_readonly("two_sided", &Scene::two_sided)
-      .def_readonly("contact_cut", &Scene::contact_cut)
-      .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, one line each (as the CLI's).")
+      .def_readonly("path", &Scene::path, "The scene file read (str); \"<arrays>\" or \"<meshio>\" for a scene from arrays.")
+      .def_readonly("max_edge", &Scene::max_edge,
+                    "The max_edge it was patched with (float, mesh length units; 0: input faces kept).")
+      .def_readonly("max_area", &Scene::max_area,
+                    "The max_area it was patched with (float, mesh length units squared; 0: no bound).")
+      .def_readonly("strict", &Scene::strict, "Whether repairs were refused (bool), as the CLI's --strict.")
+      .def_readonly("two_sided", &Scene::two_sided, "Whether every material was made two-sided (bool), as --two-sided.")
+      .def_readonly("contact_cut", &Scene::contact_cut,
+                    "Whether faces were cut along the footprints of objects standing on them (bool), as --contact-cut.")
+      .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, a list of str, one line each (as the CLI's).")
       .def_readonly("groups", &Scene::group_names,
-                    "Group names, indexed by Scene.group: the groups that hold a patch, each as the file names it: "
+                    "Group names (a list of str), indexed by Scene.group: the groups that hold a patch, each as the file names it: "
                     "'desk' (an OBJ object or a group alone), 'desk/top' (group 'top' within object 'desk').")
       .def_property_readonly("materials", [](const Scene& s) { return s.patches.materials; },
-                             "The materials (copies), indexed by Scene.material.")
+                             "The materials (a list of Material, copies), indexed by Scene.material.")
       .def_static("from_arrays", &from_arrays, py::arg("vertices"), py::arg("faces"), py::arg("rho"),
                   py::arg("emission") = py::none(), py::arg("groups") = py::none(), py::arg("two_sided") = false,
                   py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false,
@@ -311,63 +294,64 @@ groups: None or one name (str) per face ("" for none), as OBJ `g NAME`.
 two_sided, max_edge, max_area, strict, contact_cut: as radwalk.load.
 The materials are the distinct (rho, E) pairs, named "material_0", ... in the order of their first face; the OBJ
 and MTL that say the same give the same patches and the same repairs, warnings and refusals (InputError).)doc")
-      .def("__len__", [](const Scene& s) { return s.patches.size(); }, "The number of patches N.")
-      .def_property_readonly("total_area", [](const Scene& s) { return s.patches.total_area(); })
+      .def("__len__", [](const Scene& s) { return s.patches.size(); }, "The number of patches N (int).")
+      .def_property_readonly("total_area", [](const Scene& s) { return s.patches.total_area(); },
+                             "The sum of the patch areas (float, mesh length units squared).")
       .def_property_readonly(
           "areas", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.area.data(), s.patches.size(), 1, sizeof(double), self, false);
-          }, "Patch areas (N,), in the mesh's unit squared.")
+            return view(s.patches.area.data(), s.patches.size(), 1, self, false, sizeof(double));
+          }, "Patch areas (N,) float64, in mesh length units squared.")
       .def_property_readonly(
           "centroids", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.centroid.data()->data(), s.patches.size(), 3, sizeof(Vec3), self, false);
-          }, "Area centroids (N, 3).")
+            return view(s.patches.centroid.data()->data(), s.patches.size(), 3, self, false, sizeof(Vec3));
+          }, "Area centroids (N, 3) float64, in mesh length units.")
       .def_property_readonly(
           "normals", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.normal.data()->data(), s.patches.size(), 3, sizeof(Vec3), self, false);
-          }, "Unit normals (N, 3), from the corner order (counter-clockwise seen from the front).")
+            return view(s.patches.normal.data()->data(), s.patches.size(), 3, self, false, sizeof(Vec3));
+          }, "Unit normals (N, 3) float64, from the corner order (counter-clockwise seen from the front).")
       .def_property_readonly(
           "points", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.points.data()->data(), s.patches.points.size(), 3, sizeof(Vec3), self, false);
-          }, "Corner points (P, 3), shared between patches.")
+            return view(s.patches.points.data()->data(), s.patches.points.size(), 3, self, false, sizeof(Vec3));
+          }, "Corner points (P, 3) float64 in mesh length units, shared between patches.")
       .def_property_readonly(
           "corners", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.corners.data()->data(), s.patches.size(), 4, 4 * sizeof(std::int32_t), self,
-                        false);
-          }, "Corner indices into points (N, 4); corners[i, 3] == -1 for a triangle.")
+            return view(s.patches.corners.data()->data(), s.patches.size(), 4, self, false, 4 * sizeof(std::int32_t));
+          }, "Corner indices into points (N, 4) int32; corners[i, 3] == -1 for a triangle.")
       .def_property_readonly(
           "face", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.face.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
-          }, "Input face of every patch (N,), counted from 0 in file order.")
+            return view(s.patches.face.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
+          }, "Input face of every patch (N,) int32, counted from 0 in file order.")
       .def_property_readonly(
           "material", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.patches.material.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
-          }, "Material index of every patch (N,), into Scene.materials.")
+            return view(s.patches.material.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
+          }, "Material index of every patch (N,) int32, into Scene.materials.")
       .def_property_readonly(
           "group", [](py::object self) {
             const Scene& s = self.cast<const Scene&>();
-            return view(s.group.data(), s.patches.size(), 1, sizeof(std::int32_t), self, false);
-          }, "Group index of every patch (N,), into Scene.groups; -1 outside any group.")
+            return view(s.group.data(), s.patches.size(), 1, self, false, sizeof(std::int32_t));
+          }, "Group index of every patch (N,) int32, into Scene.groups; -1 outside any group.")
       .def_property(
           "rho", [](py::object self) {
             Scene& s = self.cast<Scene&>();
-            return view(s.patches.rho.data()->data(), s.patches.size(), 3, sizeof(Rgb), self, true);
+            return view(s.patches.rho.data()->data(), s.patches.size(), 3, self, true, sizeof(Rgb));
           },
           [](py::object self, py::object values) { assign(self.attr("rho"), values); },
-          "Diffuse reflectance (N, 3), writable in place: scene.rho[i] = (r, g, b), scene.rho[:] *= 0.9.")
+          "Diffuse reflectance (N, 3) float64, dimensionless in [0, 1), writable in place: scene.rho[i] = (r, g, b), "
+          "scene.rho[:] *= 0.9.")
       .def_property(
           "E", [](py::object self) {
             Scene& s = self.cast<Scene&>();
-            return view(s.patches.E.data()->data(), s.patches.size(), 3, sizeof(Rgb), self, true);
+            return view(s.patches.E.data()->data(), s.patches.size(), 3, self, true, sizeof(Rgb));
           },
           [](py::object self, py::object values) { assign(self.attr("E"), values); },
-          "Emitted radiosity E = pi * Ke (N, 3), W per unit length squared, writable in place.")
+          "Emitted radiosity E = pi * Ke (N, 3) float64, W per unit length squared, writable in place.")
       .def(
           "set_material", &set_material,
           py::arg("material"), py::arg("rho") = py::none(), py::arg("Ke") = py::none(),

@@ -23,8 +23,7 @@ py::object rgb_or_none(py::object self, const PatchRgb& values) {
 
 Result solve(const Scene& scene, const py::object& F, const std::string& solver, double tol, long max_iterations,
              long rays, std::uint64_t seed, long long threads_arg) {
-  check_run(scene, threads_arg);
-  const int threads = static_cast<int>(threads_arg);
+  const int threads = check_run(scene, threads_arg);
   Result r;
   FormFactors sampling;
   SparseF f = form_factor_matrix(F, scene, rays, seed, threads, r.timings, &sampling);
@@ -80,27 +79,46 @@ code 1; a solve that diverged or was refused raises radwalk.NumericalError with 
 CLI exits 3).
 timings: stage -> seconds; metadata: the JSON the CLI writes for the run (its "solution" object, options, timings_s).
 fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp.)doc")
-      .def_property_readonly("B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); })
-      .def_property_readonly("B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); })
-      .def_property_readonly("var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); })
-      .def_property_readonly("var_theory", [](py::object self) {
-        return rgb_or_none(self, self.cast<const Result&>().solution.var_theory);
-      })
-      .def_property_readonly("method", [](const Result& r) { return r.solution.method; })
-      .def_property_readonly("status", [](const Result& r) { return std::string(to_string(r.solution.status)); })
-      .def_property_readonly("message", [](const Result& r) { return r.solution.message; })
-      .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; })
-      .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; })
+      .def_property_readonly(
+          "B", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B); },
+          "Radiosity (N, 3) float64 per patch and channel, W per unit length squared (read-only view).")
+      .def_property_readonly(
+          "B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); },
+          "Standard error of B (N, 3) float64, W per unit length squared; None for a deterministic solve.")
+      .def_property_readonly(
+          "var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); },
+          "Sample variance per walk or particle (N, 3) float64, (W per unit length squared)^2; None where not "
+          "computed.")
+      .def_property_readonly(
+          "var_theory",
+          [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var_theory); },
+          "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2; None unless theory=True.")
+      .def_property_readonly("method", [](const Result& r) { return r.solution.method; },
+                             "The method that computed it (str): the solver, walk method or integrator name.")
+      .def_property_readonly("status", [](const Result& r) { return std::string(to_string(r.solution.status)); },
+                             "\"converged\" or \"max-iterations\" (str), as the CLI's JSON solution.status.")
+      .def_property_readonly("message", [](const Result& r) { return r.solution.message; },
+                             "The solver's one-line account of the run (str).")
+      .def_property_readonly("iterations", [](const Result& r) { return r.solution.iterations; },
+                             "Sweeps, shots or steps the solver made (int; 0 for a direct solve or a walk).")
+      .def_property_readonly("residual", [](const Result& r) { return r.solution.residual; },
+                             "The relative residual at the end (float; NaN where not computed), as the CLI's JSON "
+                             "solution.residual.")
       .def_property_readonly("residual_history", [](const Result& r) {
-        const auto& h = r.solution.residual_history;
-        return py::array_t<double>(h.size(), h.data());
-      })
-      .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; })
-      .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; })
-      .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; })
-      .def_property_readonly("info", [](const Result& r) { return r.solution.info; })
-      .def_readonly("timings", &Result::timings)
-      .def_property_readonly("metadata", [](const Result& r) { return json_to_python(r.metadata); })
+        return copy_array(r.solution.residual_history);
+      }, "The relative residual after each iteration (K,) float64 (a copy; empty for a direct solve).")
+      .def_property_readonly("walks_total", [](const Result& r) { return r.solution.walks; },
+                             "Walks or particles in all (int; 0 for a deterministic solve).")
+      .def_property_readonly("steps", [](const Result& r) { return r.solution.steps; },
+                             "Walk steps in all (int), the random walks' cost.")
+      .def_property_readonly("seconds", [](const Result& r) { return r.solution.seconds; },
+                             "Wall time of the solve (float, s).")
+      .def_property_readonly("info", [](const Result& r) { return r.solution.info; },
+                             "Solver-specific numbers (dict str -> float), as the CLI's JSON solution.info.")
+      .def_readonly("timings", &Result::timings, "Stage -> wall time (dict str -> float, s), as the JSON's timings_s.")
+      .def_property_readonly("metadata", [](const Result& r) { return json_to_python(r.metadata); },
+                             "The JSON the CLI writes for the run (dict): its \"solution\" object, the options, "
+                             "timings_s.")
       .def_property_readonly(
           "fields", [](py::object self) {
             // The names of cmd_solve / cmd_pathtrace: ParaView's B_var and B_var_theory, written var_* in the CSV.
@@ -112,7 +130,8 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
             if (s.var_theory.size()) d["B_var_theory"] = py::make_tuple(rgb_view(s.var_theory, self), "var_theory");
             return d;
           },
-          "The CLI's per-patch fields of this result (B, B_se, B_var, B_var_theory), as write_csv takes them.")
+          "The CLI's per-patch fields of this result as write_csv takes them (dict str -> (N, 3) float64 view, "
+          "or (view, csv name)): B, B_se, B_var, B_var_theory where computed.")
       .def("__repr__", [](const Result& r) {
         return "<radwalk.Result " + r.solution.method + ": " + to_string(r.solution.status) + ", " +
                std::to_string(r.solution.B.rows()) + " patches>";
@@ -121,10 +140,12 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
   m.def("solve", &solve, py::arg("scene"), py::arg("F") = py::none(), py::arg("solver") = "auto",
         py::arg("tol") = 1e-10, py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("seed") = 1,
         py::arg("threads") = 0,
-        R"doc(Solves B = E + diag(rho) F B with a deterministic solver: a Result (B, residual, iterations, ...).
+        R"doc(Solves B = E + diag(rho) F B with a deterministic solver: a Result (B (N, 3) float64 in W per unit length
+squared, residual, iterations, ...).
 
 scene: a Scene, with rho and E as they are now (in-place edits count).
-F: a FormFactors (form_factors), a scipy.sparse matrix (copied to float32 CSR), or None: estimated here with
+F: a FormFactors (form_factors), a scipy.sparse (N, N) matrix or (N, N) array (copied to float32 CSR), or None:
+  estimated here with
   `rays` rays per patch and `seed`, as `radwalk solve SCENE --rays R --seed S` does.
 solver: "auto" (direct up to a few thousand patches, else Gauss-Seidel), "direct", "jacobi", "gauss-seidel",
   "southwell" (the CLI's --solver); tol: relative residual to stop at (--tol);

@@ -68,18 +68,10 @@ std::vector<CellField> cell_fields(const py::dict& fields, std::size_t n, bool v
       f.csv_name = t[1].cast<std::string>();
       check_csv_name(f.csv_name);
     }
-    try {
-      array = np.attr("asarray")(array);
-    } catch (const py::error_already_set& e) {
-      if (!e.matches(PyExc_ValueError) && !e.matches(PyExc_TypeError)) throw;
-      throw InputError("field '" + f.name + "': not an array of numbers");
-    }
-    const std::string kind = array.attr("dtype").attr("kind").cast<std::string>();
-    if (kind != "b" && kind != "i" && kind != "u" && kind != "f")
-      throw InputError("field '" + f.name + "': values must be real numbers, not " +
-                       py::str(array.attr("dtype")).cast<std::string>());
+    array = real_array(array, "field '" + f.name + "': not an array of numbers",
+                       "field '" + f.name + "': values must be real numbers, not");
     if (np.attr("issubdtype")(array.attr("dtype"), np.attr("integer")).cast<bool>()) f.kind = FieldKind::count;
-    const auto a = array.cast<py::array_t<double, py::array::c_style | py::array::forcecast>>();
+    const auto a = array.cast<DoubleArray>();
     const bool rgb = a.ndim() == 2 && a.shape(1) == 3;
     if (!(a.ndim() == 1 || rgb) || static_cast<std::size_t>(a.shape(0)) != n)
       throw InputError("field '" + f.name + "': expected shape (" + std::to_string(n) + ",) or (" +
@@ -136,14 +128,17 @@ void bind_writers(py::module_& m) {
 
 Columns patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,E_r,E_g,E_b (the scene as it is now, edits included),
 then each field of `fields` in its order: name -> (N,) array (one column) or (N, 3) array (NAME_r, NAME_g,
-NAME_b), or name -> (array, csv_name) for a different CSV name. 12 significant digits, empty cells for non-finite
+NAME_b) of real numbers (any real dtype, written as float64; integer dtypes as counts), or name -> (array,
+csv_name) for a different CSV name. Lengths in mesh units, rho dimensionless, E in W per unit length squared. 12 significant digits, empty cells for non-finite
 values. The CLI's solve CSV is write_csv(path, scene, {**ff.diagnostics, **result.fields}), byte for byte.
-Refuses (InputError) to write over the scene or its MTL.)doc");
+Refuses (InputError) to write over the scene or its MTL. path "-" writes to standard output (file descriptor 1,
+not sys.stdout), as the CLI's --csv -.)doc");
   m.def("write_vtp", &write_vtp, py::arg("path"), py::arg("scene"), py::arg("fields") = py::dict(),
         py::arg("metadata") = py::dict(),
         R"doc(Writes a .vtp for ParaView (io/vtp_writer.h): the patch fields (patch, face, area, normal, rho, E), then
 `fields` (as write_csv; integer arrays become Int64 count arrays; the names must be ParaView identifiers, e.g.
-B_var, not var), and `metadata` (str/int/float values) as field data. A field B gets its true-colour B_srgb.)doc");
+B_var, not var), and `metadata` (dict str -> str/int/float) as field data. A field B, (N, 3) in W per unit
+length squared, is written as B (N,) the channel mean, B_rgb (N, 3) and its true-colour B_srgb (N, 3) uint8.)doc");
   m.def(
       "write_matrix_market",
       [](const std::filesystem::path& file, const py::object& F, const Scene& scene) {
@@ -155,8 +150,9 @@ B_var, not var), and `metadata` (str/int/float values) as field data. A field B 
         write_matrix_market(path, f);
       },
       py::arg("path"), py::arg("F"), py::arg("scene"),
-      "Writes F (a FormFactors or a scipy.sparse matrix) as the CLI's Matrix Market file (`formfactors -o F.mtx`), "
-      "coordinate real general, 1-based, atomically; byte for byte the CLI's for the same F.");
+      "Writes F (a FormFactors, or a scipy.sparse (N, N) matrix or array, converted to float32) as the CLI's Matrix "
+      "Market file (`formfactors -o F.mtx`), coordinate real general, 1-based, atomically; byte for byte the CLI's "
+      "for the same F.");
   m.def(
       "read_form_factors",
       [](const std::filesystem::path& path, const Scene& scene) {
@@ -168,7 +164,8 @@ B_var, not var), and `metadata` (str/int/float values) as field data. A field B 
       py::arg("path"), py::arg("scene"),
       "Reads F for the scene as the CLI's --form-factors does, its format chosen by the extension (.npz: binary "
       "CSR as scipy.sparse.save_npz(..., compressed=False) writes it; anything else: Matrix Market): a FormFactors "
-      "without ray counts. InputError with the CLI's message for a malformed file or a size that is not N x N.");
+      "without ray counts (F an (N, N) float32 csr_matrix). InputError with the CLI's message for a malformed file "
+      "or a size that is not (N, N).");
 }
 
 }  // namespace radwalk::python

@@ -17,10 +17,11 @@ mapping of `radwalk pathtrace --image x.png`) shown with Map Scalars off, no lig
 smoothing group, see docs/paraview.md) instead of the cell fields. A file without the radiosity (B_rgb) is refused with a
 message.
 
-Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the one camera rule (scripts/camera_rule.py; the
-ParaView state's and render_vtp.py's too): the Cornell box's own camera when the file's field data name a scene
-cornell_box*; inside a closed scene, from the centre of its front (-z) side looking at the centre, 60 degrees;
-otherwise from outside along +z, framing the bounding box, 40 degrees. ParaView resets the camera on the first
+Camera: --camera px py pz tx ty tz ux uy uz fov_deg; by default the one camera rule (scripts/camera_rule.py:
+`radwalk pathtrace`'s fit, apps/scene_camera.h; the ParaView state's and render_vtp.py's too): the Cornell box's own
+camera when the file's field data name a scene cornell_box*; inside a closed scene, 60 degrees, looking at the
+objects in it from where it sees most of them (or at the most lit region of an empty room); otherwise from
+outside, 40 degrees, framing the bounding box from the side that shows the most fronts. ParaView resets the camera on the first
 render, so the camera is set after it. Background: --background (default black), applied
 with UseColorPaletteForBackground = 0 (ParaView ignores Background otherwise).
 """

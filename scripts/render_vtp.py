@@ -10,10 +10,11 @@ Usage (Debian's VTK is an X build: run it under scripts/with_xvfb.sh when there 
 server whatever happens to the render):
     scripts/with_xvfb.sh /usr/bin/python3 scripts/render_vtp.py cb.vtp cb.png [--smooth]
         [--field B_rgb] [--size 512] [--camera px py pz tx ty tz ux uy uz fov_deg] [--exposure 1]
-Without --camera the camera is the one camera rule (scripts/camera_rule.py, the same as the ParaView state's and
-scripts/paraview_render.py's): the Cornell box's own camera for its files; inside a closed scene from the centre
-of its front (-z) side looking at the centre; otherwise from outside along +z, framing the bounding box. The
-camera used is printed.
+Without --camera the camera is the one camera rule (scripts/camera_rule.py: `radwalk pathtrace`'s fit,
+apps/scene_camera.h, the same as the ParaView state's and scripts/paraview_render.py's): the Cornell box's own
+camera for its files; inside a closed scene, looking at the objects in it from where it sees most of them (or at
+the most lit region of an empty room); otherwise from outside, framing the bounding box from the side that shows
+the most fronts. The camera used is printed.
 """
 import argparse
 import math

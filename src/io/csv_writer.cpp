@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <ostream>
 
-#include "core/atomic_write.h"
+#include "core/standard_output.h"
 
 namespace radwalk {
 
@@ -18,7 +18,7 @@ std::string csv_number(double v) {
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
                      const std::vector<std::vector<std::string>>& rows, const std::string& run_id) {
   const std::string last = run_id.empty() ? "" : "," + run_id;
-  write_atomically(path, [&](std::ostream& out) {
+  write_output(path, [&](std::ostream& out) {
     for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
     out << (run_id.empty() ? "" : ",run_id") << '\n';
     for (const auto& row : rows) {
@@ -54,7 +54,7 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
   if (!run_id.empty()) header.push_back("run_id");
   const std::string last = run_id.empty() ? "" : "," + run_id;
   const std::size_t n = patches.size();
-  write_atomically(path, [&](std::ostream& out) {
+  write_output(path, [&](std::ostream& out) {
     for (std::size_t k = 0; k < header.size(); ++k) out << (k ? "," : "") << header[k];
     out << '\n';
     for (std::size_t i = 0; i < n; ++i) {

@@ -3,7 +3,8 @@
 // rho_b,E_r,E_g,E_b, then each extra field (a 1-component field is one column NAME, a 3-component field is
 // NAME_r,NAME_g,NAME_b). In a scene with two-sided faces (PatchSet::side not empty) a column side (0 front, 1 back)
 // follows face. Numbers are printed with 12 significant digits ("nan" never appears: non-finite values
-// are written as empty cells). Written atomically.
+// are written as empty cells). Written atomically, or to
+// standard output when the path is "-" (core/standard_output.h).
 // run_id: when not empty, a last column `run_id` holding it on every row (the run that wrote the file,
 // apps/run_metadata.h; a constant column keeps the file one plain table for every CSV reader).
 #include <string>
@@ -16,7 +17,8 @@ namespace radwalk {
 void write_patch_csv(const std::string& path, const PatchSet& patches, const std::vector<CellField>& extra,
                      const std::string& run_id = "");
 
-// Writes a generic table (header + rows of already formatted cells), atomically; run_id as for write_patch_csv.
+// Writes a generic table (header + rows of already formatted cells), atomically or to standard output ("-"); run_id
+// as for write_patch_csv.
 void write_csv_table(const std::string& path, const std::vector<std::string>& header,
                      const std::vector<std::vector<std::string>>& rows, const std::string& run_id = "");
 

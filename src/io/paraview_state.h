@@ -5,7 +5,7 @@
 // non-emitting patches, computed when writing), a colour bar titled with the field's name and unit, smooth
 // shading (the point field B, Gouraud interpolation, when the file has it; else the cell field), unlit (the
 // colour is the value itself), black background (UseColorPaletteForBackground = 0), and the given camera
-// (apps/view_camera.h: the one camera rule), set after the first render (ParaView resets the camera on it). A
+// (apps/scene_camera.h: the one camera rule), set after the first render (ParaView resets the camera on it). A
 // file without the field is shown with ParaView's defaults, from the same camera.
 // Load it with File > Load State (Python state file), `paraview --state=FILE.py`, or `pvpython FILE.py`.
 // The data file is looked up next to the state file first (by its name), then at the path given here, so the two

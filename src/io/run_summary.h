@@ -29,7 +29,8 @@ class RunSummary {
   void add_timing(const std::string& stage, double seconds);
   void add_warning(const std::string& warning);
 
-  // Writes the summary to path (atomically), adding peak memory and the warnings.
+  // Writes the summary to path (atomically; "-": to standard output, core/standard_output.h), adding peak memory and
+  // the warnings.
   void write(const std::string& path);
 
  private:

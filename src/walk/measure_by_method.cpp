@@ -8,6 +8,7 @@
 #include "core/moments.h"
 #include "core/timer.h"
 #include "solve/direct_solver.h"
+#include "walk/walk_method.h"
 
 namespace radwalk {
 namespace {
@@ -82,7 +83,8 @@ void check_measure_options(const MeasureOptions& o, std::size_t patch_count) {
   if (needs_lu && patch_count > static_cast<std::size_t>(kDenseMaxPatches))
     throw InputError("--method " + o.method + (importance ? " with the exact importance" : "") + " needs an LU of " +
                      std::to_string(patch_count) + " patches (at most " + std::to_string(kDenseMaxPatches) +
-                     "): use a walk method (e.g. --method gather-expected-value --kernel ray, no F stored) or " +
+                     "): use a walk method (e.g. --method " + std::string(method_name(WalkMethod::gather_expected_value)) +
+                     " --kernel ray, no F stored) or " +
                      (importance ? "--importance-sweeps K" : "importance walks with --importance-sweeps K"));
 }
 

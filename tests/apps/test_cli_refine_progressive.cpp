@@ -216,10 +216,21 @@ TEST_CASE("radwalk --paraview-state: a Python state beside the .vtp, other uses 
   CHECK(text.find("name = 'b.vtp'") != std::string::npos);
   CHECK(text.find("field = 'B'") != std::string::npos);
   CHECK(text.find("title = 'B [W/unit^2]'") != std::string::npos);
-  // The one camera rule (apps/view_camera.h): the closed cube is seen from inside, from its front side's centre.
-  CHECK(text.find("view.CameraPosition = [0.5, 0.5, 0.050000000000000003]") != std::string::npos);
-  CHECK(text.find("view.CameraFocalPoint = [0.5, 0.5, 0.5]") != std::string::npos);
-  CHECK(text.find("view.CameraViewAngle = 60") != std::string::npos);
+  // The one camera rule, pathtrace's fit (apps/scene_camera.h): the closed cube without objects is seen from its
+  // centre with a 60 degree field of view, looking at its most lit region (a wall lit by the ceiling's light), as
+  // `pathtrace --image` looks at it.
+  CHECK(text.find("view.CameraPosition = [0.5, 0.5, 0.5]") != std::string::npos);
+  CHECK(text.find("view.CameraViewAngle = 59.99999") != std::string::npos);
+  const Run traced = run("pathtrace " + cube + " --spp 2 --image " + (dir / "i.png").string() +
+                         " --width 8 --height 8 --json " + (dir / "i.json").string());
+  REQUIRE(traced.exit_code == 0);
+  std::ifstream js(dir / "i.json");
+  const auto camera = nlohmann::json::parse(js)["camera"];
+  char focal[160];
+  std::snprintf(focal, sizeof focal, "view.CameraFocalPoint = [%.17g, %.17g, %.17g]",
+                camera["look_at"][0].get<double>(), camera["look_at"][1].get<double>(),
+                camera["look_at"][2].get<double>());
+  CHECK(text.find(focal) != std::string::npos);
   for (const std::string& args : {"solve " + cube + " -o " + (dir / "c.vtp").string() + " --paraview-state s.pvsm",
                                  "solve " + cube + " --paraview-state s.py"}) {
     const Run bad = run(args);

@@ -22,7 +22,8 @@ against a wall; ten materials, four with one-letter names) and goes through radw
   compare     the random-walk estimators against the direct solve, exit 0, finite;
   pathtrace   patch averages and an image with the fitted camera: not black, and at least half of the
               furniture's patch centres inside the image (the camera frames the objects, not a wall);
-              scripts/render_vtp.py's camera on the solve's .vtp is the one camera rule's (scripts/camera_rule.py).
+              scripts/render_vtp.py's camera on the solve's .vtp (scripts/camera_rule.py: the one camera rule,
+              pathtrace's fit in Python) is pathtrace's and frames the same share of the furniture.
 
 The agreement test (per material m and channel c, area-weighted means over the material's patches):
   d  = mean_direct(L/2) - mean_pathtracer,    tested |d| <= t * s + D
@@ -338,8 +339,9 @@ def main():
                         "negative control (walls' rho -5 % in the path tracer)")
     expect(control > 0, "the agreement test rejects a 5 %% change of the walls' rho (%d rejected)" % control)
 
-    r = run(radwalk, "pathtrace", scene, "--image", j("room.png"), "--width", 96, "--height", 72, "--spp", 16,
-            "--json", j("image.json"), "-q")
+    # At the solve's patching, so that the .vtp below holds the patches the camera was fitted to.
+    r = run(radwalk, "pathtrace", scene, "--max-edge", L_COARSE, "--image", j("room.png"), "--width", 96, "--height",
+            72, "--spp", 16, "--json", j("image.json"), "-q")
     expect(r.returncode == 0, "pathtrace --image exits 0")
     image = json.load(open(j("image.json")))
     expect(not png_is_black(j("room.png")), "pathtrace: the image with the fitted camera is not black")
@@ -351,7 +353,9 @@ def main():
     print("camera %s: %.0f %% of the furniture's patch centres in the image" % (camera, 100 * seen))
     expect(seen >= 0.5, "pathtrace: the fitted camera frames the furniture (at least half its patches in view)")
 
-    # scripts/render_vtp.py fits its camera by the same rule (VTK's Python; no rendering, so no display needed)
+    # scripts/render_vtp.py (and paraview_render.py, and the --paraview-state files) use the one camera rule,
+    # pathtrace's fit, computed by scripts/camera_rule.py on the .vtp (VTK's Python; no rendering, so no display
+    # needed): the same camera, so the same share of the furniture in view.
     sys.path.insert(0, os.path.join(source_dir, "scripts"))
     try:
         import render_vtp
@@ -365,12 +369,15 @@ def main():
         poly = reader.GetOutput()
         c = render_vtp.camera_rule(poly)
         vtp_camera = {"position": c[0:3], "look_at": c[3:6], "up": c[6:9], "vertical_fov_deg": c[9]}
-        seen = in_view(vtp_camera, furniture, 1.0)
-        # The .vtp renderers use the one camera rule of the state file (scripts/camera_rule.py: inside a closed scene
-        # from the middle of its -z side): it frames a furnished room less well than pathtrace's fit above (about
-        # 22 % of the furniture's patch centres here against 71 %): reported.
-        print("render_vtp.py camera %s: %.0f %% of the furniture's patch centres in the image" % (vtp_camera, 100 * seen))
-        expect(seen > 0, "render_vtp.py: the camera rule's view holds some of the furniture")
+        vtp_seen = in_view(vtp_camera, furniture, 96 / 72)
+        print("render_vtp.py camera %s: %.0f %% of the furniture's patch centres in the image"
+              % (vtp_camera, 100 * vtp_seen))
+        b = poly.GetBounds()
+        size = math.dist(b[0::2], b[1::2])
+        expect(math.dist(vtp_camera["position"], camera["position"]) <= 1e-6 * size,
+               "render_vtp.py: the camera is pathtrace's (%s vs %s)" % (vtp_camera["position"], camera["position"]))
+        expect(vtp_seen == seen, "render_vtp.py: frames as much furniture as pathtrace (%.0f %% vs %.0f %%)"
+               % (100 * vtp_seen, 100 * seen))
 
     if failures:
         print("%d check(s) failed: %s" % (len(failures), "; ".join(failures)))
