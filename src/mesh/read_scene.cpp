@@ -4,7 +4,10 @@
 
 #include "core/error.h"
 #include "mesh/read_obj.h"
+#include "mesh/read_gltf.h"
 #include "mesh/read_ply.h"
+#include "mesh/read_stl.h"
+#include "mesh/read_vtk.h"
 #include "mesh/text_scan.h"
 #include "mesh/validate.h"
 
@@ -14,7 +17,15 @@ Mesh read_scene(const std::string& path, const ReadOptions& options) {
   const std::string ext = lower_extension(path);
   if (ext == "obj") return read_obj(path, options);
   if (ext == "ply") return read_ply(path, options);
-  throw InputError(locate(path, 0, -1, "unknown scene format '." + ext + "' (radwalk reads .obj and .ply)"));
+  if (ext == "stl") return read_stl(path, options);
+  if (ext == "gltf" || ext == "glb") return read_gltf(path, options);
+  if (ext == "vtp" || ext == "vtk") return read_vtk_polydata(path, options);
+  const std::string known = "radwalk reads " + std::string(kSceneExtensions);
+  if (ext == "dae" || ext == "3ds" || ext == "fbx" || ext == "blend" || ext == "x3d" || ext == "3mf")
+    throw InputError(locate(path, 0, -1, "." + ext + " is not read (" + known + "): convert it to glTF, e.g. "
+                                             "'assimp export " + path + " scene.glb' (package assimp-utils) or "
+                                             "Blender's File > Export > glTF 2.0"));
+  throw InputError(locate(path, 0, -1, "unknown scene format '." + ext + "' (" + known + ")"));
 }
 
 Mesh load_scene(const std::string& path, const ReadOptions& options) {
