@@ -71,7 +71,9 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
       if (object != patches.object_of(i) || group != patches.group_of(i)) {
         object = patches.object_of(i);
         group = patches.group_of(i);
-        out << "o " << statement_name(object) << '\n';
+        out << "o";
+        if (!object.empty()) out << ' ' << statement_name(object);
+        out << '\n';
         if (!group.empty()) out << "g " << statement_name(group) << '\n';
       }
       if (patches.material[i] != current) {

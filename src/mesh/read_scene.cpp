@@ -23,7 +23,9 @@ Mesh read_scene(const std::string& path, const ReadOptions& options) {
   const std::string known = "radwalk reads " + std::string(kSceneExtensions);
   if (ext == "dae" || ext == "3ds" || ext == "fbx" || ext == "blend" || ext == "x3d" || ext == "3mf")
     throw InputError(locate(path, 0, -1, "." + ext + " is not read (" + known + "): convert it to glTF, e.g. "
-                                             "'assimp export " + path + " scene.glb' (package assimp-utils) or "
+                                             "'assimp export " + path + " " +
+                                             std::filesystem::path(path).replace_extension(".glb").string() +
+                                             "' (package assimp-utils) or "
                                              "Blender's File > Export > glTF 2.0"));
   throw InputError(locate(path, 0, -1, "unknown scene format '." + ext + "' (" + known + ")"));
 }

@@ -190,7 +190,14 @@ Mesh read_stl_bytes(const std::string& path, std::string_view bytes, const ReadO
   while (start < bytes.size() && (bytes[start] == ' ' || bytes[start] == '\t' || bytes[start] == '\r' ||
                                   bytes[start] == '\n'))
     ++start;
-  const bool ascii = bytes.substr(start, 5) == "solid" &&
+  // Ascii STL is text: a NUL byte, or a byte other than printable ASCII and blanks where a binary file has its
+  // count (bytes 80 to 83), makes it a binary file whose count does not match (its header may start with "solid").
+  bool text = bytes.find('\0') == std::string_view::npos;
+  for (std::size_t k = 80; k < 84 && k < bytes.size(); ++k) {
+    const auto c = static_cast<unsigned char>(bytes[k]);
+    text = text && ((c >= 0x20 && c < 0x7F) || c == '\t' || c == '\r' || c == '\n');
+  }
+  const bool ascii = text && bytes.substr(start, 5) == "solid" &&
                      (start + 5 == bytes.size() || std::strchr(" \t\r\n", bytes[start + 5]) != nullptr);
   if (ascii) return read_ascii(path, bytes, options);
   if (bytes.size() >= kBinaryHeader) {

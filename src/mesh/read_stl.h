@@ -3,7 +3,8 @@
 //
 // Which form: a file whose size is exactly 84 + 50 n bytes, n the little-endian count at byte 80, is binary
 // (whatever its first bytes say: binary headers often start with "solid"); otherwise a file whose first word is
-// `solid` is ascii; anything else is refused, a binary file whose size does not match its count by name of both.
+// `solid` and that is text (no NUL byte, bytes 80 to 83 printable ASCII or blanks) is ascii; anything else is refused, a binary file whose size does not match its
+// count by naming both.
 // Ascii: `solid [NAME]`, then facets `facet normal nx ny nz` / `outer loop` / `vertex x y z` (3 or more) /
 // `endloop` / `endfacet`, then `endsolid [NAME]`; several solids may follow one another. Numbers are exact
 // doubles (text_scan.h); keywords are lower case as the format writes them. Binary: an 80-byte header, the count,

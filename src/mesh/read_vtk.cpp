@@ -14,6 +14,7 @@
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkIdList.h>
+#include <vtkLogger.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkOutputWindow.h>
@@ -71,18 +72,24 @@ class CapturingOutputWindow : public vtkOutputWindow {
 };
 vtkStandardNewMacro(CapturingOutputWindow);
 
-// Installs a CapturingOutputWindow for its lifetime.
+// Installs a CapturingOutputWindow for its lifetime, and keeps VTK's logger (which writes errors to stderr on its
+// own) quiet meanwhile.
 class CaptureScope {
  public:
-  CaptureScope() : previous_(vtkOutputWindow::GetInstance()) {
+  CaptureScope() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
     window_ = vtkSmartPointer<CapturingOutputWindow>::New();
     vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
   }
-  ~CaptureScope() { vtkOutputWindow::SetInstance(previous_); }
+  ~CaptureScope() {
+    vtkLogger::SetStderrVerbosity(verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
   const std::string& error() const { return window_->error(); }
 
  private:
   vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
   vtkSmartPointer<CapturingOutputWindow> window_;
 };
 

@@ -69,7 +69,7 @@ TEST_CASE("radwalk: STL and glTF versions of a scene give the OBJ's areas and ra
   const Run obj = run("solve " + (dir / "scene.obj").string() + solve + (dir / "obj.csv").string());
   REQUIRE(obj.exit_code == 0);
   const Table reference = read_csv(dir / "obj.csv");
-  REQUIRE(reference.rows == 26);
+  REQUIRE(reference.rows == 14);
   for (const std::string file : {"scene_ascii.stl", "scene.gltf", "scene.glb"}) {
     INFO(file);
     const bool stl = file.find(".stl") != std::string::npos;
@@ -105,7 +105,7 @@ TEST_CASE("radwalk: a .vtp radwalk wrote reads back with its names, rho, E and p
   INFO(again.out);
   REQUIRE(again.exit_code == 0);
   const Table a = read_csv(dir / "a.csv"), b = read_csv(dir / "b.csv");
-  REQUIRE(a.rows > 26);
+  REQUIRE(a.rows > 14);
   require_same_columns(a, b, kSolution);
   require_same_columns(a, b, {"object", "group", "material"});
   fs::remove_all(dir);
@@ -133,8 +133,14 @@ TEST_CASE("radwalk: patch -o X.obj of a two-sided scene reads back as the same p
   require_same_columns(a, b, {"patch", "side", "area", "cx", "cy", "cz", "nx", "ny", "nz", "rho_r", "rho_g",
                               "rho_b", "E_r", "E_g", "E_b", "object", "group", "material"});
   // The names: the extra face is object 'lamp', group 'bulb'; the walls are in groups of their material.
-  REQUIRE(a.column.at("object").back() == "lamp");
-  REQUIRE(a.column.at("group").back() == "bulb");
+  std::size_t bulbs = 0;
+  for (std::size_t i = 0; i < a.rows; ++i)
+    if (a.column.at("group")[i] == "bulb") {
+      REQUIRE(a.column.at("object")[i] == "lamp");
+      REQUIRE(a.column.at("material")[i] == "panel");
+      ++bulbs;
+    }
+  REQUIRE(bulbs > 0);
   REQUIRE(a.column.at("group").front() == "white");
   fs::remove_all(dir);
 }
@@ -155,7 +161,7 @@ TEST_CASE("radwalk: malformed and unsupported scene files are one-line refusals"
   const std::vector<Case> cases = {
       {"scene_ascii.stl", "", "--set 'white.Kd=r,g,b'"},  // no materials: --set is named
       {"cut.glb", glb.substr(0, glb.size() / 2), "GLB header: declares"},
-      {"cut.stl", radwalk::test::binary_stl(scene).substr(0, 300), "binary STL declares 26 triangles"},
+      {"cut.stl", radwalk::test::binary_stl(scene).substr(0, 300), "binary STL declares 14 triangles"},
       {"model.dae", "<COLLADA/>", "assimp export"},
       {"model.fbx", "x", "Blender"},
   };

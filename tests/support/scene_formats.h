@@ -30,7 +30,7 @@ struct TriScene {
 };
 
 // A closed 4 x 4 x 4 box facing inwards (walls "white", one wall "red", the ceiling "light" emitting Ke 1) with a
-// 2 x 2 panel ("panel") floating at z = 1 facing up, 26 triangles.
+// 2 x 2 panel ("panel") floating at z = 1 facing up, 14 triangles.
 inline TriScene box_with_panel() {
   TriScene s;
   s.materials["white"] = {{0.5, 0.5, 0.5}, {0, 0, 0}};
@@ -157,7 +157,7 @@ inline std::pair<std::string, std::string> gltf(const TriScene& s, const std::st
       bin.push_back(static_cast<char>(k >> 8));
     }
     while (bin.size() % 4) bin.push_back('\0');
-    auto sep = [](const std::string& list) { return list.empty() ? "" : ","; };
+    auto sep = [](const std::string& list) { return std::string(list.empty() ? "" : ","); };
     views += sep(views) + "{\"buffer\":0,\"byteOffset\":" + std::to_string(pos_offset) +
              ",\"byteLength\":" + std::to_string(12 * corners) + "}";
     views += ",{\"buffer\":0,\"byteOffset\":" + std::to_string(index_offset) +
