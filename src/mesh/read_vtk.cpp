@@ -154,7 +154,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     } else if (key == "FIELD") {
       number(2);
       field_arrays = true;
-    } else if (field_arrays && tokens.size() == 4) {  // NAME COMPONENTS TUPLES TYPE
+    } else if (field_arrays && tokens.size() == 4 && !parse_double(tokens[0])) {  // NAME COMPONENTS TUPLES TYPE
       const auto c = parse_double(tokens[1]), t = parse_double(tokens[2]);
       if (c && t && *c >= 0 && *t >= 0) counts.push_back(*c * *t);
     } else if ((key == "SCALARS" || key == "COLOR_SCALARS") && tokens.size() >= 3) {
