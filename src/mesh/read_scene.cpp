@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/excerpt.h"
 #include "mesh/read_obj.h"
 #include "mesh/read_gltf.h"
 #include "mesh/read_ply.h"
@@ -27,7 +28,9 @@ Mesh read_scene(const std::string& path, const ReadOptions& options) {
                                              std::filesystem::path(path).replace_extension(".glb").string() +
                                              "' (package assimp-utils) or "
                                              "Blender's File > Export > glTF 2.0"));
-  throw InputError(locate(path, 0, -1, "unknown scene format '." + ext + "' (" + known + ")"));
+  throw InputError(locate(path, 0, -1, (ext.empty() ? std::string("no file extension to tell the format")
+                                                    : "unknown scene format '." + excerpt(ext) + "'") +
+                                           " (" + known + ")"));
 }
 
 Mesh load_scene(const std::string& path, const ReadOptions& options) {
