@@ -109,7 +109,7 @@ TEST_CASE("STL (ascii, binary) and glTF (.gltf, .glb) give the OBJ's faces, area
   fs::remove_all(dir);
 }
 
-TEST_CASE("STL without --set is refused naming --set; unknown formats list the known ones", "[mesh][formats]") {
+TEST_CASE("STL without --set is refused naming --set, and unknown formats list the known ones", "[mesh][formats]") {
   const fs::path dir = scratch();
   const std::string stl = test::write_file(dir / "s.stl", test::ascii_stl(test::box_with_panel())).string();
   require_one_line_refusal([&] { load_scene(stl); }, stl, "--set 'white.Kd=r,g,b'");
@@ -120,7 +120,7 @@ TEST_CASE("STL without --set is refused naming --set; unknown formats list the k
   fs::remove_all(dir);
 }
 
-TEST_CASE("glTF: scale, rotation and mirror transforms; strips, fans; doubleSided; defaults", "[mesh][formats]") {
+TEST_CASE("glTF: scale, rotation and mirror transforms, strips and fans, doubleSided and defaults", "[mesh][formats]") {
   // One triangle (0,0,0) (1,0,0) (0,1,0) facing +z, used by three nodes.
   std::string bin;
   for (double v : {0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0}) test::put_f32(bin, v);
@@ -217,7 +217,7 @@ TEST_CASE("malformed STL, glTF and GLB files are refused in one line naming the 
                            "/nonexistent/x.bin", "");
 }
 
-TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields; bad counts refused", "[mesh][formats]") {
+TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and bad counts refused", "[mesh][formats]") {
   const std::string legacy =
       "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET POLYDATA\nPOINTS 5 double\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n"
       "0.5 0 0\nPOLYGONS 1 6\n5 0 4 1 2 3\nCELL_DATA 1\nSCALARS rho double 3\nLOOKUP_TABLE default\n0.5 0.25 0.125\n";
