@@ -13,7 +13,7 @@ namespace radwalk::app {
 
 // Every command that reads a scene.
 struct SceneOptions {
-  std::string scene;       // OBJ (+MTL) or PLY
+  std::string scene;       // OBJ (+MTL), PLY, STL, glTF/GLB, .vtp/.vtk (mesh/read_scene.h)
   double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
   double max_area = 0;     // --max-area: split faces until no patch area is above this; 0: no bound
   bool contact_cut = false;  // --contact-cut: cut faces that objects stand on along the footprints (patch/contact.h)

@@ -170,7 +170,7 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   cmd->add_flag("-q,--quiet", g_quiet,
                 "No progress, notes or scene warnings on stderr (the scene's repairs and warnings are counted in "
                 "one line and listed in --json; other warnings and errors still print)");
-  cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL) or PLY")->required()->check(kPathFits);
+  cmd->add_option("scene", o.scene, "Scene file: OBJ (+MTL), PLY, STL (materials by --set), glTF/GLB, VTK .vtp/.vtk")->required()->check(kPathFits);
   cmd->add_option("--set", o.set_material,
                   "Override a material: MATERIAL.Kd=r,g,b (rho) or MATERIAL.Ke=r,g,b (emitted radiance); one "
                   "value is grey; repeatable")

@@ -368,7 +368,7 @@ set_radiometry_from_materials), so per-patch edits of rho or E made before are r
 
   m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0,
         py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = false,
-        R"doc(Reads, validates and patches a scene (OBJ with MTL, or PLY): a Scene.
+        R"doc(Reads, validates and patches a scene (OBJ with MTL, PLY, STL, glTF/GLB, .vtp/.vtk): a Scene.
 
 max_edge: split faces until no patch edge is longer than this (mesh units); 0 keeps the input faces (patch i is
   input face i), as the CLI's --max-edge.

@@ -126,7 +126,8 @@ void bind_writers(py::module_& m) {
   m.def("write_csv", &write_csv, py::arg("path"), py::arg("scene"), py::arg("fields") = py::dict(),
         R"doc(Writes the per-patch CSV of the CLI (io/csv_writer.h), atomically.
 
-Columns patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,E_r,E_g,E_b (the scene as it is now, edits included),
+Columns patch,face,area,cx,cy,cz,nx,ny,nz,rho_r,rho_g,rho_b,E_r,E_g,E_b,object,group,material (the scene as it is now,
+edits included; the names as the scene file gives them),
 then each field of `fields` in its order: name -> (N,) array (one column) or (N, 3) array (NAME_r, NAME_g,
 NAME_b) of real numbers (any real dtype, written as float64; integer dtypes as counts), or name -> (array,
 csv_name) for a different CSV name. Lengths in mesh units, rho dimensionless, E in W per unit length squared. 12 significant digits, empty cells for non-finite

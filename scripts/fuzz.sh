@@ -18,7 +18,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RADWALK_FUZZ_BUILD_DIR:-$root/build/fuzz}
 cxx=${RADWALK_FUZZ_CXX:-clang++}
-all_harnesses=(obj_mtl mtl ply matrix_market npz validate_patch)
+all_harnesses=(obj_mtl mtl ply stl gltf matrix_market npz validate_patch)
 
 usage() {
   sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//' >&2

@@ -8,6 +8,16 @@
 
 namespace radwalk {
 
+std::string csv_text(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + "\"";
+}
+
 std::string csv_number(double v) {
   if (!std::isfinite(v)) return "";
   char buf[32];
@@ -32,7 +42,8 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
                      const std::string& run_id) {
   static const char* kChannel[3] = {"_r", "_g", "_b"};
   std::vector<std::string> header = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx", "ny",
-                                     "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b"};
+                                     "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b",
+                                     "object", "group", "material"};
   const bool sides = !patches.side.empty();  // a scene with two-sided faces: "side" after "face"
   if (sides) header.insert(header.begin() + 2, "side");
   for (const CellField& f : extra) {
@@ -65,6 +76,8 @@ void write_patch_csv(const std::string& path, const PatchSet& patches, const std
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.normal[i][c]);
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.rho[i][c]);
       for (int c = 0; c < 3; ++c) out << ',' << csv_number(patches.E[i][c]);
+      out << ',' << csv_text(patches.object_of(i)) << ',' << csv_text(patches.group_of(i)) << ','
+          << csv_text(patches.material_of(i));
       for (const CellField& f : extra)
         for (int c = 0; c < f.components; ++c) out << ',' << csv_number(f.values[i * f.components + c]);
       out << last << '\n';

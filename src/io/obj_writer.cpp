@@ -18,6 +18,15 @@ std::string num(double v) {
 
 std::string rgb(const Rgb& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c[2]); }
 
+// A name as one OBJ/MTL statement reads it back (text_scan.h name rule): control characters and '#' (a comment)
+// become '_', leading and trailing blanks are dropped.
+std::string statement_name(const std::string& name) {
+  std::string out;
+  for (const char c : name) out += (static_cast<unsigned char>(c) < 0x20 || c == 0x7F || c == '#') ? '_' : c;
+  const std::size_t first = out.find_first_not_of(" \t"), last = out.find_last_not_of(" \t");
+  return first == std::string::npos ? std::string() : out.substr(first, last - first + 1);
+}
+
 }  // namespace
 
 void write_obj(const std::string& path, const PatchSet& patches, const std::string& run_id) {
@@ -25,14 +34,22 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
   const std::filesystem::path obj(path);
   const std::filesystem::path mtl = std::filesystem::path(obj).replace_extension(".mtl");
 
+  // Materials of two-sided faces: the file gets their front patches only, and the statement radwalk_two_sided 1
+  // makes the reader add the back patches again.
+  std::vector<bool> two_sided(patches.materials.size(), false);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (patches.two_sided(i)) two_sided[static_cast<std::size_t>(patches.material[i])] = true;
+
   // Both files are written completely before either replaces an old one (commit_together): a full disk leaves
   // the old pair, never a new .mtl beside an old .obj.
   PendingFile mtl_file(mtl.string()), obj_file(path);
   mtl_file.write([&](std::ostream& out) {
     out << "# radwalk patches of " << patches.source << "\n" << id_line
         << "# Kd = diffuse reflectance, Ke = emitted radiance\n";
-    for (const Material& m : patches.materials) {
-      out << "\nnewmtl " << m.name << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
+    for (std::size_t k = 0; k < patches.materials.size(); ++k) {
+      const Material& m = patches.materials[k];
+      out << "\nnewmtl " << statement_name(m.name) << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
+      if (two_sided[k]) out << "radwalk_two_sided 1\n";
       if (m.illum >= 0) out << "illum " << m.illum << "\n";
       if (m.kind != BsdfKind::diffuse) {
         out << "Ks " << rgb(m.Ks) << "\nNi " << num(m.Ni) << "\n";
@@ -47,10 +64,21 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
     int current = -1;
+    std::string object, group;  // the statements in force: none at the start
     for (std::size_t i = 0; i < patches.size(); ++i) {
+      if (patches.is_back(i)) continue;  // written by its front (radwalk_two_sided above)
+      // o starts an object and leaves its group, so each change writes o, then g when there is a group.
+      if (object != patches.object_of(i) || group != patches.group_of(i)) {
+        object = patches.object_of(i);
+        group = patches.group_of(i);
+        out << "o";
+        if (!object.empty()) out << ' ' << statement_name(object);
+        out << '\n';
+        if (!group.empty()) out << "g " << statement_name(group) << '\n';
+      }
       if (patches.material[i] != current) {
         current = patches.material[i];
-        out << "usemtl " << patches.materials[current].name << '\n';
+        out << "usemtl " << statement_name(patches.materials[current].name) << '\n';
       }
       out << 'f';
       for (int k = 0; k < patches.corner_count(i); ++k) out << ' ' << patches.corners[i][k] + 1;

@@ -1,6 +1,10 @@
 #pragma once
 // Writes patches as OBJ + MTL so that they load back as the same scene: one material per input material
-// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters), faces in patch order (patch i = face i of the output).
+// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters), faces in patch order (patch i = face i of the output),
+// each patch's object and group as `o` and `g` statements. Two-sided faces: only the front patches are written
+// (so the file has no duplicate faces) and their materials get `radwalk_two_sided 1`, so that reading the file adds
+// the back patches again (front patch i is face i; the back patches follow, as add_back_sides makes them). Names
+// are written as the OBJ name rule reads them back: control characters and '#' become '_'.
 // The MTL file is PATH with its extension replaced by .mtl. Both files are written atomically.
 // run_id: when not empty, both files' second line is the comment "# run_id RUN_ID" (apps/run_metadata.h).
 #include <string>

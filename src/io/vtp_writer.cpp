@@ -96,24 +96,63 @@ void write_data_array(std::ostream& out, const std::string& indent, const std::s
   out << indent << "</DataArray>\n";
 }
 
-// The run's metadata as one-tuple arrays (vtp_metadata.h): a string array holds its text and a terminating NUL,
-// which is how VTK stores strings in binary arrays.
-void write_field_data(std::ostream& out, const VtpMetadata& metadata) {
-  if (metadata.entries.empty()) return;
+// The names of the patches (vtp_writer.h): the tables of distinct object, group and material names and each
+// patch's index into them (-1: none).
+struct NameTables {
+  std::vector<std::string> objects, groups, materials;
+  std::vector<std::int64_t> object_id, group_id, material_id;
+};
+
+NameTables name_tables(const PatchSet& patches) {
+  NameTables t;
+  for (const Material& m : patches.materials) t.materials.push_back(m.name);
+  auto index_in = [](std::vector<std::string>& table, const std::string& name) -> std::int64_t {
+    if (name.empty()) return -1;
+    for (std::size_t k = 0; k < table.size(); ++k)
+      if (table[k] == name) return static_cast<std::int64_t>(k);
+    table.push_back(name);
+    return static_cast<std::int64_t>(table.size() - 1);
+  };
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    t.object_id.push_back(index_in(t.objects, patches.object_of(i)));
+    t.group_id.push_back(index_in(t.groups, patches.group_of(i)));
+    t.material_id.push_back(patches.material[i]);
+  }
+  return t;
+}
+
+// A string array of field data: each string followed by a NUL, which is how VTK stores strings in binary arrays.
+void write_string_array(std::ostream& out, const std::string& name, const std::vector<std::string>& values) {
+  std::string bytes;
+  for (const std::string& v : values) {
+    bytes += v;
+    bytes.push_back('\0');
+  }
+  out << "      <Array type=\"String\" Name=\"" << name << "\" NumberOfTuples=\"" << values.size()
+      << "\" format=\"binary\">\n        ";
+  write_vtk_compressed_base64(out, bytes.data(), bytes.size());
+  out << "\n      </Array>\n";
+}
+
+// The run's metadata as one-tuple arrays (vtp_metadata.h), then the name tables (object_names, group_names,
+// material_names; each written when it has a name).
+void write_field_data(std::ostream& out, const VtpMetadata& metadata, const NameTables& names) {
+  if (metadata.entries.empty() && names.objects.empty() && names.groups.empty() && names.materials.empty()) return;
   out << "    <FieldData>\n";
   ArrayLayout one;
   one.tuples_attr = 1;
   for (const auto& [key, value] : metadata.entries) {
     if (const auto* text = std::get_if<std::string>(&value)) {
-      out << "      <Array type=\"String\" Name=\"" << key << "\" NumberOfTuples=\"1\" format=\"binary\">\n        ";
-      write_vtk_compressed_base64(out, text->c_str(), text->size() + 1);
-      out << "\n      </Array>\n";
+      write_string_array(out, key, {*text});
     } else if (const auto* real = std::get_if<double>(&value)) {
       write_data_array(out, "      ", key, real, 1, one);
     } else {
       write_data_array(out, "      ", key, &std::get<std::int64_t>(value), 1, one);
     }
   }
+  if (!names.objects.empty()) write_string_array(out, "object_names", names.objects);
+  if (!names.groups.empty()) write_string_array(out, "group_names", names.groups);
+  if (!names.materials.empty()) write_string_array(out, "material_names", names.materials);
   out << "    </FieldData>\n";
 }
 
@@ -179,7 +218,7 @@ void write_point_data(std::ostream& out, const DisplayMesh& mesh, const PatchSet
 
 // The cell data: every field, counts as Int64, the others as Float64, the radiosity as B, B_rgb, B_srgb.
 void write_cell_data(std::ostream& out, std::size_t n, const std::vector<const CellField*>& fields,
-                     const std::string& path) {
+                     const NameTables& names, const std::string& path) {
   bool radiosity = false;
   for (const CellField* f : fields) radiosity = radiosity || is_radiosity(*f);
   out << "      <CellData" << (radiosity ? " Scalars=\"B\"" : "") << ">\n";
@@ -196,6 +235,10 @@ void write_cell_data(std::ostream& out, std::size_t n, const std::vector<const C
       write_data_array(out, "        ", f->name, f->values.data(), n, layout_of(*f));
     if (!out) throw InputError(path + ": write failed (disk full?)");
   }
+  // The patches' names as indices into the field data's tables (Int64, -1 for none).
+  if (!names.objects.empty()) write_data_array(out, "        ", "object_id", names.object_id.data(), n, {});
+  if (!names.groups.empty()) write_data_array(out, "        ", "group_id", names.group_id.data(), n, {});
+  if (!names.materials.empty()) write_data_array(out, "        ", "material_id", names.material_id.data(), n, {});
   out << "      </CellData>\n";
 }
 
@@ -223,6 +266,9 @@ void write_vtp_fields(const std::string& path, const PatchSet& patches, const st
     RADWALK_CHECK_EQ(f->values.size(), n * static_cast<std::size_t>(f->components));  // a value per patch, component
   }
   for (const auto& entry : metadata.entries) check_name(entry.first);
+  for (const CellField* f : fields)
+    if (f->name == "object_id" || f->name == "group_id" || f->name == "material_id")
+      throw std::logic_error("write_vtp: '" + f->name + "' is written from the patches' names");
   DisplayMesh built;
   if (!given_mesh) built = make_display_mesh(patches);
   const DisplayMesh& mesh = given_mesh ? *given_mesh : built;
@@ -234,11 +280,12 @@ void write_vtp_fields(const std::string& path, const PatchSet& patches, const st
            "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" "
            "compressor=\"vtkZLibDataCompressor\">\n"
            "  <PolyData>\n";
-    write_field_data(out, metadata);
+    const NameTables names = name_tables(patches);
+    write_field_data(out, metadata, names);
     out << "    <Piece NumberOfPoints=\"" << mesh.points.size()
         << "\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" NumberOfPolys=\"" << n << "\">\n";
     write_point_data(out, mesh, patches, fields, path);
-    write_cell_data(out, n, fields, path);
+    write_cell_data(out, n, fields, names, path);
     out << "      <Points>\n";
     ArrayLayout xyz;
     xyz.components = 3;

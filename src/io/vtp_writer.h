@@ -16,7 +16,10 @@
 // point (area-weighted; for smooth display: the cell data are the solution), the radiosity again as B, B_rgb and
 // B_srgb of the averaged triple.
 // No point fields for counts and geometry.
-// Field data: the metadata (vtp_metadata.h).
+// Names: the cell data object_id, group_id and material_id (Int64, -1 for none) index the field data's string
+// tables object_names, group_names and material_names (the patch's object, group and material as the scene file
+// names them; PatchSet::object_of, group_of, material_of); a table with no name and its ids are left out.
+// Field data: the metadata (vtp_metadata.h), then the name tables.
 // Throws std::logic_error for a field of the wrong size or with a name that is not usable in ParaView
 // (paraview_name(name) != name, or the Calculator's reserved word `var`), or a field B_rgb or B_srgb beside the
 // radiosity B (the writer makes them), before the file is created.

@@ -23,6 +23,9 @@ struct Material {
   double roughness = 0;  // GGX alpha, from Pr or derived from Ns
   double metallic = 0;   // Pm
   bool two_sided = false;  // radwalk_two_sided 1: faces have a front and a back patch (patch/patch_set.h)
+  // The file names this material but gives it no reflectance (an STL solid, a VTK surface without a rho field):
+  // validate_mesh refuses a face that uses it until `--set NAME.Kd=r,g,b` gives one (material_override.h).
+  bool reflectance_missing = false;
   long line = 0;         // line in the MTL file where it is defined (0 if none)
   std::string file;      // MTL file where it is defined (empty if none)
 };

@@ -64,6 +64,7 @@ void apply_material_overrides(Mesh& mesh, const std::vector<MaterialOverride>& o
     for (Material& m : mesh.materials)
       if (m.name == o.material) {
         (o.property == "Kd" ? m.Kd : m.Ke) = o.value;
+        if (o.property == "Kd") m.reflectance_missing = false;
         found = true;
       }
     if (found) continue;

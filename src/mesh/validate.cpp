@@ -411,6 +411,12 @@ void check_materials(Mesh& mesh, FindingLog& log) {
     if (first_face[i] < 0) continue;
     const auto f = static_cast<std::size_t>(first_face[i]);
     const Material& m = mesh.materials[i];
+    if (m.reflectance_missing) {  // a format without materials (STL, VTK without rho): the user names the Kd
+      log.error("no reflectance given", f,
+                "no reflectance given: " + material_name(m) + " has none in the file; give it with --set '" +
+                    printable(m.name) + ".Kd=r,g,b' (and an emitter with --set 'NAME.Ke=r,g,b')");
+      continue;
+    }
     if (!((m.Kd >= 0).all() && (m.Kd < 1).all()))
       log.error("reflectance out of range", f,
                 "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +

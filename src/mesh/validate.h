@@ -17,7 +17,9 @@
 //   (quad_nonplanarity > planar_error), non-convex quad (quad_min_turn_sine < -convex_sine), area-ambiguous quad
 //   (quad area ambiguity > area_ambiguity, below); self-intersecting quad (bow-tie); always: a bow-tie off its plane; duplicate face (same
 //   welded corners, in either orientation); material index out of range; reflectance Kd outside [0, 1) or
-//   emission Ke negative, not finite or above 1e300, for a material some face uses.
+//   emission Ke negative, not finite or above 1e300, for a material some face uses; a used material without
+//   reflectance (Material::reflectance_missing: an STL solid, a VTK surface without rho), naming the --set that
+//   gives one.
 // Repaired (refused with strict where said above): quad with one vertex repeated at adjacent corners -> triangle;
 //   face without material -> material "radwalk_default" (rho 0.5, no emission); degenerate face dropped;
 //   non-planar, non-convex or area-ambiguous quad split into two triangles along the better diagonal; a planar

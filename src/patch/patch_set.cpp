@@ -1,11 +1,50 @@
 #include "patch/patch_set.h"
 
+#include "mesh/mesh.h"
+
 #include "patch/patch_point_sampler.h"
 
 #include <algorithm>
 
 
 namespace radwalk {
+
+namespace {
+const std::string kNoName;
+}  // namespace
+
+const std::string& PatchSet::object_of(std::size_t i) const {
+  const auto f = static_cast<std::size_t>(face[i]);
+  if (f >= input_face_group.size() || input_face_group[f] < 0) return kNoName;
+  return group_object[static_cast<std::size_t>(input_face_group[f])];
+}
+
+const std::string& PatchSet::group_of(std::size_t i) const {
+  const auto f = static_cast<std::size_t>(face[i]);
+  if (f >= input_face_group.size() || input_face_group[f] < 0) return kNoName;
+  return group_name[static_cast<std::size_t>(input_face_group[f])];
+}
+
+const std::string& PatchSet::material_of(std::size_t i) const {
+  const std::int32_t m = material[i];
+  if (m < 0 || static_cast<std::size_t>(m) >= materials.size()) return kNoName;
+  return materials[static_cast<std::size_t>(m)].name;
+}
+
+void set_group_names(const Mesh& mesh, PatchSet& patches) {
+  patches.group_object = mesh.group_object;
+  patches.group_name = mesh.group_name;
+  patches.input_face_group.clear();
+  for (std::size_t f = 0; f < mesh.face_count() && f < mesh.face_group.size(); ++f) {
+    const long input = mesh.source_face(f);
+    if (input < 0) continue;
+    if (static_cast<std::size_t>(input) >= patches.input_face_group.size())
+      patches.input_face_group.resize(static_cast<std::size_t>(input) + 1, -1);
+    const std::int32_t g = mesh.face_group[f];
+    patches.input_face_group[static_cast<std::size_t>(input)] =
+        g >= 0 && static_cast<std::size_t>(g) < mesh.group_name.size() ? g : -1;
+  }
+}
 
 double PatchSet::total_area() const {
   double s = 0;

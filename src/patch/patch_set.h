@@ -20,6 +20,8 @@
 
 namespace radwalk {
 
+struct Mesh;
+
 // Which side of its input face a patch covers.
 enum class Side : std::uint8_t {
   one_sided = 0,  // the front of a one-sided face (the back absorbs)
@@ -43,6 +45,12 @@ struct PatchSet {
   // Side::front and of Side::back of a face each tile the same surface (add_back_sides makes them so and
   // split_patches keeps it), so a ray reaching a two-sided face from either side finds a patch of that side.
   std::vector<Side> side;
+  // Names for the outputs (CSV columns object, group, material; the .vtp's name tables): the group of input face
+  // f (the value of `face`) is input_face_group[f], an index into group_object and group_name (the object and
+  // group names as the file spells them, "" for none), -1 outside any. Filled by make_patches from the Mesh (OBJ
+  // o/g, STL solids, glTF nodes and meshes); empty for scenes built without names.
+  std::vector<std::int32_t> input_face_group;
+  std::vector<std::string> group_object, group_name;
 
   std::size_t size() const { return area.size(); }
   bool is_quad(std::size_t i) const { return corners[i][3] >= 0; }
@@ -52,6 +60,10 @@ struct PatchSet {
   // True for both patches of a two-sided face: a ray arriving at its back passes (the other side's patch takes it).
   bool two_sided(std::size_t i) const { return side_of(i) != Side::one_sided; }
   bool is_back(std::size_t i) const { return side_of(i) == Side::back; }
+  // The object, group and material names of patch i ("" where none is known).
+  const std::string& object_of(std::size_t i) const;
+  const std::string& group_of(std::size_t i) const;
+  const std::string& material_of(std::size_t i) const;
   double total_area() const;
   // Largest extent of the bounding box of all points (for scale-aware epsilons).
   double scene_extent() const;
@@ -59,6 +71,10 @@ struct PatchSet {
   // (core/moments.h moment_scale) and of the overflow messages.
   double max_emission() const;
 };
+
+// Fills input_face_group, group_object and group_name from the mesh's groups (Mesh::face_group of each face's
+// input face, Mesh::source_face), so the outputs can name each patch's object and group.
+void set_group_names(const Mesh& mesh, PatchSet& patches);
 
 // rho = Kd and E = pi Ke (Ke is emitted radiance) of every patch's material.
 void set_radiometry_from_materials(PatchSet& patches);

@@ -202,6 +202,7 @@ PatchSet make_patches(const Mesh& mesh, const PatchingOptions& options) {
   PatchSet s;
   s.source = mesh.path;
   s.materials = mesh.materials;
+  set_group_names(mesh, s);
   s.corners.reserve(total);
   s.face.reserve(total);
   s.material.reserve(total);

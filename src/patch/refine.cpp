@@ -21,6 +21,9 @@ PatchSet split_patches(const PatchSet& patches, const std::vector<bool>& split, 
   PatchSet out;
   out.source = patches.source;
   out.materials = patches.materials;
+  out.input_face_group = patches.input_face_group;  // names follow the input face, which pieces keep
+  out.group_object = patches.group_object;
+  out.group_name = patches.group_name;
   out.points = patches.points;
   const std::size_t m = n + 3 * splits;
   out.corners.reserve(m);

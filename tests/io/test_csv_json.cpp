@@ -41,16 +41,19 @@ TEST_CASE("patch CSV has the documented columns and values", "[io][csv]") {
   const auto rows = read_csv(path);
   REQUIRE(rows.size() == 2);
   const std::vector<std::string> expected = {"patch", "face",  "area",  "cx",  "cy",  "cz",  "nx",  "ny",
-                                             "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b", "B_r",
-                                             "B_g",   "B_b",   "row_sum"};
+                                             "nz",    "rho_r", "rho_g", "rho_b", "E_r", "E_g", "E_b", "object",
+                                             "group", "material", "B_r", "B_g", "B_b", "row_sum"};
   CHECK(rows[0] == expected);
   REQUIRE(rows[1].size() == expected.size());
   CHECK(std::stod(rows[1][2]) == Approx(2.0));
   CHECK(std::stod(rows[1][3]) == Approx(1.0));
   CHECK(std::stod(rows[1][9]) == 0.73);
   CHECK(std::stod(rows[1][14]) == Approx(kPi));
-  CHECK(rows[1][17].empty());  // NaN is written as an empty cell, never "nan"
-  CHECK(std::stod(rows[1][18]) == 0.5);
+  CHECK(rows[1][15].empty());  // a generated scene has no object or group names
+  CHECK(rows[1][16].empty());
+  CHECK(rows[1][17] == "m");
+  CHECK(rows[1][20].empty());  // NaN is written as an empty cell, never "nan"
+  CHECK(std::stod(rows[1][21]) == 0.5);
   std::filesystem::remove(path);
 }
 

@@ -144,7 +144,7 @@ TEST_CASE("write_vtp: field data carry the run metadata with their types", "[io]
   write_vtp(path, two_patches(), {}, m);
   const auto poly = read_vtp(path);
   vtkFieldData* fd = poly->GetFieldData();
-  REQUIRE(fd->GetNumberOfArrays() == 3);
+  REQUIRE(fd->GetNumberOfArrays() == 4);  // and the table material_names
   auto* text = vtkStringArray::SafeDownCast(fd->GetAbstractArray("command_line"));
   REQUIRE(text != nullptr);
   CHECK(text->GetValue(0) == "radwalk solve scene.obj --seed 7");
@@ -245,4 +245,35 @@ TEST_CASE("write_vtp on a full disk fails in one line and keeps the old file", "
   CHECK(std::filesystem::file_size(path) == before);
   CHECK(std::distance(std::filesystem::directory_iterator(mnt), std::filesystem::directory_iterator()) == 1);
   std::system(("umount " + mnt.string()).c_str());
+}
+
+TEST_CASE("write_vtp: each cell's object, group and material as ids into field data string tables", "[io][vtp]") {
+  PatchSet patches = two_patches();
+  // Input face 0 in object 'chair', group 'seat'; input face 1 in a group 'leg' of no object.
+  patches.input_face_group = {0, 1};
+  patches.group_object = {"chair", ""};
+  patches.group_name = {"seat", "leg"};
+  const auto path = temp_file("radwalk_test_names.vtp");
+  write_vtp(path, patches, {});
+  const auto poly = read_vtp(path);
+  auto table = [&](const char* name) {
+    auto* a = vtkStringArray::SafeDownCast(poly->GetFieldData()->GetAbstractArray(name));
+    REQUIRE(a != nullptr);
+    std::vector<std::string> v;
+    for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k) v.push_back(a->GetValue(k));
+    return v;
+  };
+  auto ids = [&](const char* name) {
+    vtkDataArray* a = poly->GetCellData()->GetArray(name);
+    REQUIRE(a != nullptr);
+    REQUIRE(a->GetNumberOfTuples() == 2);
+    return std::vector<double>{a->GetComponent(0, 0), a->GetComponent(1, 0)};
+  };
+  CHECK(table("object_names") == std::vector<std::string>{"chair"});
+  CHECK(table("group_names") == std::vector<std::string>{"seat", "leg"});
+  CHECK(table("material_names") == std::vector<std::string>{"white", "light"});
+  CHECK(ids("object_id") == std::vector<double>{0, -1});
+  CHECK(ids("group_id") == std::vector<double>{0, 1});
+  CHECK(ids("material_id") == std::vector<double>{0, 1});
+  std::filesystem::remove(path);
 }

@@ -204,7 +204,7 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
     CHECK((a->GetComponentName(0) != nullptr) == rgb);
     if (rgb) CHECK(std::string(a->GetComponentName(2)) == "B");
   }
-  CHECK(cells->GetNumberOfArrays() == int(fields.size()) + 2);
+  CHECK(cells->GetNumberOfArrays() == int(fields.size()) + 3);  // B_rgb, B_srgb, material_id
   REQUIRE(cells->GetScalars() != nullptr);
   CHECK(std::string(cells->GetScalars()->GetName()) == "B");
   const std::vector<double>& b = fields[fields.size() - 3].values;
@@ -240,7 +240,7 @@ TEST_CASE("write_vtp: VTK reads back what was written, arrays of several zlib bl
 
   // Field data: text (the empty one too), real and a 64-bit integer, in the order set.
   vtkFieldData* fd = poly->GetFieldData();
-  REQUIRE(fd->GetNumberOfArrays() == 4);
+  REQUIRE(fd->GetNumberOfArrays() == 5);  // and material_names
   CHECK(std::string(fd->GetAbstractArray(0)->GetName()) == "command_line");
   auto* text = vtkStringArray::SafeDownCast(fd->GetAbstractArray("command_line"));
   REQUIRE(text != nullptr);

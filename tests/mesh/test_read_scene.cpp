@@ -204,7 +204,7 @@ TEST_CASE("PLY: face colours become reflectances, missing colours and repeated i
 }
 
 TEST_CASE("unknown formats and missing files are input errors", "[mesh][read]") {
-  CHECK_THROWS_WITH(read_scene(data("scene.stl")), Catch::Contains("scene.stl") && Catch::Contains(".stl"));
+  CHECK_THROWS_WITH(read_scene(data("scene.xyz")), Catch::Contains("scene.xyz") && Catch::Contains("unknown scene format '.xyz'"));
   CHECK_THROWS_AS(read_scene(data("does_not_exist.obj")), InputError);
   CHECK_THROWS_WITH(read_scene(data("does_not_exist.obj")), Catch::Contains("cannot open"));
 }

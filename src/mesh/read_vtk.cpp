@@ -1,0 +1,390 @@
+#include "mesh/read_vtk.h"
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <cctype>
+#include <tuple>
+
+#include <vtkAbstractArray.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkLogger.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkOutputWindow.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkPolyDataReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include "core/error.h"
+#include "core/excerpt.h"
+#include "mesh/exact_vertices.h"
+#include "mesh/polygon_faces.h"
+#include "mesh/text_scan.h"
+#include "mesh/triangulate.h"
+
+namespace radwalk {
+namespace {
+
+constexpr double kZlibMaxRatio = 1032;  // zlib's largest compression ratio: a bound on what compressed bytes hold
+
+// Collects what VTK prints while radwalk reads, instead of printing it: the first error becomes the refusal.
+class CapturingOutputWindow : public vtkOutputWindow {
+ public:
+  static CapturingOutputWindow* New();
+  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
+  void DisplayText(const char* text) override { keep(text, false); }
+  void DisplayErrorText(const char* text) override { keep(text, true); }
+  void DisplayWarningText(const char*) override {}
+  void DisplayGenericWarningText(const char*) override {}
+  void DisplayDebugText(const char*) override {}
+  const std::string& error() const { return error_; }
+
+ private:
+  // VTK's message is "ERROR: In FILE, line N\nCLASS (0x...): WHAT\n\n": WHAT is kept.
+  void keep(const char* text, bool is_error) {
+    if (!text || !error_.empty()) return;
+    std::string t(text);
+    if (!is_error && t.find("ERROR") == std::string::npos) return;
+    std::string last;
+    std::size_t start = 0;
+    while (start <= t.size()) {
+      const std::size_t end = t.find('\n', start);
+      const std::string line = t.substr(start, end == std::string::npos ? std::string::npos : end - start);
+      if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
+      if (end == std::string::npos) break;
+      start = end + 1;
+    }
+    const std::size_t colon = last.find("): ");
+    if (colon != std::string::npos) last = last.substr(colon + 3);
+    error_ = last.empty() ? "unreadable" : last;
+  }
+  std::string error_;
+};
+vtkStandardNewMacro(CapturingOutputWindow);
+
+// Installs a CapturingOutputWindow for its lifetime, and keeps VTK's logger (which writes errors to stderr on its
+// own) quiet meanwhile.
+class CaptureScope {
+ public:
+  CaptureScope() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
+    window_ = vtkSmartPointer<CapturingOutputWindow>::New();
+    vtkOutputWindow::SetInstance(window_);
+    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
+  }
+  ~CaptureScope() {
+    vtkLogger::SetStderrVerbosity(verbosity_);
+    vtkOutputWindow::SetInstance(previous_);
+  }
+  const std::string& error() const { return window_->error(); }
+
+ private:
+  vtkSmartPointer<vtkOutputWindow> previous_;
+  vtkLogger::Verbosity verbosity_;
+  vtkSmartPointer<CapturingOutputWindow> window_;
+};
+
+// The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
+void check_declared_counts(const std::string& path, std::string_view bytes, bool xml) {
+  const double size = static_cast<double>(bytes.size());
+  double largest_count = 0, largest_components = 1;
+  std::string_view text = bytes;
+  if (xml) {
+    // Only the XML markup: a raw appended section is binary and declares nothing.
+    const std::size_t appended = text.find("<AppendedData");
+    if (appended != std::string_view::npos) text = text.substr(0, appended);
+    const bool compressed = text.find("compressor=") != std::string_view::npos;
+    // Every NumberOfNAME="VALUE" attribute (scanned by hand: no regex backtracking over megabytes of markup).
+    for (std::size_t at = text.find("NumberOf"); at != std::string_view::npos; at = text.find("NumberOf", at + 1)) {
+      std::size_t k = at + 8;
+      while (k < text.size() && std::isalpha(static_cast<unsigned char>(text[k]))) ++k;
+      const std::string what(text.substr(at + 8, k - at - 8));
+      if (text.substr(k, 2) != "=\"") continue;
+      const std::size_t close = text.find('"', k + 2);
+      if (close == std::string_view::npos) continue;
+      const std::string value(text.substr(k + 2, close - k - 2));
+      const auto n = parse_double(value);
+      if (!n || !(*n >= 0))
+        throw InputError(locate(path, 0, -1, "NumberOf" + excerpt(what) + "=\"" + excerpt(value) +
+                                                 "\" is not a count"));
+      if (what == "Components")
+        largest_components = std::max(largest_components, *n);
+      else
+        largest_count = std::max(largest_count, *n);
+    }
+    const double bound = (compressed ? kZlibMaxRatio : 1.0) * size;
+    if (largest_count * largest_components > bound)
+      throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
+                                               number_text(largest_components) + " components, more than its " +
+                                               std::to_string(bytes.size()) + " bytes can hold (truncated file or "
+                                               "wrong count)"));
+    return;
+  }
+  // Legacy: the numbers after the keywords that size VTK's arrays.
+  long line_number = 0;
+  bool field_arrays = false;
+  for_each_line(text, [&](long line, std::string_view content) {
+    line_number = line;
+    const auto tokens = split_tokens(content);
+    if (tokens.empty()) return;
+    const std::string_view key = tokens[0];
+    std::vector<double> counts;
+    auto number = [&](std::size_t k) {
+      if (k >= tokens.size()) return;
+      const auto n = parse_double(tokens[k]);
+      if (n && *n >= 0) counts.push_back(*n);
+    };
+    if (key == "POINTS" || key == "CELL_DATA" || key == "POINT_DATA") {
+      number(1);
+      field_arrays = false;
+    } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES" ||
+               key == "OFFSETS" || key == "CONNECTIVITY") {
+      number(1);
+      number(2);
+      field_arrays = false;
+    } else if (key == "FIELD") {
+      number(2);
+      field_arrays = true;
+    } else if (field_arrays && tokens.size() == 4 && !parse_double(tokens[0])) {  // NAME COMPONENTS TUPLES TYPE
+      const auto c = parse_double(tokens[1]), t = parse_double(tokens[2]);
+      if (c && t && *c >= 0 && *t >= 0) counts.push_back(*c * *t);
+    } else if ((key == "SCALARS" || key == "COLOR_SCALARS") && tokens.size() >= 3) {
+      const auto c = parse_double(tokens[tokens.size() - 1]);
+      if (c && *c >= 0) largest_components = std::max(largest_components, *c);
+    }
+    for (double n : counts)
+      if (n > size)
+        throw InputError(locate(path, line, -1, "declares " + number_text(n) + " items, more than its " +
+                                                    std::to_string(bytes.size()) +
+                                                    " bytes can hold (truncated file or wrong count)"));
+    for (double n : counts) largest_count = std::max(largest_count, n);
+  });
+  if (largest_count * largest_components > 4 * size)
+    throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
+                                             number_text(largest_components) + " components, more than its " +
+                                             std::to_string(bytes.size()) + " bytes can hold"));
+}
+
+vtkSmartPointer<vtkPolyData> parse(const std::string& path, std::string_view bytes, bool xml) {
+  CaptureScope capture;
+  vtkSmartPointer<vtkPolyData> out;
+  if (xml) {
+    vtkNew<vtkXMLPolyDataReader> reader;
+    reader->ReadFromInputStringOn();
+    reader->SetInputString(std::string(bytes));
+    reader->Update();
+    out = reader->GetOutput();
+  } else {
+    if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+      throw InputError(locate(path, 0, -1, "a legacy .vtk file above 2 GiB is not read (write it as .vtp)"));
+    vtkNew<vtkPolyDataReader> reader;
+    reader->ReadFromInputStringOn();
+    reader->SetBinaryInputString(bytes.data(), static_cast<int>(bytes.size()));
+    reader->Update();
+    out = reader->GetOutput();
+  }
+  if (!capture.error().empty())
+    throw InputError(locate(path, 0, -1, "VTK cannot read it: " + excerpt(capture.error())));
+  if (!out) throw InputError(locate(path, 0, -1, "VTK read no polygonal data"));
+  return out;
+}
+
+// A cell array of `components` numbers per cell by name, or nullptr.
+vtkDataArray* cell_array(vtkPolyData* data, const char* name, int components, std::size_t cells) {
+  vtkDataArray* a = data->GetCellData()->GetArray(name);
+  if (!a || a->GetNumberOfComponents() != components || static_cast<std::size_t>(a->GetNumberOfTuples()) != cells)
+    return nullptr;
+  return a;
+}
+
+std::vector<std::string> string_table(vtkPolyData* data, const char* name) {
+  std::vector<std::string> out;
+  auto* a = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(name));
+  if (!a) return out;
+  for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k) out.push_back(a->GetValue(k));
+  return out;
+}
+
+// Drops corners on the segment between their neighbours (see read_vtk.h), keeping at least 3.
+std::vector<std::int32_t> without_straight_corners(const std::vector<std::int32_t>& corners,
+                                                   const std::vector<Vec3>& points) {
+  std::vector<std::int32_t> kept = corners;
+  bool dropped = true;
+  while (dropped && kept.size() > 3) {
+    dropped = false;
+    for (std::size_t k = 0; k < kept.size() && kept.size() > 3; ++k) {
+      const Vec3& a = points[static_cast<std::size_t>(kept[(k + kept.size() - 1) % kept.size()])];
+      const Vec3& b = points[static_cast<std::size_t>(kept[k])];
+      const Vec3& c = points[static_cast<std::size_t>(kept[(k + 1) % kept.size()])];
+      const Vec3 u = b - a, v = c - b;
+      if (u.cross(v).norm() <= 1e-12 * u.norm() * v.norm() && u.dot(v) > 0) {
+        kept.erase(kept.begin() + static_cast<std::ptrdiff_t>(k));
+        dropped = true;
+        break;
+      }
+    }
+  }
+  return kept;
+}
+
+}  // namespace
+
+Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options) {
+  const std::string ext = lower_extension(path);
+  return read_vtk_polydata_bytes(path, read_input_file(path), ext == "vtp", options);
+}
+
+Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bool xml, const ReadOptions& options) {
+  check_declared_counts(path, bytes, xml);
+  const vtkSmartPointer<vtkPolyData> data = parse(path, bytes, xml);
+  Mesh mesh;
+  mesh.path = path;
+  const vtkIdType n_points = data->GetNumberOfPoints();
+  if (n_points > std::numeric_limits<std::int32_t>::max() / 2)
+    throw InputError(locate(path, 0, -1, "too many points"));
+  std::vector<Vec3> points(static_cast<std::size_t>(n_points));
+  std::vector<std::int32_t> vertex_of(points.size());
+  ExactVertices vertices(mesh.vertices);
+  for (vtkIdType k = 0; k < n_points; ++k) {
+    double p[3];
+    data->GetPoint(k, p);
+    points[static_cast<std::size_t>(k)] = Vec3(p[0], p[1], p[2]);
+    vertex_of[static_cast<std::size_t>(k)] = vertices.index(points[static_cast<std::size_t>(k)]);
+  }
+  const vtkIdType n_verts = data->GetNumberOfVerts(), n_lines = data->GetNumberOfLines();
+  const vtkIdType n_polys = data->GetNumberOfPolys(), n_strips = data->GetNumberOfStrips();
+  const auto cells = static_cast<std::size_t>(n_verts + n_lines + n_polys + n_strips);
+  if (n_polys + n_strips == 0) throw InputError(locate(path, 0, -1, "no polygons or triangle strips"));
+  if (n_verts + n_lines > 0)
+    mesh.findings.push_back(mesh.finding_of(-1, 0, -1, -1, "line and point elements ignored", Severity::warning,
+                                            std::to_string(n_verts + n_lines) +
+                                                " vertex and line cells ignored: radiosity needs surfaces"));
+
+  vtkDataArray* rho = cell_array(data, "rho", 3, cells);
+  vtkDataArray* E = cell_array(data, "E", 3, cells);
+  vtkDataArray* side = cell_array(data, "side", 1, cells);
+  vtkDataArray* material_id = cell_array(data, "material_id", 1, cells);
+  vtkDataArray* group_id = cell_array(data, "group_id", 1, cells);
+  vtkDataArray* object_id = cell_array(data, "object_id", 1, cells);
+  const std::vector<std::string> material_names = string_table(data, "material_names");
+  const std::vector<std::string> group_names = string_table(data, "group_names");
+  const std::vector<std::string> object_names = string_table(data, "object_names");
+  auto name_at = [](const std::vector<std::string>& table, vtkDataArray* ids, std::size_t cell) -> std::string {
+    if (!ids) return "";
+    const double id = ids->GetComponent(static_cast<vtkIdType>(cell), 0);
+    if (!(id >= 0 && id < static_cast<double>(table.size()))) return "";
+    return table[static_cast<std::size_t>(id)];
+  };
+
+  // Materials: by (name, rho, E); see read_vtk.h.
+  std::map<std::tuple<std::string, double, double, double, double, double, double>, std::int32_t> material_of;
+  std::map<std::string, int> name_uses;
+  auto material_for = [&](std::size_t cell) -> std::int32_t {
+    Rgb kd = Rgb::Zero(), e = Rgb::Zero();
+    for (int c = 0; c < 3; ++c) {
+      if (rho) kd[c] = rho->GetComponent(static_cast<vtkIdType>(cell), c);
+      if (E) e[c] = E->GetComponent(static_cast<vtkIdType>(cell), c);
+    }
+    std::string base = name_at(material_names, material_id, cell);
+    if (!rho) base = std::filesystem::path(path).stem().string();
+    const auto key = std::make_tuple(base, kd[0], kd[1], kd[2], e[0], e[1], e[2]);
+    const auto it = material_of.find(key);
+    if (it != material_of.end()) return it->second;
+    Material m;
+    if (base.empty()) {
+      m.name = "vtk_material_" + std::to_string(material_of.size());
+    } else {
+      const int uses = ++name_uses[base];
+      m.name = uses == 1 ? base : base + "_" + std::to_string(uses);
+    }
+    m.Kd = kd;
+    m.Ke = e / kPi;
+    m.reflectance_missing = rho == nullptr;
+    const auto index = static_cast<std::int32_t>(mesh.materials.size());
+    mesh.materials.push_back(m);
+    material_of.emplace(key, index);
+    return index;
+  };
+  std::map<std::pair<std::string, std::string>, std::int32_t> group_of;
+  auto group_for = [&](std::size_t cell) -> std::int32_t {
+    const std::string object = name_at(object_names, object_id, cell), group = name_at(group_names, group_id, cell);
+    if (object.empty() && group.empty()) return -1;
+    const auto [it, added] = group_of.emplace(std::make_pair(object, group), static_cast<std::int32_t>(mesh.groups.size()));
+    if (added) {
+      std::string label;
+      if (!object.empty()) label = "object '" + object + "'";
+      if (!group.empty()) label += (label.empty() ? "" : ", ") + ("group '" + group + "'");
+      mesh.groups.push_back(label);
+      mesh.group_object.push_back(object);
+      mesh.group_name.push_back(group);
+    }
+    return it->second;
+  };
+
+  PolygonFaces faces(mesh, options.strict);
+  std::int32_t face = 0;
+  vtkNew<vtkIdList> ids;
+  auto add_cell = [&](std::size_t cell, const std::vector<std::int32_t>& point_ids) {
+    const std::int32_t source = face++;
+    if (side && side->GetComponent(static_cast<vtkIdType>(cell), 0) == 1) {  // a back cell: its front stands for it
+      mesh.materials[static_cast<std::size_t>(material_for(cell))].two_sided = true;
+      return;
+    }
+    const std::int32_t material = material_for(cell);
+    if (side) mesh.materials[static_cast<std::size_t>(material)].two_sided = true;
+    std::vector<std::int32_t> corners;
+    for (const std::int32_t p : without_straight_corners(point_ids, points))
+      corners.push_back(vertex_of[static_cast<std::size_t>(p)]);
+    if (corners.size() < 3) {
+      mesh.findings.push_back(mesh.finding_of(source, 0, material, group_for(cell), "face of fewer than 3 corners",
+                                              Severity::error,
+                                              "has " + std::to_string(corners.size()) +
+                                                  " corners, a face needs at least 3"));
+      return;
+    }
+    faces.add(corners, 0, material, group_for(cell), source);
+  };
+  auto point_ids_of = [&](vtkIdList* list) {
+    std::vector<std::int32_t> out;
+    for (vtkIdType k = 0; k < list->GetNumberOfIds(); ++k) {
+      const vtkIdType id = list->GetId(k);
+      if (id < 0 || id >= n_points)
+        throw InputError(locate(path, 0, face, "point id " + std::to_string(id) + " is out of range (" +
+                                                   std::to_string(n_points) + " points)"));
+      out.push_back(static_cast<std::int32_t>(id));
+    }
+    return out;
+  };
+  std::size_t cell = static_cast<std::size_t>(n_verts + n_lines);
+  vtkCellArray* polys = data->GetPolys();
+  for (vtkIdType c = 0; c < n_polys; ++c, ++cell) {
+    polys->GetCellAtId(c, ids);
+    if (static_cast<std::size_t>(ids->GetNumberOfIds()) > kMaxPolygonCorners)
+      throw InputError(locate(path, 0, face, "polygon of " + std::to_string(ids->GetNumberOfIds()) + " corners, more than " +
+                                                 std::to_string(kMaxPolygonCorners)));
+    add_cell(cell, point_ids_of(ids));
+  }
+  vtkCellArray* strips = data->GetStrips();
+  for (vtkIdType c = 0; c < n_strips; ++c, ++cell) {
+    strips->GetCellAtId(c, ids);
+    const std::vector<std::int32_t> strip = point_ids_of(ids);
+    for (std::size_t t = 0; t + 2 < strip.size(); ++t) {
+      if (t % 2 == 0)
+        add_cell(cell, {strip[t], strip[t + 1], strip[t + 2]});
+      else
+        add_cell(cell, {strip[t + 1], strip[t], strip[t + 2]});
+    }
+  }
+  return mesh;
+}
+
+}  // namespace radwalk

@@ -1,0 +1,37 @@
+#pragma once
+// VTK polygonal surfaces: XML PolyData (.vtp) and legacy POLYDATA (.vtk), parsed by VTK's own readers
+// (vtkXMLPolyDataReader, vtkPolyDataReader) from the bytes radwalk read once (read_input_file, so the run id
+// covers them), so ParaView users can bring back what they edited, and a .vtp radwalk wrote reads back.
+//
+// Geometry: every polygon (3 or more corners; more than 4 go through polygon_faces.h) and every triangle strip
+// (into triangles, all facing one way); vertices and lines are ignored with a warning. A corner that lies on the
+// straight segment between its neighbours (|(b - a) x (c - b)| <= 1e-12 |b - a| |c - b|: the T-junction points
+// radwalk's .vtp inserts into polygon edges for display) is dropped first, so cell i of a radwalk .vtp is face i
+// again. Points at bit-identical positions are one vertex (exact_vertices.h: the display points split per
+// smoothing group join again).
+// Materials from the cell data, as radwalk's .vtp writes them (docs/units-and-formats.md): `rho` (3 components)
+// is Kd, `E` (3 components, exitance) gives Ke = E / pi; with `material_id` and the field data string table
+// `material_names` the materials keep their names (cells of one name with different rho or E become "NAME_2",
+// ...); without names, one material per distinct (rho, E), "vtk_material_K". Without a rho field every face gets
+// one material named by the file's stem that has no reflectance (Material::reflectance_missing: `--set NAME.Kd`
+// gives it). Groups from `object_id` / `group_id` and the tables `object_names` / `group_names`. A `side` field
+// (radwalk's two-sided scenes: 0 front, 1 back) drops the back cells and makes the materials of the front cells
+// two-sided, so the scene reads back as it was written.
+// Bounded: before VTK parses anything, every count the file declares (NumberOf... attributes of a .vtp; the counts
+// after POINTS, POLYGONS, TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays of a .vtk) times
+// the largest component count must fit the file's bytes (times 1032, zlib's largest ratio, for a compressed .vtp).
+// A VTK error is one InputError naming the file and VTK's own message; face f is the f-th surface cell.
+#include <string>
+#include <string_view>
+
+#include "mesh/mesh.h"
+
+namespace radwalk {
+
+Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options = {});
+
+// The same for bytes already read; `xml` picks the .vtp reader (else the legacy .vtk reader).
+Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bool xml,
+                             const ReadOptions& options = {});
+
+}  // namespace radwalk
