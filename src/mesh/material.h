@@ -23,6 +23,7 @@ struct Material {
   double roughness = 0;  // GGX alpha, from Pr or derived from Ns
   double metallic = 0;   // Pm
   bool two_sided = false;  // radwalk_two_sided 1: faces have a front and a back patch (patch/patch_set.h)
+  std::string texture;   // map_Kd texture file (resolved path) whose mean colour Kd includes, "" if none
   long line = 0;         // line in the MTL file where it is defined (0 if none)
   std::string file;      // MTL file where it is defined (empty if none)
 };
