@@ -141,6 +141,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
   summary.json()["scene"] = options.scene;
   summary.json()["strict"] = options.strict;
   summary.json()["orient"] = options.orient;
+  summary.json()["open_shells"] = options.open_shells;
   const LengthUnit unit = length_unit(options);
   summary.json()["units"] = {{"file_unit", options.unit.empty() ? nlohmann::json() : nlohmann::json(options.unit)},
                              {"scale", options.scale},
@@ -213,6 +214,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     ValidationTolerances tolerances;
     tolerances.strict = options.strict;
     tolerances.orient = parse_orient_mode(options.orient);
+    tolerances.open_shells_two_sided = options.open_shells == "two-sided";
     validate_mesh(mesh, tolerances);
   } catch (const MeshRefused& e) {
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.

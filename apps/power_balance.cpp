@@ -77,7 +77,7 @@ void report_power_balance(const PatchSet& patches, const PatchRgb& B, const Patc
                   100 * f_back, 100 * se_back);
     warn(summary, std::string(line) +
                       ": faces oriented the wrong way (an inside-out room; --orient outward turns closed shells) or "
-                      "open and thin parts whose backs the light reaches (make them two-sided: 'radwalk_two_sided 1' "
+                      "open and thin parts whose backs the light reaches (make them two-sided: --open-shells two-sided, 'radwalk_two_sided 1' "
                       "or --two-sided); power_balance and the back_hits field say where");
   }
 }

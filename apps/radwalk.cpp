@@ -216,6 +216,12 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                   "file has them)")
       ->check(CLI::IsMember({"none", "consistent", "outward"}))
       ->capture_default_str();
+  cmd->add_option("--open-shells", o.open_shells,
+                  "Faces of open shells (surfaces that enclose no volume: sheets, bottomless boxes): one-sided as "
+                  "the file has them, or two-sided (a front and a back patch, so light reaching their backs is not "
+                  "lost)")
+      ->check(CLI::IsMember({"one-sided", "two-sided"}))
+      ->capture_default_str();
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");

@@ -177,9 +177,11 @@ OrientationResult orient_shells(Mesh& mesh, OrientMode mode) {
       ++out.non_orientable;
       out.non_orientable_faces.push_back(members[s][0]);
     }
-    if (!closed[s] && !emitters_only[s])
+    if (!closed[s] && !emitters_only[s]) {
       out.open_shells.push_back({*std::min_element(members[s].begin(), members[s].end()), members[s].size(),
                                  boundary[s], area_total[s]});
+      out.open_shell_faces.insert(out.open_shell_faces.end(), members[s].begin(), members[s].end());
+    }
     if (mode == OrientMode::none) continue;
     // reverse: take the walk's opposite (every face with flip 0 turns instead).
     bool reverse = area_walk[s] > area_total[s] - area_walk[s];  // the one that flips less area
@@ -195,6 +197,7 @@ OrientationResult orient_shells(Mesh& mesh, OrientMode mode) {
     }
   }
   std::sort(out.flipped.begin(), out.flipped.end());
+  std::sort(out.open_shell_faces.begin(), out.open_shell_faces.end());
   out.flipped_faces = out.flipped.size();
   return out;
 }

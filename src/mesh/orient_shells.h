@@ -48,6 +48,7 @@ struct OrientationResult {
   double flipped_area = 0;
   std::vector<std::size_t> flipped;           // the faces flipped (mesh order)
   std::vector<OpenShell> open_shells;         // open shells not made of emitters alone
+  std::vector<std::size_t> open_shell_faces;  // every face of those shells (mesh order)
   std::vector<std::size_t> non_orientable_faces;  // a face of each non-orientable shell
 };
 

@@ -541,13 +541,32 @@ void orient_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) 
                        std::to_string(r.closed_shells) + " closed, " + std::to_string(r.rooms) +
                        " enclosing the scene and facing in; --orient none keeps the file's orientation)");
   }
+  if (tol.open_shells_two_sided && !r.open_shell_faces.empty()) {
+    std::map<std::int32_t, std::int32_t> two_sided_of;  // material -> its two-sided copy
+    for (std::size_t f : r.open_shell_faces) {
+      std::int32_t& m = mesh.face_material[f];
+      if (m < 0 || mesh.materials[static_cast<std::size_t>(m)].two_sided) continue;
+      auto c = two_sided_of.find(m);
+      if (c == two_sided_of.end()) {
+        Material copy = mesh.materials[static_cast<std::size_t>(m)];
+        copy.two_sided = true;
+        mesh.materials.push_back(copy);
+        c = two_sided_of.emplace(m, static_cast<std::int32_t>(mesh.materials.size() - 1)).first;
+      }
+      m = c->second;
+    }
+    log.add_global("open shells made two-sided", Severity::warning,
+                   std::to_string(r.open_shell_faces.size()) + " faces of " + std::to_string(r.open_shells.size()) +
+                       " open shells made two-sided (--open-shells two-sided): each a front and a back patch");
+    return;
+  }
   for (const OpenShell& o : r.open_shells)
     log.add("open shell", Severity::note, o.first_face,
             "open shell: " + std::to_string(o.faces) + " faces (area " + fmt(o.area) + ") with " +
                 std::to_string(o.boundary_edges) +
                 " boundary edges; the backs of one-sided faces absorb the light that reaches them, so make an open or "
-                "thin part two-sided ('radwalk_two_sided 1' in its material, or --two-sided) unless its backs are "
-                "hidden");
+                "thin part two-sided (--open-shells two-sided, 'radwalk_two_sided 1' in its material, or --two-sided) "
+                "unless its backs are hidden");
   for (std::size_t f : r.non_orientable_faces)
     log.add("non-orientable shell", Severity::warning, f,
             "non-orientable shell: its faces cannot all agree across their shared edges (a Moebius strip or faces "

@@ -66,6 +66,9 @@ struct ValidationTolerances {
   double max_offset_ratio = 1e4;
   // Orientation of the shells (orient_shells.h): outward by default; the flips are one warning.
   OrientMode orient = OrientMode::outward;
+  // Faces of open shells (not emitters alone) get two-sided copies of their materials (--open-shells two-sided):
+  // an open surface has two sides that light can reach, a closed one only its outside.
+  bool open_shells_two_sided = false;
   // Repairs (dropping zero-area faces, splitting bent or concave quads, repeated corners, duplicate faces) become
   // refusals.
   bool strict = false;
