@@ -15,7 +15,7 @@ namespace radwalk {
 
 namespace {
 
-constexpr long kMaxPixels = 1L << 28;
+constexpr long kMaxPixels = 1L << 24;  // 4096 x 4096: 48 MB of 8-bit RGB at most
 
 // linear_from_srgb of every 8-bit value.
 const std::array<double, 256>& linear8() {

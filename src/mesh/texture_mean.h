@@ -23,8 +23,8 @@ struct TextureMean {
 };
 
 // The mean of the image in `bytes` (PNG or JPEG, by their signatures). Never throws for bad bytes: `why` says
-// what is wrong. Images above 2^28 pixels are refused (bounded memory: the decoders work a row at a time, but a
-// row of 2^28 pixels is not read).
+// what is wrong. Images above 2^24 pixels (4096 x 4096) are not read (bounded memory: a PNG is decoded whole,
+// 3 bytes a pixel; a JPEG a row at a time), so a hostile header cannot make the reader allocate gigabytes.
 TextureMean texture_mean(std::string_view bytes);
 
 }  // namespace radwalk
