@@ -26,10 +26,14 @@ RayFates trace_ray_fates(const PatchSet& patches, std::uint64_t seed, long rays,
 
 void report_power_balance(const PatchSet& patches, const PatchRgb& B, const PatchRgb& B_se, const RayFates& fates,
                           RunSummary& summary) {
-  double emitted = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i) emitted += patches.area[i] * patches.E[i].mean();
+  // Powers in units of the largest emission s (E near the largest double squares to infinity otherwise).
+  const double s = patches.max_emission();
+  double emitted = 0;  // / s
+  if (s > 0)
+    for (std::size_t i = 0; i < patches.size(); ++i) emitted += patches.area[i] * (patches.E[i].mean() / s);
   nlohmann::json& j = summary.json()["power_balance"];
-  j = {{"emitted_power", emitted}, {"emitted", 1.0}};
+  j = {{"emitted", 1.0}};
+  if (std::isfinite(emitted * s)) j["emitted_power"] = emitted * s;
   if (!(emitted > 0)) {
     j["note"] = "no emitted power";
     return;
@@ -44,7 +48,7 @@ void report_power_balance(const PatchSet& patches, const PatchRgb& B, const Patc
   double escaped = 0, back = 0, var_escaped = 0, var_back = 0;
   for (std::size_t i = 0; i < patches.size(); ++i) {
     const auto r = static_cast<Eigen::Index>(i);
-    const double W = patches.area[i] * B.row(r).mean();
+    const double W = patches.area[i] * (B.row(r).mean() / s) / emitted;  // a fraction of the emitted power
     const double n = std::max<double>(fates.rays[i], 1);
     const double q = fates.escaped[i] / n, b = fates.back_hits[i] / n;
     escaped += W * q;
@@ -52,13 +56,13 @@ void report_power_balance(const PatchSet& patches, const PatchRgb& B, const Patc
     var_escaped += W * W * q * (1 - q) / n;
     var_back += W * W * b * (1 - b) / n;
     if (B_se.rows() == B.rows()) {
-      const double se = patches.area[i] * B_se.row(r).mean();
+      const double se = patches.area[i] * (B_se.row(r).mean() / s) / emitted;
       var_escaped += se * se * q * q;
       var_back += se * se * b * b;
     }
   }
-  const double f_escaped = escaped / emitted, f_back = back / emitted;
-  const double se_escaped = std::sqrt(var_escaped) / emitted, se_back = std::sqrt(var_back) / emitted;
+  const double f_escaped = escaped, f_back = back;
+  const double se_escaped = std::sqrt(var_escaped), se_back = std::sqrt(var_back);
   j["escaped"] = f_escaped;
   j["escaped_se"] = se_escaped;
   j["lost_to_back_faces"] = f_back;
@@ -69,7 +73,7 @@ void report_power_balance(const PatchSet& patches, const PatchRgb& B, const Patc
   std::snprintf(line, sizeof line,
                 "power balance: of the emitted power %.6g W, %.3g %% (+- %.2g) absorbed by the fronts of faces, "
                 "%.3g %% (+- %.2g) escaped, %.3g %% (+- %.2g) lost into the backs of one-sided faces",
-                emitted, 100 * (1 - f_escaped - f_back), 100 * j["absorbed_se"].get<double>(), 100 * f_escaped,
+                emitted * s, 100 * (1 - f_escaped - f_back), 100 * j["absorbed_se"].get<double>(), 100 * f_escaped,
                 100 * se_escaped, 100 * f_back, 100 * se_back);
   note(line);
   if (f_back > 0.01) {
