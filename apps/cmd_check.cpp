@@ -23,11 +23,17 @@ int run_check(const SceneOptions& options) {
     for (const Finding& f : mesh.findings) n += f.severity == s;
     if (n > 0) found += (found.empty() ? "" : ", ") + std::to_string(n) + " " + severity_name(s) + (n == 1 ? "" : "s");
   }
+  // Clean: nothing repaired and nothing to worry about (notes are harmless: T-junctions, open shells).
+  bool clean = true;
+  for (const Finding& f : mesh.findings) clean = clean && f.severity == Severity::note;
+  const std::string verdict = clean ? (found.empty() ? "clean" : "clean (" + found + ")") : found;
   std::fprintf(report_stream(), "%s: %zu faces (%zu triangles, %zu quads), %zu vertices, %zu materials, %zu emitting faces: %s\n",
               options.scene.c_str(), mesh.face_count(), mesh.face_count() - quads, quads, mesh.vertices.size(),
-              mesh.materials.size(), emitters, found.empty() ? "clean" : found.c_str());
+              mesh.materials.size(), emitters, verdict.c_str());
+  const LengthUnit unit = length_unit(options);
+  std::fprintf(report_stream(), "lengths in %s, radiosity B in %s\n", unit.length().c_str(), unit.radiosity().c_str());
   summary.json()["emitting_faces"] = emitters;
-  summary.json()["clean"] = mesh.findings.empty();
+  summary.json()["clean"] = clean;
   summary.json()["refused"] = false;
   if (!options.json.empty()) summary.write(options.json);
   return 0;

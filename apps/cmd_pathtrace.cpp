@@ -9,6 +9,7 @@
 #include "apps/finite_outputs.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/power_balance.h"
 #include "apps/progressive_series.h"
 #include "apps/run_metadata.h"
 #include "apps/scene_camera.h"
@@ -122,6 +123,7 @@ int run_pathtrace(const PathtraceCommand& command) {
                                estimate, summary);
     std::fprintf(report_stream(), "%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     summary.json()["solution"] = solution_json(s);
+    report_power_balance(patches, s.B, s.B_se, trace_ray_fates(patches, command.scene.seed), summary);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", s.var), "var"));  // CSV: var_*
     VtpMetadata metadata = solution_metadata(s, patches);

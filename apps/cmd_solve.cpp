@@ -7,6 +7,7 @@
 #include "apps/finite_outputs.h"
 #include "apps/options.h"
 #include "apps/pipeline.h"
+#include "apps/power_balance.h"
 #include "apps/progressive_series.h"
 #include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
@@ -157,9 +158,11 @@ int run_solve(const SolveCommand& command) {
   const bool per_patch_output = !command.scene.vtp.empty() || !command.scene.csv.empty();
   Solution solution;
   std::string error_line;  // the estimated error, printed after the solver's line
+  RayFates fates;  // where the rays leaving each patch went (power_balance.h)
   if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
+    fates = {refined.form_factors.rays, refined.form_factors.escaped, refined.form_factors.back_hits};
     if (per_patch_output) fields = form_factor_fields(refined.form_factors, patches);
     fields.push_back(scalar_field("jump", refined.jump));
     solution = std::move(refined.solution);
@@ -169,12 +172,14 @@ int run_solve(const SolveCommand& command) {
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
     const EmbreeVisibility visibility(patches);
     solution = run_walks(command, walk, problem, patches, &visibility, summary);
+    fates = trace_ray_fates(patches, command.scene.seed);
   } else {
     // Over MPI the deterministic solvers take a row-distributed F (each rank its rows: Jacobi and Gauss-Seidel
     // sweep them, the direct solve and Southwell gather the whole F); the matrix-kernel walks need every row.
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary,
                                          walks ? RowsHeld::every_row : RowsHeld::own_rows);
     if (per_patch_output) fields = form_factor_fields(ff, patches);
+    fates = {ff.rays, ff.escaped, ff.back_hits};
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F), std::move(ff.row_blocks));
     if (walks) {
       solution = run_walks(command, walk, problem, patches, nullptr, summary);
@@ -232,9 +237,11 @@ int run_solve(const SolveCommand& command) {
       for (std::size_t i = 0; i < patches.size(); ++i)
         mean += (patches.area[i] / patches.total_area()) * solution.B.row(static_cast<Eigen::Index>(i)).transpose();
     }
-    std::fprintf(report_stream(), "area-weighted mean B = (%.6g, %.6g, %.6g) W/m^2\n", mean[0], mean[1], mean[2]);
+    std::fprintf(report_stream(), "area-weighted mean B = (%.6g, %.6g, %.6g) %s\n", mean[0], mean[1], mean[2],
+                 length_unit(command.scene).radiosity().c_str());
     if (!error_line.empty()) std::fprintf(report_stream(), "%s\n", error_line.c_str());
     j["mean_B"] = {mean[0], mean[1], mean[2]};
+    report_power_balance(patches, solution.B, solution.B_se, fates, summary);
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));
     // ParaView names B_var, B_var_theory (`var` is reserved in its Calculator); the CSV keeps var_*, var_theory_*.

@@ -20,6 +20,10 @@ struct SceneOptions {
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
   bool strict = false;     // --strict: refuse what the readers and validation would repair
+  double scale = 1;        // --scale S: coordinates times S (mesh/length_unit.h)
+  std::string orient = "outward";  // --orient none|consistent|outward (mesh/orient_shells.h)
+  std::string open_shells = "one-sided";  // --open-shells one-sided|two-sided (mesh/validate.h)
+  std::string unit;        // --unit mm|cm|m|in|ft: the unit of the file's coordinates ("" not given)
   std::vector<std::string> set_material;  // --set MATERIAL.Kd=r,g,b / MATERIAL.Ke=...: material overrides
   double rho_scale = 1;    // --rho-scale s: every Kd times s (after --set)
   bool two_sided = false;  // --two-sided: every (non-dielectric) material two-sided (patch/patch_set.h, add_back_sides)

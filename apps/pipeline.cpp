@@ -33,6 +33,7 @@
 #include "io/csv_writer.h"
 #include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
+#include "mesh/length_unit.h"
 #include "mesh/material_override.h"
 #include "mesh/read_scene.h"
 #include "mesh/t_junctions.h"
@@ -147,6 +148,13 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
   for (const std::string& w : options.warnings) summary.add_warning(w);
   summary.json()["scene"] = options.scene;
   summary.json()["strict"] = options.strict;
+  summary.json()["orient"] = options.orient;
+  summary.json()["open_shells"] = options.open_shells;
+  const LengthUnit unit = length_unit(options);
+  summary.json()["units"] = {{"file_unit", options.unit.empty() ? nlohmann::json() : nlohmann::json(options.unit)},
+                             {"scale", options.scale},
+                             {"length", unit.length()},
+                             {"radiosity", unit.radiosity()}};
   std::vector<MaterialOverride> overrides;
   for (const std::string& text : options.set_material) overrides.push_back(parse_material_override(text));
   record_overrides(options, overrides, summary);
@@ -198,6 +206,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     });
     mesh = read_scene(options.scene, read);
     set_input_observer({});
+    scale_mesh(mesh, options.scale);
     if (!options.form_factors_input.empty()) {
       const std::uint64_t digest = file_bytes_digest(options.form_factors_input);
       input_bytes.add(digest);
@@ -212,6 +221,8 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     apply_material_overrides(mesh, overrides, options.rho_scale);
     ValidationTolerances tolerances;
     tolerances.strict = options.strict;
+    tolerances.orient = parse_orient_mode(options.orient);
+    tolerances.open_shells_two_sided = options.open_shells == "two-sided";
     validate_mesh(mesh, tolerances);
   } catch (const MeshRefused& e) {
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
@@ -258,6 +269,13 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
 }
 
 }  // namespace
+
+LengthUnit length_unit(const SceneOptions& options) {
+  LengthUnit unit;
+  unit.file_unit = options.unit;
+  unit.scale = options.scale;
+  return unit;
+}
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   // Every rank reads and validates its own copy of the inputs, then the ranks compare what they read
@@ -327,7 +345,8 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& me
   char line[160];
   std::snprintf(line, sizeof line, "%zu patches from %zu faces, patch area min %.4g, median %.4g, max %.4g",
                 areas.count, scene.mesh.face_count(), areas.min, areas.median, areas.max);
-  note(line);
+  const std::string unit = length_unit(options).length();
+  note(std::string(line) + " (" + (unit.find(' ') != std::string::npos ? "(" + unit + ")" : unit) + "^2)");
   mesh = std::move(scene.mesh);
   return std::move(scene.patches);
 }
@@ -345,7 +364,7 @@ std::string percent(double fraction) {
 }
 
 void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint64_t escaped, std::uint64_t rays,
-                       RunSummary& summary) {
+                       std::uint64_t back, RunSummary& summary) {
   std::map<std::string, std::uint64_t> by_group;
   std::size_t worst = 0, sources = 0;
   for (std::size_t i = 0; i < patches.size(); ++i) {
@@ -382,8 +401,17 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
   summary.json()["escaped_by_group"] = list;
   summary.json()["patches_with_escaped_rays"] = sources;
   summary.json()["escaped_from_hidden_faces"] = hidden;
+  // Faces facing out of the room are harmless only when the light stays in: with many back hits the room itself
+  // may face out (inside out), and the light is lost into the backs of its walls.
+  const bool backs = back > rays / 100;
   const std::string harmless =
-      hidden == escaped ? " All of them left faces lying on the room's floor or walls and facing out of it (an "
+      backs && hidden > 0
+          ? " " + std::to_string(hidden) + " of them left faces lying on the room's floor or walls and facing out of "
+            "it; that is harmless only if no light reaches them, but " + std::to_string(back) + " rays (" +
+            percent(double(back) / double(std::max<std::uint64_t>(rays, 1))) +
+            ") hit the backs of faces: the room may be inside out (its faces pointing outwards) and the light lost "
+            "into their backs (--orient outward turns it; see power_balance)."
+      : hidden == escaped ? " All of them left faces lying on the room's floor or walls and facing out of it (an "
                           "object's bottom on the floor, a back against a wall), which no light reaches: harmless."
       : hidden > 0 ? " " + std::to_string(hidden) + " of them left faces lying on the room's floor or walls and "
                      "facing out of it (an object's bottom on the floor, a back against a wall), which no light "
@@ -467,7 +495,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
                         std::to_string(patches.face[worst]) + face_context(patches.face[worst]) +
                         "); see the back_hits field");
     }
-    if (escaped > 0 && g_scene.closed_shell) warn_escaped_rays(ff, patches, escaped, rays, summary);
+    if (escaped > 0 && g_scene.closed_shell) warn_escaped_rays(ff, patches, escaped, rays, back, summary);
   }
   summary.json()["form_factor_nonzeros"] = total_nonzeros(ff.F, ff.row_blocks);
   if (options.reciprocity) {

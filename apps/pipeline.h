@@ -10,6 +10,7 @@
 #include "io/cell_field.h"
 #include "io/vtp_metadata.h"
 #include "io/run_summary.h"
+#include "mesh/length_unit.h"
 #include "mesh/mesh.h"
 #include "patch/patch_set.h"
 
@@ -25,6 +26,10 @@ namespace radwalk::app {
 // read and whether they refused them (apps/rank_agreement.h, agree_on_inputs), and on a difference every rank
 // throws one InputError naming it.
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary);
+
+// The length unit of the scene after --scale, as --unit names the file's (mesh/length_unit.h); the summaries'
+// "units" (length, radiosity).
+LengthUnit length_unit(const SceneOptions& options);
 
 // load_validated_mesh, then patch_scene (patch/patch_scene.h, as radwalk.load: the contacts, cut with
 // --contact-cut when faces are split; make_patches with options.max_edge and max_area; add_back_sides, the faces

@@ -200,6 +200,27 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
                   "Cut a face that an object stands on along the contact footprint, so that no patch averages the "
                   "lit part with the part hidden underneath (with --max-edge or --max-area; contacts are always "
                   "noted)");
+  cmd->add_option("--scale", o.scale,
+                  "Multiply every coordinate by S before anything else (--unit mm --scale 0.001: metres); lengths, "
+                  "areas, --max-edge and B are then in the scaled unit")
+      ->transform(kPositive)
+      ->capture_default_str();
+  cmd->add_option("--unit", o.unit,
+                  "The unit of the file's coordinates (mm, cm, m, in, ft): the summaries name lengths and B (W per "
+                  "unit^2) in it, or in the unit --scale converts to")
+      ->check(CLI::IsMember({"mm", "cm", "m", "in", "ft"}));
+  cmd->add_option("--orient", o.orient,
+                  "Orientation of the faces by shells: outward (faces agree with their neighbours, closed objects "
+                  "face out, the enclosing room in), consistent (agree only, the file's majority), none (as the "
+                  "file has them)")
+      ->check(CLI::IsMember({"none", "consistent", "outward"}))
+      ->capture_default_str();
+  cmd->add_option("--open-shells", o.open_shells,
+                  "Faces of open shells (surfaces that enclose no volume: sheets, bottomless boxes): one-sided as "
+                  "the file has them, or two-sided (a front and a back patch, so light reaching their backs is not "
+                  "lost)")
+      ->check(CLI::IsMember({"one-sided", "two-sided"}))
+      ->capture_default_str();
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "
                 "non-convex quads) instead of repairing it with a warning");

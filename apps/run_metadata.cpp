@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "apps/pipeline.h"
 #include "io/run_summary.h"
 
 namespace radwalk::app {
@@ -54,8 +55,10 @@ VtpMetadata run_metadata(const SceneOptions& options, RunSummary& summary) {
   m.set_integer("seed", std::int64_t(options.seed));
   m.set_real("max_edge", options.max_edge);
   if (j.contains("patches")) m.set_integer("patches", j["patches"].get<std::int64_t>());
-  m.set_text("length_unit", "the scene file's unit (the bundled Cornell box: mm)");
-  m.set_text("B_unit", "W per square length unit (W/m^2 for a scene in metres); radiance = B / pi");
+  const LengthUnit unit = length_unit(options);
+  m.set_text("length_unit", unit.length() == "mesh unit" ? "the scene file's unit (the bundled Cornell box: mm)"
+                                                         : unit.length());
+  m.set_text("B_unit", unit.radiosity() + "; radiance = B / pi");
   m.set_text("B_srgb", "round(255 sRGB(clamp(B / pi, 0, 1))) per channel, exposure 1 (as the path tracer's PNG)");
   if (j.contains("rays_total")) m.set_integer("rays", std::llround(j["rays_total"].get<double>()));
   if (j.contains("form_factors_file")) m.set_text("form_factors_file", j["form_factors_file"].get<std::string>());

@@ -20,6 +20,14 @@ inline double srgb_from_linear(double c) {
   return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
 }
 
+// Linear value of an sRGB-encoded c' in [0, 1] (clamped), the inverse of srgb_from_linear:
+//   c = c' / 12.92 for c' <= 0.04045, ((c' + 0.055) / 1.055)^2.4 otherwise.
+inline double linear_from_srgb(double c) {
+  if (!(c > 0)) return 0.0;
+  if (c >= 1) return 1.0;
+  return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4);
+}
+
 // The same as an 8-bit value, round(255 srgb_from_linear(c)).
 inline std::uint8_t srgb8_from_linear(double c) {
   return static_cast<std::uint8_t>(std::lround(255.0 * srgb_from_linear(c)));

@@ -26,6 +26,7 @@ struct Material {
   // The file names this material but gives it no reflectance (an STL solid, a VTK surface without a rho field):
   // validate_mesh refuses a face that uses it until `--set NAME.Kd=r,g,b` gives one (material_override.h).
   bool reflectance_missing = false;
+  std::string texture;   // map_Kd texture file (resolved path) whose mean colour Kd includes, "" if none
   long line = 0;         // line in the MTL file where it is defined (0 if none)
   std::string file;      // MTL file where it is defined (empty if none)
 };

@@ -65,6 +65,24 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
       entries.push_back(std::move(e));
       return;
     }
+    if (key == "map_Kd" && !entries.empty()) {
+      // Skip the options and their values: the option words take 1 value, -mm 2, -o -s -t up to 3 numbers.
+      std::size_t k = 1;
+      while (k < tokens.size() && tokens[k].size() > 1 && tokens[k][0] == '-') {
+        const std::string_view option = tokens[k++];
+        const std::size_t most = option == "-mm" ? 2 : (option == "-o" || option == "-s" || option == "-t") ? 3 : 1;
+        for (std::size_t v = 0; v < most && k < tokens.size(); ++v) {
+          const bool number = parse_number(tokens[k]).status == NumberStatus::ok;
+          if (most == 3 && !number) break;  // -o u [v [w]]: only numbers
+          ++k;
+        }
+      }
+      if (k < tokens.size()) {
+        entries.back().map_Kd = std::string(rest_of_statement(content, tokens[k]));
+        entries.back().map_Kd_line = line;
+      }
+      return;
+    }
     const bool known = key == "Kd" || key == "Ke" || key == "Ks" || key == "illum" || key == "Ni" || key == "Ns" ||
                        key == "Pr" || key == "Pm" || key == kTwoSidedStatement;
     if (!known) return;

@@ -9,6 +9,14 @@
 // radwalk's own statement: `radwalk_two_sided 1` (or 0, the default) makes the material's faces two-sided, a
 // front and a back patch each (patch/patch_set.h; docs/two-sided.md). Other programs ignore it.
 //
+// Textures: `map_Kd [-options] FILE` names a texture multiplied by Kd (Kd 1 when the block has no Kd, as modelling
+// tools write it). The radiosity solvers take one rho per material, so read_obj replaces Kd by Kd times the
+// texture's mean linear colour (texture_mean.h), with a warning saying so; without a readable texture (missing,
+// or neither PNG nor JPEG), by Kd times 0.5, the reflectance radwalk gives a face without material, with a warning
+// naming the texture and `--set NAME.Kd=r,g,b` (docs/units-and-formats.md, "Materials"). The option words before the
+// file name (-blendu, -blendv, -bm, -boost, -cc, -clamp, -imfchan, -mm, -o, -s, -t, -texres) and their values are
+// skipped; the rest of the statement is the file name (spaces included), relative to the MTL file's directory.
+//
 // BsdfKind mapping (for the path tracer; the radiosity solvers use only Kd and Ke), first rule that applies:
 //   illum 4, 6 or 7 (refraction)              -> dielectric (Ni = index of refraction)
 //   Pm > 0                                    -> conductor  (Ks = F0 tint)
@@ -35,6 +43,8 @@ struct MtlEntry {
   std::optional<int> illum;
   std::optional<double> Ni, Ns, Pr, Pm;
   std::optional<bool> two_sided;  // radwalk_two_sided 0|1
+  std::optional<std::string> map_Kd;  // the texture file of map_Kd as written (options such as -s u v w skipped)
+  long map_Kd_line = 0;
 };
 
 // The MTL statement that makes a material two-sided.

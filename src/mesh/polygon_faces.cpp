@@ -1,8 +1,13 @@
 #include "mesh/polygon_faces.h"
 
+#include <sstream>
+
 #include "core/error.h"
 #include "mesh/polygon_crossings.h"
+#include "mesh/repeated_corners.h"
 #include "mesh/triangulate.h"
+
+#include <algorithm>
 
 namespace radwalk {
 
@@ -15,8 +20,91 @@ void PolygonFaces::push(const std::array<std::int32_t, 4>& corners, long line, s
   mesh_.face_source.push_back(source);
 }
 
+namespace {
+
+std::string area_text(double x) {
+  std::ostringstream s;
+  s.precision(6);
+  s << x;
+  return s.str();
+}
+
+}  // namespace
+
+double PolygonFaces::outline_area(const std::vector<std::int32_t>& corners) const {
+  Vec3 N = Vec3::Zero();
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const std::int32_t a = corners[k], b = corners[(k + 1) % corners.size()];
+    if (a < 0 || b < 0 || static_cast<std::size_t>(a) >= mesh_.vertices.size() ||
+        static_cast<std::size_t>(b) >= mesh_.vertices.size())
+      return 0;
+    N += mesh_.vertices[static_cast<std::size_t>(a)].cross(mesh_.vertices[static_cast<std::size_t>(b)]);
+  }
+  return 0.5 * N.norm();
+}
+
 void PolygonFaces::add(const std::vector<std::int32_t>& input, long line, std::int32_t material,
                        std::int32_t group, std::int32_t source) {
+  auto found = [&](const char* kind, Severity severity, const std::string& message) {
+    mesh_.findings.push_back(mesh_.finding_of(source, line, material, group, kind, severity, message));
+  };
+  const std::string n = std::to_string(input.size());
+  const CornerLoops split = split_repeated_corners(input);
+  if (!split.repeated) {
+    if (input.size() >= 3) return add_outline(input, line, material, group, source);
+    // `f a b` (an exporter's line segment) or `f a`: no area, no power.
+    if (strict_)
+      return found("fewer than 3 corners", Severity::error,
+                   "has " + n + " corners, a face needs at least 3 (--strict refuses what would be dropped)");
+    return found("face of fewer than 3 corners dropped", Severity::repair,
+                 "has " + n + " corners (a line segment or a point, not a surface): dropped, area 0 (it carries no "
+                 "power; --strict refuses it)");
+  }
+  // Repeated corners: the outline is the loops between its repeats (repeated_corners.h), which keep its area.
+  std::string repeats;
+  {
+    std::vector<std::int32_t> seen;
+    for (std::int32_t v : input) {
+      if (std::find(seen.begin(), seen.end(), v) == seen.end()) {
+        seen.push_back(v);
+      } else if (repeats.size() < 60 && repeats.find("vertex " + std::to_string(long(v) + 1) + ",") == std::string::npos) {
+        repeats += "vertex " + std::to_string(long(v) + 1) + ", ";
+      }
+    }
+    if (repeats.size() >= 2) repeats.resize(repeats.size() - 2);
+  }
+  if (strict_)
+    return found("repeated corners", Severity::error,
+                 "face with " + n + " corners repeats " + repeats + " (--strict refuses what would be repaired)");
+  const double drawn = outline_area(input);
+  std::size_t kept = 0, dropped = 0;
+  double kept_area = 0;
+  for (const std::vector<int>& loop : split.loops) {
+    std::vector<std::int32_t> corners;
+    for (int k : loop) corners.push_back(input[static_cast<std::size_t>(k)]);
+    if (corners.size() < 3) {
+      dropped += corners.size() == 2;  // a spike; a loop of one corner is a consecutive repeat
+      continue;
+    }
+    const double area = outline_area(corners);
+    ++kept;
+    kept_area += area;
+    add_outline(corners, line, material, group, source);
+  }
+  std::string what = "face with " + n + " corners repeats " + repeats + ": ";
+  if (kept == 0) {
+    return found("face without area dropped", Severity::repair,
+                 what + "no loop between its repeats has 3 corners, so it has no area: dropped, area " +
+                     area_text(drawn) + " (--strict refuses it)");
+  }
+  what += kept == 1 ? "the repeats removed, kept as one face" : "split at its repeats into " + std::to_string(kept) + " faces";
+  what += " of area " + area_text(kept_area) + " (as drawn " + area_text(drawn) + ")";
+  if (dropped > 0) what += ", " + std::to_string(dropped) + " spike(s) without area dropped (area 0)";
+  found("repeated corners removed", Severity::repair, what + " (--strict refuses it)");
+}
+
+void PolygonFaces::add_outline(const std::vector<std::int32_t>& input, long line, std::int32_t material,
+                               std::int32_t group, std::int32_t source) {
   if (input.size() <= 4) {
     std::array<std::int32_t, 4> c{-1, -1, -1, -1};
     for (std::size_t k = 0; k < input.size(); ++k) c[k] = input[k];

@@ -1,6 +1,7 @@
 #include "mesh/read_obj.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -11,6 +12,7 @@
 #include "mesh/mtl.h"
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
+#include "mesh/texture_mean.h"
 
 namespace radwalk {
 
@@ -36,6 +38,7 @@ struct ObjScan {
   std::vector<NamedLine> mtllib;
   std::vector<std::string> groups;  // "object 'o', group 'g'" labels in order of first use
   std::vector<std::string> group_object, group_name;  // their parts
+  std::vector<NamedLine> bad_vertices;  // why a `v` statement cannot be read, and its line
   long ignored_elements = 0;  // `l` and `p` statements
   long first_ignored_line = 0;
 };
@@ -52,25 +55,30 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
     if (key == "v") {
       const std::size_t n = tokens.size() - 1;
       const std::string vertex = "vertex " + std::to_string(s.vertices.size() + 1);
-      if (n != 3 && n != 4 && n != 6 && n != 7)
-        throw InputError(locate(path, line, -1, vertex + " has " + std::to_string(n) +
-                                                    " numbers, expected x y z (truncated line?)"));
-      Vec3 p;
+      // A vertex that cannot be read is an error finding and a NaN vertex (the numbering of the others is kept;
+      // validate_mesh refuses the faces that use it), so the rest of the file is still read and checked.
+      Vec3 p = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+      if (n != 3 && n != 4 && n != 6 && n != 7) {
+        s.bad_vertices.push_back({vertex + " has " + std::to_string(n) + " numbers, expected x y z (truncated line?)", line});
+        s.vertices.push_back(p);
+        return;
+      }
       for (int k = 0; k < 3; ++k) {
         const auto x = parse_double(tokens[k + 1]);
-        if (!x)
-          throw InputError(locate(path, line, -1, vertex + ": '" + excerpt(tokens[k + 1]) + "' is not a number"));
+        if (!x) {
+          s.bad_vertices.push_back({vertex + ": '" + excerpt(tokens[k + 1]) + "' is not a number", line});
+          p = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
+          break;
+        }
         // A non-finite coordinate (nan, inf) is kept: validate_mesh refuses the faces that use it, with the
         // scene's other findings.
         p[k] = *x;
       }
       s.vertices.push_back(p);
     } else if (key == "f") {
-      const long face = static_cast<long>(s.faces.size());
       const std::size_t n = tokens.size() - 1;
-      if (n < 3)
-        throw InputError(locate(path, line, face, "has " + std::to_string(n) +
-                                                      " vertices, a face needs 3 or 4 (truncated line?)"));
+      // Fewer than 3 corners (`f a b`, an exporter's line segment) is not refused here: PolygonFaces drops the
+      // face with a finding, after every other line is read.
       ScannedFace f;
       f.line = line;
       f.usemtl = static_cast<int>(s.usemtl.size()) - 1;
@@ -78,8 +86,10 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
       for (std::size_t k = 1; k <= n; ++k) {
         const std::string_view token = tokens[k];
         const auto index = parse_long(token.substr(0, token.find('/')));
-        if (!index)
-          throw InputError(locate(path, line, face, "'" + excerpt(token) + "' is not a vertex index"));
+        if (!index) {
+          if (f.bad_index.empty()) f.bad_index = "'" + excerpt(token) + "' is not a vertex index";
+          continue;
+        }
         const long resolved = *index > 0 ? *index - 1 : static_cast<long>(s.vertices.size()) + *index;
         if (f.bad_index.empty()) {
           if (*index == 0)
@@ -177,6 +187,51 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
   return files;
 }
 
+std::string colour_text(const Rgb& c) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", c[0], c[1], c[2]);
+  return text;
+}
+
+// Kd with a map_Kd texture (mtl.h, "Textures"): Kd (1 if the block has none) times the texture's mean linear
+// colour (texture_mean.h), or times 0.5 when the texture cannot be read; a warning finding either way.
+void apply_texture(Mesh& mesh, const MtlEntry& e, const MtlSource& source) {
+  Material& m = mesh.materials.back();
+  const std::string name = unescape_spaces(*e.map_Kd);
+  const std::string file = !name.empty() && name[0] == '/' ? name : directory_of(e.file) + name;
+  const Rgb Kd = e.Kd ? *e.Kd : Rgb::Ones();
+  TextureMean t;
+  bool found = false;
+  try {
+    found = source.exists(file);
+    if (found) t = texture_mean(source.read(file));
+  } catch (const InputError& error) {
+    t.why = error.what();
+  }
+  Finding finding = mesh.finding_of(-1, 0, -1, -1, "texture", Severity::warning, "");
+  finding.file = e.file;
+  finding.line = e.map_Kd_line;
+  finding.material = e.name;
+  const std::string what = "material '" + excerpt(e.name) + "': Kd " + colour_text(Kd) + " with texture '" +
+                           excerpt(name) + "'";
+  if (t.mean) {
+    m.Kd = Kd * *t.mean;
+    m.texture = file;
+    finding.kind = "texture mean colour used";
+    finding.message = what + ": rho = Kd times the texture's mean colour " + colour_text(*t.mean) + " (linear, " +
+                      std::to_string(t.width) + " x " + std::to_string(t.height) + " pixels) = " + colour_text(m.Kd) +
+                      " (the radiosity solvers take one rho per material; --set '" + excerpt(e.name) +
+                      ".Kd=r,g,b' sets another)";
+  } else {
+    m.Kd = 0.5 * Kd;
+    finding.kind = "texture not read";
+    finding.message = what + (found ? " that cannot be read (" + t.why + ")" : " not found (looked for " + printable(file) + ")") +
+                      ": rho = Kd times 0.5, radwalk's default reflectance, = " + colour_text(m.Kd) + "; --set '" +
+                      excerpt(e.name) + ".Kd=r,g,b' sets the texture's colour";
+  }
+  mesh.findings.push_back(finding);
+}
+
 }  // namespace
 
 MtlSource mtl_files_on_disk() {
@@ -208,12 +263,15 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
   Mesh mesh;
   mesh.path = path;
   mesh.vertices = scan.vertices;
+  for (const NamedLine& bad : scan.bad_vertices)
+    mesh.findings.push_back(mesh.finding_of(-1, bad.line, -1, -1, "unreadable vertex", Severity::error, bad.name));
 
   // Materials: the first definition of a name wins; later ones are reported.
   std::map<std::string, int> by_name;
   for (const auto& e : entries) {
     const int index = static_cast<int>(mesh.materials.size());
     mesh.materials.push_back(material_from_mtl(e));
+    if (e.map_Kd) apply_texture(mesh, e, source);
     if (!by_name.emplace(e.name, index).second)
     {
       Finding again = mesh.finding_of(-1, 0, -1, -1, "material defined again", Severity::warning,

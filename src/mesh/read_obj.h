@@ -14,12 +14,13 @@
 // (vn, vt, s, ...) are ignored; `l` and `p` are ignored with a warning.
 // Faces of more than 4 corners are triangulated (polygon_faces.h; a repair, reported) unless options.strict; `o`
 // and `g` name the face's object and group in messages (Mesh::groups).
-// Refused at once with an InputError naming file and line (what follows cannot be trusted): a vertex without
-// three numbers, a face with fewer than 3 vertices or a corner that is not an index, a missing mtllib file, an MTL
-// statement radwalk cannot read. Collected as error findings naming file, line and face (mesh.findings; the face
-// is left out and validate_mesh refuses the scene with every other finding): index 0, a relative index before the
-// first vertex, an index too large, an unknown usemtl name (when a face uses it). Non-finite coordinates are kept
-// (validate_mesh refuses the faces that use them).
+// Refused at once with an InputError naming file and line: a missing mtllib file, an MTL statement radwalk cannot
+// read. Everything else is collected, so that one run reports every finding: as error findings naming file, line
+// and face (mesh.findings; the face is left out and validate_mesh refuses the scene with every other finding): a
+// vertex without three numbers (kept as a NaN vertex so that the numbering holds), a corner that is not an index,
+// index 0, a relative index before the first vertex, an index too large, an unknown usemtl name (when a face uses
+// it); as repairs (polygon_faces.h; refusals with options.strict): a face of fewer than 3 corners, repeated
+// corners. Non-finite coordinates are kept (validate_mesh refuses the faces that use them).
 // tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
 // reader here.
 // Out-of-range vertex indices are kept and reported by validate_mesh.

@@ -13,6 +13,7 @@
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
 #include "mesh/polygon_crossings.h"
+#include "mesh/repeated_corners.h"
 #include "mesh/t_junctions.h"
 #include "mesh/triangulate.h"
 
@@ -177,48 +178,120 @@ bool check_extent(const Mesh& mesh, const ValidationTolerances& tol, FindingLog&
                        " mesh units; move the origin into the scene");
   return true;
 }
-// Step: repeated corners (same index, or bit-identical positions). A quad with one repeat at adjacent corners
-// becomes a triangle; anything else is refused (and left out of the later steps: it has no proper area).
-void repair_repeated_corners(Mesh& mesh, FindingLog& log) {
+// Step: repeated corners (same index, or bit-identical positions; the readers already split faces at repeated
+// indices, polygon_faces.h). The outline is split at its repeats into loops (repeated_corners.h, which keeps the
+// area as drawn): loops of 3 or 4 corners stay (a quad with one repeat at adjacent corners becomes a triangle),
+// the rest have no area and are dropped. A repair, reported with the areas; with strict a refusal.
+void repair_repeated_corners(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   const std::vector<std::int32_t> weld = weld_vertices(mesh);
   std::vector<bool> keep(mesh.face_count(), true);
-  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
-    auto& c = mesh.faces[f];
+  const std::size_t n_faces = mesh.face_count();
+  for (std::size_t f = 0; f < n_faces; ++f) {
+    const auto c = mesh.faces[f];
     const int n = mesh.corner_count(f);
-    auto w = [&](int k) { return weld[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]; };
-    auto describe = [&](int i, int j) {
-      const std::int32_t a = c[static_cast<std::size_t>(i)], b = c[static_cast<std::size_t>(j)];
-      return a == b ? "repeats " + vertex_name(a) + " (corners " + std::to_string(i) + " and " + std::to_string(j) +
-                          ")"
-                    : "has corners " + std::to_string(i) + " and " + std::to_string(j) + " (" + vertex_name(a) +
-                          ", " + vertex_name(b) + ") at the same point";
-    };
-    int pairs = 0, pi = -1, pj = -1;
+    std::vector<std::int32_t> ids;
+    for (int k = 0; k < n; ++k) ids.push_back(weld[static_cast<std::size_t>(c[static_cast<std::size_t>(k)])]);
+    const CornerLoops split = split_repeated_corners(ids);
+    if (!split.repeated) continue;
+    std::string what = n == 3 ? "repeated vertex: triangle" : "repeated vertex: quad";
     for (int i = 0; i < n; ++i)
       for (int j = i + 1; j < n; ++j)
-        if (w(i) == w(j)) {
-          ++pairs;
-          pi = i;
-          pj = j;
+        if (ids[static_cast<std::size_t>(i)] == ids[static_cast<std::size_t>(j)]) {
+          const std::int32_t a = c[static_cast<std::size_t>(i)], b = c[static_cast<std::size_t>(j)];
+          what += a == b ? " repeats " + vertex_name(a) + " (corners " + std::to_string(i) + " and " +
+                               std::to_string(j) + ")"
+                         : " has corners " + std::to_string(i) + " and " + std::to_string(j) + " (" +
+                               vertex_name(a) + ", " + vertex_name(b) + ") at the same point";
         }
-    if (pairs == 0) continue;
-    const bool adjacent = pj == pi + 1 || (pi == 0 && pj == 3);
-    if (n == 3 || pairs > 1 || !adjacent) {
-      log.error("repeated vertex", f,
-                n == 3 ? "repeated vertex: triangle " + describe(pi, pj) + ", it has no area"
-                       : "repeated vertex: quad " + describe(pi, pj) +
-                             (pairs > 1 ? " and more" : " across a diagonal") + ", it has no proper area");
+    const double drawn = face_vector_area(mesh, f).norm();
+    if (tol.strict) {
+      log.error("repeated vertex", f, what + " (--strict refuses what would be repaired)");
       keep[f] = false;
       continue;
     }
-    // Drop the later corner of the adjacent pair; the other three keep their cyclic order.
-    const int drop = (pi == 0 && pj == 3) ? 3 : pj;
-    const std::string what = "repeated vertex: quad " + describe(pi, pj) + ", repaired to a triangle";
-    std::array<std::int32_t, 4> t{-1, -1, -1, -1};
-    for (int k = 0, m = 0; k < 4; ++k)
-      if (k != drop) t[static_cast<std::size_t>(m++)] = c[static_cast<std::size_t>(k)];
-    c = t;
-    log.add("repeated vertex repaired", Severity::repair, f, what);
+    std::vector<std::array<std::int32_t, 4>> loops;
+    for (const std::vector<int>& loop : split.loops) {
+      if (loop.size() < 3) continue;
+      std::array<std::int32_t, 4> q{-1, -1, -1, -1};
+      for (std::size_t k = 0; k < loop.size(); ++k) q[k] = c[static_cast<std::size_t>(loop[k])];
+      loops.push_back(q);
+    }
+    if (loops.empty()) {
+      log.add("face without area dropped", Severity::repair, f,
+              what + ": no loop between its repeats has 3 corners, so it has no area: dropped, area " + fmt(drawn) +
+                  " (--strict refuses it)");
+      keep[f] = false;
+      continue;
+    }
+    // One loop (the only possible one for a triangle or a quad with 3 or 4 corners left) replaces the face.
+    mesh.faces[f] = loops[0];
+    const double kept = face_vector_area(mesh, f).norm();
+    log.add("repeated vertex repaired", Severity::repair, f,
+            what + ", repaired to a " + (loops[0][3] >= 0 ? "quad" : "triangle") + " of area " + fmt(kept) +
+                " (as drawn " + fmt(drawn) + "; --strict refuses it)");
+  }
+  if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
+}
+
+// Step: faces with the same welded corners (duplicates). Back to back (facing away from each other: a thin part
+// modelled as two faces) they become one two-sided face: the first is kept and given a two-sided copy of its
+// material (same name and properties, Material::two_sided; docs/two-sided.md), the other is dropped. Facing the
+// same way, the later copy is dropped (the surface is counted once). Repairs, refused with strict.
+void merge_duplicate_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
+  const EdgeTable t = build_edge_table(mesh);
+  std::map<std::array<std::int32_t, 4>, std::size_t> seen;
+  std::vector<bool> keep(mesh.face_count(), true);
+  std::map<std::int32_t, std::int32_t> two_sided_of;  // material -> its two-sided copy
+  for (std::size_t f = 0; f < mesh.face_count(); ++f) {
+    std::array<std::int32_t, 4> key{-1, -1, -1, -1};
+    const int n = mesh.corner_count(f);
+    for (int k = 0; k < n; ++k)
+      key[static_cast<std::size_t>(k)] = t.weld[static_cast<std::size_t>(mesh.faces[f][static_cast<std::size_t>(k)])];
+    std::sort(key.begin(), key.begin() + n);
+    const auto [it, added] = seen.emplace(key, f);
+    if (added) continue;
+    const std::size_t g = it->second;
+    const std::string other =
+        "face " + std::to_string(mesh.source_face(g)) + " (line " + std::to_string(log.line(g)) + ")";
+    const bool back_to_back = !(face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0);
+    const double area = face_area(mesh, f);
+    if (tol.strict) {
+      log.error("duplicate face", f,
+                back_to_back ? "duplicate face: same corners as " + other +
+                                   " but facing the other way; back-to-back faces would be made one two-sided face "
+                                   "(--strict refuses it)"
+                             : "duplicate face: same corners as " + other +
+                                   "; overlapping faces would be dropped (--strict refuses it)");
+      keep[f] = false;
+      continue;
+    }
+    keep[f] = false;
+    if (!back_to_back) {
+      log.add("duplicate face dropped", Severity::repair, f,
+              "duplicate face: same corners as " + other + ", facing the same way: dropped (area " + fmt(area) +
+                  ", counted once; --strict refuses it)");
+      continue;
+    }
+    std::int32_t& m = mesh.face_material[g];
+    const std::int32_t mf = mesh.face_material[f];
+    std::string materials;
+    if (mf != m && mf >= 0 && m >= 0)
+      materials = "; its material '" + excerpt(mesh.materials[static_cast<std::size_t>(mf)].name) +
+                  "' is replaced by the other side's '" + excerpt(mesh.materials[static_cast<std::size_t>(m)].name) + "'";
+    if (m >= 0 && !mesh.materials[static_cast<std::size_t>(m)].two_sided) {
+      auto c = two_sided_of.find(m);
+      if (c == two_sided_of.end()) {
+        Material copy = mesh.materials[static_cast<std::size_t>(m)];
+        copy.two_sided = true;
+        mesh.materials.push_back(copy);
+        c = two_sided_of.emplace(m, static_cast<std::int32_t>(mesh.materials.size() - 1)).first;
+      }
+      m = c->second;
+    }
+    log.add("back-to-back faces made two-sided", Severity::repair, f,
+            "duplicate face: same corners as " + other +
+                " but facing the other way (a thin part modelled as two faces): the pair is one two-sided face "
+                "(a front and a back patch, area " + fmt(area) + " each)" + materials + " (--strict refuses it)");
   }
   if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
@@ -420,22 +493,90 @@ void check_materials(Mesh& mesh, FindingLog& log) {
     if (!((m.Kd >= 0).all() && (m.Kd < 1).all()))
       log.error("reflectance out of range", f,
                 "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +
-                    ", rho must be in [0, 1) for the radiosity equation to have a solution");
+                    ", rho must be in [0, 1) for the radiosity equation to have a solution" +
+                    (m.texture.empty() ? std::string() : " (Kd times its texture's mean colour)") +
+                    "; --set '" + excerpt(m.name) + ".Kd=r,g,b' sets it" +
+                    ((m.Kd >= 0).all() ? ", --rho-scale S (< " + fmt(1 / m.Kd.maxCoeff()) + ") scales every Kd"
+                                       : std::string()));
     if (!m.Ke.allFinite() || (m.Ke < 0).any())
       log.error("negative emission", f,
                 "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                    ", emitted radiance must be finite and >= 0");
+                    ", emitted radiance must be finite and >= 0; --set '" + excerpt(m.name) + ".Ke=r,g,b' sets it");
     // E = pi Ke must be finite too, and leave room for the radiosity it drives (found by fuzz_validate_patch:
     // Ke 1e308 passed and made E infinite).
     else if (!(m.Ke.maxCoeff() <= kMaxKe))
       log.error("emission too large", f,
                 "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                    ", above the 1e300 radwalk computes with (E = pi Ke would overflow)");
+                    ", above the 1e300 radwalk computes with (E = pi Ke would overflow); --set '" + excerpt(m.name) +
+                    ".Ke=r,g,b' sets it");
     if (m.kind != BsdfKind::diffuse)
       log.add("non-diffuse material", Severity::warning, f,
               material_name(m) + " is " + kind_name(m.kind) +
                   ": the radiosity solvers treat it as diffuse with rho = Kd (only the path tracer uses its kind)");
   }
+}
+
+// Step: orientation of the shells (orient_shells.h), reported as one warning for the flips (count, area, objects),
+// a note per open shell, a warning per non-orientable shell.
+void orient_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
+  const OrientationResult r = orient_shells(mesh, tol.orient);
+  auto where = [&](std::size_t f) {
+    const std::int32_t g = mesh.face_group[f];
+    if (g < 0) return std::string("(no object or group)");
+    const auto k = static_cast<std::size_t>(g);
+    if (k < mesh.group_object.size() && !mesh.group_object[k].empty())
+      return "object '" + excerpt(mesh.group_object[k]) + "'";
+    return k < mesh.groups.size() ? mesh.groups[k] : std::string("(no object or group)");
+  };
+  if (r.flipped_faces > 0) {
+    std::map<std::string, std::size_t> by;
+    std::vector<std::string> order;
+    for (std::size_t f : r.flipped)
+      if (by[where(f)]++ == 0) order.push_back(where(f));
+    std::stable_sort(order.begin(), order.end(), [&](const std::string& a, const std::string& b) { return by[a] > by[b]; });
+    std::string objects;
+    for (std::size_t k = 0; k < order.size() && k < 5; ++k)
+      objects += (k ? ", " : "") + order[k] + " " + std::to_string(by[order[k]]);
+    if (order.size() > 5) objects += ", and " + std::to_string(order.size() - 5) + " more";
+    log.add_global("faces flipped", Severity::warning,
+                   std::to_string(r.flipped_faces) + " faces (area " + fmt(r.flipped_area) + ") flipped by --orient " +
+                       orient_mode_name(tol.orient) + " to agree with their neighbours" +
+                       (tol.orient == OrientMode::outward ? " and to face out of their closed shells (the room's in)"
+                                                          : "") +
+                       ": " + objects + " (" + std::to_string(r.shells) + " shells, " +
+                       std::to_string(r.closed_shells) + " closed, " + std::to_string(r.rooms) +
+                       " enclosing the scene and facing in; --orient none keeps the file's orientation)");
+  }
+  if (tol.open_shells_two_sided && !r.open_shell_faces.empty()) {
+    std::map<std::int32_t, std::int32_t> two_sided_of;  // material -> its two-sided copy
+    for (std::size_t f : r.open_shell_faces) {
+      std::int32_t& m = mesh.face_material[f];
+      if (m < 0 || mesh.materials[static_cast<std::size_t>(m)].two_sided) continue;
+      auto c = two_sided_of.find(m);
+      if (c == two_sided_of.end()) {
+        Material copy = mesh.materials[static_cast<std::size_t>(m)];
+        copy.two_sided = true;
+        mesh.materials.push_back(copy);
+        c = two_sided_of.emplace(m, static_cast<std::int32_t>(mesh.materials.size() - 1)).first;
+      }
+      m = c->second;
+    }
+    log.add_global("open shells made two-sided", Severity::warning,
+                   std::to_string(r.open_shell_faces.size()) + " faces of " + std::to_string(r.open_shells.size()) +
+                       " open shells made two-sided (--open-shells two-sided): each a front and a back patch");
+    return;
+  }
+  for (const OpenShell& o : r.open_shells)
+    log.add("open shell", Severity::note, o.first_face,
+            "open shell: " + std::to_string(o.faces) + " faces (area " + fmt(o.area) + ") with " +
+                std::to_string(o.boundary_edges) +
+                " boundary edges; the backs of one-sided faces absorb the light that reaches them, so make an open or "
+                "thin part two-sided (--open-shells two-sided, 'radwalk_two_sided 1' in its material, or --two-sided) "
+                "unless its backs are hidden");
+  for (std::size_t f : r.non_orientable_faces)
+    log.add("non-orientable shell", Severity::warning, f,
+            "non-orientable shell: its faces cannot all agree across their shared edges (a Moebius strip or faces "
+            "folded through each other); some neighbours keep disagreeing");
 }
 
 // Step: duplicates, coplanar overlapping faces, non-manifold edges and vertices, orientation of neighbours,
@@ -627,12 +768,14 @@ void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
   if (mesh.faces.empty() && !log.errors()) log.add_global("no faces", Severity::error, "the scene has no faces");
   check_indices_and_coordinates(mesh, log);
   if (!mesh.faces.empty() && check_extent(mesh, tolerances, log)) {
-    repair_repeated_corners(mesh, log);
+    repair_repeated_corners(mesh, tolerances, log);
     if (!mesh.faces.empty()) repair_face_geometry(mesh, tolerances, log);
     if (mesh.faces.empty() && !log.errors())
       log.add_global("no faces with area", Severity::error, "the scene has no faces with area");
     check_face_geometry(mesh, tolerances, log);
     check_materials(mesh, log);
+    if (!mesh.faces.empty()) merge_duplicate_faces(mesh, tolerances, log);
+    if (!mesh.faces.empty()) orient_faces(mesh, tolerances, log);
     check_topology(mesh, log);
 
     // Step: an emitter (form factors need none, but a radiosity solution would be zero).

@@ -11,32 +11,40 @@
 // others) is thrown with all of them.
 //
 // Errors (refused): no faces; non-finite coordinate; face with fewer than 3 corners; vertex index out of range;
-//   triangle with a repeated vertex (or two corners at the same point); quad with two repeats or a repeat across a
-//   diagonal; scene too large or too small for single precision (the later steps are skipped); and with strict:
+//   scene too large or too small for single precision (the later steps are skipped); and with strict:
 //   degenerate face (area <= degenerate_area * D^2, D = diagonal of the scene's bounding box), non-planar quad
 //   (quad_nonplanarity > planar_error), non-convex quad (quad_min_turn_sine < -convex_sine), area-ambiguous quad
-//   (quad area ambiguity > area_ambiguity, below); self-intersecting quad (bow-tie); always: a bow-tie off its plane; duplicate face (same
-//   welded corners, in either orientation); material index out of range; reflectance Kd outside [0, 1) or
+//   (quad area ambiguity > area_ambiguity, below); self-intersecting quad (bow-tie); repeated corners; duplicate
+//   faces; always: a bow-tie off its plane; material index out of range; reflectance Kd outside [0, 1) or
 //   emission Ke negative, not finite or above 1e300, for a material some face uses; a used material without
 //   reflectance (Material::reflectance_missing: an STL solid, a VTK surface without rho), naming the --set that
 //   gives one.
-// Repaired (refused with strict where said above): quad with one vertex repeated at adjacent corners -> triangle;
+// Repaired (refused with strict where said above): repeated corners (same index or same point): the outline split
+//   at its repeats into loops (repeated_corners.h, area as drawn kept), loops of fewer than 3 corners dropped (a quad
+//   with one vertex repeated at adjacent corners -> triangle; a triangle with a repeat has no area and is dropped);
+//   duplicate faces (same welded corners): back to back -> one face with a two-sided copy of its material (a front
+//   and a back patch, docs/two-sided.md), facing the same way -> the later dropped;
 //   face without material -> material "radwalk_default" (rho 0.5, no emission); degenerate face dropped;
 //   non-planar, non-convex or area-ambiguous quad split into two triangles along the better diagonal; a planar
 //   self-intersecting quad (a bow-tie) split at its crossing into its two lobes (polygon_crossings.h: a new vertex
 //   there, both facing along the quad's dominant normal).
+// Orientation (orient_shells.h, tolerances.orient): faces flipped to agree with their shells and closed shells
+//   turned outward (the room inward): one warning with the count, area and objects; non-orientable shells a
+//   warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
+//   Cornell box, is one: harmless where no light reaches the backs, which power_balance measures).
 // Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); coplanar faces that overlap
 //   with positive area facing the same way (coplanar_overlaps.h: both faces and the shared area named; back to back
 //   they are a contact, a block's bottom on a floor, which patching cuts along); non-manifold edge (3+
 //   faces); non-manifold vertex (faces around it form 2+ fans, joined across T-junctions); neighbours with
 //   inconsistent orientation (flipped face); a non-diffuse material (the radiosity solvers use Kd only); no
 //   emitter; a scene far from the origin.
-// Notes: T-junctions (t_junctions.h), named at the T point: harmless for the constant-radiosity solve.
+// Notes: T-junctions (t_junctions.h), named at the T point: harmless for the constant-radiosity solve; open shells.
 //
 // The area ambiguity of a quad (face_geometry.h): its bilinear surface (where its patches lie) and its two
 // triangulations differ in area by at most ambiguity x area, so a validated quad's patches add up to its area
 // within area_ambiguity.
 #include "mesh/mesh.h"
+#include "mesh/orient_shells.h"
 
 namespace radwalk {
 
@@ -58,7 +66,13 @@ struct ValidationTolerances {
   // Coordinates far from the origin relative to the scene (max |coordinate| / extent above this) leave too few
   // float digits for the scene's detail: a warning (move the origin into the scene).
   double max_offset_ratio = 1e4;
-  // Repairs (dropping zero-area faces, splitting bent or concave quads) become refusals.
+  // Orientation of the shells (orient_shells.h): outward by default; the flips are one warning.
+  OrientMode orient = OrientMode::outward;
+  // Faces of open shells (not emitters alone) get two-sided copies of their materials (--open-shells two-sided):
+  // an open surface has two sides that light can reach, a closed one only its outside.
+  bool open_shells_two_sided = false;
+  // Repairs (dropping zero-area faces, splitting bent or concave quads, repeated corners, duplicate faces) become
+  // refusals.
   bool strict = false;
 };
 

@@ -194,13 +194,18 @@ TEST_CASE("PLY: face colours become reflectances, missing colours and repeated i
   for (const auto& w : plain.warnings) warned = warned || w.find("no face colours") != std::string::npos;
   CHECK(warned);
 
-  // A face with a repeated index is kept by the reader (OpenMesh used to drop it) and refused by validation.
-  const Mesh repeated = read_scene(data("ply_repeated_index.ply"));
-  CHECK(repeated.face_count() == 2);
-  CHECK(repeated.face_line[1] == 15);
-  CHECK_THROWS_WITH(load_scene(data("ply_repeated_index.ply")),
+  // A triangle with a repeated index has no area: dropped with a repair naming its line (refused with --strict).
+  const Mesh repeated = load_scene(data("ply_repeated_index.ply"));
+  CHECK(repeated.face_count() == 1);
+  bool dropped = false;
+  for (const Finding& f : repeated.findings)
+    dropped = dropped || (f.line == 15 && f.face == 1 && f.severity == Severity::repair);
+  CHECK(dropped);
+  ReadOptions strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(load_scene(data("ply_repeated_index.ply"), strict),
                     Catch::Contains("ply_repeated_index.ply:15") && Catch::Contains("face 1") &&
-                        Catch::Contains("repeated vertex"));
+                        Catch::Contains("repeated"));
 }
 
 TEST_CASE("unknown formats and missing files are input errors", "[mesh][read]") {

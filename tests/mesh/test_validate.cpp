@@ -60,18 +60,12 @@ TEST_CASE("each malformed input is refused with its own one-line message", "[mes
     std::vector<std::string> keys;
   };
   const std::vector<Case> cases = {
-      {"truncated_face.obj", "truncated_face.obj:8: face 1:", {"has 2 vertices", "truncated"}},
       {"truncated_vertex.obj", "truncated_vertex.obj:8:", {"vertex 5", "has 2 numbers", "truncated"}},
       {"bad_index.obj", "bad_index.obj:8: face 1:", {"bad vertex index", "vertex 9", "4 vertices"}},
       {"bad_index_zero.obj", "bad_index_zero.obj:8: face 1:", {"vertex index 0 is invalid"}},
       {"nan_coordinate.obj", "nan_coordinate.obj:7: face 0:", {"vertex 3", "non-finite"}},
       {"missing_mtl.obj", "missing_mtl.obj:1:", {"material library 'does_not_exist.mtl' not found"}},
       {"unknown_material.obj", "unknown_material.obj:9: face 1:", {"unknown material 'no_such_material'", "line 8"}},
-      {"repeated_index_triangle.obj", "repeated_index_triangle.obj:9: face 1:",
-       {"repeated vertex", "triangle repeats vertex 2"}},
-      {"duplicate_face.obj", "duplicate_face.obj:9: face 1:", {"duplicate face", "face 0 (line 7)", "overlapping"}},
-      {"duplicate_face_reversed.obj", "duplicate_face_reversed.obj:9: face 1:",
-       {"duplicate face", "face 0 (line 7)", "facing the other way"}},
       {"reflectance_one.obj", "reflectance_one.obj:9: face 1:",
        {"reflectance out of range", "'bright'", "common.mtl:9", "Kd (1, 0.5, 0.5)", "[0, 1)"}},
       {"negative_emission.obj", "negative_emission.obj:9: face 1:",
@@ -83,6 +77,11 @@ TEST_CASE("each malformed input is refused with its own one-line message", "[mes
       {"nonplanar_quad.obj", "nonplanar_quad.obj:7: face 0:", {"non-planar quad", "split it into two triangles"}},
       {"nonconvex_quad.obj", "nonconvex_quad.obj:7: face 0:", {"non-convex quad", "split it into two triangles"}},
       {"pentagon.obj", "pentagon.obj:8: face 0:", {"has 5 vertices", "triangles and quads", "--strict"}},
+      {"truncated_face.obj", "truncated_face.obj:8: face 1:", {"has 2 corners", "--strict"}},
+      {"repeated_index_triangle.obj", "repeated_index_triangle.obj:9: face 1:", {"repeats vertex 2", "--strict"}},
+      {"duplicate_face.obj", "duplicate_face.obj:9: face 1:", {"duplicate face", "face 0 (line 7)", "dropped"}},
+      {"duplicate_face_reversed.obj", "duplicate_face_reversed.obj:9: face 1:",
+       {"duplicate face", "face 0 (line 7)", "facing the other way", "two-sided"}},
   };
   ReadOptions strict;
   strict.strict = true;
@@ -120,8 +119,12 @@ TEST_CASE("legal oddities are kept with a warning naming the face and line", "[m
   const std::vector<Case> cases = {
       {"nonmanifold_edge.obj", {"nonmanifold_edge.obj:11: face 0:", "non-manifold edge", "shared by 3 faces (0, 1, 2)"}},
       {"nonmanifold_vertex.obj", {"nonmanifold_vertex.obj:10: face 0:", "non-manifold vertex", "vertex 3", "2 fans"}},
-      {"flipped_face.obj", {"flipped_face.obj:11: face 1:", "flipped face", "face 0 (line 9)", "edge vertex 2 - vertex 3"}},
-      {"repeated_index.obj", {"repeated_index.obj:12: face 1:", "repeats vertex 7", "repaired to a triangle"}},
+      {"flipped_face.obj", {"flipped_face.obj:", "1 faces (area 1) flipped by --orient outward"}},
+      {"repeated_index.obj", {"repeated_index.obj:12: face 1:", "repeats vertex 7", "the repeats removed, kept as one face"}},
+      {"truncated_face.obj", {"truncated_face.obj:8: face 1:", "has 2 corners", "dropped, area 0"}},
+      {"repeated_index_triangle.obj", {"repeated_index_triangle.obj:9: face 1:", "repeats vertex 2", "area 0"}},
+      {"duplicate_face.obj", {"duplicate_face.obj:9: face 1:", "duplicate face", "face 0 (line 7)", "dropped (area 1"}},
+      {"duplicate_face_reversed.obj", {"duplicate_face_reversed.obj:9: face 1:", "facing the other way", "two-sided"}},
       {"no_material.obj", {"no_material.obj:5: face 0:", "face without material", "radwalk_default"}},
       {"no_material.obj", {"no_material.obj:", "no emitter"}},
       {"zero_area.obj", {"zero_area.obj:10: face 1:", "degenerate face dropped", "area 0", "material 'white'"}},
