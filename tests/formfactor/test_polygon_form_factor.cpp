@@ -15,6 +15,7 @@
 
 #include "formfactor/polygon_form_factor.h"
 #include "patch/patch_builder.h"
+#include "support/box_scenes.h"
 #include "support/view_factors.h"
 
 using namespace radwalk;
@@ -158,4 +159,35 @@ TEST_CASE("polygon form factor: patch pairs are reciprocal bit for bit", "[formf
   CHECK(g01 == g10);
   CHECK(g01 > 0);
   CHECK(area_of({ps.corner(0, 0), ps.corner(0, 1), ps.corner(0, 2), ps.corner(0, 3)}) == Approx(ps.area[0]));
+}
+
+TEST_CASE("polygon form factor: every pair of a 3 x 3 cube grid equals C-11 and C-14 superposition to 1e-10",
+          "[formfactor][polygon]") {
+  // Every patch pair of the unit cube with 3 x 3 cells a wall (adjacent cells across an edge of the cube, cells
+  // touching at a corner, collinear edges, separated cells, opposite walls) against the closed forms' algebra.
+  const PatchSet ps = test::unit_cube_room(3);
+  const auto rect = [&](std::size_t i) {
+    test::AxisRectangle r;
+    r.axis = std::abs(ps.normal[i].x()) > 0.5 ? 0 : std::abs(ps.normal[i].y()) > 0.5 ? 1 : 2;
+    r.lo = r.hi = ps.corner(i, 0);
+    for (int k = 1; k < 4; ++k) r.lo = r.lo.cwiseMin(ps.corner(i, k)), r.hi = r.hi.cwiseMax(ps.corner(i, k));
+    r.plane = r.lo[r.axis];
+    return r;
+  };
+  double worst = 0;
+  int compared = 0;
+  for (std::size_t i = 0; i < ps.size(); ++i)
+    for (std::size_t j = 0; j < ps.size(); ++j) {
+      const double expected = test::axis_rectangle_exchange_area(rect(i), rect(j));
+      const double got = patch_exchange_area(ps, i, j);
+      if (expected == 0) {
+        CHECK(got == 0.0);
+        continue;
+      }
+      ++compared;
+      worst = std::max(worst, std::abs(got / expected - 1));
+    }
+  INFO("largest relative difference " << worst << " over " << compared << " pairs");
+  CHECK(compared == 54 * 45);
+  CHECK(worst <= 1e-10);
 }
