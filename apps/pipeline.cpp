@@ -407,6 +407,20 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     });
     summary.add_timing("read_form_factors", timer.seconds());
     summary.json()["form_factors_file"] = options.form_factors;
+    // Rows above 1 beyond rounding (another program's integration error, up to the readers' 1e-3): normalised on
+    // request, otherwise named in a warning (each rank checks the rows it holds).
+    if (options.normalise_rows) {
+      const std::size_t divided = normalise_rows(ff.F);
+      summary.json()["rows_normalised"] = divided;
+      if (divided > 0) note("form factors: " + std::to_string(divided) + " rows summing above 1 divided by their sums");
+    } else {
+      const RowsAboveOne above = rows_above_one(ff.F, kRoundingRowSum);
+      if (above.count > 0)
+        warn(summary, std::to_string(above.count) + " rows of " + options.form_factors +
+                          " sum above 1 + 1e-6 (more than rounding), the largest row " + std::to_string(above.worst) +
+                          " (0-based) at " + std::to_string(above.worst_sum) +
+                          "; used as read (--normalise-rows divides them by their sums)");
+    }
   } else if (options.analytic) {
     // Every rank computes the whole F (formfactor/analytic_form_factors.h); row_blocks stay empty.
     ThreadLimit limit(scene.threads);

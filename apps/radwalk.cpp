@@ -238,6 +238,11 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
           ->check(kPathFits)
           ->check(CLI::ExistingFile);
   file->excludes(rays)->excludes(density);
+  cmd->add_flag("--normalise-rows", o.normalise_rows,
+                "With --form-factors: divide every row that sums above 1 by its sum (a file's rows may exceed 1 by "
+                "up to 1e-3, e.g. another program's integration error; without this they are used as read, with a "
+                "warning naming the worst)")
+      ->needs(file);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
   cmd->add_flag("--sobol-rays", o.sobol_rays,
