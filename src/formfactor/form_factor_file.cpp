@@ -38,7 +38,7 @@ std::size_t normalise_rows(SparseF& F) {
   for (Eigen::Index i = 0; i < F.outerSize(); ++i) {
     double sum = 0;
     for (SparseF::InnerIterator it(F, i); it; ++it) sum += it.value();
-    if (!(sum > 1)) continue;
+    if (!(sum > kRoundingRowSum)) continue;
     ++divided;
     for (SparseF::InnerIterator it(F, i); it; ++it) it.valueRef() = float(it.value() / sum);
   }

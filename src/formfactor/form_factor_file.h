@@ -29,8 +29,8 @@ struct RowsAboveOne {
 };
 RowsAboveOne rows_above_one(const SparseF& F, double limit);
 
-// Divides every row summing above 1 by its sum (F_ij / sum_j F_ij), so no row exceeds 1 beyond float rounding;
-// returns how many rows were divided. Reciprocity A_i F_ij = A_j F_ji changes by the same factors.
+// Divides every row summing above kRoundingRowSum by its sum (F_ij / sum_j F_ij), so no row exceeds 1 beyond float
+// rounding; returns how many rows were divided. Reciprocity A_i F_ij = A_j F_ji changes by the same factors.
 std::size_t normalise_rows(SparseF& F);
 
 }  // namespace radwalk
