@@ -521,11 +521,13 @@ int run_main(int argc, char** argv) {
                    "Adaptive patching: differences are relative to max(H_i, H_j, F x the mean irradiance)")
       ->transform(kNonNegative)
       ->capture_default_str();
-  solve_cmd
+  auto* refine_noise = solve_cmd
       ->add_option("--refine-noise", solve.refine_noise,
                    "Adaptive patching: ignore differences within Z form-factor standard errors (0: off)")
       ->transform(kNonNegative)
       ->capture_default_str();
+  // The binomial standard errors it needs come from cosine-ray counts, which the analytic route has not.
+  solve_cmd->get_option("--analytic")->excludes(refine_noise);
   solve_cmd->add_option(
       "--progressive", solve.progressive,
       "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "
