@@ -41,8 +41,12 @@ int shaft_planes(const ClippedPair& pair, const Vec3& n_i, const Vec3& n_j, doub
           all_above = all_above && s >= -tol;
         }
         if (all_below && all_above) continue;  // everything on the plane: the pair is coplanar (never a shaft)
-        if (all_below) planes[m++] = {n, off};
-        else if (all_above) planes[m++] = {-n, -off};
+        if (!all_below && !all_above) continue;
+        const Plane plane = all_below ? Plane{n, off} : Plane{-n, -off};
+        bool known = false;  // the same face found from another edge and corner
+        for (int k = 0; k < m && !known; ++k)
+          known = planes[k].n.dot(plane.n) > 1 - 1e-12 && std::abs(planes[k].offset - plane.offset) <= tol;
+        if (!known) planes[m++] = plane;
       }
     }
   };
