@@ -19,6 +19,7 @@
 #include "core/parallel.h"
 #include "formfactor/analytic_form_factors.h"
 #include "formfactor/form_factors.h"
+#include "formfactor/patch_shaft.h"
 #include "patch/patch_builder.h"
 #include "support/box_scenes.h"
 #include "support/stat_checks.h"
@@ -192,4 +193,40 @@ TEST_CASE("analytic form factors: the same F on 1 and 2 threads, refusal above m
   AnalyticFormFactorOptions o;
   o.max_patches = ps.size() - 1;
   CHECK_THROWS_AS(analytic_form_factors(ps, vis, o), InputError);
+}
+
+TEST_CASE("shaft test: clear without an occluder, hidden behind a covering patch, maybe blocked by a small one",
+          "[formfactor][analytic]") {
+  // Floor [0,1]^2 at z = 0 facing up (patch 0), ceiling at z = 1 facing down (patch 1); then a panel at z = 0.5:
+  // [-1, 2]^2 covers every segment, [0.4, 0.6]^2 blocks some; a wall beside the shaft (x = 3) blocks none.
+  const auto scene = [](double lo, double hi, bool wall) {
+    PatchBuilder b;
+    const int grey = b.add_material("grey", Rgb(0.5, 0.5, 0.5));
+    b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, grey);
+    b.add_quad({0, 0, 1}, {0, 1, 1}, {1, 1, 1}, {1, 0, 1}, grey);
+    if (hi > lo) b.add_quad({lo, lo, 0.5}, {hi, lo, 0.5}, {hi, hi, 0.5}, {lo, hi, 0.5}, grey);
+    if (wall) b.add_quad({3, 0, 0}, {3, 1, 0}, {3, 1, 1}, {3, 0, 1}, grey);
+    return b.build();
+  };
+  const auto classify = [](const PatchSet& ps) {
+    ClippedPair pair;
+    REQUIRE(clip_patch_pair(ps, 0, 1, pair));
+    return PatchShaftTest(ps).classify(0, 1, pair);
+  };
+  CHECK(classify(scene(0, 0, true)) == ShaftResult::clear);
+  CHECK(classify(scene(-1, 2, false)) == ShaftResult::hidden);
+  CHECK(classify(scene(0.4, 0.6, true)) == ShaftResult::maybe_blocked);
+  // The route: hidden gives no entry, the small panel an estimated one below the unoccluded value.
+  const PatchSet small = scene(0.4, 0.6, false);
+  const EmbreeVisibility vis(small);
+  const AnalyticFormFactors a = analytic_form_factors(small, vis);
+  CHECK(a.sampled_pairs >= 1);
+  const double unoccluded = test::parallel_rectangles(1, 1, 1);
+  CHECK(entry(a.form_factors.F, 0, 1) < unoccluded);
+  CHECK(entry(a.form_factors.F, 0, 1) > 0.5 * unoccluded);
+  const PatchSet big = scene(-1, 2, false);
+  const EmbreeVisibility vis_big(big);
+  const AnalyticFormFactors b = analytic_form_factors(big, vis_big);
+  CHECK(b.hidden_pairs == 1);
+  CHECK(entry(b.form_factors.F, 0, 1) == 0);
 }
