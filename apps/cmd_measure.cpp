@@ -29,8 +29,11 @@ std::string add_form_factor_error(const PatchSet& patches, const FormFactors& ff
                                   const Response& response, Measurement& measurement, RunSummary& summary) {
   auto& j = summary.json()["error_estimate"]["statistical"];
   if (!has_noise_model(ff)) {
-    j["form_factors"] = "not included: F was read from a file, which does not record how it was sampled";
-    return ", without the noise of the form factors read from the file";
+    const bool analytic = !ff.row_std_error.empty();
+    j["form_factors"] = analytic ? "not included: the analytic form factors' visibility noise is not propagated"
+                                 : "not included: F was read from a file, which does not record how it was sampled";
+    return analytic ? ", without the analytic form factors' visibility noise"
+                    : ", without the noise of the form factors read from the file";
   }
   Timer timer;
   // The radiosity the variance formula weighs the rays' targets with (to 1e-4: it needs only a few digits).

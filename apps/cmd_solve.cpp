@@ -13,6 +13,7 @@
 #include "apps/statistical_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
@@ -69,6 +70,13 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   int calls = 0;
   const FormFactorStage stage = [&](const PatchSet& p) {
     if (calls++ == 0) return obtain_form_factors(command.scene, command.ff, p, summary);
+    if (command.ff.analytic) {
+      AnalyticFormFactorOptions a;
+      a.seed = command.scene.seed;
+      a.max_visibility_samples = command.ff.visibility_samples;
+      const EmbreeVisibility visibility(p);
+      return analytic_form_factors(p, visibility, a).form_factors;
+    }
     FormFactorOptions o;
     o.rays_per_patch = command.ff.rays;
     o.rays_per_area = command.ff.rays_per_area;

@@ -50,6 +50,9 @@ struct FormFactorCliOptions {
   bool sobol_rays = false;     // --sobol-rays: randomised Sobol cosine rays (FormFactorOptions::sobol)
   long emitter_samples = 0;    // --emitter-columns M: the emitter columns from M shadow samples per patch
                                // (formfactor/emitter_form_factors.h); 0: from the cosine rays
+  bool analytic = false;       // --analytic: exact exchange areas x visibility (formfactor/analytic_form_factors.h)
+  long visibility_samples = 1024;  // --visibility-samples: at most this many point pairs per partly hidden pair
+  bool normalise_rows = false;  // --normalise-rows: divide rows of a read F summing above 1 by their sums
 };
 
 struct PatchCommand {

@@ -24,6 +24,7 @@
 #include "core/standard_output.h"
 #include "core/timer.h"
 #include "core/parallel.h"
+#include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factor_file.h"
@@ -442,6 +443,53 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     });
     summary.add_timing("read_form_factors", timer.seconds());
     summary.json()["form_factors_file"] = options.form_factors;
+    // Rows above 1 beyond rounding (another program's integration error, up to the readers' 1e-3): normalised on
+    // request, otherwise named in a warning (each rank checks the rows it holds).
+    if (options.normalise_rows) {
+      const std::size_t divided = normalise_rows(ff.F);
+      summary.json()["rows_normalised"] = divided;
+      if (divided > 0) note("form factors: " + std::to_string(divided) + " rows summing above 1 divided by their sums");
+    } else {
+      const RowsAboveOne above = rows_above_one(ff.F, kRoundingRowSum);
+      if (above.count > 0)
+        warn(summary, std::to_string(above.count) + " rows of " + options.form_factors +
+                          " sum above 1 + 1e-6 (more than rounding), the largest row " + std::to_string(above.worst) +
+                          " (0-based) at " + std::to_string(above.worst_sum) +
+                          "; used as read (--normalise-rows divides them by their sums)");
+    }
+  } else if (options.analytic) {
+    // Every rank computes the whole F (formfactor/analytic_form_factors.h); row_blocks stay empty.
+    ThreadLimit limit(scene.threads);
+    const EmbreeVisibility visibility(patches);
+    summary.add_timing("embree_scene", timer.seconds());
+    timer.reset();
+    AnalyticFormFactorOptions o;
+    o.seed = scene.seed;
+    o.max_visibility_samples = options.visibility_samples;
+    AnalyticFormFactors a = analytic_form_factors(patches, visibility, o);
+    const double seconds = timer.seconds();
+    summary.add_timing("form_factors", seconds);
+    double worst_se = 0;
+    std::size_t worst = 0;
+    for (std::size_t i = 0; i < a.form_factors.row_std_error.size(); ++i)
+      if (a.form_factors.row_std_error[i] > worst_se) worst_se = a.form_factors.row_std_error[i], worst = i;
+    nlohmann::json& j = summary.json()["analytic"];
+    j["pairs"] = a.pairs;
+    j["clear_pairs"] = a.clear_pairs;
+    j["hidden_pairs"] = a.hidden_pairs;
+    j["sampled_pairs"] = a.sampled_pairs;
+    j["visibility_rays"] = a.visibility_rays;
+    j["rows_scaled"] = a.rows_scaled;
+    j["largest_row_std_error"] = worst_se;
+    note("form factors (analytic): " + std::to_string(a.pairs) + " facing pairs (" + std::to_string(a.clear_pairs) +
+         " proven clear, " + std::to_string(a.hidden_pairs) + " proven hidden, " + std::to_string(a.sampled_pairs) +
+         " sampled with " + std::to_string(a.visibility_rays) + " rays) in " + std::to_string(seconds) +
+         " s; largest row standard error " + std::to_string(worst_se) + " (patch " + std::to_string(worst) + ")");
+    if (a.rows_scaled > 0)
+      warn(summary, std::to_string(a.rows_scaled) + " form-factor rows summed above 1 (by at most " +
+                        std::to_string(a.largest_row_excess) +
+                        ") from visibility estimates and were scaled down to 1, keeping reciprocity");
+    ff = std::move(a.form_factors);
   } else {
     FormFactorOptions o;
     o.rays_per_patch = options.rays;
@@ -541,6 +589,8 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
     fields.push_back(scalar_field("back_hits", back, FieldKind::count));
     fields.push_back(scalar_field("row_std_error", d.row_std_error));
   }
+  if (!ff.row_std_error.empty())  // the analytic route: each row sum's standard error from its visibility estimates
+    fields.push_back(scalar_field("row_std_error", ff.row_std_error));
   return fields;
 }
 

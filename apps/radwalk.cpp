@@ -261,14 +261,43 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
           ->check(kPathFits)
           ->check(CLI::ExistingFile);
   file->excludes(rays)->excludes(density);
+  cmd->add_flag("--normalise-rows", o.normalise_rows,
+                "With --form-factors: divide every row that sums above 1 by its sum (a file's rows may exceed 1 by "
+                "up to 1e-3, e.g. another program's integration error; without this they are used as read, with a "
+                "warning naming the worst)")
+      ->needs(file);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
   cmd->add_flag("--sobol-rays", o.sobol_rays,
                 "Cosine rays from randomised Sobol points (stratified in origin and direction together)");
-  cmd->add_option("--emitter-columns", o.emitter_samples,
+  auto* sobol = cmd->get_option("--sobol-rays");
+  auto* emitter = cmd->add_option("--emitter-columns", o.emitter_samples,
                   "Each F_ie to an emitter e from M shadow samples per patch: the exact point-to-polygon form factor "
                   "corrected for occlusion (exact where unoccluded), replacing the cosine rays' count")
       ->check(kPositive);
+  auto* analytic = cmd->add_flag("--analytic", o.analytic,
+                "Exact form factors of every pair of patches that face each other (contour integration) times their "
+                "visibility: 1 where nothing is between them, 0 where one patch hides them, otherwise estimated by "
+                "rays between point pairs; reciprocal, with per-row standard errors (at most 20000 patches)");
+  auto* samples = cmd->add_option("--visibility-samples", o.visibility_samples,
+                  "With --analytic: at most this many point pairs (a power of 2, >= 32) for the visibility of a partly "
+                  "hidden pair")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            long m = 0;
+            try {
+              m = std::stol(text);
+            } catch (...) {
+              return std::string("must be a power of 2 in [32, 16777216]");
+            }
+            return m >= 32 && m <= (1L << 24) && (m & (m - 1)) == 0 ? std::string()
+                                                                     : std::string("must be a power of 2 in [32, 16777216]");
+          },
+          "POWER_OF_2"))
+      ->capture_default_str();
+  samples->needs(analytic);
+  analytic->excludes(rays)->excludes(density)->excludes(file)->excludes(sobol)->excludes(emitter);
+  analytic->excludes(cmd->get_option("--min-rays"));
 }
 
 // Runs f, which converts a name with one of the walk layer's parsers, turning its InputError (the valid names and
@@ -516,11 +545,13 @@ int run_main(int argc, char** argv) {
                    "Adaptive patching: differences are relative to max(H_i, H_j, F x the mean irradiance)")
       ->transform(kNonNegative)
       ->capture_default_str();
-  solve_cmd
+  auto* refine_noise = solve_cmd
       ->add_option("--refine-noise", solve.refine_noise,
                    "Adaptive patching: ignore differences within Z form-factor standard errors (0: off)")
       ->transform(kNonNegative)
       ->capture_default_str();
+  // The binomial standard errors it needs come from cosine-ray counts, which the analytic route has not.
+  solve_cmd->get_option("--analytic")->excludes(refine_noise);
   solve_cmd->add_option(
       "--progressive", solve.progressive,
       "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "

@@ -42,12 +42,17 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
   const PatchRgb own_se = walks ? solution.B_se : PatchRgb::Zero(N, 3);
   if (walks) stat["walks_relative"] = relative_error(patches, solution.B, own_se);
   if (!has_noise_model(ff)) {
-    stat["form_factors"] = "not included: F was read from a file, which does not record how it was sampled";
+    // F read from a file records no sampling; the analytic route's visibility estimates have their row standard
+    // errors (the CSV's row_std_error) but are not propagated yet.
+    const bool analytic = !ff.row_std_error.empty();
+    const std::string what = analytic ? "the analytic form factors' visibility noise (their row_std_error) is not "
+                                        "propagated"
+                                      : "the noise of the form factors read from the file is not included";
+    stat["form_factors"] = "not included: " + what;
     solution.B_se = own_se;
     const double total = relative_error(patches, solution.B, solution.B_se);
     stat["relative"] = total;
-    return "estimated statistical error " + percent(total) + (walks ? " (the walks' own; " : " (") +
-           "the noise of the form factors read from the file is not included)";
+    return "estimated statistical error e = " + percent(total) + (walks ? " (the walks' own; " : " (") + what + ")";
   }
   Timer timer;
   const RadiosityProblem whole = problem.row_blocks.empty() ? RadiosityProblem() : whole_problem(problem);

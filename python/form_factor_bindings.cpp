@@ -8,6 +8,7 @@
 #include "interruptible.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "formfactor/analytic_form_factors.h"
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/reciprocity.h"
 #include "visibility/embree_visibility.h"
@@ -207,14 +208,43 @@ py::dict diagnostics(const FormFactorsResult& r) {
     out["back_hits"] = counts(r.ff.back_hits);
     out["row_std_error"] = copy_array(d.row_std_error);
   }
+  if (!r.ff.row_std_error.empty())  // the analytic route: each row sum's standard error from its visibility
+    out["row_std_error"] = py::array_t<double>(r.ff.row_std_error.size(), r.ff.row_std_error.data());
   return out;
 }
 
 FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_area, long min_rays,
-                               std::uint64_t seed, bool reciprocity, bool stratified, long long threads) {
+                               std::uint64_t seed, bool reciprocity, bool stratified, long long threads,
+                               bool analytic, long visibility_samples) {
   check_thread_count(threads, "threads");
   FormFactorsResult r;
   r.area = scene.patches.area;
+  if (analytic) {
+    // The ray options mean nothing to the analytic route: refused when changed from their defaults.
+    if (rays != 1000 || rays_per_area != 0 || min_rays != 16 || !stratified)
+      throw InputError("analytic=True computes F without cosine rays: rays, rays_per_area, min_rays and stratified "
+                       "cannot be honoured (leave them at their defaults)");
+    AnalyticFormFactorOptions a;
+    a.seed = seed;
+    a.max_visibility_samples = visibility_samples;
+    r.ff = interruptible([&] {
+      ThreadLimit limit(static_cast<int>(threads));
+      Timer timer;
+      const EmbreeVisibility visibility(scene.patches);
+      r.timings["embree_scene"] = timer.seconds();
+      timer.reset();
+      AnalyticFormFactors result = analytic_form_factors(scene.patches, visibility, a);
+      r.timings["form_factors"] = timer.seconds();
+      r.info["analytic_pairs"] = double(result.pairs);
+      r.info["analytic_clear_pairs"] = double(result.clear_pairs);
+      r.info["analytic_hidden_pairs"] = double(result.hidden_pairs);
+      r.info["analytic_sampled_pairs"] = double(result.sampled_pairs);
+      r.info["analytic_visibility_rays"] = double(result.visibility_rays);
+      r.info["analytic_rows_scaled"] = double(result.rows_scaled);
+      return std::move(result.form_factors);
+    });
+    return r;
+  }
   FormFactorOptions o;
   o.rays_per_patch = rays;
   o.rays_per_area = rays_per_area;
@@ -330,7 +360,7 @@ Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: 
 
   m.def("form_factors", &form_factors, py::arg("scene"), py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0,
         py::arg("min_rays") = 16, py::arg("seed") = 1, py::arg("reciprocity") = false, py::arg("stratified") = true,
-        py::arg("threads") = 0,
+        py::arg("threads") = 0, py::arg("analytic") = false, py::arg("visibility_samples") = 1024,
         R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
 
 The FormFactors holds F, an (N, N) float32 scipy.sparse.csr_matrix of dimensionless fractions, and (N,) per-patch
@@ -342,6 +372,10 @@ same seed (bit-identical for any thread count):
   max(min_rays, round(rays_per_area * area)) instead
   (--rays-per-area, --min-rays); seed (--seed); reciprocity: average A_i F_ij and A_j F_ji (--reciprocity);
   stratified=False draws plain binomial counts (tests); threads: 0 = all cores.
+analytic=True: the CLI's --analytic (docs/form-factors.md, "The analytic route"): the exact form factor of every
+  pair of patches that face each other times its visibility (1 or 0 where proven, else estimated by at most
+  visibility_samples point pairs, a power of 2 >= 32); reciprocal; diagnostics["row_std_error"] per row, info
+  the pair counts. The ray options must stay at their defaults (refused otherwise).
 F depends only on the geometry: edits of Scene.rho or Scene.E do not call for new form factors.
 The GIL is released while rays are traced.)doc");
 }

@@ -42,7 +42,9 @@ enum class StreamDomain : std::uint64_t {
   emitter_form_factor = 15,   // emitter columns of F (formfactor/emitter_form_factors.h): a = row i, b = emitter e
   jacobi_shift = 16,          // stochastic Jacobi (walk/stochastic_jacobi.h): a = source patch j (2^47: the birth
                               // offset; 2^46 + w: ray w's draws on the matrix kernel), b = replicate r << 32 | k
-  error_estimate = 17,        // error estimates (formfactor/sampling_factor.h, solve/error_propagation.h): a = 0 the
+  analytic_visibility = 17,   // the visibility fraction of a patch pair (formfactor/analytic_form_factors.h): the
+                              // digital shift of its point pairs; a = patch i, b = patch j (i < j)
+  error_estimate = 18,        // error estimates (formfactor/sampling_factor.h, solve/error_propagation.h): a = 0 the
                               // replicated rows, a = 1 + k probe k; b = 0
 };
 

@@ -20,4 +20,29 @@ SparseF read_form_factors(const std::string& path, std::size_t expected_n, RowBl
   return is_npz_path(path) ? read_npz(path, expected_n, rows) : read_matrix_market(path, expected_n, rows);
 }
 
+RowsAboveOne rows_above_one(const SparseF& F, double limit) {
+  RowsAboveOne r;
+  for (Eigen::Index i = 0; i < F.outerSize(); ++i) {
+    double sum = 0;
+    for (SparseF::InnerIterator it(F, i); it; ++it) sum += it.value();
+    if (sum > limit) {
+      ++r.count;
+      if (sum > r.worst_sum) r.worst_sum = sum, r.worst = i;
+    }
+  }
+  return r;
+}
+
+std::size_t normalise_rows(SparseF& F) {
+  std::size_t divided = 0;
+  for (Eigen::Index i = 0; i < F.outerSize(); ++i) {
+    double sum = 0;
+    for (SparseF::InnerIterator it(F, i); it; ++it) sum += it.value();
+    if (!(sum > kRoundingRowSum)) continue;
+    ++divided;
+    for (SparseF::InnerIterator it(F, i); it; ++it) it.valueRef() = float(it.value() / sum);
+  }
+  return divided;
+}
+
 }  // namespace radwalk

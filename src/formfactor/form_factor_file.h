@@ -19,4 +19,18 @@ void write_form_factors(const std::string& path, const SparseF& F, const std::st
 // each rank keeps only its block of rows (blocks of about equal non-zeros into *rows; form_factor_rows.h).
 SparseF read_form_factors(const std::string& path, std::size_t expected_n, RowBlocks* rows = nullptr);
 
+// Rows of F summing above `limit` (kRoundingRowSum, matrix_market.h, for what rounding cannot explain): how many,
+// and the one with the largest sum (worst = -1 when none). For F read from other programs, whose rows may exceed 1
+// by their integration error.
+struct RowsAboveOne {
+  std::size_t count = 0;
+  long long worst = -1;
+  double worst_sum = 0;
+};
+RowsAboveOne rows_above_one(const SparseF& F, double limit);
+
+// Divides every row summing above kRoundingRowSum by its sum (F_ij / sum_j F_ij), so no row exceeds 1 beyond float
+// rounding; returns how many rows were divided. Reciprocity A_i F_ij = A_j F_ji changes by the same factors.
+std::size_t normalise_rows(SparseF& F);
+
 }  // namespace radwalk

@@ -49,6 +49,10 @@ struct FormFactors {
   std::vector<std::uint32_t> rays;     // n_i
   std::vector<std::uint32_t> escaped;  // rays from i that hit nothing
   std::vector<std::uint32_t> back_hits;  // rays from i whose first hit was the back of a patch
+  // The analytic route (analytic_form_factors.h) leaves rays, escaped and back_hits empty and gives instead the
+  // standard error of each row's sum from its visibility estimates (0 where every pair of the row was proven clear
+  // or hidden); empty on the ray route.
+  std::vector<double> row_std_error;
   // Over MPI: the rank blocks of F's rows when F holds only this rank's rows (form_factor_rows.h); empty when
   // every rank holds every row.
   RowBlocks row_blocks;

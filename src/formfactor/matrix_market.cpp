@@ -116,7 +116,7 @@ void check_writable_form_factors(const std::string& path, const SparseF& F) {
       sum += v;
     }
     if (sum > kMaxRowSum)
-      throw refuse("row " + std::to_string(i) + " (0-based) sums to " + number_text(sum) + ", above 1 + 1e-6");
+      throw refuse("row " + std::to_string(i) + " (0-based) sums to " + number_text(sum) + ", above 1 + 1e-3");
   }
 }
 
@@ -314,7 +314,7 @@ SparseF read_matrix_market(const std::string& path, std::size_t expected_n, RowB
     if (sum > kMaxRowSum)
       throw InputError(locate(path, line_of_entry(path, entry(at(std::size_t(outer[i])))), -1,
                               "row " + std::to_string(i + 1) + " sums to " + std::to_string(sum) +
-                                  ", above 1 + 1e-6 (a form-factor row sums to at most 1)"));
+                                  ", above 1 + 1e-3 (a form-factor row sums to at most 1)"));
   }
   return F;
 }

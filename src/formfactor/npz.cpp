@@ -694,7 +694,7 @@ SparseF read_npz(const std::string& path, std::size_t expected_n, RowBlocks* row
     }
     if (sum > kMaxRowSum)
       throw fail("row " + std::to_string(i) + " sums to " + std::to_string(sum) +
-                 ", above 1 + 1e-6 (a form-factor row sums to at most 1)");
+                 ", above 1 + 1e-3 (a form-factor row sums to at most 1)");
   }
   if (mine.size() < N) {
     // The own rows moved to the front of the arrays; the rows before them empty, those after them too.

@@ -18,7 +18,8 @@ const std::vector<StreamDomain> kDomains = {
     StreamDomain::light_particle, StreamDomain::synthetic_problem, StreamDomain::benchmark,
     StreamDomain::direct_light_shift, StreamDomain::emission_shift, StreamDomain::sobol_particle,
     StreamDomain::measure_walk,   StreamDomain::importance_walk, StreamDomain::visible_direct_light,
-    StreamDomain::emitter_form_factor, StreamDomain::jacobi_shift};
+    StreamDomain::emitter_form_factor, StreamDomain::jacobi_shift, StreamDomain::analytic_visibility,
+    StreamDomain::error_estimate};
 
 // The first 64 draws of a stream.
 std::vector<std::uint32_t> first_draws(Rng rng) {

@@ -213,3 +213,28 @@ TEST_CASE("write_matrix_market and write_npz refuse a matrix their readers would
   }
   std::filesystem::remove_all(std::filesystem::path(temp_path("")).parent_path());
 }
+
+TEST_CASE("rows of another program's F up to 1 + 1e-3: read, named, normalised on request; beyond, refused",
+          "[formfactor][io]") {
+  // Row 0 sums to 1 + 1.5e-5 (View3D's excess on the unit cube), row 1 to 1 + 4e-4, row 2 to 0.9; a file with a
+  // row at 1 + 2e-3 is refused.
+  const std::string path = write_text("over.mtx", kHeader + "3 3 5\n1 2 0.600015\n1 3 0.4\n2 1 0.5004\n2 3 0.5\n3 1 0.9\n");
+  SparseF F = read_matrix_market(path, 3);
+  const RowsAboveOne above = rows_above_one(F, kRoundingRowSum);
+  CHECK(above.count == 2);
+  CHECK(above.worst == 1);
+  CHECK(above.worst_sum == Approx(1.0004).epsilon(1e-6));
+  CHECK(normalise_rows(F) == 2);
+  for (Eigen::Index i = 0; i < 2; ++i) {
+    double sum = 0;
+    for (SparseF::InnerIterator it(F, i); it; ++it) sum += it.value();
+    CHECK(sum <= kRoundingRowSum);
+    CHECK(sum == Approx(1.0).epsilon(1e-6));
+  }
+  CHECK(F.coeff(2, 0) == 0.9f);  // a row below 1 is left alone
+  CHECK(rows_above_one(F, kRoundingRowSum).count == 0);
+  const std::string exactly_one = write_text("exactly_one.mtx", kHeader + "2 2 2\n1 2 1\n2 1 1\n");
+  CHECK_NOTHROW(read_matrix_market(exactly_one, 2));
+  const std::string refused = write_text("refused.mtx", kHeader + "2 2 3\n1 2 0.502\n1 1 0.5\n2 1 1\n");
+  CHECK_THROWS_WITH(read_matrix_market(refused, 2), Catch::Contains("above 1 + 1e-3"));
+}

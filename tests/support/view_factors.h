@@ -7,6 +7,7 @@
 // polygon's normal), evaluated edge pair by edge pair with Gauss-Legendre quadrature. The integrand is smooth when
 // the polygons share no point, so the quadrature is accurate to about 1e-12 there; the test checks it against the
 // closed form for parallel squares.
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -36,6 +37,52 @@ inline double perpendicular_rectangles(double l, double w, double h) {
 inline double coaxial_disks(double r1, double r2, double a) {
   const double R1 = r1 / a, R2 = r2 / a, S = 1 + (1 + R2 * R2) / (R1 * R1);
   return (S - std::sqrt(S * S - 4 * (r2 / r1) * (r2 / r1))) / 2;
+}
+
+// An axis-aligned rectangle of the unit cube's walls: the plane coordinate[axis] = plane, spanning lo..hi on the
+// two other axes (lo[axis] = hi[axis] = plane), facing into the cube.
+struct AxisRectangle {
+  int axis;
+  double plane;
+  Vec3 lo, hi;
+};
+
+// Sum over the four end-point differences of intervals [p, q] (surface 1) and [r, s] (surface 2) along an axis on
+// which the kernel is translation invariant: E = (1/2) [Phi(s - p) - Phi(r - p) - Phi(s - q) + Phi(r - q)], Phi(L)
+// the exchange area of the two surfaces over the same interval of length |L| (Phi even, Phi(0) = 0).
+template <class Phi>
+double interval_superposition(double p, double q, double r, double s, Phi&& phi) {
+  const auto f = [&](double L) { return L == 0 ? 0.0 : phi(std::abs(L)); };
+  return 0.5 * (f(s - p) - f(r - p) - f(s - q) + f(r - q));
+}
+
+// A_1 F_12 for two axis-aligned rectangles of the unit cube's inward walls, from the closed forms C-11 and C-14
+// only (superposition, Howell's view-factor algebra): opposite walls by the interval sums above in both axes with
+// Psi(a, b) = a b C-11(a, b, c); perpendicular walls by the interval sums along the joint with
+// Phi(L) = L Y C-14(L, Y, Z) and inclusion-exclusion over the distances from the joint [y0, y1] x [z0, z1];
+// 0 on one wall. An independent reference for the contour integral (formfactor/polygon_form_factor.h).
+inline double axis_rectangle_exchange_area(const AxisRectangle& r1, const AxisRectangle& r2) {
+  if (r1.axis == r2.axis) {
+    if (r1.plane == r2.plane) return 0.0;
+    const double c = std::abs(r1.plane - r2.plane);
+    const int u = (r1.axis + 1) % 3, v = (r1.axis + 2) % 3;
+    const auto along_u = [&](double a) {
+      return interval_superposition(r1.lo[v], r1.hi[v], r2.lo[v], r2.hi[v],
+                                    [&](double b) { return a * b * parallel_rectangles(a, b, c); });
+    };
+    return interval_superposition(r1.lo[u], r1.hi[u], r2.lo[u], r2.hi[u], along_u);
+  }
+  const int t = 3 - r1.axis - r2.axis;
+  // Distances from the joint: r1 spans axis r2.axis, measured from r2's plane; r2 spans r1.axis from r1's plane.
+  const double y0 = std::abs(r1.lo[r2.axis] - r2.plane), y1 = std::abs(r1.hi[r2.axis] - r2.plane);
+  const double z0 = std::abs(r2.lo[r1.axis] - r1.plane), z1 = std::abs(r2.hi[r1.axis] - r1.plane);
+  const auto from_joint = [&](double Y, double Z) {
+    if (Y == 0 || Z == 0) return 0.0;
+    return interval_superposition(r1.lo[t], r1.hi[t], r2.lo[t], r2.hi[t],
+                                  [&](double L) { return L * Y * perpendicular_rectangles(L, Y, Z); });
+  };
+  const double ya = std::min(y0, y1), yb = std::max(y0, y1), za = std::min(z0, z1), zb = std::max(z0, z1);
+  return from_joint(yb, zb) - from_joint(ya, zb) - from_joint(yb, za) + from_joint(ya, za);
 }
 
 // Gauss-Legendre nodes and weights on [0, 1] (Newton iteration on P_n).
