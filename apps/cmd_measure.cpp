@@ -19,50 +19,6 @@
 #include "walk/measure_by_method.h"
 
 namespace radwalk::app {
-namespace {
-
-// Adds the form factors' noise to the measurement's standard error (solve/form_factor_error.h; independent of the
-// walks' own noise given F, so the variances add) and records it in the JSON's "error_estimate"; returns what the
-// printed standard error then covers (", with the form factors' noise" or, for F read from a file, that it does
-// not include it).
-std::string add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                                  const Response& response, Measurement& measurement, RunSummary& summary) {
-  auto& j = summary.json()["error_estimate"]["statistical"];
-  if (!has_noise_model(ff)) {
-    const bool analytic = !ff.row_std_error.empty();
-    j["form_factors"] = analytic ? "not included: the analytic form factors' visibility noise is not propagated"
-                                 : "not included: F was read from a file, which does not record how it was sampled";
-    return analytic ? ", without the analytic form factors' visibility noise"
-                    : ", without the noise of the form factors read from the file";
-  }
-  Timer timer;
-  // The radiosity the variance formula weighs the rays' targets with (to 1e-4: it needs only a few digits).
-  SolveOptions o;
-  o.tol = 1e-4;
-  o.max_iterations = default_max_iterations(o.solver, patches.size());
-  const Solution b = solve_radiosity(problem, o);
-  if (b.B.rows() != static_cast<Eigen::Index>(patches.size()))
-    throw InputError("error estimate: the radiosity for the form factors' noise could not be solved: " + b.message);
-  const EmbreeVisibility visibility(patches);
-  const Eigen::VectorXd W = problem.area.cwiseProduct(response.R);
-  const MeasurementError e = measurement_form_factor_error(patches, visibility, ff, problem, b.B, W);
-  MeasureEstimate& est = measurement.estimate;
-  const Rgb walks_se = est.se;
-  est.se = (walks_se.square() + e.variance).sqrt();
-  j["form_factors_M_se"] = {std::sqrt(e.variance(0)), std::sqrt(e.variance(1)), std::sqrt(e.variance(2))};
-  j["walks_M_se"] = {walks_se(0), walks_se(1), walks_se(2)};
-  j["sampling_factor_rays"] = e.calibration.factors.rays;
-  j["sampling_factor_emitter"] = e.calibration.factors.emitter;
-  j["calibration_rows"] = e.calibration.rows;
-  j["calibration_replicates"] = e.calibration.replicates;
-  j["adjoint_sweeps"] = e.sweeps;
-  j["method"] = "first-order propagation of each row's gather variance through the adjoint: Var(M) = "
-                "sum_j (Psi_j rho_j)^2 V_j (docs/theory/error_estimate.md)";
-  summary.add_timing("error_estimate", timer.seconds());
-  return ", with the form factors' noise";
-}
-
-}  // namespace
 
 int run_measure(const MeasureCommand& command) {
   RunSummary summary("measure", command.scene.argv);
@@ -95,7 +51,10 @@ int run_measure(const MeasureCommand& command) {
     FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary);
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     measurement = measure_by_method(problem, nullptr, nullptr, response, options);
-    form_factor_part = add_form_factor_error(patches, ff, problem, response, measurement, summary);
+    Timer timer;
+    summary.json()["error_estimate"]["statistical"] =
+        add_form_factor_error(patches, ff, problem, response, measurement, form_factor_part);
+    summary.add_timing("error_estimate", timer.seconds());
   }
   const MeasureEstimate& est = measurement.estimate;
   const bool deterministic = measurement.deterministic;

@@ -2,6 +2,14 @@
 
 #include <cmath>
 
+#include "core/error.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
+#include "solve/solve_radiosity.h"
+#include "visibility/embree_visibility.h"
+
+#include <cmath>
+
 #include "pathtrace/camera_response.h"
 #include "solve/response_spec.h"
 #include "visibility/embree_visibility.h"
@@ -36,8 +44,9 @@ nlohmann::json measurement_json(const Measurement& m, const Response& response, 
     return a;
   };
   nlohmann::json j = {{"method", est.method}, {"response", response.what}, {"M", rgb(est.M)}, {"seconds", est.seconds}};
+  // M_se: the walks' noise and, for form factors traced here, theirs (apps/cmd_measure.cpp).
+  if (!m.deterministic || (est.se > 0).any()) j["M_se"] = rgb(est.se);
   if (!m.deterministic) {
-    j["M_se"] = rgb(est.se);
     j["var_per_walk"] = rgb(est.var);
     j["walks_total"] = est.walks;
     j["steps"] = est.counters.steps;
@@ -45,5 +54,46 @@ nlohmann::json measurement_json(const Measurement& m, const Response& response, 
   }
   return j;
 }
+
+nlohmann::json add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
+                                     const Response& response, Measurement& measurement, std::string& covers) {
+  nlohmann::json j;
+  if (!has_noise_model(ff)) {
+    const bool analytic = !ff.row_std_error.empty();
+    j["form_factors"] = analytic ? "not included: the analytic form factors' visibility noise is not propagated"
+                                 : "not included: F was read from a file, which does not record how it was sampled";
+    covers = analytic ? ", without the analytic form factors' visibility noise"
+                      : ", without the noise of the form factors read from the file";
+    return j;
+  }
+  // The radiosity the variance formula weighs the rays' targets with (to 1e-4: it needs only a few digits).
+  SolveOptions o;
+  o.tol = 1e-4;
+  o.max_iterations = default_max_iterations(o.solver, patches.size());
+  const Solution b = solve_radiosity(problem, o);
+  if (b.B.rows() != static_cast<Eigen::Index>(patches.size()))
+    throw InputError("error estimate: the radiosity for the form factors' noise could not be solved: " + b.message);
+  const EmbreeVisibility visibility(patches);
+  const Eigen::VectorXd W = problem.area.cwiseProduct(response.R);
+  const MeasurementError e = measurement_form_factor_error(patches, visibility, ff, problem, b.B, W);
+  MeasureEstimate& est = measurement.estimate;
+  const Rgb walks_se = est.se;
+  const Rgb& F_se = e.standard_error;
+  // sqrt(walks^2 + F^2) without squaring values near the largest double.
+  const Rgb larger = walks_se.max(F_se);
+  est.se = (larger > 0).select(larger * ((walks_se.min(F_se) / larger).square() + 1.0).sqrt(), Rgb::Zero());
+  j["form_factors_M_se"] = {F_se(0), F_se(1), F_se(2)};
+  j["walks_M_se"] = {walks_se(0), walks_se(1), walks_se(2)};
+  j["sampling_factor_rays"] = e.calibration.factors.rays;
+  j["sampling_factor_emitter"] = e.calibration.factors.emitter;
+  j["calibration_rows"] = e.calibration.rows;
+  j["calibration_replicates"] = e.calibration.replicates;
+  j["adjoint_sweeps"] = e.sweeps;
+  j["method"] = "first-order propagation of each row's gather variance through the adjoint: Var(M) = "
+                "sum_j (Psi_j rho_j)^2 V_j (docs/theory/error_estimate.md)";
+  covers = ", with the form factors' noise";
+  return j;
+}
+
 
 }  // namespace radwalk::app

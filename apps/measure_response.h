@@ -8,6 +8,7 @@
 
 #include "apps/scene_camera.h"
 #include "mesh/mesh.h"
+#include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
 #include "solve/measurement.h"
 #include "visibility/visibility.h"
@@ -31,5 +32,13 @@ Response measure_response(const std::string& spec, const std::string& scene, con
 // Monte Carlo methods M_se, var_per_walk, walks_total, steps and var_per_walk_theory (when finite or asked for
 // with theory; null entries where infinite).
 nlohmann::json measurement_json(const Measurement& measurement, const Response& response, bool theory);
+
+// Adds the form factors' noise to the measurement's standard error (solve/form_factor_error.h; independent of the
+// walks' own noise given F, so the variances add), for F as `ff` describes it (its F moved into `problem`).
+// Returns the JSON's "error_estimate.statistical" object (the parts, the sampling factors, the adjoint's sweeps)
+// and sets `covers` to what the printed standard error then covers (", with the form factors' noise", or that F
+// read from a file or the analytic route's visibility noise is not included). Solves B (to 1e-4) for the formula.
+nlohmann::json add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
+                                     const Response& response, Measurement& measurement, std::string& covers);
 
 }  // namespace radwalk::app

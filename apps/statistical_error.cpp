@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/pipeline.h"
+#include "core/moments.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_noise.h"
 #include "solve/form_factor_error.h"
@@ -22,12 +23,14 @@ std::string percent(double x) {
 }  // namespace
 
 double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
+  // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
+  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
   double error = 0, size = 0;
   for (std::size_t i = 0; i < patches.size(); ++i) {
     if (patches.E[i].maxCoeff() > 0 || !(patches.rho[i].maxCoeff() > 0)) continue;
     const auto row = static_cast<Eigen::Index>(i);
-    error += patches.area[i] * d.row(row).square().sum();
-    size += patches.area[i] * B.row(row).square().sum();
+    error += patches.area[i] * (d.row(row) / s).square().sum();
+    size += patches.area[i] * (B.row(row) / s).square().sum();
   }
   return size > 0 ? std::sqrt(error / size) : 0.0;
 }
@@ -54,15 +57,25 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
     stat["relative"] = total;
     return "estimated statistical error e = " + percent(total) + (walks ? " (the walks' own; " : " (") + what + ")";
   }
+  if (!problem.row_blocks.empty()) {
+    // Over MPI with F row-distributed (Jacobi, Gauss-Seidel) no rank holds the whole F, and the propagation needs
+    // it: gathering it would undo the distribution's memory saving.
+    const std::string what = "the form factors' noise is not estimated when F is distributed over MPI ranks "
+                             "(run on one process, or with --solver direct)";
+    stat["form_factors"] = "not included: " + what;
+    solution.B_se = own_se;
+    const double total = relative_error(patches, solution.B, solution.B_se);
+    stat["relative"] = total;
+    return "estimated statistical error e = " + percent(total) + " (" + what + ")";
+  }
   Timer timer;
-  const RadiosityProblem whole = problem.row_blocks.empty() ? RadiosityProblem() : whole_problem(problem);
-  const RadiosityProblem& p = problem.row_blocks.empty() ? problem : whole;
+  const RadiosityProblem& p = problem;
   const EmbreeVisibility visibility(patches);
   const FormFactorError error = form_factor_error(patches, visibility, ff, p, solution.B);
   const SamplingCalibration& calibration = error.calibration;
   const PropagatedVariance& propagated = error.propagation;
-  const PatchRgb F_se = propagated.variance.sqrt();
-  solution.B_se = (own_se.square() + propagated.variance).sqrt();
+  const PatchRgb& F_se = error.standard_error;
+  solution.B_se = combined_standard_error(own_se, F_se);
   const double total = relative_error(patches, solution.B, solution.B_se);
   const double from_F = relative_error(patches, solution.B, F_se);
   stat["relative"] = total;

@@ -19,8 +19,9 @@
 
 namespace radwalk::app {
 
-// `ff` describes how problem.F was obtained (its F may have been moved into the problem). Collective over MPI
-// when problem.F is row-distributed (the whole F is gathered for the propagation).
+// `ff` describes how problem.F was obtained (its F may have been moved into the problem). Over MPI with a
+// row-distributed F (Jacobi, Gauss-Seidel) the form factors' noise is not estimated (the propagation needs the whole
+// F): B_se keeps the solver's own part, and the line and the JSON say so.
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
                                   Solution& solution, RunSummary& summary);
 

@@ -23,7 +23,7 @@ import numpy as np
 
 def solve(radwalk, scene, max_edge, seed, options, path):
     cmd = [radwalk, "solve", scene, "--max-edge", str(max_edge), "--seed", str(seed), "--csv", path, "-q"]
-    subprocess.run(cmd + shlex.split(options), check=True, stdout=subprocess.DEVNULL)
+    subprocess.run(cmd + shlex.split(options), check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     rows = list(csv.DictReader(open(path)))
     get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows])
     return get("B"), get("B_se"), get("E"), get("rho"), np.array([float(r["area"]) for r in rows])

@@ -6,6 +6,7 @@
 #include "apps/measure_response.h"
 #include "apps/run_metadata.h"
 #include "bindings.h"
+#include "core/timer.h"
 #include "core/error.h"
 #include "core/image.h"
 #include "core/parallel.h"
@@ -76,15 +77,24 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
   r.response = response_of(scene, response, camera, width, height, metadata);
   check_measure_options(o, scene.patches.size());  // before any form factor is traced, as the CLI
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
-  SparseF f = measure_needs_form_factors(o) ? form_factor_matrix(F, scene, rays, seed, threads, r.timings)
+  FormFactors sampling;  // how F was traced, for its noise in M_se (as the CLI's measure)
+  SparseF f = measure_needs_form_factors(o) ? form_factor_matrix(F, scene, rays, seed, threads, r.timings, &sampling)
                                             : SparseF(n, n);
+  nlohmann::json error_estimate;
   interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     std::unique_ptr<EmbreeVisibility> visibility;
     if (!measure_needs_form_factors(o)) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
     r.measurement = measure_by_method(problem, &scene.patches, visibility.get(), r.response, o);
+    if (measure_needs_form_factors(o)) {
+      std::string covers;
+      Timer timer;
+      error_estimate = app::add_form_factor_error(scene.patches, sampling, problem, r.response, r.measurement, covers);
+      r.timings["error_estimate"] = timer.seconds();
+    }
   });
+  if (!error_estimate.is_null()) metadata["error_estimate"]["statistical"] = error_estimate;
   r.timings["measure"] = r.measurement.estimate.seconds;
   metadata["measurement"] = app::measurement_json(r.measurement, r.response, theory);
   if (is_importance_measure(method))

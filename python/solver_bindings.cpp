@@ -40,7 +40,7 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
       Timer timer;
       const EmbreeVisibility visibility(scene.patches);
       const FormFactorError error = form_factor_error(scene.patches, visibility, sampling, problem, r.solution.B);
-      r.solution.B_se = error.variance.sqrt();
+      r.solution.B_se = error.standard_error;
       r.solution.info["sampling_factor_rays"] = error.calibration.factors.rays;
       r.solution.info["sampling_factor_emitter"] = error.calibration.factors.emitter;
       r.timings["error_estimate"] = timer.seconds();

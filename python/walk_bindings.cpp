@@ -8,6 +8,9 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "interruptible.h"
+#include "core/timer.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
@@ -53,10 +56,10 @@ WalkOptions walk_options(const std::string& method, const std::string& kernel, l
 
 // F for the matrix kernel (form_factor_matrix); the ray kernel stores none (an empty N x N F, as the CLI's).
 SparseF walk_form_factors(const py::object& F, const Scene& scene, WalkKernel kernel, long rays, std::uint64_t seed,
-                          int threads, std::map<std::string, double>& timings) {
+                          int threads, std::map<std::string, double>& timings, FormFactors* sampling = nullptr) {
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
   if (kernel == WalkKernel::ray) return SparseF(n, n);
-  return form_factor_matrix(F, scene, rays, seed, threads, timings);
+  return form_factor_matrix(F, scene, rays, seed, threads, timings, sampling);
 }
 
 Result random_walk(const Scene& scene, const py::object& F, const std::string& method, const std::string& kernel,
@@ -82,13 +85,22 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
   w.shadow_rays = shadow_rays;
   check_walk_options(w, scene.patches.size());  // before any form factor is traced, as the CLI
   Result r;
-  SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings);
+  FormFactors sampling;  // how F was traced: its noise joins B_se on the matrix kernel, as in the CLI
+  SparseF f = walk_form_factors(F, scene, w.kernel, rays, seed, threads, r.timings, &sampling);
   interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
     std::unique_ptr<EmbreeVisibility> visibility;
     if (w.kernel == WalkKernel::ray) visibility = std::make_unique<EmbreeVisibility>(scene.patches);
     r.solution = solve_random_walk(problem, &scene.patches, visibility.get(), w);
+    const auto N = static_cast<Eigen::Index>(scene.patches.size());
+    if (has_noise_model(sampling) && r.solution.B.rows() == N && r.solution.B_se.rows() == N) {
+      Timer timer;
+      const EmbreeVisibility traced(scene.patches);
+      const FormFactorError error = form_factor_error(scene.patches, traced, sampling, problem, r.solution.B);
+      r.solution.B_se = combined_standard_error(r.solution.B_se, error.standard_error);
+      r.timings["error_estimate"] = timer.seconds();
+    }
   });
   check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;

@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/moments.h"
 #include "formfactor/form_factor_noise.h"
 
 namespace radwalk {
@@ -11,11 +12,18 @@ namespace radwalk {
 FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
                                   const RadiosityProblem& p, const PatchRgb& B, int probes) {
   FormFactorError out;
-  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, B);
-  const GatherVariance gathers = gather_variance(p.F, ff, B);
+  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
+  const PatchRgb b = B / s;
+  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b);
+  const GatherVariance gathers = gather_variance(p.F, ff, b);
   out.propagation = propagate_gather_variance(p, gathers.scaled(out.calibration.factors), probes, ff.options.seed);
-  out.variance = out.propagation.variance;
+  out.standard_error = out.propagation.variance.sqrt() * s;
   return out;
+}
+
+PatchRgb combined_standard_error(const PatchRgb& a, const PatchRgb& b) {
+  const PatchRgb larger = a.max(b);
+  return (larger > 0).select(larger * ((a.min(b) / larger).square() + 1.0).sqrt(), PatchRgb::Zero(a.rows(), 3));
 }
 
 MeasurementError measurement_form_factor_error(const PatchSet& patches, const Visibility& visibility,
@@ -25,13 +33,16 @@ MeasurementError measurement_form_factor_error(const PatchSet& patches, const Vi
   RADWALK_CHECK_EQ(W.size(), N);
   RADWALK_CHECK(p.row_blocks.empty());
   MeasurementError out;
-  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, B);
-  const PatchRgb V = gather_variance(p.F, ff, B).scaled(out.calibration.factors);
+  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
+  const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
+  const PatchRgb b = B / s;
+  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b);
+  const PatchRgb V = gather_variance(p.F, ff, b).scaled(out.calibration.factors);
   // Psi = W + F^T (rho Psi), all channels at once; F^T applied by scattering F's rows.
   PatchRgb psi(N, 3), next(N, 3);
-  for (int c = 0; c < 3; ++c) psi.col(c) = W.array();
+  for (int c = 0; c < 3; ++c) psi.col(c) = W.array() / r;
   for (;;) {
-    for (int c = 0; c < 3; ++c) next.col(c) = W.array();
+    for (int c = 0; c < 3; ++c) next.col(c) = W.array() / r;
     for (Eigen::Index i = 0; i < N; ++i) {
       const auto source = (p.rho.row(i) * psi.row(i)).eval();
       for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source;
@@ -44,7 +55,7 @@ MeasurementError measurement_form_factor_error(const PatchSet& patches, const Vi
       throw InputError("error estimate: the adjoint of the measurement did not converge in 100,000 sweeps "
                        "(spectral radius of diag(rho) F near 1)");
   }
-  out.variance = ((psi * p.rho).square() * V).colwise().sum().transpose();
+  out.standard_error = ((psi * p.rho).square() * V).colwise().sum().transpose().sqrt() * s * r;
   return out;
 }
 

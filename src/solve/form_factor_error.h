@@ -12,8 +12,10 @@
 
 namespace radwalk {
 
+// Scale before squaring (core/moments.h): B is divided by s = moment_scale(max B) before the variances are formed
+// and the standard errors multiplied back, so that B up to the largest double gives finite results.
 struct FormFactorError {
-  PatchRgb variance;  // Var(B_i) per patch and channel from F's noise
+  PatchRgb standard_error;  // sqrt(Var(B_i)) per patch and channel from F's noise
   SamplingCalibration calibration;
   PropagatedVariance propagation;
 };
@@ -23,13 +25,17 @@ struct FormFactorError {
 FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
                                   const RadiosityProblem& p, const PatchRgb& B, int probes = 16);
 
+// sqrt(a^2 + b^2) per entry without squaring values near the largest double: the standard error of the sum of two
+// independent errors (a walk's own and the form factors' noise).
+PatchRgb combined_standard_error(const PatchRgb& a, const PatchRgb& b);
+
 // The variance of a measurement M_c = sum_i W_i B_ic (W = A R, solve/measurement.h) from F's noise: with
 // Psi = (I - H)^{-T} W (the adjoint, by Jacobi sweeps of Psi = W + F^T diag(rho) Psi to a relative change below
 // 1e-10), dM = sum_j Psi_j rho_j dg_j and so
 //   Var(M_c) = sum_j (Psi_jc rho_jc)^2 V_jc                       (V: the scaled gather variance, as above),
 // exact to first order (no probes). B: the radiosity (any accurate estimate: V needs it only to a few per cent).
 struct MeasurementError {
-  Rgb variance = Rgb::Zero();
+  Rgb standard_error = Rgb::Zero();  // sqrt(Var(M_c)) (B and W scaled before squaring, as above)
   SamplingCalibration calibration;
   long sweeps = 0;
 };

@@ -119,7 +119,7 @@ TEST_CASE("B_se from the form factors' noise covers the exact solution of the un
         if (!stratified) CHECK(error.calibration.factors.rays == 1.0);
         int inside = 0, count = 0;
         for (int i = 1; i < 6; ++i) {
-          const double d = B(i, 0) - B_exact(i, 0), se = std::sqrt(error.variance(i, 0));
+          const double d = B(i, 0) - B_exact(i, 0), se = error.standard_error(i, 0);
           inside += std::abs(d) <= 1.96 * se;
           ++count;
           error2 += d * d;
