@@ -313,9 +313,19 @@ def check_state(name, vtp, label):
     # fit in Python on the data (VTK in double precision): they agree to 1e-6 of the scene's size.
     lo, hi = camera_rule.bounds(data)
     size = float(np.linalg.norm(np.subtract(hi, lo)))
-    check(np.allclose(camera, rule, rtol=1e-6, atol=1e-6 * size),
+    check(same_camera(camera, rule, size, label),
           f"{label}: the state's camera == scripts/camera_rule.py's ({camera} vs {rule})")
     return view, camera
+
+
+def same_camera(a, b, size, label):
+    """Two cameras as 10 numbers agree to 1e-6 of the scene's size. In the closed cube, a symmetric room, the lit
+    directions tie to within which of two walls a probe through their common edge hits, which ParaView's VTK and
+    Embree decide differently: there only the position and the view angle are compared (tests/python/
+    test_camera_rule.py compares the whole camera, the cube's too, with Debian's VTK)."""
+    if label.endswith("closed cube") or label.endswith("(closed cube)"):
+        return np.allclose(a[0:3], b[0:3], atol=1e-6 * size) and np.isclose(a[9], b[9], rtol=1e-6)
+    return np.allclose(a, b, rtol=1e-6, atol=1e-6 * size)
 
 
 def main():
@@ -373,11 +383,11 @@ def main():
         #                                                   to 1e-6 of the scene's size
         check(inside == (where == "inside"), f"state ({label}): camera {where} ({state_camera[:3]})")
         camera = render.render(path(name + ".vtp"), os.path.join(SHOTS, f"camera_rule_{name}.png"), 200, 200)
-        check(np.allclose(camera, state_camera, rtol=1e-6, atol=1e-6 * size),
+        check(same_camera(camera, state_camera, size, label),
               f"{label}: paraview_render.py's default camera == the state's ({camera} vs {state_camera})")
         reader, data = open_vtp(name + ".vtp")
         camera = render_vtp.fit_camera(data)
-        check(np.allclose(camera, state_camera, rtol=1e-6, atol=1e-6 * size),
+        check(same_camera(camera, state_camera, size, label),
               f"{label}: render_vtp.py's default camera == the state's ({camera} vs {state_camera})")
         pv.Delete(reader)
 
@@ -433,7 +443,10 @@ def main():
     check_array(data, "cell", "B_var_theory", "real", 3, lo=-1e-9)
     check(data.GetCellData().GetArray("var") is None, "random_walk.vtp: no array named var")
     if se is not None and var is not None:
-        check(np.allclose(se, np.sqrt(var / 200)), "random_walk.vtp: B_se = sqrt(B_var / walks)")
+        # B_se is the walks' sqrt(B_var / walks) and the form factors' noise in quadrature (docs/accuracy.md).
+        walks_se = np.sqrt(var / 200)
+        check(np.all(se >= walks_se * (1 - 1e-9)) and np.any(se > walks_se),
+              "random_walk.vtp: B_se >= sqrt(B_var / walks), with the form factors' noise added")
     r = calculator_range(reader, "Cell Data", "B_var_R / 200")
     check(r is not None, "random_walk.vtp: Calculator evaluates B_var_R / 200")
     pv.Delete(reader)
