@@ -214,7 +214,7 @@ TEST_CASE("write_matrix_market and write_npz refuse a matrix their readers would
   std::filesystem::remove_all(std::filesystem::path(temp_path("")).parent_path());
 }
 
-TEST_CASE("rows of another program's F up to 1 + 1e-3: read, named, normalised on request; beyond, refused",
+TEST_CASE("rows of another program's F up to 1 + 1e-3: read, named, normalised on request, and beyond refused",
           "[formfactor][io]") {
   // Row 0 sums to 1 + 1.5e-5 (View3D's excess on the unit cube), row 1 to 1 + 4e-4, row 2 to 0.9; a file with a
   // row at 1 + 2e-3 is refused.
