@@ -57,17 +57,6 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
     stat["relative"] = total;
     return "estimated statistical error e = " + percent(total) + (walks ? " (the walks' own; " : " (") + what + ")";
   }
-  if (!problem.row_blocks.empty()) {
-    // Over MPI with F row-distributed (Jacobi, Gauss-Seidel) no rank holds the whole F, and the propagation needs
-    // it: gathering it would undo the distribution's memory saving.
-    const std::string what = "the form factors' noise is not estimated when F is distributed over MPI ranks "
-                             "(run on one process, or with --solver direct)";
-    stat["form_factors"] = "not included: " + what;
-    solution.B_se = own_se;
-    const double total = relative_error(patches, solution.B, solution.B_se);
-    stat["relative"] = total;
-    return "estimated statistical error e = " + percent(total) + " (" + what + ")";
-  }
   Timer timer;
   const RadiosityProblem& p = problem;
   const EmbreeVisibility visibility(patches);

@@ -19,9 +19,8 @@
 
 namespace radwalk::app {
 
-// `ff` describes how problem.F was obtained (its F may have been moved into the problem). Over MPI with a
-// row-distributed F (Jacobi, Gauss-Seidel) the form factors' noise is not estimated (the propagation needs the whole
-// F): B_se keeps the solver's own part, and the line and the JSON say so.
+// `ff` describes how problem.F was obtained (its F may have been moved into the problem). Collective over MPI
+// when problem.F is row-distributed (each process works on its rows; the same result as one process).
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
                                   Solution& solution, RunSummary& summary);
 

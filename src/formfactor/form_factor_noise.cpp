@@ -3,13 +3,14 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/distributed.h"
 #include "core/parallel.h"
 
 namespace radwalk {
 
 bool has_noise_model(const FormFactors& ff) { return !ff.rays.empty(); }
 
-GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const PatchRgb& B) {
+GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const PatchRgb& B, const RowBlocks& blocks) {
   const Eigen::Index N = F.rows();
   RADWALK_CHECK_EQ(B.rows(), N);
   RADWALK_CHECK(has_noise_model(ff));
@@ -20,7 +21,9 @@ GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const Pa
   GatherVariance out;
   out.rays = PatchRgb::Zero(N, 3);
   out.emitter = PatchRgb::Zero(N, 3);
-  parallel_for(static_cast<std::size_t>(N), [&](std::size_t i) {
+  const distributed::Range mine = own_rows(blocks, static_cast<std::size_t>(N));
+  parallel_for(mine.size(), [&](std::size_t k) {
+    const std::size_t i = mine.begin + k;
     const auto row = static_cast<Eigen::Index>(i);
     RowGather g;
     for (SparseF::InnerIterator it(F, row); it; ++it)
@@ -31,6 +34,10 @@ GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const Pa
     out.rays.row(row) = g.ray_variance(ff.rays[i]).transpose();
     out.emitter.row(row) = g.emitter_variance().transpose();
   });
+  if (!blocks.empty()) {  // over MPI: every process gets every row's parts
+    distributed::allgather_in_place(out.rays.data(), 3 * sizeof(double), blocks);
+    distributed::allgather_in_place(out.emitter.data(), 3 * sizeof(double), blocks);
+  }
   return out;
 }
 

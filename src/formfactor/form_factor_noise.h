@@ -14,6 +14,7 @@
 //   Var(g_i) = c_rays * (ray part) + c_emitter * (emitter part).
 // Derivation and checks: docs/theory/error_estimate.md.
 #include "core/types.h"
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/form_factors.h"
 
 namespace radwalk {
@@ -38,7 +39,10 @@ bool has_noise_model(const FormFactors& ff);
 // rays, emitter columns and emitter variances describe it) and radiosity B (N x 3). Rows without rays get 0.
 // Reciprocity averaging (--reciprocity) changes F after the rays: the formula then describes the traced F, whose
 // noise the averaging only reduces (an upper bound).
-GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const PatchRgb& B);
+// Over MPI with F row-distributed (`blocks` non-empty) each process computes its rows and every process gets all
+// (collective).
+GatherVariance gather_variance(const SparseF& F, const FormFactors& ff, const PatchRgb& B,
+                               const RowBlocks& blocks = {});
 
 // One row's gather and its variance parts, accumulated entry by entry (by gather_variance, and by the replicates
 // of sampling_factor.h for rows traced again).

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/distributed.h"
 #include "core/parallel.h"
 #include "core/rng.h"
 #include "core/timer.h"
@@ -60,7 +61,8 @@ RowGather gather_of_traced_row(const PatchSet& patches, const Visibility& visibi
 }  // namespace
 
 SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Visibility& visibility,
-                                               const SparseF& F, const FormFactors& ff, const PatchRgb& B) {
+                                               const SparseF& F, const FormFactors& ff, const PatchRgb& B,
+                                               const RowBlocks& blocks) {
   Timer timer;
   SamplingCalibration out;
   const std::size_t N = patches.size();
@@ -73,13 +75,18 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
   for (std::int32_t e : ff.emitter_columns) replaced[static_cast<std::size_t>(e)] = 1;
 
   // The eligible rows (some formula variance) and S of them drawn without replacement.
-  std::vector<std::size_t> eligible;
-  for (std::size_t i = 0; i < N; ++i) {
+  // Over MPI each process judges the rows it holds and the verdicts are shared.
+  const distributed::Range mine = own_rows(blocks, N);
+  std::vector<char> is_eligible(N, 0);
+  for (std::size_t i = mine.begin; i < mine.end; ++i) {
     if (ff.rays[i] == 0) continue;
     const RowGather g = gather_of_stored_row(F, ff, replaced, B, i);
-    if ((g.ray_variance(ff.rays[i]) + g.emitter_variance()).maxCoeff() > 0 && g.gather().maxCoeff() > 0)
-      eligible.push_back(i);
+    is_eligible[i] = (g.ray_variance(ff.rays[i]) + g.emitter_variance()).maxCoeff() > 0 && g.gather().maxCoeff() > 0;
   }
+  if (!blocks.empty()) distributed::allgather_in_place(is_eligible.data(), 1, blocks);
+  std::vector<std::size_t> eligible;
+  for (std::size_t i = 0; i < N; ++i)
+    if (is_eligible[i]) eligible.push_back(i);
   const std::size_t S = std::min(eligible.size(), std::max<std::size_t>(32, N / 50));
   Rng pick = stream(ff.options.seed, StreamDomain::error_estimate, 0, 0);
   for (std::size_t k = 0; k < S; ++k)
@@ -89,52 +96,64 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
   if (S == 0) return out;
 
   const int kReplicates = std::max<int>(kMinReplicates, int((kMinTracedRows + S - 1) / S));
-  // Gathers of the R + 1 versions of each chosen row (version 0: F's own).
+  // Per chosen row (those this process holds; over MPI the rows are shared afterwards): the spread of its R + 1
+  // versions' gathers (version 0: F's own) and the formula's mean variance, channels pooled by relative variance,
+  // for each part, and the rays traced: {spread_rays, formula_rays, spread_emitter, formula_emitter, rays}.
   const std::vector<std::size_t> emitters = emitter_patches(patches);
   const VisibleFormFactor visible(patches, visibility);
-  std::vector<RowGather> gathers(S * (kReplicates + 1));
-  std::vector<long> rays(S, 0);
-  parallel_for(S, [&](std::size_t k) {
-    const std::size_t i = eligible[k];
-    gathers[k * (kReplicates + 1)] = gather_of_stored_row(F, ff, replaced, B, i);
+  constexpr std::size_t kTerms = 5;
+  std::vector<double> terms(S * kTerms, 0.0);
+  const auto first = std::size_t(std::lower_bound(eligible.begin(), eligible.end(), mine.begin) - eligible.begin());
+  const auto last = std::size_t(std::lower_bound(eligible.begin(), eligible.end(), mine.end) - eligible.begin());
+  parallel_for(last - first, [&](std::size_t q) {
+    const std::size_t k = first + q, i = eligible[k];
+    std::vector<RowGather> g(std::size_t(kReplicates) + 1);
+    long rays = 0;
+    g[0] = gather_of_stored_row(F, ff, replaced, B, i);
     for (int r = 1; r <= kReplicates; ++r) {
       FormFactorOptions options = ff.options;
       options.seed = replicate_seed(ff.options.seed, r);
-      gathers[k * (kReplicates + 1) + std::size_t(r)] =
-          gather_of_traced_row(patches, visibility, visible, ff, options, emitters, replaced, B, i, rays[k]);
+      g[std::size_t(r)] = gather_of_traced_row(patches, visibility, visible, ff, options, emitters, replaced, B, i, rays);
     }
-  }, 1);
-
-  // Per row the ratio of the replicates' spread to the formula (channels pooled by relative variance), averaged over
-  // the rows with equal weights.
-  double spread_rays = 0, formula_rays = 0, spread_emitter = 0, formula_emitter = 0;
-  for (std::size_t k = 0; k < S; ++k) {
-    const RowGather* g = &gathers[k * (kReplicates + 1)];
-    const double n = ff.rays[eligible[k]];
+    const double n = ff.rays[i];
     Rgb mean_ray = Rgb::Zero(), mean_emitter = Rgb::Zero(), v_ray = Rgb::Zero(), v_emitter = Rgb::Zero();
-    for (int r = 0; r <= kReplicates; ++r) {
-      mean_ray += g[r].ray_gather();
-      mean_emitter += g[r].emitter_gather();
-      v_ray += g[r].ray_variance(n);
-      v_emitter += g[r].emitter_variance();
+    for (const RowGather& x : g) {
+      mean_ray += x.ray_gather();
+      mean_emitter += x.emitter_gather();
+      v_ray += x.ray_variance(n);
+      v_emitter += x.emitter_variance();
     }
     const double versions = kReplicates + 1;
     mean_ray /= versions, mean_emitter /= versions, v_ray /= versions, v_emitter /= versions;
     Rgb s_ray = Rgb::Zero(), s_emitter = Rgb::Zero();
-    for (int r = 0; r <= kReplicates; ++r) {
-      s_ray += (g[r].ray_gather() - mean_ray).square();
-      s_emitter += (g[r].emitter_gather() - mean_emitter).square();
+    for (const RowGather& x : g) {
+      s_ray += (x.ray_gather() - mean_ray).square();
+      s_emitter += (x.emitter_gather() - mean_emitter).square();
     }
     s_ray /= versions - 1, s_emitter /= versions - 1;
-    double row_spread_rays = 0, row_formula_rays = 0, row_spread_emitter = 0, row_formula_emitter = 0;
+    double* t = &terms[k * kTerms];
     for (int c = 0; c < 3; ++c) {
       const double g2 = (mean_ray[c] + mean_emitter[c]) * (mean_ray[c] + mean_emitter[c]);
       if (!(g2 > 0)) continue;
-      row_spread_rays += s_ray[c] / g2, row_formula_rays += v_ray[c] / g2;
-      row_spread_emitter += s_emitter[c] / g2, row_formula_emitter += v_emitter[c] / g2;
+      t[0] += s_ray[c] / g2, t[1] += v_ray[c] / g2, t[2] += s_emitter[c] / g2, t[3] += v_emitter[c] / g2;
     }
-    if (row_formula_rays > 0) spread_rays += row_spread_rays / row_formula_rays, formula_rays += 1;
-    if (row_formula_emitter > 0) spread_emitter += row_spread_emitter / row_formula_emitter, formula_emitter += 1;
+    t[4] = double(rays);
+  }, 1);
+  if (!blocks.empty()) {
+    std::vector<distributed::Range> chosen(blocks.size());
+    for (std::size_t r = 0; r < blocks.size(); ++r)
+      chosen[r] = {std::size_t(std::lower_bound(eligible.begin(), eligible.end(), blocks[r].begin) - eligible.begin()),
+                   std::size_t(std::lower_bound(eligible.begin(), eligible.end(), blocks[r].end) - eligible.begin())};
+    distributed::allgather_in_place(terms.data(), kTerms * sizeof(double), chosen);
+  }
+
+  // The mean over the rows of each row's ratio of the replicates' spread to the formula.
+  double spread_rays = 0, formula_rays = 0, spread_emitter = 0, formula_emitter = 0;
+  for (std::size_t k = 0; k < S; ++k) {
+    const double* t = &terms[k * kTerms];
+    if (t[1] > 0) spread_rays += t[0] / t[1], formula_rays += 1;
+    if (t[3] > 0) spread_emitter += t[2] / t[3], formula_emitter += 1;
+    out.rays += static_cast<long>(t[4]);
   }
   if (rays_correlated && formula_rays > 0) {
     out.factors.rays = spread_rays / formula_rays;
@@ -146,7 +165,6 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
   }
   out.rows = S;
   out.replicates = kReplicates;
-  for (long r : rays) out.rays += r;
   out.seconds = timer.seconds();
   return out;
 }

@@ -16,6 +16,7 @@
 
 #include "core/types.h"
 #include "formfactor/form_factor_noise.h"
+#include "formfactor/form_factor_rows.h"
 #include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
 #include "visibility/visibility.h"
@@ -33,7 +34,10 @@ struct SamplingCalibration {
 
 // F (every row, the estimate traced with ff.options and ff.emitter_samples), ff's noise description (rays,
 // emitter columns) and the radiosity B it gave (N x 3).
+// Over MPI with F row-distributed (`blocks`), each process traces the chosen rows it holds and the results are
+// shared (collective): the same factors, bit for bit, as one process.
 SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Visibility& visibility,
-                                               const SparseF& F, const FormFactors& ff, const PatchRgb& B);
+                                               const SparseF& F, const FormFactors& ff, const PatchRgb& B,
+                                               const RowBlocks& blocks = {});
 
 }  // namespace radwalk

@@ -14,8 +14,8 @@ FormFactorError form_factor_error(const PatchSet& patches, const Visibility& vis
   FormFactorError out;
   const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
   const PatchRgb b = B / s;
-  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b);
-  const GatherVariance gathers = gather_variance(p.F, ff, b);
+  out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b, p.row_blocks);
+  const GatherVariance gathers = gather_variance(p.F, ff, b, p.row_blocks);
   out.propagation = propagate_gather_variance(p, gathers.scaled(out.calibration.factors), probes, ff.options.seed);
   out.standard_error = out.propagation.variance.sqrt() * s;
   return out;

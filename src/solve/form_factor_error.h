@@ -20,7 +20,8 @@ struct FormFactorError {
   PropagatedVariance propagation;
 };
 
-// p: the problem B solves (its F the estimate, every row: whole_problem over MPI); ff: how that F was traced
+// p: the problem B solves (its F the estimate: every row, or over MPI this process's row block, p.row_blocks; then
+// collective, and the same result on every process as on one); ff: how that F was traced
 // (has_noise_model(ff); its own F may have been moved into p); B: the solution (N x 3); `visibility` of `patches`.
 FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
                                   const RadiosityProblem& p, const PatchRgb& B, int probes = 16);
