@@ -78,7 +78,8 @@ void check_measure_options(const MeasureOptions& o, std::size_t patch_count) {
   }
   if ((deterministic || importance) && o.walk.kernel == WalkKernel::ray)
     throw InputError("kernel ray: --method " + o.method + " does not walk on a kernel (it uses the matrix of form "
-                     "factors); use a walk method (e.g. gather-expected-value) for the ray kernel");
+                     "factors); use a walk method (e.g. --method " +
+                     std::string(method_name(WalkMethod::gather_expected_value)) + ") for the ray kernel");
   const bool needs_lu = deterministic || (importance && o.importance_sweeps < 0);
   if (needs_lu && patch_count > static_cast<std::size_t>(kDenseMaxPatches))
     throw InputError("--method " + o.method + (importance ? " with the exact importance" : "") + " needs an LU of " +
