@@ -198,8 +198,14 @@ void check_patches(const Mesh& mesh, const PatchSet& patches, double max_edge) {
     std::size_t count = 0;
     for (; i < n && patches.face[i] == static_cast<std::int32_t>(source); ++i, ++count) {
       const std::string patch = face + ", patch " + std::to_string(i);
-      RADWALK_FUZZ_CHECK(patches.material[i] == mesh.face_material[f], patch + ": material of another face");
-      RADWALK_FUZZ_CHECK((patches.rho[i] == mat.Kd).all() && (patches.E[i] == kPi * mat.Ke).all(),
+      // The pieces of one input face may carry different materials: a piece that met a back-to-back duplicate
+      // has the two-sided copy of the face's material (same Kd and Ke).
+      bool of_a_piece = false;
+      for (std::size_t q = f; q < end; ++q) of_a_piece = of_a_piece || patches.material[i] == mesh.face_material[q];
+      RADWALK_FUZZ_CHECK(of_a_piece, patch + ": material of another face");
+      const Material& own = mesh.materials[static_cast<std::size_t>(patches.material[i])];
+      RADWALK_FUZZ_CHECK((patches.rho[i] == own.Kd).all() && (patches.E[i] == kPi * own.Ke).all() &&
+                             (own.Kd == mat.Kd).all() && (own.Ke == mat.Ke).all(),
                          patch + ": rho or E not its material's");
       RADWALK_FUZZ_CHECK(patches.rho[i].allFinite() && patches.E[i].allFinite(),
                          patch + ": non-finite rho or E");
