@@ -43,7 +43,8 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
   auto& stat = j["statistical"];
   const bool walks = solution.B_se.rows() == N;
   const PatchRgb own_se = walks ? solution.B_se : PatchRgb::Zero(N, 3);
-  if (walks) stat["walks_relative"] = relative_error(patches, solution.B, own_se);
+  const double walks_relative = walks ? relative_error(patches, solution.B, own_se) : 0.0;
+  if (walks) stat["walks_relative"] = walks_relative;
   if (!has_noise_model(ff)) {
     // F read from a file records no sampling; the analytic route's visibility estimates have their row standard
     // errors (the CSV's row_std_error) but are not propagated yet.
@@ -84,7 +85,7 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
   std::string line = "estimated statistical error e = " + percent(total) +
                      " (1 standard deviation, relative to B over the reflecting patches; from the form factors' noise " +
                      percent(from_F);
-  if (walks) line += ", the walks' own " + percent(relative_error(patches, solution.B, own_se));
+  if (walks) line += ", the walks' own " + percent(walks_relative);
   return line + ")";
 }
 
