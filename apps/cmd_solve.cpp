@@ -9,6 +9,7 @@
 #include "apps/pipeline.h"
 #include "apps/power_balance.h"
 #include "apps/progressive_series.h"
+#include "apps/discretisation_error.h"
 #include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
 #include "core/error.h"
@@ -17,6 +18,7 @@
 #include "formfactor/emitter_form_factors.h"
 #include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
+#include "solve/discretisation_error.h"
 #include "solve/problem.h"
 #include "solve/residual.h"
 #include "solve/solve_radiosity.h"
@@ -167,6 +169,13 @@ int run_solve(const SolveCommand& command) {
   Solution solution;
   std::string error_line;  // the estimated error, printed after the solver's line
   RayFates fates;  // where the rays leaving each patch went (power_balance.h)
+  // The discretisation error and the total after the statistical line (apps/discretisation_error.h).
+  const auto add_discretisation = [&](const RadiosityProblem& problem) {
+    if (solution.status == SolveStatus::refused) return;
+    const std::string line = add_discretisation_error(patches, problem, solution, summary,
+                                                      command.discretisation_directions, command.scene.seed);
+    if (!line.empty()) error_line += (error_line.empty() ? "" : "\n") + line;
+  };
   if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
@@ -181,6 +190,7 @@ int run_solve(const SolveCommand& command) {
     const EmbreeVisibility visibility(patches);
     solution = run_walks(command, walk, problem, patches, &visibility, summary);
     fates = trace_ray_fates(patches, command.scene.seed);
+    add_discretisation(problem);
   } else {
     // Over MPI the deterministic solvers take a row-distributed F (each rank its rows: Jacobi and Gauss-Seidel
     // sweep them, the direct solve and Southwell gather the whole F); the matrix-kernel walks need every row.
@@ -192,6 +202,7 @@ int run_solve(const SolveCommand& command) {
     if (walks) {
       solution = run_walks(command, walk, problem, patches, nullptr, summary);
       error_line = add_statistical_error(patches, ff, problem, solution, summary);
+      add_discretisation(problem);
     } else {
       SolveOptions o = solve_options(command, patches.size());
       std::optional<ProgressiveSeries> series;
@@ -209,6 +220,7 @@ int run_solve(const SolveCommand& command) {
       solution = solve_radiosity(problem, o);
       if (solution.status != SolveStatus::refused)
         error_line = add_statistical_error(patches, ff, problem, solution, summary);
+      add_discretisation(problem);
       if (series) {
         const std::size_t steps = series->finish();
         summary.json()["progressive"] = {{"pvd", series->pvd_path()}, {"steps", steps}, {"stride", series->stride()}};
@@ -252,6 +264,10 @@ int run_solve(const SolveCommand& command) {
     report_power_balance(patches, solution.B, solution.B_se, fates, summary);
     fields.push_back(rgb_field("B", solution.B));
     if (solution.B_se.size()) fields.push_back(rgb_field("B_se", solution.B_se));
+    if (solution.B_disc.size()) {
+      fields.push_back(rgb_field("B_disc", solution.B_disc));
+      fields.push_back(rgb_field("B_err", total_error(solution.B_se, solution.B_disc)));
+    }
     // ParaView names B_var, B_var_theory (`var` is reserved in its Calculator); the CSV keeps var_*, var_theory_*.
     if (solution.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", solution.var), "var"));
     if (solution.var_theory.size())

@@ -83,6 +83,8 @@ struct SolveCommand {
   long max_patches = 20000;
   double refine_floor = 1;  // floor of the relative difference, as a fraction of the mean irradiance
   double refine_noise = 0;  // differences within this many form-factor standard errors do not split (0: off)
+  int discretisation_directions = 16;  // --discretisation-directions L: directions per point of the discretisation
+                                      // error estimate (solve/fluctuation_source.h); 0: not estimated
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)
   std::string progressive;

@@ -552,6 +552,12 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   // The binomial standard errors it needs come from cosine-ray counts, which the analytic route has not.
   solve_cmd->get_option("--analytic")->excludes(refine_noise);
+  solve_cmd
+      ->add_option("--discretisation-directions", solve.discretisation_directions,
+                   "Directions per point of the discretisation error estimate B_disc (24 L rays per patch; 0: not "
+                   "estimated)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
   solve_cmd->add_option(
       "--progressive", solve.progressive,
       "Write a series DIR/step_NNNN.vtp + DIR/solve.pvd for ParaView: the iterates of jacobi, gauss-seidel or "

@@ -9,6 +9,14 @@ py::array_t<double> rgb_view(const PatchRgb& values, py::handle base) {
               static_cast<std::size_t>(values.rows()), 3, base);
 }
 
+py::array_t<double> rgb_copy(const PatchRgb& values) {
+  py::array_t<double> out({static_cast<py::ssize_t>(values.rows()), py::ssize_t{3}});
+  auto a = out.mutable_unchecked<2>();
+  for (Eigen::Index i = 0; i < values.rows(); ++i)
+    for (Eigen::Index c = 0; c < 3; ++c) a(i, c) = values(i, c);
+  return out;
+}
+
 py::array real_array(const py::object& value, const std::string& not_numbers, const std::string& not_real) {
   const py::module_ np = py::module_::import("numpy");
   py::object a;

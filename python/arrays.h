@@ -41,6 +41,9 @@ py::array_t<T> view(const T* data, std::size_t rows, std::size_t columns, py::ha
 // A read-only (N, 3) float64 view of a PatchRgb owned by `base` (shape (0, 3) when empty).
 py::array_t<double> rgb_view(const PatchRgb& values, py::handle base);
 
+// An owning (N, 3) float64 copy of a PatchRgb (for values computed on request, e.g. Result.B_err).
+py::array_t<double> rgb_copy(const PatchRgb& values);
+
 // An owning copy of `values` as a 1-D numpy array (shape (n,), dtype of T).
 template <class T>
 py::array_t<T> copy_array(const std::vector<T>& values) {

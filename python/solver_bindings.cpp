@@ -7,6 +7,7 @@
 #include "io/run_summary.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_noise.h"
+#include "solve/discretisation_error.h"
 #include "solve/form_factor_error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
@@ -22,7 +23,10 @@ py::object rgb_or_none(py::object self, const PatchRgb& values) {
 }
 
 Result solve(const Scene& scene, const py::object& F, const std::string& solver, double tol, long max_iterations,
-             long rays, std::uint64_t seed, long long threads_arg) {
+             long rays, std::uint64_t seed, long long threads_arg, int discretisation_directions) {
+  if (discretisation_directions < 0)
+    throw InputError("discretisation_directions must be >= 0 (0: not estimated), got " +
+                     std::to_string(discretisation_directions));
   const int threads = check_run(scene, threads_arg);
   Result r;
   FormFactors sampling;
@@ -44,6 +48,15 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
       r.solution.info["sampling_factor_rays"] = error.calibration.factors.rays;
       r.solution.info["sampling_factor_emitter"] = error.calibration.factors.emitter;
       r.timings["error_estimate"] = timer.seconds();
+    }
+    // B_disc: the estimated discretisation error (as the CLI's solve, --discretisation-directions).
+    if (discretisation_directions > 0 && r.solution.status != SolveStatus::refused &&
+        r.solution.B.rows() == static_cast<Eigen::Index>(scene.patches.size())) {
+      const EmbreeVisibility visibility(scene.patches);
+      const DiscretisationError d =
+          discretisation_error(scene.patches, visibility, problem, r.solution.B, discretisation_directions, seed);
+      r.solution.B_disc = d.standard_error;
+      r.timings["discretisation_error"] = d.seconds;
     }
   });
   check_solved(r.solution);
@@ -86,6 +99,19 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
           "B_se", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_se); },
           "Standard error of B (N, 3) float64, W per unit length squared; None for a deterministic solve.")
       .def_property_readonly(
+          "B_disc", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.B_disc); },
+          "Estimated discretisation error of B (N, 3) float64, W per unit length squared (1 standard deviation "
+          "equivalent, docs/accuracy.md); None where not estimated.")
+      .def_property_readonly(
+          "B_err",
+          [](py::object self) -> py::object {
+            const Solution& s = self.cast<const Result&>().solution;
+            if (!s.B_disc.size()) return rgb_or_none(self, s.B_se);
+            return rgb_copy(total_error(s.B_se, s.B_disc));
+          },
+          "Total error sqrt(B_se^2 + B_disc^2) (N, 3) float64, W per unit length squared (a copy); B_se where "
+          "B_disc is not estimated, None when neither is.")
+      .def_property_readonly(
           "var", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var); },
           "Sample variance per walk or particle (N, 3) float64, (W per unit length squared)^2; None where not "
           "computed.")
@@ -126,12 +152,16 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
             py::dict d;
             d["B"] = rgb_view(s.B, self);
             if (s.B_se.size()) d["B_se"] = rgb_view(s.B_se, self);
+            if (s.B_disc.size()) {
+              d["B_disc"] = rgb_view(s.B_disc, self);
+              d["B_err"] = rgb_copy(total_error(s.B_se, s.B_disc));
+            }
             if (s.var.size()) d["B_var"] = py::make_tuple(rgb_view(s.var, self), "var");
             if (s.var_theory.size()) d["B_var_theory"] = py::make_tuple(rgb_view(s.var_theory, self), "var_theory");
             return d;
           },
           "The CLI's per-patch fields of this result as write_csv takes them (dict str -> (N, 3) float64 view, "
-          "or (view, csv name)): B, B_se, B_var, B_var_theory where computed.")
+          "or (view, csv name)): B, B_se, B_disc, B_err, B_var, B_var_theory where computed.")
       .def("__repr__", [](const Result& r) {
         return "<radwalk.Result " + r.solution.method + ": " + to_string(r.solution.status) + ", " +
                std::to_string(r.solution.B.rows()) + " patches>";
@@ -139,7 +169,7 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
 
   m.def("solve", &solve, py::arg("scene"), py::arg("F") = py::none(), py::arg("solver") = "auto",
         py::arg("tol") = 1e-10, py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("seed") = 1,
-        py::arg("threads") = 0,
+        py::arg("threads") = 0, py::arg("discretisation_directions") = 16,
         R"doc(Solves B = E + diag(rho) F B with a deterministic solver: a Result (B (N, 3) float64 in W per unit length
 squared, residual, iterations, ...).
 
@@ -153,6 +183,8 @@ solver: "auto" (direct up to a few thousand patches, else Gauss-Seidel), "direct
 threads: 0 = all cores. The GIL is released during the solve.
 Result.B_se: for F traced by radwalk (None, or a FormFactors from form_factors) the form factors' noise
   propagated through the solve, as the CLI's B_se (docs/accuracy.md); None for a caller's matrix.
+Result.B_disc: the estimated discretisation error (docs/accuracy.md), with `discretisation_directions` directions
+  per point (the CLI's --discretisation-directions; 0: not estimated, None); Result.B_err the total.
 Raises radwalk.InputError (a ValueError) for an unknown solver, bad options or bad values (rho outside [0, 1),
 NaN, a malformed F, ...); radwalk.NumericalError when the solve diverged or was refused (its message).
 For random walks use random_walk; for the continuous reference, pathtrace.)doc");

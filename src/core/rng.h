@@ -46,6 +46,8 @@ enum class StreamDomain : std::uint64_t {
                               // digital shift of its point pairs; a = patch i, b = patch j (i < j)
   error_estimate = 18,        // error estimates (formfactor/sampling_factor.h, solve/error_propagation.h): a = 0 the
                               // replicated rows, a = 1 + k probe k; b = 0
+  discretisation_estimate = 19,  // the fluctuation gather of the discretisation error (solve/fluctuation_gather.h): a =
+                                 // patch i, b = 0
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

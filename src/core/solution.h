@@ -25,6 +25,8 @@ struct Solution {
   PatchRgb B;               // radiosity B = E + rho * (F B), W/m^2, one row per patch
   PatchRgb B_se;            // statistical standard error of B (Monte Carlo methods; deterministic solvers from traced
                             // form factors: their noise, apps/statistical_error.h); empty when unknown
+  PatchRgb B_disc;          // estimated discretisation error of B (solve/discretisation_error.h: 1 standard deviation
+                            // equivalent); empty when not estimated
   PatchRgb var;             // per-walk (per-sample) variance (Monte Carlo methods); empty otherwise
   PatchRgb var_theory;      // exact per-walk variance where computable; empty otherwise
   long iterations = 0;      // sweeps or shots (deterministic)

@@ -4,11 +4,9 @@
 #include <cmath>
 
 #include "core/check.h"
-#include "core/distributed.h"
-#include "core/error.h"
 #include "core/rng.h"
 #include "core/timer.h"
-#include "formfactor/form_factor_rows.h"
+#include "solve/block_jacobi.h"
 
 namespace radwalk {
 namespace {
@@ -32,43 +30,18 @@ PropagatedVariance propagate_gather_variance(const RadiosityProblem& p, const Pa
   const PatchRgb q = p.rho.square() * gather_variance;
   // Column 3k + c of Z and X: probe k, channel c.
   const Eigen::Index columns = 3 * Eigen::Index(probes);
-  using Block = Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-  Block Z(N, columns);
+  RowBlock Z(N, columns);
   for (int k = 0; k < probes; ++k) {
     Rng rng = stream(seed, StreamDomain::error_estimate, 1 + std::uint64_t(k), 0);
     for (Eigen::Index i = 0; i < N; ++i)
       for (int c = 0; c < 3; ++c) Z(i, 3 * k + c) = std::sqrt(q(i, c)) * standard_normal(rng);
   }
-  // Jacobi sweeps x <- z + H x (every probe and channel at once): each process updates the rows it holds of F
-  // (its row block over MPI, all rows otherwise) and the new rows are shared, so every process ends with the same
-  // x, bit for bit, whatever the number of processes.
-  Block X = Z, next(N, columns);
-  Eigen::Array<double, 1, Eigen::Dynamic> gathered(columns), rho_row(columns), updated(columns);
-  const distributed::Range mine = own_rows(p.row_blocks, static_cast<std::size_t>(N));
+  // x = G z for every probe and channel at once (solve/block_jacobi.h; collective over MPI).
   PropagatedVariance out;
   out.probes = probes;
-  for (;;) {
-    double change = 0, size = 0;
-    for (auto i = static_cast<Eigen::Index>(mine.begin); i < static_cast<Eigen::Index>(mine.end); ++i) {
-      gathered.setZero();
-      for (SparseF::InnerIterator it(p.F, i); it; ++it) gathered += double(it.value()) * X.row(it.col());
-      for (int k = 0; k < probes; ++k) rho_row.segment(3 * k, 3) = p.rho.row(i);
-      updated = Z.row(i) + rho_row * gathered;
-      change = std::max(change, (updated - X.row(i)).abs().maxCoeff());
-      size = std::max(size, updated.abs().maxCoeff());
-      next.row(i) = updated;
-    }
-    if (!p.row_blocks.empty())
-      distributed::allgather_in_place(next.data(), sizeof(double) * std::size_t(columns), p.row_blocks);
-    X.swap(next);
-    change = distributed::max_over_ranks(change);
-    size = distributed::max_over_ranks(size);
-    ++out.sweeps;
-    if (!(change > 1e-6 * size)) break;
-    if (out.sweeps >= 10000)
-      throw InputError("error estimate: the propagation of the form factors' noise did not converge in 10,000 "
-                       "sweeps (spectral radius of diag(rho) F near 1)");
-  }
+  BlockSolution solved = solve_block_jacobi(p, Z, 1e-6, "error estimate: the propagation of the form factors' noise");
+  out.sweeps = solved.sweeps;
+  const RowBlock& X = solved.X;
   out.variance.resize(N, 3);
   for (Eigen::Index i = 0; i < N; ++i)
     for (int c = 0; c < 3; ++c) {

@@ -1,0 +1,74 @@
+#include "solve/discretisation_error.h"
+
+#include <cmath>
+
+#include "core/check.h"
+#include "core/moments.h"
+#include "core/timer.h"
+#include "solve/block_jacobi.h"
+#include "solve/error_propagation.h"
+#include "solve/form_factor_error.h"
+#include "solve/fluctuation_source.h"
+
+namespace radwalk {
+
+DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
+                                         const RadiosityProblem& p, const PatchRgb& B, int directions,
+                                         std::uint64_t seed) {
+  Timer timer;
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
+  RADWALK_CHECK_EQ(B.rows(), N);
+  RADWALK_CHECK_EQ(static_cast<Eigen::Index>(p.size()), N);
+  FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed);
+  DiscretisationError out;
+  out.points = source.points;
+  out.directions = source.directions;
+  out.rays = source.rays;
+  // H from the stored F, or from the estimate's own shot rays when the solver stored none.
+  out.own_form_factors = p.F.nonZeros() == 0 && source.F.nonZeros() > 0;
+  RadiosityProblem own;
+  if (out.own_form_factors) {
+    own.F = std::move(source.F);
+    own.rho = p.rho;
+    own.E = p.E;
+    own.area = p.area;
+  }
+  const RadiosityProblem& h = out.own_form_factors ? own : p;
+  const RowBlock rhs = source.d;
+  const BlockSolution e = solve_block_jacobi(h, rhs, 1e-6, "error estimate: the discretisation error's solve");
+  // propagate_gather_variance propagates rho^2 V: V = Var(d) / rho^2 where rho > 0 (d is 0 elsewhere).
+  const PatchRgb V = (p.rho > 0).select(source.variance / p.rho.square().max(1e-300), 0.0);
+  const PropagatedVariance variance = propagate_gather_variance(h, V, 16, seed);
+  out.sweeps = e.sweeps + variance.sweeps;
+  out.estimate = e.X;
+  // Empirical Bayes (docs/theory/discretisation_error.md): e_i ~ N(0, t_c^2 B_ic^2) a priori, t_c^2 from all the
+  // patches, e^ ~ N(e, V) given e; then E[e^2 | e^] = e^2 w^2 + tau^2 w V / tau^2 ... written with
+  // w = tau^2 / (tau^2 + V): B_disc^2 = (w e^)^2 + w V, whose mean over the patches is tau^2 (unbiased in aggregate,
+  // where e^2 + V would count the noise twice). Scaled before squaring (core/moments.h), as the statistical part.
+  const double s = moment_scale(N ? std::max(out.estimate.abs().maxCoeff(), B.abs().maxCoeff()) : 0.0);
+  const PatchRgb e2 = (out.estimate / s).square(), Ve = variance.variance / (s * s), B2 = (B / s).square();
+  Rgb excess = Rgb::Zero(), size = Rgb::Zero();
+  for (Eigen::Index i = 0; i < N; ++i) {
+    // Over the reflecting, non-emitting patches (an emitter's B is mostly its own exact E).
+    if (!(p.rho.row(i).maxCoeff() > 0) || p.E.row(i).maxCoeff() > 0) continue;
+    excess += p.area[i] * (e2.row(i) - Ve.row(i)).transpose();
+    size += p.area[i] * B2.row(i).transpose();
+  }
+  out.prior_relative = (size > 0).select((excess / size.max(1e-300)).max(0.0), 0.0).sqrt();
+  out.standard_error.resize(N, 3);
+  for (Eigen::Index i = 0; i < N; ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double tau2 = out.prior_relative[c] * out.prior_relative[c] * B2(i, c);
+      const double w = tau2 + Ve(i, c) > 0 ? tau2 / (tau2 + Ve(i, c)) : 0.0;
+      out.standard_error(i, c) = s * std::sqrt(std::max(w * w * e2(i, c) + w * Ve(i, c), e2(i, c) - Ve(i, c)));
+    }
+  out.seconds = timer.seconds();
+  return out;
+}
+
+PatchRgb total_error(const PatchRgb& B_se, const PatchRgb& B_disc) {
+  if (B_se.size() && B_disc.size()) return combined_standard_error(B_se, B_disc);
+  return B_se.size() ? B_se : B_disc;
+}
+
+}  // namespace radwalk

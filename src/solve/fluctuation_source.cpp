@@ -1,0 +1,220 @@
+#include "solve/fluctuation_source.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "core/check.h"
+#include "core/discrete_distribution.h"
+#include "core/moments.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+#include "formfactor/point_polygon_form_factor.h"
+#include "patch/patch_point_sampler.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+namespace {
+
+constexpr int kReplicates = 2;
+
+// The emitters, chosen in proportion to their power A_e sum_c E_ec.
+struct Emitters {
+  std::vector<std::size_t> patch;
+  DiscreteDistribution choice;
+};
+
+Emitters find_emitters(const PatchSet& ps) {
+  Emitters out;
+  std::vector<double> power;
+  for (std::size_t e = 0; e < ps.size(); ++e)
+    if (ps.E[e].maxCoeff() > 0) {
+      out.patch.push_back(e);
+      power.push_back(ps.area[e] * ps.E[e].sum());
+    }
+  if (!power.empty()) out.choice = DiscreteDistribution(power);
+  return out;
+}
+
+// What one patch shoots: the patches its shot rays hit (front) with their share of d, per replicate.
+struct Shot {
+  std::int32_t target;
+  std::int32_t replicate;
+  Rgb value;
+};
+
+struct PatchShots {
+  std::vector<Shot> shots;
+  std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
+  long rays = 0;
+};
+
+class Shooter {
+ public:
+  // B: the solution divided by `scale`; E is divided alike where it is used.
+  Shooter(const PatchSet& ps, const Visibility& vis, const PatchRgb& B, double scale, std::uint64_t seed, int side,
+          int directions)
+      : ps_(ps), vis_(vis), B_(B), scale_(scale), seed_(seed), side_(side), L_(directions), eps_(ray_epsilon(ps)),
+        emitters_(find_emitters(ps)) {}
+
+  // Patch j's contributions to d (both replicates).
+  void shoot(std::size_t j, PatchShots& out) const {
+    const int M = side_ * side_;
+    const PatchPointSampler on_j(ps_, j);
+    const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
+    const Frame frame(ps_.normal[j]);
+    std::vector<Vec3> y(M);
+    std::vector<Ray> rays(std::size_t(M) * L_);
+    std::vector<Hit> hits(rays.size());
+    std::vector<Rgb> g(M);
+    for (int r = 0; r < kReplicates; ++r) {
+      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r));
+      for (int a = 0; a < side_; ++a)
+        for (int b = 0; b < side_; ++b)
+          y[a * side_ + b] = on_j.point(std::min((a + rng.uniform()) / side_, kBelowOne),
+                                        std::min((b + rng.uniform()) / side_, kBelowOne));
+      // The gather g_m: L shared cosine directions (the reflected part) ...
+      for (int l = 0; l < L_; ++l) {
+        const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
+      }
+      vis_.intersect(rays.data(), hits.data(), rays.size());
+      out.rays += long(rays.size());
+      for (int m = 0; m < M; ++m) {
+        g[m] = Rgb::Zero();
+        for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
+      }
+      // ... and L shared emitter points (the emitted part).
+      if (!emitters_.patch.empty()) {
+        for (int l = 0; l < L_; ++l) {
+          const std::size_t k = emitters_.choice.sample(rng.uniform());
+          const std::size_t e = emitters_.patch[k];
+          const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
+          const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
+          for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
+          out.rays += M;
+        }
+      }
+      Rgb mean = Rgb::Zero();
+      for (int m = 0; m < M; ++m) mean += g[m] /= L_;
+      mean /= M;
+      // The fluctuation delta_m, shot along L shared directions.
+      for (int l = 0; l < L_; ++l) {
+        const Vec3 v = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], v);
+      }
+      vis_.intersect(rays.data(), hits.data(), rays.size());
+      out.rays += long(rays.size());
+      const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
+      for (int m = 0; m < M; ++m) {
+        const Rgb delta = ps_.rho[j] * (g[m] - mean);
+        for (int l = 0; l < L_; ++l) {
+          const Hit& h = hits[std::size_t(m) * L_ + l];
+          if (h.missed() || !h.front) continue;
+          const auto k = static_cast<std::size_t>(h.patch);
+          out.hits.push_back(h.patch);
+          if (!(ps_.rho[k].maxCoeff() > 0)) continue;
+          out.shots.push_back({h.patch, r, (share / ps_.area[k]) * ps_.rho[k] * delta});
+        }
+      }
+    }
+  }
+
+ private:
+  static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+
+  // (B_h - E) of the patch hit on its front; 0 for an escape or a back hit.
+  Rgb reflected(const Hit& h) const {
+    if (h.missed() || !h.front) return Rgb::Zero();
+    const auto k = static_cast<Eigen::Index>(h.patch);
+    return (B_.row(k).transpose() - ps_.E[static_cast<std::size_t>(h.patch)] / scale_).max(0.0);
+  }
+
+  // An unbiased estimate of the visible form factor from y (on j) to emitter e, int_e G(y, z) V(y, z) dz, from one
+  // uniform point z of e: the exact unoccluded factor (formfactor/point_polygon_form_factor.h) minus the occluded
+  // part A_e G(y, z) (1 - V(y, z)). Exact, without noise, where nothing hides z (the usual case, also for an emitter
+  // next to y, where G alone would be near-singular).
+  double visible_factor(std::size_t j, const PatchRayOffset& offset_j, const Vec3& y, std::size_t e,
+                        const Vec3& z) const {
+    const double unoccluded = point_patch_form_factor(y, ps_.normal[j], ps_, e);
+    if (!(unoccluded > 0)) return 0;
+    const Vec3 d = z - y;
+    const double r2 = d.squaredNorm();
+    if (!(r2 > 0)) return unoccluded;
+    const double r = std::sqrt(r2);
+    const Vec3 w = d / r;
+    const double cos_y = ps_.normal[j].dot(w), cos_z = -ps_.normal[e].dot(w);
+    if (!(cos_y > 0 && cos_z > 0)) return unoccluded;
+    const Ray shadow = stop_before_plane(spawn_ray(offset_j, y, w), r, z, ps_.normal[e], 4 * eps_);
+    if (!(shadow.tmax > 0) || !vis_.occluded(shadow)) return unoccluded;
+    return unoccluded - ps_.area[e] * cos_y * cos_z / (kPi * r2);
+  }
+
+  const PatchSet& ps_;
+  const Visibility& vis_;
+  const PatchRgb& B_;
+  double scale_;
+  std::uint64_t seed_;
+  int side_, L_;
+  double eps_;
+  Emitters emitters_;
+};
+
+}  // namespace
+
+FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
+                                     int directions, std::uint64_t seed, int points) {
+  const std::size_t N = patches.size();
+  const auto n = static_cast<Eigen::Index>(N);
+  RADWALK_CHECK_EQ(B.rows(), n);
+  RADWALK_CHECK(directions >= 1 && points >= 2);
+  const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
+  // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
+  const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
+  const PatchRgb scaled = B / scale;
+  const Shooter shooter(patches, visibility, scaled, scale, seed, side, directions);
+
+  FluctuationSource out;
+  out.points = side * side;
+  out.directions = directions;
+  PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
+  std::vector<Eigen::Triplet<float, std::int32_t>> entries;
+  const double per_row = double(kReplicates) * out.points * directions;
+  // Chunks of patches shoot in parallel; their contributions are added in patch order (deterministic sums).
+  constexpr std::size_t kChunk = 64;
+  const std::size_t chunks = (N + kChunk - 1) / kChunk;
+  std::size_t next_row = 0;
+  ordered_reduce(
+      chunks, 2 * std::size_t(std::max(1, active_threads())),
+      [&](std::size_t c) {
+        std::vector<PatchShots> part(std::min(N, (c + 1) * kChunk) - c * kChunk);
+        for (std::size_t j = c * kChunk; j < c * kChunk + part.size(); ++j)
+          if (patches.rho[j].maxCoeff() > 0) shooter.shoot(j, part[j - c * kChunk]);
+        return part;
+      },
+      [&](std::vector<PatchShots> part) {
+        // Chunks arrive in order: part[q] is patch next_row + q.
+        for (std::size_t q = 0; q < part.size(); ++q) {
+          for (const Shot& s : part[q].shots) d[s.replicate].row(s.target) += (s.value * scale).transpose();
+          // Row next_row + q of F: run lengths of the sorted hits.
+          std::vector<std::int32_t>& h = part[q].hits;
+          std::sort(h.begin(), h.end());
+          for (std::size_t a = 0; a < h.size();) {
+            std::size_t b = a;
+            while (b < h.size() && h[b] == h[a]) ++b;
+            entries.emplace_back(std::int32_t(next_row + q), h[a], float(double(b - a) / per_row));
+            a = b;
+          }
+          out.rays += part[q].rays;
+        }
+        next_row += part.size();
+      });
+  out.d = (d[0] + d[1]) / 2;
+  out.variance = (d[0] - d[1]).square() / 4;
+  out.F = SparseF(n, n);
+  out.F.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+}  // namespace radwalk

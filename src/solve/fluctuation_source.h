@@ -1,0 +1,52 @@
+#pragma once
+// The source term of the discretisation error of the piecewise-constant radiosity system: the within-patch
+// fluctuation of the radiosity, shot to the patches that see it (derivation: docs/theory/discretisation_error.md).
+//
+// Averaging the continuous equation B(x) = E(x) + rho(x) int G(x, y) B(y) dy over patch i gives, for the patch
+// averages Bbar_i = (1/A_i) int_i B,
+//   Bbar = E + H Bbar + d,     d_i = rho_i (1/A_i) int_i int G(x, y) (B(y) - Bbar_{j(y)}) dy dx     (H = diag(rho) F),
+// so the discrete solution B_h of B_h = E + H B_h is off by e = Bbar - B_h = (I - H)^{-1} d. d_i is how the
+// fluctuation of the radiosity inside the patches that i sees correlates with where i sees them: 0 when every
+// patch's radiosity is constant. By the symmetry of G, d is the fluctuation shot from each patch j:
+//   d_k = rho_k (1/A_k) sum_j int_j (B(y) - Bbar_j) F(y -> k) dy,      F(y -> k): the point-to-patch form factor.
+//
+// The fluctuation is modelled by one gather of the discrete solution (E is constant per patch):
+//   B(y) - Bbar_j ~ rho_j (g(y) - gbar_j),    g(y) = int B_h(hit(y, w)) cos / pi dw,
+// and estimated per patch j (rho_j > 0) and replicate r = 0, 1 from M stratified points y_m of j:
+//   g_m = (1/L) sum_l (B_h - E)(hit(y_m, w_l))
+//       + (1/L) sum_l E_e / p(e_l) [F(y_m -> e_l) - A_e G(y_m, z_l) (1 - V(y_m, z_l))],
+// with L cosine directions w_l and L emitter points z_l (emitter e_l chosen by power, z_l uniform on it) shared by
+// all the points (common random numbers: where the points see the same thing, their g agree exactly); F(y -> e)
+// is the exact unoccluded point-to-polygon factor, so the emitted part has noise only where z is hidden; then
+//   delta_m = rho_j (g_m - mean_m g_m) M / (M - 1)      (the sample-covariance correction of centring on M points),
+// shot along L further cosine directions v_l shared by the points: the patch k hit from y_m (front) gets
+//   rho_k delta_m A_j / (A_k M L).
+// Where all the points see the same patch the contributions cancel exactly (sum_m delta_m = 0), so only the near
+// geometry adds noise. d is the mean of the two replicates; Var(d_k) ~ (d_k^(0) - d_k^(1))^2 / 4.
+//
+// Rays per patch: 2 replicates x M points x (2 L cosine rays + L shadow rays when the scene has emitters).
+// Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
+// patch order, independent of the thread count.
+#include <cstdint>
+
+#include "core/types.h"
+#include "formfactor/sparse_f.h"
+#include "patch/patch_set.h"
+#include "visibility/visibility.h"
+
+namespace radwalk {
+
+struct FluctuationSource {
+  PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
+  PatchRgb variance;  // N x 3: the variance of that estimate
+  SparseF F;          // N x N: the shot rays' form factors (2 M L rays per row), for scenes solved without a stored F
+  int points = 0;     // M per patch and replicate
+  int directions = 0; // L
+  long rays = 0;      // traced in all
+};
+
+// B: the discrete solution (N x 3, finite, >= 0). directions L >= 1; points M >= 2 (rounded up to a square).
+FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
+                                     int directions, std::uint64_t seed, int points = 4);
+
+}  // namespace radwalk
