@@ -65,14 +65,14 @@ FormFactorDiagnostics diagnose_form_factors(const SparseF& F, const std::vector<
       std::int32_t k = outer[i];
       std::size_t x = 0;
       while (k < outer[i + 1] || x < t.size) {
-        if (x == t.size || (k < outer[i + 1] && inner[k] < t.rows[x])) {  // F_ij stored, F_ji absent
+        if (x == t.size || (k < outer[i + 1] && inner[k] < t.entries[x].row)) {  // F_ij stored, F_ji absent
           if (area[i] * value[k] > 0) worst = std::max(worst, 1.0);
           ++k;
-        } else if (k == outer[i + 1] || t.rows[x] < inner[k]) {  // F_ji stored, F_ij absent
-          if (area[std::size_t(t.rows[x])] * t.values[x] > 0) worst = std::max(worst, 1.0);
+        } else if (k == outer[i + 1] || t.entries[x].row < inner[k]) {  // F_ji stored, F_ij absent
+          if (area[std::size_t(t.entries[x].row)] * t.entries[x].value > 0) worst = std::max(worst, 1.0);
           ++x;
         } else {
-          const double gij = area[i] * value[k], gji = area[std::size_t(t.rows[x])] * t.values[x];
+          const double gij = area[i] * value[k], gji = area[std::size_t(t.entries[x].row)] * t.entries[x].value;
           const double m = std::max(gij, gji);
           if (m > 0) worst = std::max(worst, std::abs(gij - gji) / m);
           ++k;

@@ -48,8 +48,8 @@ ReciprocityChange enforce_reciprocity(SparseF& F, const std::vector<double>& are
         std::int32_t k = outer[i];
         std::size_t x = 0;
         while (k < outer[i + 1] || x < t.size) {
-          const bool from_f = x == t.size || (k < outer[i + 1] && inner[k] <= t.rows[x]);
-          const bool from_t = k == outer[i + 1] || (x < t.size && t.rows[x] <= inner[k]);
+          const bool from_f = x == t.size || (k < outer[i + 1] && inner[k] <= t.entries[x].row);
+          const bool from_t = k == outer[i + 1] || (x < t.size && t.entries[x].row <= inner[k]);
           k += from_f;
           x += from_t;
           ++n;
@@ -89,20 +89,20 @@ ReciprocityChange enforce_reciprocity(SparseF& F, const std::vector<double>& are
       while (k < outer[i + 1] || x < t.size) {
         std::int32_t j;
         double s;
-        if (x == t.size || (k < outer[i + 1] && inner[k] < t.rows[x])) {  // F_ij alone
+        if (x == t.size || (k < outer[i + 1] && inner[k] < t.entries[x].row)) {  // F_ij alone
           j = inner[k];
           s = area[i] * double(value[k]);
           before.push_back(double(value[k]));
           ++k;
-        } else if (k == outer[i + 1] || t.rows[x] < inner[k]) {  // F_ji alone
-          j = t.rows[x];
-          s = area[std::size_t(j)] * double(t.values[x]);
+        } else if (k == outer[i + 1] || t.entries[x].row < inner[k]) {  // F_ji alone
+          j = t.entries[x].row;
+          s = area[std::size_t(j)] * double(t.entries[x].value);
           before.push_back(0.0);
           ++x;
         } else {  // both
           j = inner[k];
           const double gij = area[i] * double(value[k]);
-          s = gij + area[std::size_t(j)] * double(t.values[x]);
+          s = gij + area[std::size_t(j)] * double(t.entries[x].value);
           before.push_back(double(value[k]));
           ++k;
           ++x;

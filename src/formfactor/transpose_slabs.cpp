@@ -26,8 +26,7 @@ bool TransposeSlabs::next() {
   while (end_ < N && entries + column_count_[end_] <= max_entries_) entries += column_count_[end_++];
   start_.assign(end_ - begin_ + 1, 0);
   for (std::size_t c = begin_; c < end_; ++c) start_[c - begin_ + 1] = start_[c - begin_] + column_count_[c];
-  rows_.resize(entries);
-  values_.resize(entries);
+  entries_.resize(entries);
   // Counting sort: rows j in increasing order, so each column's rows come out increasing.
   std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
   const std::int32_t* outer = F_.outerIndexPtr();
@@ -38,9 +37,7 @@ bool TransposeSlabs::next() {
     std::int32_t k = cursor_[j];
     const std::int32_t row_end = outer[j + 1];
     for (; k < row_end && inner[k] < last; ++k) {
-      const std::size_t at = fill[std::size_t(inner[k]) - begin_]++;
-      rows_[at] = std::int32_t(j);
-      values_[at] = value[k];
+      entries_[fill[std::size_t(inner[k]) - begin_]++] = {std::int32_t(j), value[k]};
     }
     cursor_[j] = k;
   }

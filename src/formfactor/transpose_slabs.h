@@ -8,7 +8,7 @@
 // side by side for every pair, with sequential memory access, instead of a binary search in row j per entry (one
 // cache miss per step at large N).
 //
-// Cost: O(nnz + N x slabs) time; memory besides F: 8 bytes per patch (column counts and cursors) and 8 bytes per
+// Cost: O(nnz + N x slabs) time; memory besides F: 8 bytes per patch (column counts and cursors) and 8 bytes (j, F_jc) per
 // entry of the largest slab. The slabs are cut so that each holds at most max(max_entries, the largest column)
 // entries; a caller bounds the extra memory through max_entries (e.g. nnz / 8 for at most one byte per non-zero).
 // Requires: F compressed, square, its columns increasing within each row (as every SparseF radwalk builds or
@@ -21,10 +21,15 @@
 
 namespace radwalk {
 
-// Row c of F^T, for c in the current slab: rows[k] = j, values[k] = F_jc, k < size, j increasing.
+// An entry of F^T: F_jc in row c of F^T (j and the value side by side, so the sort writes one cache line per entry).
+struct TransposedEntry {
+  std::int32_t row;  // j
+  float value;       // F_jc
+};
+
+// Row c of F^T, for c in the current slab: entries[k] = (j, F_jc), k < size, j increasing.
 struct TransposedRow {
-  const std::int32_t* rows = nullptr;
-  const float* values = nullptr;
+  const TransposedEntry* entries = nullptr;
   std::size_t size = 0;
 };
 
@@ -39,7 +44,7 @@ class TransposeSlabs {
   // Row c of F^T, begin() <= c < end().
   TransposedRow row(std::size_t c) const {
     const std::size_t b = start_[c - begin_], e = start_[c - begin_ + 1];
-    return {rows_.data() + b, values_.data() + b, e - b};
+    return {entries_.data() + b, e - b};
   }
   std::size_t slab_count() const { return slabs_; }
 
@@ -49,8 +54,7 @@ class TransposeSlabs {
   std::vector<std::uint32_t> column_count_;  // stored entries per column of F
   std::vector<std::int32_t> cursor_;         // per row of F: its first entry in a column not yet visited
   std::vector<std::size_t> start_;           // per column of the slab: offset of its row of F^T, then the end
-  std::vector<std::int32_t> rows_;
-  std::vector<float> values_;
+  std::vector<TransposedEntry> entries_;
   std::size_t begin_ = 0, end_ = 0, slabs_ = 0;
 };
 

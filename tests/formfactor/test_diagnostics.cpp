@@ -185,8 +185,12 @@ TEST_CASE("transposed slabs give every column's rows in increasing order, whatev
       CHECK(slabs.begin() == next_column);
       for (std::size_t c = slabs.begin(); c < slabs.end(); ++c) {
         const TransposedRow r = slabs.row(c);
-        std::vector<std::int32_t> rows(r.rows, r.rows + r.size), want;
-        std::vector<float> values(r.values, r.values + r.size), want_values;
+        std::vector<std::int32_t> rows, want;
+        std::vector<float> values, want_values;
+        for (std::size_t k = 0; k < r.size; ++k) {
+          rows.push_back(r.entries[k].row);
+          values.push_back(r.entries[k].value);
+        }
         for (SparseF::InnerIterator it(T, Eigen::Index(c)); it; ++it) {
           want.push_back(std::int32_t(it.index()));
           want_values.push_back(it.value());
