@@ -9,7 +9,7 @@
 // Relative change of an entry: |F'_ij - F_ij| / max(F_ij, F'_ij), over the non-zeros of F'.
 // Cost: O(nnz + N x slabs) time, F_ji read from F's transpose built a slab of columns at a time and merged with
 // row i (formfactor/transpose_slabs.h: sequential memory access, no binary search); memory besides F and the
-// result: 8 bytes per patch and at most max(nnz / 8, 2^20) transposed entries of 8 bytes (one byte per non-zero).
+// result: 16 bytes per patch and at most max(nnz / 8, 2^20) transposed entries of 8 bytes (one byte per non-zero).
 #include <cstddef>
 #include <vector>
 
