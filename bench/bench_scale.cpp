@@ -18,15 +18,20 @@
 //                 over a run of realistic size)
 //   path tracer   estimate_patch_averages (mis), --spp samples per patch on every patch
 //   form factors  estimate_form_factors, --ff-rays rays per patch (skipped above --ff-max patches)
+//   ff patch order  (--stages ff-order) the same form factors traced in patch order instead of Morton order, side
+//                 by side: the CPU ratio, and F checked identical
+//   diagnostics   diagnose_form_factors of that F (row sums, reciprocity error: formfactor/transpose_slabs.h)
 //   gauss-seidel  solve_gauss_seidel on that F to 1e-6 (sweeps printed)
 //   write npz     write_npz(F), then read npz: read_npz (mapped) of the same file
+//   write csv     write_patch_csv of B (the path tracer's), one RGB field
 //   write vtp     write_vtp of B (the path tracer's), one RGB field
 // The ratios: rays per CPU second of the shooting walks, the gathering walks and the path tracer over raw
 // Embree's, measured in the same run (CPU seconds: meaningful on a shared machine).
 // Usage: bench_scale [--sizes 1e4,1e5,1e6] [--scene PATH] [--particles P] [--walks W] [--targets T] [--spp S]
-//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace,vtp]
+//                    [--ff-rays R] [--ff-max N] [--raw-rays R] [--stages shoot,gather,pathtrace,vtp,csv,ff-order]
 //                    [--integrator mis|nee|implicit] [--out DIR]
-// (--spp 0: no path tracer; --stages: which of the walks, the path tracer and the vtp writing run (default all),
+// (--spp 0: no path tracer; --stages: which of the walks, the path tracer, the vtp and csv writing and the
+// form factors' patch-order comparison run (default all but ff-order),
 // e.g. one of them under a profiler; --integrator: the path tracer's, mis by default)
 #include <sys/resource.h>
 #include <time.h>
@@ -45,9 +50,11 @@
 #include "bench_scene.h"
 #include "core/parallel.h"
 #include "core/timer.h"
+#include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/npz.h"
 #include "io/cell_field.h"
+#include "io/csv_writer.h"
 #include "io/vtp_writer.h"
 #include "mesh/read_scene.h"
 #include "pathtrace/patch_average.h"
@@ -105,7 +112,7 @@ int main(int argc, char** argv) {
   std::vector<double> sizes = {1e4, 1e5, 1e6};
   long particles = 1 << 20, walks = 0, targets = 0, spp = 2, ff_rays = 32, raw_rays = 1 << 21;
   double ff_max = 2e6;
-  std::string stages = "shoot,gather,pathtrace,vtp", integrator = "mis";
+  std::string stages = "shoot,gather,pathtrace,vtp,csv", integrator = "mis";
   for (int a = 1; a + 1 < argc; a += 2) {
     const std::string k = argv[a], v = argv[a + 1];
     if (k == "--sizes") sizes = parse_sizes(v);
@@ -225,6 +232,18 @@ int main(int argc, char** argv) {
       const Stage s = stage("form factors", [&] { ff = estimate_form_factors(ps, *vis, o); });
       std::printf("  %ld non-zeros, %.2f Mrays per cpu-s\n", long(ff.F.nonZeros()),
                   double(ff_rays) * double(N) / s.cpu / 1e6);
+      if (runs("ff-order")) {  // the same F traced in patch order, side by side
+        FormFactors plain;
+        FormFactorOptions p = o;
+        p.morton_order = false;
+        const Stage t = stage("ff patch order", [&] { plain = estimate_form_factors(ps, *vis, p); });
+        const bool same = plain.F.nonZeros() == ff.F.nonZeros() &&
+                          std::equal(plain.F.valuePtr(), plain.F.valuePtr() + plain.F.nonZeros(), ff.F.valuePtr()) &&
+                          std::equal(plain.F.innerIndexPtr(), plain.F.innerIndexPtr() + plain.F.nonZeros(),
+                                     ff.F.innerIndexPtr());
+        std::printf("  patch order / Morton order CPU: %.3f (F %s)\n", t.cpu / s.cpu, same ? "identical" : "DIFFERS");
+      }
+      stage("diagnostics", [&] { (void)diagnose_form_factors(ff.F, ps.area, ff.rays, ff.back_hits); });
       RadiosityProblem problem = make_problem(ps, std::move(ff.F));
       ff = FormFactors();
       {
@@ -239,6 +258,11 @@ int main(int argc, char** argv) {
       std::printf("  %.2f GB file\n", double(std::filesystem::file_size(path)) / 1e9);
       SparseF back;
       stage("read npz", [&] { back = read_npz(path, N); });
+      std::filesystem::remove(path);
+    }
+    if (runs("csv")) {
+      const std::string path = out_dir + "/bench_scale_B.csv";
+      stage("write csv", [&] { write_patch_csv(path, ps, {rgb_field("B", pt.B)}); });
       std::filesystem::remove(path);
     }
     if (runs("vtp")) {

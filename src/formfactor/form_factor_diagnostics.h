@@ -9,8 +9,9 @@
 //   row_std_error[i]     = sqrt(max_j F_ij (1 - F_ij) / n_i): the largest binomial standard error of an entry of
 //                          row i, an upper bound for the stratified estimator's (see form_factors.h)
 //                          (empty when no ray counts are given)
-// Cost: O(nnz log(row length)) time (F_ji found by binary search in row j, whose columns increase) and 1 byte
-// per patch besides the outputs: no transposed copy of F.
+// Cost: O(nnz + N x slabs) time: row i of F merged with row i of F^T, the transpose built a slab of columns at a
+// time (formfactor/transpose_slabs.h: sequential memory access, no binary search per entry); memory besides the
+// outputs: 8 bytes per patch and at most max(nnz / 8, 2^20) transposed entries of 8 bytes (one byte per non-zero).
 #include <cstdint>
 #include <vector>
 

@@ -4,11 +4,13 @@
 #include <cstring>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <string>
 
 #include "core/check.h"
 #include "core/distributed.h"
 #include "core/error.h"
+#include "core/morton.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/rng.h"
@@ -279,9 +281,18 @@ FormFactors estimate_form_factor_rows(const PatchSet& ps, const Visibility& vis,
     }
     buf_cols.resize(total);
     buf_counts.resize(total);
+    // The rows of the block in the order they are traced (options.morton_order); each writes its own slot.
+    std::vector<std::uint32_t> order;
+    if (options.morton_order) {
+      order = morton_order(ps.centroid, first, last);
+    } else {
+      order.resize(last - first);
+      std::iota(order.begin(), order.end(), std::uint32_t(first));
+    }
     parallel_chunks(last - first, 16, [&](std::size_t b, std::size_t e) {
       RowScratch scratch;
-      for (std::size_t i = first + b; i < first + e; ++i) {
+      for (std::size_t q = b; q < e; ++q) {
+        const std::size_t i = order[q];
         const RowResult r = trace_row(ps, vis, options, eps, sort_passes, i, out.rays[i], scratch, buf_cols.data() + offset[i],
                                       buf_counts.data() + offset[i]);
         nnz[i] = r.nnz;

@@ -42,6 +42,11 @@ struct FormFactorOptions {
   // origin, (u3, u4) the cosine direction) with a digital shift of four words drawn first from the row's stream;
   // unbiased (each shifted point is uniform), stratified in all four dimensions together.
   bool sobol = false;
+  // The order the rows are traced in, not what they hold: within each assembly block of consecutive rows, by the
+  // Morton code of the patch centroids (core/morton.h), so that consecutive rows start from nearby patches and
+  // their rays meet the same parts of the BVH while they are cached; false: in patch order. Every row has its own
+  // stream, so F is the same bit for bit either way and for any thread count.
+  bool morton_order = true;
 };
 
 struct FormFactors {

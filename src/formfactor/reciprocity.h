@@ -7,8 +7,9 @@
 // excess, reported as rows_rescaled and max_row_excess). In a closed scene about half the rows exceed 1 after
 // averaging, by about the statistical error of the row sums, so reciprocity holds to that level there. Computed in double precision, stored back as float.
 // Relative change of an entry: |F'_ij - F_ij| / max(F_ij, F'_ij), over the non-zeros of F'.
-// Cost: O(nnz log(row length)) time (F_ji by binary search in row j); memory besides F and the result: 1 byte
-// per non-zero and 4 bytes per entry that only one side of its pair had (no transpose, no double copy).
+// Cost: O(nnz + N x slabs) time, F_ji read from F's transpose built a slab of columns at a time and merged with
+// row i (formfactor/transpose_slabs.h: sequential memory access, no binary search); memory besides F and the
+// result: 16 bytes per patch and at most max(nnz / 8, 2^20) transposed entries of 8 bytes (one byte per non-zero).
 #include <cstddef>
 #include <vector>
 

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numeric>
 #include <utility>
 
@@ -90,15 +89,23 @@ DisplayMesh make_display_mesh(const PatchSet& patches, const NeighbourOptions& o
     mesh.group[i] = number[root];
   }
 
-  // Display points: one per (source point, group), in order of first use.
-  std::map<std::pair<std::int32_t, std::int32_t>, std::int64_t> display;
+  // Display points: one per (source point, group), in order of first use. Each source point keeps the display
+  // points made of it as a chain through next_of (a point is in a few groups at most): O(1) per corner with two
+  // arrays, instead of a search tree of (source, group) keys (a node allocated per display point and a cache miss
+  // per level, the largest cost of the display mesh at 10^6 patches).
+  std::vector<std::int64_t> first_of(patches.points.size(), -1);  // per source point: its latest display point
+  std::vector<std::int64_t> next_of;         // per display point: the previous one of its source point, or -1
+  std::vector<std::int32_t> group_of_point;  // per display point: its group
   const auto display_point = [&](std::int32_t source, std::int32_t group) {
-    const auto [it, fresh] = display.try_emplace({source, group}, std::int64_t(mesh.points.size()));
-    if (fresh) {
-      mesh.points.push_back(patches.points[source]);
-      mesh.source_point.push_back(source);
-    }
-    return it->second;
+    for (std::int64_t d = first_of[std::size_t(source)]; d >= 0; d = next_of[std::size_t(d)])
+      if (group_of_point[std::size_t(d)] == group) return d;
+    const auto d = std::int64_t(mesh.points.size());
+    mesh.points.push_back(patches.points[source]);
+    mesh.source_point.push_back(source);
+    group_of_point.push_back(group);
+    next_of.push_back(first_of[std::size_t(source)]);
+    first_of[std::size_t(source)] = d;
+    return d;
   };
   mesh.offsets.reserve(n + 1);
   mesh.offsets.push_back(0);

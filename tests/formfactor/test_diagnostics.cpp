@@ -1,10 +1,15 @@
 // Diagnostics and reciprocity enforcement on hand-made matrices (exact values) and on an estimated cube.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "formfactor/form_factor_diagnostics.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/reciprocity.h"
+#include "formfactor/transpose_slabs.h"
+#include "core/rng.h"
+#include "support/reciprocity_reference.h"
 #include "support/box_scenes.h"
 #include "visibility/embree_visibility.h"
 
@@ -128,4 +133,107 @@ TEST_CASE("diagnostics of an estimated closed cube", "[formfactor]") {
       CHECK(std::abs(gij - gji) <= 1e-6 * std::max(gij, gji));
     }
   for (double s : after.row_sum) CHECK(s <= 1 + 1e-6);
+}
+
+namespace {
+
+// A random N x N form-factor-like matrix: each pair i <= j drawn with probability `density`, then stored on both
+// sides with probability 9/10, else on one side only (which one at random); a stored entry is an explicit zero
+// with probability 1/8, otherwise uniform in (0, 1) / (N density). Columns increase within each row
+// (setFromTriplets).
+SparseF random_matrix(int N, double density, std::uint64_t seed) {
+  Rng rng = stream(seed, StreamDomain::test, std::uint64_t(N), 0);
+  std::vector<Eigen::Triplet<float, std::int32_t>> t;
+  const auto value = [&] { return rng.uniform_index(8) == 0 ? 0.0f : float(rng.uniform() / (N * density)); };
+  for (int i = 0; i < N; ++i)
+    for (int j = i; j < N; ++j) {
+      if (rng.uniform() >= density) continue;
+      const double side = rng.uniform();
+      if (side < 0.9 || i == j) {
+        t.emplace_back(i, j, value());
+        if (i != j) t.emplace_back(j, i, value());
+      } else if (side < 0.95) {
+        t.emplace_back(i, j, value());
+      } else {
+        t.emplace_back(j, i, value());
+      }
+    }
+  SparseF F(N, N);
+  F.setFromTriplets(t.begin(), t.end());
+  F.makeCompressed();
+  return F;
+}
+
+std::vector<double> random_areas(int N, std::uint64_t seed) {
+  Rng rng = stream(seed, StreamDomain::test, std::uint64_t(N), 1);
+  std::vector<double> a(static_cast<std::size_t>(N));
+  for (double& x : a) x = 0.25 + 4 * rng.uniform();
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("transposed slabs give every column's rows in increasing order, whatever the slab size", "[formfactor]") {
+  const SparseF F = random_matrix(57, 0.2, 5);
+  const SparseF T = SparseF(F.transpose());
+  for (const std::size_t max_entries : {std::size_t(1), std::size_t(7), std::size_t(40), std::size_t(1) << 20}) {
+    INFO("max_entries " << max_entries);
+    TransposeSlabs slabs(F, max_entries);
+    std::size_t next_column = 0, slabs_seen = 0;
+    while (slabs.next()) {
+      ++slabs_seen;
+      CHECK(slabs.begin() == next_column);
+      for (std::size_t c = slabs.begin(); c < slabs.end(); ++c) {
+        const TransposedRow r = slabs.row(c);
+        std::vector<std::int32_t> rows, want;
+        std::vector<float> values, want_values;
+        for (std::size_t k = 0; k < r.size; ++k) {
+          rows.push_back(r.entries[k].row);
+          values.push_back(r.entries[k].value);
+        }
+        for (SparseF::InnerIterator it(T, Eigen::Index(c)); it; ++it) {
+          want.push_back(std::int32_t(it.index()));
+          want_values.push_back(it.value());
+        }
+        CHECK(rows == want);
+        CHECK(values == want_values);
+      }
+      next_column = slabs.end();
+    }
+    CHECK(next_column == 57);
+    CHECK(slabs_seen == slabs.slab_count());
+    if (max_entries == 1) CHECK(slabs_seen == 57);  // one column per slab when none fits beside another
+  }
+}
+
+TEST_CASE("reciprocity diagnostics and enforcement equal the brute-force and binary-search references bit for bit",
+          "[formfactor]") {
+  long one_sided_rows = 0, two_sided_rows = 0;
+  for (const double density : {0.05, 0.3, 0.9}) {
+    const int N = 83;
+    const SparseF F = random_matrix(N, density, 17);
+    const std::vector<double> area = random_areas(N, 17);
+    INFO("density " << density << ", " << F.nonZeros() << " non-zeros");
+    const FormFactorDiagnostics d = diagnose_form_factors(F, area);
+    CHECK(d.reciprocity_error == test::brute_force_reciprocity_error(F, area));
+    CHECK(d.reciprocity_error == test::binary_search_reciprocity_error(F, area));
+    // Both cases are covered: rows with a one-sided pair (error 1) and rows with two-sided pairs only (error < 1).
+    one_sided_rows += std::count(d.reciprocity_error.begin(), d.reciprocity_error.end(), 1.0);
+    two_sided_rows += std::count_if(d.reciprocity_error.begin(), d.reciprocity_error.end(),
+                                    [](double e) { return e > 0 && e < 1; });
+
+    SparseF now = F, former = F;
+    const ReciprocityChange c = enforce_reciprocity(now, area);
+    const ReciprocityChange r = test::binary_search_enforce_reciprocity(former, area);
+    CHECK(c.max_relative_change == r.max_relative_change);
+    CHECK(c.mean_relative_change == r.mean_relative_change);
+    CHECK(c.rows_rescaled == r.rows_rescaled);
+    CHECK(c.max_row_excess == r.max_row_excess);
+    REQUIRE(now.nonZeros() == former.nonZeros());
+    CHECK(std::equal(now.outerIndexPtr(), now.outerIndexPtr() + N + 1, former.outerIndexPtr()));
+    CHECK(std::equal(now.innerIndexPtr(), now.innerIndexPtr() + now.nonZeros(), former.innerIndexPtr()));
+    CHECK(std::equal(now.valuePtr(), now.valuePtr() + now.nonZeros(), former.valuePtr()));
+  }
+  CHECK(one_sided_rows > 0);
+  CHECK(two_sided_rows > 0);
 }

@@ -8,8 +8,10 @@
 
 #include <cstdio>
 #include <map>
+#include <numeric>
 
 #include "core/error.h"
+#include "core/morton.h"
 #include "core/parallel.h"
 #include "formfactor/form_factors.h"
 #include "support/box_scenes.h"
@@ -236,6 +238,48 @@ TEST_CASE("F is bit-identical for 1 and 2 threads", "[formfactor]") {
   const FormFactors other = run(2);
   CHECK(!(other.F.nonZeros() == one.F.nonZeros() &&
           std::equal(one.F.valuePtr(), one.F.valuePtr() + nnz, other.F.valuePtr())));
+}
+
+TEST_CASE("F is the same bit for bit whether the rows are traced in Morton or patch order, with 1 or 2 threads",
+          "[formfactor]") {
+  const PatchSet ps = test::unit_cube_room(6, true);  // 216 patches: the Morton order differs from patch order
+  const EmbreeVisibility vis(ps);
+  const std::vector<std::uint32_t> order = morton_order(ps.centroid, 0, ps.size());
+  std::vector<std::uint32_t> identity(ps.size());
+  std::iota(identity.begin(), identity.end(), 0u);
+  REQUIRE(order != identity);
+  FormFactorOptions opt;
+  opt.rays_per_patch = 200;
+  auto run = [&](bool morton, int threads) {
+    ThreadLimit limit(threads);
+    opt.morton_order = morton;
+    return estimate_form_factors(ps, vis, opt);
+  };
+  const FormFactors reference = run(false, 1);
+  for (const auto& [morton, threads] : {std::pair(true, 1), std::pair(true, 2), std::pair(false, 2)}) {
+    INFO("morton " << morton << ", threads " << threads);
+    const FormFactors f = run(morton, threads);
+    REQUIRE(f.F.nonZeros() == reference.F.nonZeros());
+    const auto nnz = std::size_t(f.F.nonZeros());
+    CHECK(std::equal(f.F.valuePtr(), f.F.valuePtr() + nnz, reference.F.valuePtr()));
+    CHECK(std::equal(f.F.innerIndexPtr(), f.F.innerIndexPtr() + nnz, reference.F.innerIndexPtr()));
+    CHECK(std::equal(f.F.outerIndexPtr(), f.F.outerIndexPtr() + f.F.rows() + 1, reference.F.outerIndexPtr()));
+    CHECK(f.escaped == reference.escaped);
+    CHECK(f.back_hits == reference.back_hits);
+  }
+}
+
+TEST_CASE("Morton order: codes interleave the quantised coordinates, the order sorts by them", "[formfactor]") {
+  const Vec3 lo(0, 0, 0), hi(1, 1, 1);
+  CHECK(morton_code(Vec3(0, 0, 0), lo, hi) == 0);
+  CHECK(morton_code(Vec3(1, 0, 0), lo, hi) == spread_bits_by_3(0x1fffff));
+  CHECK(morton_code(Vec3(0, 1, 0), lo, hi) == spread_bits_by_3(0x1fffff) << 1);
+  CHECK(morton_code(Vec3(1, 1, 1), lo, hi) == (std::uint64_t(1) << 63) - 1);
+  CHECK(spread_bits_by_3(0b101) == 0b1000001);
+  // The four corners of a square in z = 0: (0,0), (1,0), (0,1), (1,1) in Z order, whatever their index order.
+  const std::vector<Vec3> p = {{1, 1, 0}, {0, 1, 0}, {1, 0, 0}, {0, 0, 0}};
+  CHECK(morton_order(p, 0, 4) == std::vector<std::uint32_t>{3, 2, 1, 0});
+  CHECK(morton_order(p, 1, 3) == std::vector<std::uint32_t>{2, 1});
 }
 
 TEST_CASE("back-face hits are counted when a patch faces the wrong way", "[formfactor]") {

@@ -11,6 +11,8 @@
 #include "io/run_summary.h"
 #include "mesh/read_scene.h"
 #include "patch/patch_builder.h"
+#include "core/rng.h"
+#include "support/csv_reference.h"
 
 using namespace radwalk;
 
@@ -54,6 +56,51 @@ TEST_CASE("patch CSV has the documented columns and values", "[io][csv]") {
   CHECK(rows[1][17] == "m");
   CHECK(rows[1][20].empty());  // NaN is written as an empty cell, never "nan"
   CHECK(std::stod(rows[1][21]) == 0.5);
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("CSV numbers are printf's %.12g, character for character", "[io][csv]") {
+  std::vector<double> values = {0.0, -0.0, 1.0, -1.0, 0.1, 1.0 / 3.0, 2.0 / 3.0, 1e21, 1e-7, 123456789012.0,
+                                1234567890123.0, 9.999999999995e-5, 0.5e-308, 4.9e-324, 1.7976931348623157e308,
+                                std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity(),
+                                -std::numeric_limits<double>::infinity(), 0.73, kPi, 100.0, 1e12, 1e11};
+  Rng rng = stream(7, StreamDomain::test, 0, 0);
+  for (int k = 0; k < 20000; ++k) {  // random mantissas over exponents from 1e-320 to 1e300, both signs
+    const double v = (rng.uniform() - 0.5) * std::pow(10.0, -320.0 + 620.0 * rng.uniform());
+    values.push_back(v);
+    values.push_back(std::round(v * 1e6) / 1e6);  // short decimals, where rounding ties are likeliest
+    values.push_back(double(float(v)));             // float values widened, as B and F are stored
+  }
+  for (const double v : values) {
+    INFO("value " << v);
+    CHECK(csv_number(v) == test::printf_csv_number(v));
+  }
+}
+
+TEST_CASE("patch CSV rows are the former writer's bytes", "[io][csv]") {
+  PatchBuilder b;
+  const int m = b.add_material("wall, \"white\"", Rgb(0.73, 0.5, 0.25), Rgb(0, 0, 1));
+  const int n = b.add_material("plain", Rgb(0.1, 0.2, 0.3), Rgb(0, 0, 0));
+  for (int k = 0; k < 40; ++k)
+    b.add_quad({0.1 * k, 0, 0}, {0.1 * k + 0.1, 0, 0}, {0.1 * k + 0.1, 1.0 / 3.0, 0}, {0.1 * k, 1.0 / 3.0, 0},
+               k % 3 ? m : n);
+  const PatchSet p = b.build();
+  PatchRgb B(p.size(), 3);
+  std::vector<double> se(p.size());
+  Rng rng = stream(8, StreamDomain::test, 0, 0);
+  for (Eigen::Index i = 0; i < B.rows(); ++i) {
+    for (int c = 0; c < 3; ++c) B(i, c) = rng.uniform() * std::pow(10.0, 8 * rng.uniform() - 4);
+    se[std::size_t(i)] = i % 7 == 0 ? std::numeric_limits<double>::quiet_NaN() : rng.uniform() * 1e-3;
+  }
+  const std::vector<CellField> fields = {rgb_field("B", B), scalar_field("B_se", se)};
+  const auto path = (std::filesystem::temp_directory_path() / "radwalk_test_rows.csv").string();
+  write_patch_csv(path, p, fields, "run-1");
+  std::ifstream in(path, std::ios::binary);
+  std::string written((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string rows = written.substr(written.find('\n') + 1);  // after the header
+  std::ostringstream former;
+  test::former_patch_csv_rows(former, p, fields, "run-1");
+  CHECK(rows == former.str());
   std::filesystem::remove(path);
 }
 
