@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/sobol.h"
+#include "formfactor/patch_pair_tree.h"
 #include "formfactor/patch_shaft.h"
 #include "formfactor/point_polygon_form_factor.h"
 #include "formfactor/polygon_form_factor.h"
@@ -28,6 +29,8 @@ void check_options(const AnalyticFormFactorOptions& o) {
       o.max_visibility_samples < o.min_visibility_samples)
     throw bad("max_visibility_samples must be a power of 2 in [min_visibility_samples, 2^24], got " +
               std::to_string(o.max_visibility_samples));
+  if (!(o.cutoff >= 0) || !(o.cutoff < 1))
+    throw bad("cutoff must be in [0, 1), got " + std::to_string(o.cutoff));
   if (!(o.visibility_tolerance > 0) || !std::isfinite(o.visibility_tolerance))
     throw bad("visibility_tolerance must be finite and > 0, got " + std::to_string(o.visibility_tolerance));
 }
@@ -217,47 +220,78 @@ AnalyticFormFactors analytic_form_factors(const PatchSet& ps, const Visibility& 
                                           const AnalyticFormFactorOptions& options) {
   check_options(options);
   const std::size_t N = ps.size();
-  if (N > options.max_patches)
+  if (options.cutoff == 0 && N > options.max_patches)
     throw InputError(locate(ps.source, 0, -1,
-                            "--analytic enumerates all N (N - 1) / 2 patch pairs and is limited to " +
-                                std::to_string(options.max_patches) + " patches; this scene has " +
-                                std::to_string(N) + " (use the ray route, or a coarser --max-edge)"));
+                            "--analytic without a cut-off computes every facing pair of patches (time N^2) and is "
+                            "limited to " + std::to_string(options.max_patches) + " patches; this scene has " +
+                            std::to_string(N) + " (give --analytic-cutoff, use the ray route, or a coarser --max-edge)"));
   AnalyticFormFactors out;
+  out.cutoff = options.cutoff;
   const double eps = ray_epsilon(ps);
   const PatchShaftTest shaft(ps);
   std::vector<std::vector<PairEntry>> rows(N);
-  std::vector<Counts> counts(N);
-  Progress progress("form factors (analytic)", N);
-  parallel_chunks(N, 4, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      Counts& c = counts[i];
-      for (std::size_t j = i + 1; j < N; ++j) {
-        if (!patch_may_see(ps, i, j)) continue;
-        ClippedPair pair;
-        if (!clip_patch_pair(ps, i, j, pair)) continue;
-        const double G = patch_exchange_area(ps, i, j);
-        if (!(G > 0)) continue;
-        const ShaftResult r = shaft.classify(i, j, pair);
-        if (r == ShaftResult::clear) {
-          ++c.clear;
-          rows[i].push_back({std::int32_t(j), G, 0.0, false});
-        } else if (r == ShaftResult::hidden) {
-          ++c.hidden;
-        } else {
-          ++c.sampled;
-          const VisibilityEstimate v = estimate_visibility(ps, vis, options, eps, i, j, pair, G, c.rays);
-          if (v.V > 0 || v.se > 0) rows[i].push_back({std::int32_t(j), G * v.V, v.se * G, true});
-        }
+  {
+    const PatchPairTree tree(ps);
+    PatchPairEnumeration pairs = tree.enumerate(options.cutoff);
+    out.cutoff_bound = std::move(pairs.cutoff_bound);
+    out.cutoff_estimate = std::move(pairs.cutoff_estimate);
+    out.dropped_pairs = pairs.dropped_pairs;
+    // Each leaf pair's patch pairs (i < j), computed in parallel, each task into its own list.
+    const std::size_t T = pairs.leaf_pairs.size();
+    std::vector<std::vector<std::pair<std::int32_t, PairEntry>>> found(T);
+    std::vector<Counts> counts(T);
+    Progress progress("form factors (analytic)", T);
+    parallel_chunks(T, 16, [&](std::size_t b, std::size_t e) {
+      for (std::size_t t = b; t < e; ++t) {
+        Counts& c = counts[t];
+        const auto pair_of = [&](std::size_t i, std::size_t j) {
+          if (i > j) std::swap(i, j);
+          if (!patch_may_see(ps, i, j)) return;
+          ClippedPair pair;
+          if (!clip_patch_pair(ps, i, j, pair)) return;
+          const double G = patch_exchange_area(ps, i, j);
+          if (!(G > 0)) return;
+          const ShaftResult r = shaft.classify(i, j, pair);
+          if (r == ShaftResult::clear) {
+            ++c.clear;
+            found[t].push_back({std::int32_t(i), {std::int32_t(j), G, 0.0, false}});
+          } else if (r == ShaftResult::hidden) {
+            ++c.hidden;
+          } else {
+            ++c.sampled;
+            const VisibilityEstimate v = estimate_visibility(ps, vis, options, eps, i, j, pair, G, c.rays);
+            if (v.V > 0 || v.se > 0) found[t].push_back({std::int32_t(i), {std::int32_t(j), G * v.V, v.se * G, true}});
+          }
+        };
+        const auto [la, lb] = pairs.leaf_pairs[t];
+        const std::int32_t* A = tree.leaf_begin(la);
+        const std::int32_t* B = tree.leaf_begin(lb);
+        const std::int32_t na = tree.leaf_count(la), nb = tree.leaf_count(lb);
+        for (std::int32_t p = 0; p < na; ++p)
+          for (std::int32_t q = la == lb ? p + 1 : 0; q < nb; ++q) pair_of(std::size_t(A[p]), std::size_t(B[q]));
       }
+      progress.advance(e - b);
+    });
+    progress.finish();
+    for (const Counts& c : counts) {
+      out.clear_pairs += c.clear;
+      out.hidden_pairs += c.hidden;
+      out.sampled_pairs += c.sampled;
+      out.visibility_rays += c.rays;
     }
-    progress.advance(e - b);
-  });
-  progress.finish();
-  for (const Counts& c : counts) {
-    out.clear_pairs += c.clear;
-    out.hidden_pairs += c.hidden;
-    out.sampled_pairs += c.sampled;
-    out.visibility_rays += c.rays;
+    // Into rows (pair i < j in row i), each row in order of j: the CSR assembly below needs them so.
+    std::vector<std::size_t> per_row(N, 0);
+    for (const auto& list : found)
+      for (const auto& f : list) ++per_row[std::size_t(f.first)];
+    for (std::size_t i = 0; i < N; ++i) rows[i].reserve(per_row[i]);
+    for (auto& list : found) {
+      for (const auto& f : list) rows[std::size_t(f.first)].push_back(f.second);
+      std::vector<std::pair<std::int32_t, PairEntry>>().swap(list);
+    }
+    parallel_chunks(N, 256, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        std::sort(rows[i].begin(), rows[i].end(), [](const PairEntry& x, const PairEntry& y) { return x.j < y.j; });
+    });
   }
   out.pairs = out.clear_pairs + out.hidden_pairs + out.sampled_pairs;
   scale_rows_above_one(ps, rows, out);
