@@ -14,6 +14,8 @@
 //       the pairs kept, dropped and sampled, the shadow rays, the CPU seconds of the pair enumeration alone and of
 //       the whole route (all threads: CPU seconds add up), the largest per-row bound of the dropped sum and its
 //       area-weighted estimate; then the exponent b of time ~ N^b between successive scenes and by least squares.
+//       --enumerate-only: the tree and its traversal alone (the exponent is then that of the enumeration's time),
+//       with the candidate pairs it leaves to compute against the N (N - 1) / 2 of brute force.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -153,7 +155,7 @@ int compare(const std::string& path, double h, long ref_rays) {
   return 0;
 }
 
-int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cutoff) {
+int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cutoff, bool enumerate_only) {
   std::printf("bench_analytic_city scaling: cut-off %g; CPU seconds of the process (all threads)\n", cutoff);
   std::printf("%9s %12s %14s %12s %12s %10s %10s %12s %12s\n", "N", "pairs kept", "pairs dropped", "sampled",
               "rays", "enum CPU s", "CPU s", "max bound", "est. (area)");
@@ -165,6 +167,26 @@ int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cu
     const PatchPairTree tree(ps);
     const PatchPairEnumeration e = tree.enumerate(cutoff);
     const double t_enum = cpu_seconds() - t0;
+    if (enumerate_only) {  // the tree and its traversal only: the pairs it leaves to compute, and the dropped ones
+      std::uint64_t candidates = 0;
+      for (const auto& lp : e.leaf_pairs) {
+        const std::uint64_t na = std::uint64_t(tree.leaf_count(lp[0])), nb = std::uint64_t(tree.leaf_count(lp[1]));
+        candidates += lp[0] == lp[1] ? na * (na - 1) / 2 : na * nb;
+      }
+      double bound = 0, est = 0;
+      for (std::size_t i = 0; i < ps.size(); ++i) {
+        bound = std::max(bound, e.cutoff_bound[i]);
+        est += ps.area[i] * e.cutoff_estimate[i];
+      }
+      est /= ps.total_area();
+      std::printf("%9zu %12llu %14llu %12s %12s %10.2f %10s %12.3e %12.3e  (candidate pairs, of %.3g)\n", ps.size(),
+                  (unsigned long long)candidates, (unsigned long long)e.dropped_pairs, "-", "-", t_enum, "-", bound,
+                  est, 0.5 * double(ps.size()) * double(ps.size() - 1));
+      std::fflush(stdout);
+      logN.push_back(std::log(double(ps.size())));
+      logT.push_back(std::log(std::max(t_enum, 1e-3)));
+      continue;
+    }
     AnalyticFormFactorOptions o;
     o.cutoff = cutoff;
     o.max_patches = std::size_t(1) << 40;
@@ -205,7 +227,7 @@ int main(int argc, char** argv) {
   const auto usage = [] {
     std::fprintf(stderr,
                  "usage: bench_analytic_city compare CITY.obj --max-edge H [--ref-rays R]\n"
-                 "       bench_analytic_city scaling [--cutoff TAU] CITY.obj H [CITY.obj H ...]\n");
+                 "       bench_analytic_city scaling [--cutoff TAU] [--enumerate-only] CITY.obj H [CITY.obj H ...]\n");
     return 2;
   };
   if (argc < 2) return usage();
@@ -226,15 +248,17 @@ int main(int argc, char** argv) {
   }
   if (mode == "scaling") {
     double cutoff = 1e-3;
+    bool enumerate_only = false;
     std::vector<std::pair<std::string, double>> scenes;
     for (int a = 2; a < argc; ++a) {
       const std::string arg = argv[a];
       if (arg == "--cutoff" && a + 1 < argc) cutoff = std::stod(argv[++a]);
+      else if (arg == "--enumerate-only") enumerate_only = true;
       else if (a + 1 < argc) scenes.push_back({arg, std::stod(argv[a + 1])}), ++a;
       else return usage();
     }
     if (scenes.empty()) return usage();
-    return scaling(scenes, cutoff);
+    return scaling(scenes, cutoff, enumerate_only);
   }
   return usage();
 }
