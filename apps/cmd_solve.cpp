@@ -75,6 +75,7 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
       a.seed = command.scene.seed;
       a.max_visibility_samples = command.ff.visibility_samples;
       a.cutoff = command.ff.analytic_cutoff;
+      a.cutoff_rays = command.ff.analytic_cutoff_rays;
       const EmbreeVisibility visibility(p);
       return analytic_form_factors(p, visibility, a).form_factors;
     }

@@ -467,6 +467,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     o.seed = scene.seed;
     o.max_visibility_samples = options.visibility_samples;
     o.cutoff = options.analytic_cutoff;
+    o.cutoff_rays = options.analytic_cutoff_rays;
     AnalyticFormFactors a = analytic_form_factors(patches, visibility, o);
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);
@@ -496,11 +497,16 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     j["largest_cutoff_estimate"] =
         a.cutoff_estimate.empty() ? 0.0 : *std::max_element(a.cutoff_estimate.begin(), a.cutoff_estimate.end());
     j["cutoff_estimate_area_weighted"] = patches.total_area() > 0 ? cut_total / patches.total_area() : 0.0;
+    j["cutoff_rays"] = a.cutoff_rays;
+    j["completed_pairs"] = a.completed_pairs;
     if (a.cutoff > 0)
       note("form factors (analytic): cut-off " + std::to_string(a.cutoff) + ": " + std::to_string(a.dropped_pairs) +
            " pairs dropped; a row's dropped sum is at most " + std::to_string(j["largest_cutoff_bound"].get<double>()) +
            " (patch " + std::to_string(worst_cut) + "), estimated at " +
-           std::to_string(j["cutoff_estimate_area_weighted"].get<double>()) + " on average over the area");
+           std::to_string(j["cutoff_estimate_area_weighted"].get<double>()) + " on average over the area" +
+           (a.cutoff_rays > 0 ? "; " + std::to_string(a.completed_pairs) + " of them estimated by " +
+                                    std::to_string(a.cutoff_rays) + " cosine rays"
+                              : std::string()));
     note("form factors (analytic): " + std::to_string(a.pairs) + " facing pairs (" + std::to_string(a.clear_pairs) +
          " proven clear, " + std::to_string(a.hidden_pairs) + " proven hidden, " + std::to_string(a.sampled_pairs) +
          " sampled with " + std::to_string(a.visibility_rays) + " rays) in " + std::to_string(seconds) +

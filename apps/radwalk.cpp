@@ -304,6 +304,11 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
       ->check(CLI::Range(0.0, 0.999999))
       ->capture_default_str();
   cutoff->needs(analytic);
+  cmd->add_option("--analytic-cutoff-rays", o.analytic_cutoff_rays,
+                  "With --analytic-cutoff: estimate the dropped pairs by this many cosine rays a patch (their hits on "
+                  "dropped pairs, averaged over both directions: reciprocal, unbiased) instead of leaving them out")
+      ->check(CLI::Range(1L, 1L << 24))
+      ->needs(cutoff);
   samples->needs(analytic);
   analytic->excludes(rays)->excludes(density)->excludes(file)->excludes(sobol)->excludes(emitter);
   analytic->excludes(cmd->get_option("--min-rays"));

@@ -15,6 +15,13 @@
 // is dropped: every pair with G_ij > 0 is an entry, in time N^2 for scenes whose patches all face each other, so
 // the route then refuses more than options.max_patches patches (a one-line InputError); with tau > 0 the time is
 // O(N log N + kept pairs) and there is no such limit.
+// Completion (options.cutoff_rays = n > 0): the dropped pairs are then estimated instead of left out: row i traces n
+// cosine-weighted rays (randomised Sobol points, the shift from stream(seed, analytic_visibility, i, i): b = a never
+// names a pair), and each front hit on a patch j of a dropped pair counts; G_ij = (A_i c_ij + A_j c_ji) / (2 n) is
+// an unbiased estimate of the occluded exchange area (E[c_ij / n] = F_ij with occlusion), reciprocal by
+// construction, stored as an estimated entry with the binomial standard error of its two halves (a half of no
+// hits adds no variance: an understatement for pairs hit from one side only). Rows of a closed scene then sum to 1
+// in expectation, within their standard error; the cut-off's bound and estimate are still reported.
 // Visibility (patch_shaft.h): V_ij = 1 exactly where no patch meets the pair's shaft, 0 exactly where one convex
 // patch covers it; otherwise it is estimated from point pairs (x_s, y_s), x_s uniform on i's clipped polygon and
 // y_s on j's (randomised Sobol points, digital shifts drawn from stream(seed, analytic_visibility, i, j)), with
@@ -52,6 +59,7 @@ struct AnalyticFormFactorOptions {
   double visibility_tolerance = 0.05;  // the standard error of a visibility fraction that M aims at
   std::size_t max_patches = 20000;     // without a cut-off, more patches than this are refused (time N^2)
   double cutoff = 0;                   // tau in [0, 1): pairs whose F bound is at most tau are dropped (reported)
+  long cutoff_rays = 0;                // > 0 (needs cutoff > 0): the dropped pairs estimated by this many cosine rays a row
 };
 
 struct AnalyticFormFactors {
@@ -70,6 +78,8 @@ struct AnalyticFormFactors {
   std::uint64_t dropped_pairs = 0;       // unordered pairs dropped by the cut-off (facing or not)
   std::vector<double> cutoff_bound;      // per row i: an upper bound on the sum of the dropped F_ij (0 without)
   std::vector<double> cutoff_estimate;   // per row i: their one-point estimate without occlusion
+  std::uint64_t cutoff_rays = 0;         // cosine rays traced for the completion (cutoff_rays > 0)
+  std::uint64_t completed_pairs = 0;     // dropped pairs given an entry by them
 };
 
 // InputError for options out of range, more than max_patches patches or more than 2^31 - 1 non-zeros.

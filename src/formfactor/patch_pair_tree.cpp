@@ -111,6 +111,15 @@ std::int32_t PatchPairTree::build(std::int32_t first, std::int32_t count, const 
   return index;
 }
 
+std::vector<std::int32_t> PatchPairTree::leaf_of_patches() const {
+  std::vector<std::int32_t> leaf(patches_.size(), -1);
+  for (std::size_t k = 0; k < nodes_.size(); ++k)
+    if (nodes_[k].left < 0)
+      for (std::int32_t q = nodes_[k].first; q < nodes_[k].first + nodes_[k].count; ++q)
+        leaf[std::size_t(order_[std::size_t(q)])] = std::int32_t(k);
+  return leaf;
+}
+
 PatchPairEnumeration PatchPairTree::enumerate(double threshold) const {
   const std::size_t N = patches_.size();
   PatchPairEnumeration out;

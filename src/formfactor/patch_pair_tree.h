@@ -54,6 +54,9 @@ class PatchPairTree {
   // threshold >= 0 (finite): see above.
   PatchPairEnumeration enumerate(double threshold) const;
 
+  // The leaf node of every patch (indices of the nodes that leaf_pairs name).
+  std::vector<std::int32_t> leaf_of_patches() const;
+
   // The patches of leaf node k.
   const std::int32_t* leaf_begin(std::int32_t k) const { return order_.data() + nodes_[std::size_t(k)].first; }
   std::int32_t leaf_count(std::int32_t k) const { return nodes_[std::size_t(k)].count; }

@@ -8,7 +8,9 @@
 //     pairs stay exact), each row sums to 1 minus its dropped part with 0 <= 1 - row sum <= cutoff_bound (to float
 //     rounding), the dropped pairs are counted and the one-point estimate accounts for the missing row sum
 //     within 20 % of it (its documented accuracy at boxes half the distance apart); reciprocity holds;
-//   - with a cut-off the patch limit does not apply.
+//   - with a cut-off the patch limit does not apply;
+//   - with the completion by cosine rays (cutoff_rays) the closed cube's rows sum to 1 within their standard errors
+//     (z-tests, alpha = 1e-3 Sidak), which rejects the uncompleted rows; reciprocity holds.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -24,6 +26,7 @@
 #include "formfactor/polygon_form_factor.h"
 #include "patch/patch_builder.h"
 #include "support/box_scenes.h"
+#include "support/statistics.h"
 #include "visibility/embree_visibility.h"
 
 using namespace radwalk;
@@ -164,5 +167,48 @@ TEST_CASE("analytic form factors with a cut-off: closed cube rows sum to 1 minus
   o.cutoff = 0;
   CHECK_THROWS_AS(analytic_form_factors(ps, vis, o), InputError);
   o.cutoff = -1;
+  CHECK_THROWS_AS(analytic_form_factors(ps, vis, o), InputError);
+}
+
+TEST_CASE("analytic form factors with a cut-off completed by cosine rays: closed cube rows sum to 1 within their error",
+          "[formfactor][analytic]") {
+  // The dropped pairs estimated by 4096 cosine rays a row: each row sum is 1 within its standard error (z-tests,
+  // family-wise alpha = 1e-3 with Sidak over the rows; the row's standard error sums the entries' variances as if
+  // independent, conservative for one row's multinomial counts); the same test rejects the rows left without the
+  // completion (their deficit is many standard errors), and F stays reciprocal. The standard error is floored at
+  // 1e-6, the float rounding of a stored row sum (rows with nothing dropped have none).
+  const PatchSet ps = test::unit_cube_room(10);
+  const std::size_t N = ps.size();
+  const EmbreeVisibility vis(ps);
+  AnalyticFormFactorOptions o;
+  o.cutoff = 3e-3;
+  o.cutoff_rays = 4096;
+  const AnalyticFormFactors a = analytic_form_factors(ps, vis, o);
+  o.cutoff_rays = 0;
+  const AnalyticFormFactors plain = analytic_form_factors(ps, vis, o);
+  CHECK(a.completed_pairs > 0);
+  CHECK(a.cutoff_rays == 4096u * N);
+  const double z_crit = z_critical(sidak(1e-3, N));
+  std::size_t rejected = 0, rejected_plain = 0;
+  double worst_reciprocity = 0;
+  for (std::size_t i = 0; i < N; ++i) {
+    const double se = a.form_factors.row_std_error[i];
+    const double z = (row_sum(a.form_factors.F, Eigen::Index(i)) - 1) / std::max(se, 1e-6);
+    if (!(std::abs(z) <= z_crit)) ++rejected;
+    // The plain rows against the same standard error (where it is not 0): their deficit is the dropped part.
+    const double z_plain = (row_sum(plain.form_factors.F, Eigen::Index(i)) - 1) / std::max(se, 1e-6);
+    if (!(std::abs(z_plain) <= z_crit)) ++rejected_plain;
+    for (SparseF::InnerIterator it(a.form_factors.F, Eigen::Index(i)); it; ++it) {
+      const double gij = ps.area[i] * it.value();
+      const double gji = ps.area[std::size_t(it.col())] * a.form_factors.F.coeff(it.col(), Eigen::Index(i));
+      worst_reciprocity = std::max(worst_reciprocity, std::abs(gij - gji) / std::max(gij, gji));
+    }
+  }
+  INFO("z_crit " << z_crit);
+  CHECK(rejected == 0);
+  CHECK(rejected_plain > N / 2);
+  CHECK(worst_reciprocity <= 2 * 0x1p-24);
+  o.cutoff = 0;
+  o.cutoff_rays = 16;
   CHECK_THROWS_AS(analytic_form_factors(ps, vis, o), InputError);
 }
