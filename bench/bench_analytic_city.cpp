@@ -14,7 +14,8 @@
 //       the pairs kept, dropped and sampled, the shadow rays, the CPU seconds of the pair enumeration alone and of
 //       the whole route (all threads: CPU seconds add up), the largest per-row bound of the dropped sum and its
 //       area-weighted estimate; then the exponent b of time ~ N^b between successive scenes and by least squares.
-//       --enumerate-only: the tree and its traversal alone (the exponent is then that of the enumeration's time),
+//       --cutoff-rays N: the dropped pairs completed by N cosine rays a patch (the row then also prints the
+//       completed pairs and the mean row sum, area-weighted). --enumerate-only: the tree and its traversal alone (the exponent is then that of the enumeration's time),
 //       with the candidate pairs it leaves to compute against the N (N - 1) / 2 of brute force.
 #include <algorithm>
 #include <cmath>
@@ -155,7 +156,8 @@ int compare(const std::string& path, double h, long ref_rays) {
   return 0;
 }
 
-int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cutoff, bool enumerate_only) {
+int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cutoff, bool enumerate_only,
+            long cutoff_rays) {
   std::printf("bench_analytic_city scaling: cut-off %g; CPU seconds of the process (all threads)\n", cutoff);
   std::printf("%9s %12s %14s %12s %12s %10s %10s %12s %12s\n", "N", "pairs kept", "pairs dropped", "sampled",
               "rays", "enum CPU s", "CPU s", "max bound", "est. (area)");
@@ -189,6 +191,7 @@ int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cu
     }
     AnalyticFormFactorOptions o;
     o.cutoff = cutoff;
+    o.cutoff_rays = cutoff_rays;
     o.max_patches = std::size_t(1) << 40;
     t0 = cpu_seconds();
     const AnalyticFormFactors a = analytic_form_factors(ps, vis, o);
@@ -199,6 +202,16 @@ int scaling(const std::vector<std::pair<std::string, double>>& scenes, double cu
       est += ps.area[i] * a.cutoff_estimate[i];
     }
     est /= ps.total_area();
+    if (cutoff_rays > 0) {
+      double rows = 0;
+      for (std::size_t i = 0; i < ps.size(); ++i) {
+        double r = 0;
+        for (SparseF::InnerIterator it(a.form_factors.F, Eigen::Index(i)); it; ++it) r += it.value();
+        rows += ps.area[i] * r;
+      }
+      std::printf("  completion: %llu pairs estimated by %llu cosine rays; area-weighted mean row sum %.4f\n",
+                  (unsigned long long)a.completed_pairs, (unsigned long long)a.cutoff_rays, rows / ps.total_area());
+    }
     std::printf("%9zu %12llu %14llu %12llu %12llu %10.2f %10.2f %12.3e %12.3e\n", ps.size(),
                 (unsigned long long)(a.form_factors.F.nonZeros() / 2), (unsigned long long)a.dropped_pairs,
                 (unsigned long long)a.sampled_pairs, (unsigned long long)a.visibility_rays, t_enum, t, bound, est);
@@ -227,7 +240,7 @@ int main(int argc, char** argv) {
   const auto usage = [] {
     std::fprintf(stderr,
                  "usage: bench_analytic_city compare CITY.obj --max-edge H [--ref-rays R]\n"
-                 "       bench_analytic_city scaling [--cutoff TAU] [--enumerate-only] CITY.obj H [CITY.obj H ...]\n");
+                 "       bench_analytic_city scaling [--cutoff TAU] [--enumerate-only] [--cutoff-rays N] CITY.obj H [CITY.obj H ...]\n");
     return 2;
   };
   if (argc < 2) return usage();
@@ -249,16 +262,18 @@ int main(int argc, char** argv) {
   if (mode == "scaling") {
     double cutoff = 1e-3;
     bool enumerate_only = false;
+    long cutoff_rays = 0;
     std::vector<std::pair<std::string, double>> scenes;
     for (int a = 2; a < argc; ++a) {
       const std::string arg = argv[a];
       if (arg == "--cutoff" && a + 1 < argc) cutoff = std::stod(argv[++a]);
       else if (arg == "--enumerate-only") enumerate_only = true;
+      else if (arg == "--cutoff-rays" && a + 1 < argc) cutoff_rays = std::stol(argv[++a]);
       else if (a + 1 < argc) scenes.push_back({arg, std::stod(argv[a + 1])}), ++a;
       else return usage();
     }
     if (scenes.empty()) return usage();
-    return scaling(scenes, cutoff, enumerate_only);
+    return scaling(scenes, cutoff, enumerate_only, cutoff_rays);
   }
   return usage();
 }
