@@ -76,6 +76,8 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
       AnalyticFormFactorOptions a;
       a.seed = command.scene.seed;
       a.max_visibility_samples = command.ff.visibility_samples;
+      a.cutoff = command.ff.analytic_cutoff;
+      a.cutoff_rays = command.ff.analytic_cutoff_rays;
       const EmbreeVisibility visibility(p);
       return analytic_form_factors(p, visibility, a).form_factors;
     }

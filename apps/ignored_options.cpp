@@ -30,7 +30,7 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
     {{"--patches"}, [](const SolveCommand& c) { return is_gathering(c.walk.method); },
      "when gathering (--walk gather); shooting estimates every patch"},
     {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns",
-      "--analytic", "--visibility-samples", "--normalise-rows"},
+      "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !(random_walk(c) && c.walk.kernel == WalkKernel::ray); },
      "for form factors, which --kernel ray does not use"},
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},

@@ -51,6 +51,8 @@ struct FormFactorCliOptions {
   long emitter_samples = 0;    // --emitter-columns M: the emitter columns from M shadow samples per patch
                                // (formfactor/emitter_form_factors.h); 0: from the cosine rays
   bool analytic = false;       // --analytic: exact exchange areas x visibility (formfactor/analytic_form_factors.h)
+  double analytic_cutoff = 0;     // --analytic-cutoff: pairs whose F bound is at most this are dropped (reported)
+  long analytic_cutoff_rays = 0; // --analytic-cutoff-rays: cosine rays a row that estimate the dropped pairs instead
   long visibility_samples = 1024;  // --visibility-samples: at most this many point pairs per partly hidden pair
   bool normalise_rows = false;  // --normalise-rows: divide rows of a read F summing above 1 by their sums
 };

@@ -466,6 +466,8 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     AnalyticFormFactorOptions o;
     o.seed = scene.seed;
     o.max_visibility_samples = options.visibility_samples;
+    o.cutoff = options.analytic_cutoff;
+    o.cutoff_rays = options.analytic_cutoff_rays;
     AnalyticFormFactors a = analytic_form_factors(patches, visibility, o);
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);
@@ -481,6 +483,30 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     j["visibility_rays"] = a.visibility_rays;
     j["rows_scaled"] = a.rows_scaled;
     j["largest_row_std_error"] = worst_se;
+    // The cut-off's dropped pairs, never silent: per row an upper bound on their sum and its one-point estimate.
+    std::size_t worst_cut = 0;
+    double cut_total = 0;
+    for (std::size_t i = 0; i < a.cutoff_bound.size(); ++i) {
+      if (a.cutoff_bound[i] > a.cutoff_bound[worst_cut]) worst_cut = i;
+      cut_total += patches.area[i] * a.cutoff_estimate[i];
+    }
+    j["cutoff"] = a.cutoff;
+    j["dropped_pairs"] = a.dropped_pairs;
+    j["largest_cutoff_bound"] = a.cutoff_bound.empty() ? 0.0 : a.cutoff_bound[worst_cut];
+    j["largest_cutoff_bound_patch"] = worst_cut;
+    j["largest_cutoff_estimate"] =
+        a.cutoff_estimate.empty() ? 0.0 : *std::max_element(a.cutoff_estimate.begin(), a.cutoff_estimate.end());
+    j["cutoff_estimate_area_weighted"] = patches.total_area() > 0 ? cut_total / patches.total_area() : 0.0;
+    j["cutoff_rays"] = a.cutoff_rays;
+    j["completed_pairs"] = a.completed_pairs;
+    if (a.cutoff > 0)
+      note("form factors (analytic): cut-off " + std::to_string(a.cutoff) + ": " + std::to_string(a.dropped_pairs) +
+           " pairs dropped; a row's dropped sum is at most " + std::to_string(j["largest_cutoff_bound"].get<double>()) +
+           " (patch " + std::to_string(worst_cut) + "), estimated at " +
+           std::to_string(j["cutoff_estimate_area_weighted"].get<double>()) + " on average over the area" +
+           (a.cutoff_rays > 0 ? "; " + std::to_string(a.completed_pairs) + " of them estimated by " +
+                                    std::to_string(a.cutoff_rays) + " cosine rays"
+                              : std::string()));
     note("form factors (analytic): " + std::to_string(a.pairs) + " facing pairs (" + std::to_string(a.clear_pairs) +
          " proven clear, " + std::to_string(a.hidden_pairs) + " proven hidden, " + std::to_string(a.sampled_pairs) +
          " sampled with " + std::to_string(a.visibility_rays) + " rays) in " + std::to_string(seconds) +

@@ -278,7 +278,8 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
   auto* analytic = cmd->add_flag("--analytic", o.analytic,
                 "Exact form factors of every pair of patches that face each other (contour integration) times their "
                 "visibility: 1 where nothing is between them, 0 where one patch hides them, otherwise estimated by "
-                "rays between point pairs; reciprocal, with per-row standard errors (at most 20000 patches)");
+                "rays between point pairs; reciprocal, with per-row standard errors (at most 20000 patches without "
+                "--analytic-cutoff)");
   auto* samples = cmd->add_option("--visibility-samples", o.visibility_samples,
                   "With --analytic: at most this many point pairs (a power of 2, >= 32) for the visibility of a partly "
                   "hidden pair")
@@ -295,6 +296,19 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
           },
           "POWER_OF_2"))
       ->capture_default_str();
+  auto* cutoff = cmd->add_option("--analytic-cutoff", o.analytic_cutoff,
+                  "With --analytic: drop the pairs of patches whose form factors are both proven at most this "
+                  "(from their distance: F_ij <= A_j / (pi d^2)), found by a tree of patches instead of every pair; "
+                  "each row's dropped sum is bounded and estimated in the JSON summary. 0 computes every pair (at "
+                  "most 20000 patches)")
+      ->check(CLI::Range(0.0, 0.999999))
+      ->capture_default_str();
+  cutoff->needs(analytic);
+  cmd->add_option("--analytic-cutoff-rays", o.analytic_cutoff_rays,
+                  "With --analytic-cutoff: estimate the dropped pairs by this many cosine rays a patch (their hits on "
+                  "dropped pairs, averaged over both directions: reciprocal, unbiased) instead of leaving them out")
+      ->check(CLI::Range(1L, 1L << 24))
+      ->needs(cutoff);
   samples->needs(analytic);
   analytic->excludes(rays)->excludes(density)->excludes(file)->excludes(sobol)->excludes(emitter);
   analytic->excludes(cmd->get_option("--min-rays"));

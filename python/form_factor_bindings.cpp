@@ -1,4 +1,5 @@
 // radwalk.form_factors and the FormFactors type: F as a scipy.sparse.csr_matrix viewing the library's CSR arrays.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -215,10 +216,14 @@ py::dict diagnostics(const FormFactorsResult& r) {
 
 FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_area, long min_rays,
                                std::uint64_t seed, bool reciprocity, bool stratified, long long threads,
-                               bool analytic, long visibility_samples) {
+                               bool analytic, long visibility_samples, double analytic_cutoff) {
   check_thread_count(threads, "threads");
   FormFactorsResult r;
   r.area = scene.patches.area;
+  if (!analytic && analytic_cutoff != 0)
+    throw InputError("analytic_cutoff is an option of analytic=True (the ray route has no pairs to drop)");
+  if (analytic && !(analytic_cutoff >= 0 && analytic_cutoff < 1))
+    throw InputError("analytic_cutoff must be in [0, 1), got " + std::to_string(analytic_cutoff));
   if (analytic) {
     // The ray options mean nothing to the analytic route: refused when changed from their defaults.
     if (rays != 1000 || rays_per_area != 0 || min_rays != 16 || !stratified)
@@ -227,6 +232,7 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
     AnalyticFormFactorOptions a;
     a.seed = seed;
     a.max_visibility_samples = visibility_samples;
+    a.cutoff = analytic_cutoff;
     r.ff = interruptible([&] {
       ThreadLimit limit(static_cast<int>(threads));
       Timer timer;
@@ -241,6 +247,10 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
       r.info["analytic_sampled_pairs"] = double(result.sampled_pairs);
       r.info["analytic_visibility_rays"] = double(result.visibility_rays);
       r.info["analytic_rows_scaled"] = double(result.rows_scaled);
+      r.info["analytic_dropped_pairs"] = double(result.dropped_pairs);
+      double bound = 0;
+      for (double b : result.cutoff_bound) bound = std::max(bound, b);
+      r.info["analytic_largest_cutoff_bound"] = bound;
       return std::move(result.form_factors);
     });
     return r;
@@ -361,7 +371,7 @@ Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: 
   m.def("form_factors", &form_factors, py::arg("scene"), py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0,
         py::arg("min_rays") = 16, py::arg("seed") = 1, py::arg("reciprocity") = false, py::arg("stratified") = true,
         py::arg("threads") = 0, py::arg("analytic") = false, py::arg("visibility_samples") = 1024,
-        R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
+        py::arg("analytic_cutoff") = 0.0, R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
 
 The FormFactors holds F, an (N, N) float32 scipy.sparse.csr_matrix of dimensionless fractions, and (N,) per-patch
 ray counts.
@@ -375,7 +385,9 @@ same seed (bit-identical for any thread count):
 analytic=True: the CLI's --analytic (docs/form-factors.md, "The analytic route"): the exact form factor of every
   pair of patches that face each other times its visibility (1 or 0 where proven, else estimated by at most
   visibility_samples point pairs, a power of 2 >= 32); reciprocal; diagnostics["row_std_error"] per row, info
-  the pair counts. The ray options must stay at their defaults (refused otherwise).
+  the pair counts. analytic_cutoff > 0 (--analytic-cutoff) drops pairs whose F are both proven at most it (info
+  analytic_dropped_pairs, analytic_largest_cutoff_bound). The ray options must stay at their defaults (refused
+  otherwise).
 F depends only on the geometry: edits of Scene.rho or Scene.E do not call for new form factors.
 The GIL is released while rays are traced.)doc");
 }

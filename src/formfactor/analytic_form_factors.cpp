@@ -10,7 +10,9 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "core/sobol.h"
+#include "formfactor/patch_pair_tree.h"
 #include "formfactor/patch_shaft.h"
 #include "formfactor/point_polygon_form_factor.h"
 #include "formfactor/polygon_form_factor.h"
@@ -28,6 +30,10 @@ void check_options(const AnalyticFormFactorOptions& o) {
       o.max_visibility_samples < o.min_visibility_samples)
     throw bad("max_visibility_samples must be a power of 2 in [min_visibility_samples, 2^24], got " +
               std::to_string(o.max_visibility_samples));
+  if (!(o.cutoff >= 0) || !(o.cutoff < 1))
+    throw bad("cutoff must be in [0, 1), got " + std::to_string(o.cutoff));
+  if (o.cutoff_rays < 0 || o.cutoff_rays > (1L << 24) || (o.cutoff_rays > 0 && !(o.cutoff > 0)))
+    throw bad("cutoff_rays must be in [0, 2^24] and needs cutoff > 0, got " + std::to_string(o.cutoff_rays));
   if (!(o.visibility_tolerance > 0) || !std::isfinite(o.visibility_tolerance))
     throw bad("visibility_tolerance must be finite and > 0, got " + std::to_string(o.visibility_tolerance));
 }
@@ -164,6 +170,95 @@ VisibilityEstimate estimate_visibility(const PatchSet& ps, const Visibility& vis
   return est;
 }
 
+// The dropped pairs' entries by cosine rays (analytic_form_factors.h, "Completion"): row i's n rays (Sobol points,
+// the shift from stream(seed, analytic_visibility, i, i)) count their front hits c_ij on patches j of dropped pairs;
+// each pair gets G_ij = (A_i c_ij / n + A_j c_ji / n) / 2 with the binomial variance of the two halves, added to
+// rows (as estimated entries; rows are re-sorted by the caller).
+void complete_dropped_pairs(const PatchSet& ps, const Visibility& vis, const PatchPairTree& tree,
+                            const PatchPairEnumeration& pairs, const AnalyticFormFactorOptions& o, double eps,
+                            std::vector<std::vector<PairEntry>>& rows, AnalyticFormFactors& out) {
+  const std::size_t N = ps.size();
+  const std::vector<std::int32_t> leaf = tree.leaf_of_patches();
+  std::vector<std::uint64_t> kept;
+  kept.reserve(pairs.leaf_pairs.size());
+  const auto key = [](std::int32_t a, std::int32_t b) {
+    if (a > b) std::swap(a, b);
+    return std::uint64_t(std::uint32_t(a)) << 32 | std::uint32_t(b);
+  };
+  for (const auto& lp : pairs.leaf_pairs) kept.push_back(key(lp[0], lp[1]));
+  std::sort(kept.begin(), kept.end());
+  const long n = o.cutoff_rays;
+  // Per row: (j, count) of its rays' hits on dropped pairs.
+  std::vector<std::vector<std::pair<std::int32_t, std::uint32_t>>> hits(N);
+  std::vector<std::uint64_t> rays(N, 0);
+  parallel_chunks(N, 16, [&](std::size_t b, std::size_t e) {
+    constexpr std::size_t kBatch = 64;
+    Ray batch[kBatch];
+    Hit hit[kBatch];
+    std::vector<std::int32_t> targets;
+    for (std::size_t i = b; i < e; ++i) {
+      Rng rng = stream(o.seed, StreamDomain::analytic_visibility, i, i);
+      SobolShift shift;
+      for (auto& w : shift.word) w = rng.next_u32();
+      Vec3 corners[4];
+      const int count = ps.corner_count(i);
+      for (int k = 0; k < count; ++k) corners[k] = ps.corner(i, k);
+      const PolygonSampler on_i(corners, count);
+      const Frame frame(ps.normal[i]);
+      const PatchRayOffset offset = patch_ray_offset(ps, i, eps);
+      targets.clear();
+      for (long base = 0; base < n; base += long(kBatch)) {
+        const std::size_t m = std::size_t(std::min<long>(long(kBatch), n - base));
+        for (std::size_t k = 0; k < m; ++k) {
+          const auto u = sobol_point(std::uint32_t(base + long(k)), shift);
+          batch[k] = spawn_ray(offset, on_i.point(u[0], u[1]), frame.to_world(sample_cosine_hemisphere(u[2], u[3])));
+        }
+        vis.intersect(batch, hit, m);
+        for (std::size_t k = 0; k < m; ++k) {
+          const Hit& h = hit[k];
+          if (h.missed() || !h.front || std::size_t(h.patch) == i) continue;
+          if (std::binary_search(kept.begin(), kept.end(), key(leaf[i], leaf[std::size_t(h.patch)]))) continue;
+          targets.push_back(std::int32_t(h.patch));
+        }
+      }
+      rays[i] = std::uint64_t(n);
+      std::sort(targets.begin(), targets.end());
+      for (std::size_t k = 0; k < targets.size();) {
+        std::size_t l = k;
+        while (l < targets.size() && targets[l] == targets[k]) ++l;
+        hits[i].push_back({targets[k], std::uint32_t(l - k)});
+        k = l;
+      }
+    }
+  });
+  // Both halves of each pair: (min, max) -> G and variance, in order.
+  struct Half {
+    std::int32_t lo, hi;
+    double g, var;
+  };
+  std::vector<Half> halves;
+  for (std::size_t i = 0; i < N; ++i) {
+    out.cutoff_rays += rays[i];
+    for (const auto& [j, c] : hits[i]) {
+      const double p = double(c) / double(n);
+      const double A = ps.area[i];
+      halves.push_back({std::int32_t(std::min<std::size_t>(i, std::size_t(j))),
+                        std::int32_t(std::max<std::size_t>(i, std::size_t(j))), 0.5 * A * p,
+                        0.25 * A * A * p * (1 - p) / double(n)});
+    }
+  }
+  std::sort(halves.begin(), halves.end(),
+            [](const Half& x, const Half& y) { return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi); });
+  for (std::size_t k = 0; k < halves.size();) {
+    std::size_t l = k;
+    double g = 0, var = 0;
+    while (l < halves.size() && halves[l].lo == halves[k].lo && halves[l].hi == halves[k].hi) g += halves[l].g, var += halves[l].var, ++l;
+    rows[std::size_t(halves[k].lo)].push_back({halves[k].hi, g, std::sqrt(var), true});
+    ++out.completed_pairs;
+    k = l;
+  }
+}
+
 // Brings rows whose sum exceeds 1 + 1e-12 down to 1 (analytic_form_factors.h, "Rows above 1").
 void scale_rows_above_one(const PatchSet& ps, std::vector<std::vector<PairEntry>>& rows, AnalyticFormFactors& out) {
   const std::size_t N = ps.size();
@@ -217,48 +312,81 @@ AnalyticFormFactors analytic_form_factors(const PatchSet& ps, const Visibility& 
                                           const AnalyticFormFactorOptions& options) {
   check_options(options);
   const std::size_t N = ps.size();
-  if (N > options.max_patches)
+  if (options.cutoff == 0 && N > options.max_patches)
     throw InputError(locate(ps.source, 0, -1,
-                            "--analytic enumerates all N (N - 1) / 2 patch pairs and is limited to " +
-                                std::to_string(options.max_patches) + " patches; this scene has " +
-                                std::to_string(N) + " (use the ray route, or a coarser --max-edge)"));
+                            "--analytic without a cut-off computes every facing pair of patches (time N^2) and is "
+                            "limited to " + std::to_string(options.max_patches) + " patches; this scene has " +
+                            std::to_string(N) + " (give --analytic-cutoff, use the ray route, or a coarser --max-edge)"));
   AnalyticFormFactors out;
+  out.cutoff = options.cutoff;
   const double eps = ray_epsilon(ps);
   const PatchShaftTest shaft(ps);
   std::vector<std::vector<PairEntry>> rows(N);
-  std::vector<Counts> counts(N);
-  Progress progress("form factors (analytic)", N);
-  parallel_chunks(N, 4, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      Counts& c = counts[i];
-      for (std::size_t j = i + 1; j < N; ++j) {
-        if (!patch_may_see(ps, i, j)) continue;
-        ClippedPair pair;
-        if (!clip_patch_pair(ps, i, j, pair)) continue;
-        const double G = patch_exchange_area(ps, i, j);
-        if (!(G > 0)) continue;
-        const ShaftResult r = shaft.classify(i, j, pair);
-        if (r == ShaftResult::clear) {
-          ++c.clear;
-          rows[i].push_back({std::int32_t(j), G, 0.0, false});
-        } else if (r == ShaftResult::hidden) {
-          ++c.hidden;
-        } else {
-          ++c.sampled;
-          const VisibilityEstimate v = estimate_visibility(ps, vis, options, eps, i, j, pair, G, c.rays);
-          if (v.V > 0 || v.se > 0) rows[i].push_back({std::int32_t(j), G * v.V, v.se * G, true});
-        }
+  const PatchPairTree tree(ps);
+  PatchPairEnumeration pairs = tree.enumerate(options.cutoff);
+  out.cutoff_bound = std::move(pairs.cutoff_bound);
+  out.cutoff_estimate = std::move(pairs.cutoff_estimate);
+  out.dropped_pairs = pairs.dropped_pairs;
+  {
+    // Each leaf pair's patch pairs (i < j), computed in parallel, each task into its own list.
+    const std::size_t T = pairs.leaf_pairs.size();
+    std::vector<std::vector<std::pair<std::int32_t, PairEntry>>> found(T);
+    std::vector<Counts> counts(T);
+    Progress progress("form factors (analytic)", T);
+    parallel_chunks(T, 16, [&](std::size_t b, std::size_t e) {
+      for (std::size_t t = b; t < e; ++t) {
+        Counts& c = counts[t];
+        const auto pair_of = [&](std::size_t i, std::size_t j) {
+          if (i > j) std::swap(i, j);
+          if (!patch_may_see(ps, i, j)) return;
+          ClippedPair pair;
+          if (!clip_patch_pair(ps, i, j, pair)) return;
+          const double G = patch_exchange_area(ps, i, j);
+          if (!(G > 0)) return;
+          const ShaftResult r = shaft.classify(i, j, pair);
+          if (r == ShaftResult::clear) {
+            ++c.clear;
+            found[t].push_back({std::int32_t(i), {std::int32_t(j), G, 0.0, false}});
+          } else if (r == ShaftResult::hidden) {
+            ++c.hidden;
+          } else {
+            ++c.sampled;
+            const VisibilityEstimate v = estimate_visibility(ps, vis, options, eps, i, j, pair, G, c.rays);
+            if (v.V > 0 || v.se > 0) found[t].push_back({std::int32_t(i), {std::int32_t(j), G * v.V, v.se * G, true}});
+          }
+        };
+        const auto [la, lb] = pairs.leaf_pairs[t];
+        const std::int32_t* A = tree.leaf_begin(la);
+        const std::int32_t* B = tree.leaf_begin(lb);
+        const std::int32_t na = tree.leaf_count(la), nb = tree.leaf_count(lb);
+        for (std::int32_t p = 0; p < na; ++p)
+          for (std::int32_t q = la == lb ? p + 1 : 0; q < nb; ++q) pair_of(std::size_t(A[p]), std::size_t(B[q]));
       }
+      progress.advance(e - b);
+    });
+    progress.finish();
+    for (const Counts& c : counts) {
+      out.clear_pairs += c.clear;
+      out.hidden_pairs += c.hidden;
+      out.sampled_pairs += c.sampled;
+      out.visibility_rays += c.rays;
     }
-    progress.advance(e - b);
-  });
-  progress.finish();
-  for (const Counts& c : counts) {
-    out.clear_pairs += c.clear;
-    out.hidden_pairs += c.hidden;
-    out.sampled_pairs += c.sampled;
-    out.visibility_rays += c.rays;
+    // Into rows (pair i < j in row i), each row in order of j: the CSR assembly below needs them so.
+    std::vector<std::size_t> per_row(N, 0);
+    for (const auto& list : found)
+      for (const auto& f : list) ++per_row[std::size_t(f.first)];
+    for (std::size_t i = 0; i < N; ++i) rows[i].reserve(per_row[i]);
+    for (auto& list : found) {
+      for (const auto& f : list) rows[std::size_t(f.first)].push_back(f.second);
+      std::vector<std::pair<std::int32_t, PairEntry>>().swap(list);
+    }
   }
+  if (options.cutoff_rays > 0 && out.dropped_pairs > 0)
+    complete_dropped_pairs(ps, vis, tree, pairs, options, eps, rows, out);
+  parallel_chunks(N, 256, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      std::sort(rows[i].begin(), rows[i].end(), [](const PairEntry& x, const PairEntry& y) { return x.j < y.j; });
+  });
   out.pairs = out.clear_pairs + out.hidden_pairs + out.sampled_pairs;
   scale_rows_above_one(ps, rows, out);
 

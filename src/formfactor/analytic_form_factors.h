@@ -6,9 +6,22 @@
 //   V_ij = int_i int_j G(x, y) V(x, y) dy dx / int_i int_j G(x, y) dy dx,   G = cos_x cos_y / (pi r^2),
 // one value per unordered pair, so A_i F_ij = A_j F_ji holds by construction (to float rounding of the stored F).
 //
-// Pairs: every pair i < j that may see each other (patch_may_see: a corner of each strictly in front of the other)
-// is enumerated, by brute force over the N (N - 1) / 2 pairs: O(N^2) time, so the route refuses more than
-// options.max_patches patches (a one-line InputError). Nothing is dropped: every pair with G_ij > 0 is an entry.
+// Pairs (patch_pair_tree.h): a dual traversal of a bounding-volume hierarchy of the patches prunes node pairs that
+// lie behind each other's planes and, with options.cutoff = tau > 0, drops node pairs whose bound
+// max(A_j) / (pi d^2) on every F_ij and F_ji of the pair (d the distance of their boxes) is at most tau; every
+// other pair i < j that may see each other (patch_may_see) is computed. Dropped pairs are never silent: per row i,
+// cutoff_bound[i] >= sum of the dropped F_ij, and cutoff_estimate[i] is their one-point unoccluded estimate, so in
+// a closed unoccluded scene 1 - cutoff_bound[i] <= row sum i <= 1 (to rounding). With tau = 0 (the default) nothing
+// is dropped: every pair with G_ij > 0 is an entry, in time N^2 for scenes whose patches all face each other, so
+// the route then refuses more than options.max_patches patches (a one-line InputError); with tau > 0 the time is
+// O(N log N + kept pairs) and there is no such limit.
+// Completion (options.cutoff_rays = n > 0): the dropped pairs are then estimated instead of left out: row i traces n
+// cosine-weighted rays (randomised Sobol points, the shift from stream(seed, analytic_visibility, i, i): b = a never
+// names a pair), and each front hit on a patch j of a dropped pair counts; G_ij = (A_i c_ij + A_j c_ji) / (2 n) is
+// an unbiased estimate of the occluded exchange area (E[c_ij / n] = F_ij with occlusion), reciprocal by
+// construction, stored as an estimated entry with the binomial standard error of its two halves (a half of no
+// hits adds no variance: an understatement for pairs hit from one side only). Rows of a closed scene then sum to 1
+// in expectation, within their standard error; the cut-off's bound and estimate are still reported.
 // Visibility (patch_shaft.h): V_ij = 1 exactly where no patch meets the pair's shaft, 0 exactly where one convex
 // patch covers it; otherwise it is estimated from point pairs (x_s, y_s), x_s uniform on i's clipped polygon and
 // y_s on j's (randomised Sobol points, digital shifts drawn from stream(seed, analytic_visibility, i, j)), with
@@ -44,7 +57,9 @@ struct AnalyticFormFactorOptions {
   long min_visibility_samples = 32;    // the least M of a sampled pair (a power of 2, >= 2)
   long max_visibility_samples = 1024;  // at most this many (a power of 2, >= min_visibility_samples)
   double visibility_tolerance = 0.05;  // the standard error of a visibility fraction that M aims at
-  std::size_t max_patches = 20000;     // the brute-force pair enumeration refuses more patches than this
+  std::size_t max_patches = 20000;     // without a cut-off, more patches than this are refused (time N^2)
+  double cutoff = 0;                   // tau in [0, 1): pairs whose F bound is at most tau are dropped (reported)
+  long cutoff_rays = 0;                // > 0 (needs cutoff > 0): the dropped pairs estimated by this many cosine rays a row
 };
 
 struct AnalyticFormFactors {
@@ -59,6 +74,12 @@ struct AnalyticFormFactors {
   std::uint64_t visibility_rays = 0;
   std::size_t rows_scaled = 0;     // rows brought down to sum 1 (see above)
   double largest_row_excess = 0;   // the largest row sum - 1 before that, 0 when none exceeded 1
+  double cutoff = 0;                     // the cut-off tau used
+  std::uint64_t dropped_pairs = 0;       // unordered pairs dropped by the cut-off (facing or not)
+  std::vector<double> cutoff_bound;      // per row i: an upper bound on the sum of the dropped F_ij (0 without)
+  std::vector<double> cutoff_estimate;   // per row i: their one-point estimate without occlusion
+  std::uint64_t cutoff_rays = 0;         // cosine rays traced for the completion (cutoff_rays > 0)
+  std::uint64_t completed_pairs = 0;     // dropped pairs given an entry by them
 };
 
 // InputError for options out of range, more than max_patches patches or more than 2^31 - 1 non-zeros.

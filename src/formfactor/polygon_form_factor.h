@@ -14,6 +14,8 @@
 //     composite and geometrically graded towards the point of e nearest to f where that point is closer to f than
 //     e's length (edges that share a corner, or meet), so the integrable r ln r singularity costs no accuracy
 //     (relative error about 1e-14).
+// Far pairs (far_field_rule below) wholly in front of each other: a product Gauss rule of the point-to-point
+// kernel instead (the contour terms of order L^2 ln r cancel to a sum of order L^4 / r^2, losing (r / L)^4 eps).
 // Coplanar polygons facing the same way see each other at F = 0: every corner of each lies on the other's plane,
 // so the clip leaves nothing strictly in front and the result is 0.
 // Cost: O(corners_P x corners_Q) closed forms, about 0.1 to 1 microsecond per patch pair (more where non-parallel
@@ -38,6 +40,27 @@ int clip_polygon_to_front(const Vec3* p, int count, const Vec3& plane_point, con
 // int_e int_f ln r ds dt (u_e . u_f) for the segments a0 -> a1 and b0 -> b1 (the edge-pair term of the contour
 // integral above, without the 1 / 2 pi). 0 for a zero-length segment or perpendicular segments.
 double edge_pair_log_integral(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1);
+
+// The far-field rule for a pair of polygons (docs/theory/polygon_form_factor.md, "Far pairs"): with c the mean of
+// a polygon's corners and R the largest distance of a corner from it, ratio = (|c_P - c_Q| - R_P - R_Q) / max(R_P,
+// R_Q). For ratio >= kFarFieldRatio the point-to-point kernel cos_x cos_y / (pi r^2) is analytic in a Bernstein
+// ellipse of parameter >= ratio in each quadrature variable, so an n-point Gauss-Legendre rule per variable errs by
+// about ratio^(-2n) relative; points = the least n >= 2 with ratio^(-2n) <= 1e-14 (at most 8), 0 when the pair is
+// not far (ratio below kFarFieldRatio, where the contour integral is used: its rounding there is below 1e-11
+// relative).
+inline constexpr double kFarFieldRatio = 32;
+struct FarFieldRule {
+  double ratio = 0;
+  int points = 0;  // Gauss points per variable; 0: not far
+};
+FarFieldRule far_field_rule(const Vec3* p, int np, const Vec3* q, int nq);
+
+// A_P F_PQ by the product Gauss rule of n points per variable on each polygon (a quadrilateral by its bilinear map,
+// other polygons as fans of collapsed squares) of the kernel cos_x cos_y / (pi r^2), both cosines clamped at 0.
+// Meant for far pairs (far_field_rule), where it is exact to about ratio^(-2n) and has no cancellation: every term
+// is positive. n in [2, 8].
+double far_field_exchange_area(const Vec3* p, int np, const Vec3& n_p, const Vec3* q, int nq, const Vec3& n_q,
+                               int n);
 
 // A_P F_PQ = A_Q F_QP (the exchange area) for planar polygons P (corners p[0 .. np-1], counter-clockwise about the
 // unit normal n_p) and Q (q, nq, n_q) that see each other unoccluded; np, nq in [3, kMaxPolygonCorners - 1].

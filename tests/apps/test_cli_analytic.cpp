@@ -1,7 +1,8 @@
 // The analytic form-factor route end to end (docs/form-factors.md, "The analytic route"): `formfactors
 // --analytic` on the closed cube writes an F whose rows sum to 1 and reports its pairs in the JSON summary;
 // `solve --analytic` gives the same CSV on 1 and 2 threads; the ray options it cannot honour are refused with
-// exit 2, as are --visibility-samples without --analytic or not a power of 2. Reading another program's F: rows
+// exit 2, as are --visibility-samples without --analytic or not a power of 2; --analytic-cutoff reports its dropped
+// pairs in the JSON summary and is refused without --analytic or outside [0, 1). Reading another program's F: rows
 // up to 1 + 1e-3 are used with a warning naming the worst row, --normalise-rows divides them by their sums.
 #include <catch2/catch.hpp>
 
@@ -53,6 +54,23 @@ TEST_CASE("formfactors and solve --analytic run, report, are thread-independent,
   r = run("solve " + scene + " --visibility-samples 100");
   CHECK(r.exit_code == 2);
   CHECK(r.out.find("power of 2") != std::string::npos);
+}
+
+TEST_CASE("formfactors --analytic --analytic-cutoff drops pairs and reports them, refused without --analytic",
+          "[cli][formfactor][analytic]") {
+  const fs::path dir = scratch_dir("analytic_cutoff");
+  const fs::path json = dir / "r.json";
+  Run r = run("formfactors " + source("meshes/cube.obj") + " --max-edge 0.1 --analytic --analytic-cutoff 3e-3 --json " +
+              json.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const std::string j = text_of(json);
+  CHECK(j.find("\"dropped_pairs\"") != std::string::npos);
+  CHECK(j.find("\"largest_cutoff_bound\"") != std::string::npos);
+  r = run("formfactors " + source("meshes/cube.obj") + " --max-edge 0.1 --analytic-cutoff 3e-3");
+  CHECK(r.exit_code == 2);
+  r = run("formfactors " + source("meshes/cube.obj") + " --max-edge 0.1 --analytic --analytic-cutoff 2");
+  CHECK(r.exit_code == 2);
 }
 
 TEST_CASE("a read F with rows up to 1 + 1e-3 is used with a warning naming the worst row, or normalised",

@@ -6,7 +6,10 @@
 //   - non-parallel edges (triangles, tilted polygons) against the Gauss-Legendre contour quadrature of the test
 //     support (smooth there, 1e-12), and triangles sharing a corner against the sum over a fine split;
 //   - coplanar polygons: F = 0; polygons behind each other: 0; reciprocity A_i F_ij = A_j F_ji bit for bit for
-//     patches (patch_exchange_area), to rounding for polygons.
+//     patches (patch_exchange_area), to rounding for polygons;
+//   - far pairs (the far-field Gauss rule): parallel rectangles at 10 to 3000 sizes against their Taylor series to
+//     1e-12 (1e-10 at 10 sizes, where the contour integral is used; the contour sum alone misses by more than 1e-9
+//     at 3000 sizes, shown), and tilted quadrilaterals and triangles just beyond the switch against the contour sum to 1e-9.
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -190,4 +193,103 @@ TEST_CASE("polygon form factor: every pair of a 3 x 3 cube grid equals C-11 and 
   INFO("largest relative difference " << worst << " over " << compared << " pairs");
   CHECK(compared == 54 * 45);
   CHECK(worst <= 1e-10);
+}
+
+namespace {
+
+// A_P F_PQ of two parallel a x b rectangles facing each other at distance c, the upper one shifted by (dx, dy),
+// by the Taylor series of the kernel c^2 / (pi (c^2 + s)^2) in s = |x - y|^2 / c^2 (an independent reference for
+// far pairs, where the contour terms cancel): G = (a b)^2 / (pi c^2) sum_k (-1)^k (k + 1) E[s^k] / c^(2k), with
+// E[s^k] from the moments of the difference of two uniform points on [0, a] (a triangular variable with
+// E[u^(2m)] = 2 a^(2m) / ((2m + 1)(2m + 2)), odd moments 0). 14 terms: exact to rounding while (a + |d|)^2 / c^2
+// is below 1e-2.
+double parallel_series(double a, double b, double c, double dx, double dy) {
+  const int K = 14;
+  const auto binom = [](int n, int k) {
+    double r = 1;
+    for (int i = 1; i <= k; ++i) r = r * double(n - k + i) / double(i);
+    return r;
+  };
+  // E[(shift + u)^j], u the difference of two uniform points on [0, side].
+  const auto moment = [&](double side, double shift, int j) {
+    double m = 0;
+    for (int i = 0; i <= j; i += 2) m += binom(j, i) * std::pow(shift, j - i) * 2 * std::pow(side, i) / ((i + 1.0) * (i + 2.0));
+    return m;
+  };
+  double sum = 0;
+  for (int k = 0; k < K; ++k) {
+    double es = 0;  // E[(X^2 + Y^2)^k]
+    for (int m = 0; m <= k; ++m) es += binom(k, m) * moment(a, dx, 2 * m) * moment(b, dy, 2 * (k - m));
+    sum += (k % 2 ? -1.0 : 1.0) * (k + 1) * es / std::pow(c, 2 * k);
+  }
+  return (a * b) * (a * b) / (kPi * c * c) * sum;
+}
+
+}  // namespace
+
+TEST_CASE("polygon form factor: far parallel rectangles equal their Taylor series to 1e-12 (the far-field rule)",
+          "[formfactor][polygon]") {
+  // Distances from 10 (contour integral) to 3000 sizes (far-field Gauss rule; the contour integral alone loses
+  // about (c / a)^4 1e-16 there: 1e-6 relative at 300).
+  for (double c : {10.0, 30.0, 100.0, 300.0, 3000.0})
+    for (const auto& d : std::vector<std::array<double, 2>>{{0, 0}, {0.5, -0.25}, {0.02 * c, 0.01 * c}}) {
+      const double a = 1, b = 0.5;
+      const auto lower = floor_rect(0, a, 0, b, 0, true);
+      const auto upper = floor_rect(d[0], d[0] + a, d[1], d[1] + b, c, false);
+      const double expected = parallel_series(a, b, c, d[0], d[1]);
+      // The far-field rule's pairs to 1e-12; at 10 sizes (the contour integral) to its stated 1e-10.
+      const bool far = far_field_rule(lower.data(), 4, upper.data(), 4).points > 0;
+      const double tolerance = far ? 1e-12 : 1e-10;
+      const double e1 = std::abs(exchange_area(lower, upper) / expected - 1);
+      const double e2 = std::abs(exchange_area(upper, lower) / expected - 1);
+      INFO("c " << c << " shift " << d[0] << ", " << d[1] << " far " << far << " relative errors " << e1 << ", " << e2);
+      CHECK(far == (c >= 30));
+      CHECK(e1 <= tolerance);
+      CHECK(e2 <= tolerance);
+      if (c == 3000.0) {  // the contour sum alone (the route before the far-field rule) fails this test there
+        double contour = 0;
+        for (int e = 0; e < 4; ++e)
+          for (int f = 0; f < 4; ++f)
+            contour += edge_pair_log_integral(lower[std::size_t(e)], lower[std::size_t((e + 1) % 4)],
+                                              upper[std::size_t(f)], upper[std::size_t((f + 1) % 4)]);
+        contour /= 2 * kPi;
+        CHECK(std::abs(contour / expected - 1) > 1e-9);
+      }
+    }
+}
+
+TEST_CASE("polygon form factor: the far-field rule agrees with the contour integral where both hold",
+          "[formfactor][polygon]") {
+  // Just beyond the switch (ratio about 33, distance about 26 sizes, where the contour's rounding is about
+  // 26^4 1e-16 = 5e-11 relative: hence 1e-9 here) tilted quadrilaterals and triangles, by the far-field rule,
+  // against the contour sum taken from edge_pair_log_integral directly.
+  const auto contour = [](const std::vector<Vec3>& p, const std::vector<Vec3>& q) {
+    double s = 0;
+    for (std::size_t e = 0; e < p.size(); ++e)
+      for (std::size_t f = 0; f < q.size(); ++f)
+        s += edge_pair_log_integral(p[e], p[(e + 1) % p.size()], q[f], q[(f + 1) % q.size()]);
+    return s / (2 * kPi);
+  };
+  const Vec3 shift(3, -2, 26);
+  const std::vector<std::vector<Vec3>> lows = {
+      {{0, 0, 0}, {1, 0, 0.2}, {1.1, 0.9, 0.22}, {0, 1, 0}}, {{0, 0, 0}, {1, 0.1, 0}, {0.2, 0.8, 0.3}}};
+  std::vector<std::vector<Vec3>> highs;
+  for (const auto& l : lows) {
+    std::vector<Vec3> h;
+    for (auto it = l.rbegin(); it != l.rend(); ++it) h.push_back(Vec3(it->x(), it->y(), -0.3 * it->x()) + shift);
+    highs.push_back(h);
+  }
+  for (const auto& p : lows)
+    for (const auto& q : highs) {
+      const FarFieldRule rule = far_field_rule(p.data(), int(p.size()), q.data(), int(q.size()));
+      INFO("corners " << p.size() << ", " << q.size() << " ratio " << rule.ratio);
+      REQUIRE(rule.points > 0);
+      const double expected = contour(p, q);
+      CHECK(exchange_area(p, q) == Approx(expected).epsilon(1e-9).margin(0));
+      CHECK(exchange_area(q, p) == Approx(expected).epsilon(1e-9).margin(0));
+    }
+  // Below the switch the rule says no.
+  const auto near = floor_rect(0, 1, 0, 1, 5, false);
+  const auto base = floor_rect(0, 1, 0, 1, 0, true);
+  CHECK(far_field_rule(base.data(), 4, near.data(), 4).points == 0);
 }
