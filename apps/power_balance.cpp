@@ -5,6 +5,7 @@
 #include <string>
 
 #include "apps/pipeline.h"
+#include "core/parallel.h"
 #include "formfactor/form_factors.h"
 #include "visibility/embree_visibility.h"
 
@@ -17,10 +18,18 @@ RayFates trace_ray_fates(const PatchSet& patches, std::uint64_t seed, long rays,
   FormFactorOptions o;
   o.rays_per_patch = rays;
   o.seed = seed;
-  FormFactors ff = estimate_form_factors(patches, visibility, o);
-  fates.rays = std::move(ff.rays);
-  fates.escaped = std::move(ff.escaped);
-  fates.back_hits = std::move(ff.back_hits);
+  // Row by row with the form factors' own rays (the same counts as estimate_form_factors gives), keeping only the
+  // counts: no F is assembled, so the memory stays O(N).
+  const std::size_t n = patches.size();
+  fates.rays.resize(n);
+  fates.escaped.resize(n);
+  fates.back_hits.resize(n);
+  parallel_for(n, [&](std::size_t i) {
+    const FormFactorRow row = trace_form_factor_row(patches, visibility, o, i);
+    fates.rays[i] = row.rays;
+    fates.escaped[i] = row.escaped;
+    fates.back_hits[i] = row.back_hits;
+  });
   return fates;
 }
 

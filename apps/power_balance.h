@@ -25,7 +25,8 @@ struct RayFates {
 };
 
 // Counts for the balance alone: `rays` cosine rays per patch (formfactor/form_factors.h, the form-factor rays of
-// seed `seed`), F dropped. Empty when the scene has more than max_patches patches (not worth the time).
+// seed `seed`, counted row by row: F is never assembled, memory O(N)). Empty when the scene has more than
+// max_patches patches (not worth the time).
 RayFates trace_ray_fates(const PatchSet& patches, std::uint64_t seed, long rays = 128, std::size_t max_patches = 2000000);
 
 // Writes summary["power_balance"] and warns above 1 % lost to back faces. B_se may be empty.
