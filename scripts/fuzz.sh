@@ -6,7 +6,7 @@
 #   scripts/fuzz.sh --build-only                              configure and build the fuzz tree only
 #   scripts/fuzz.sh --no-build HARNESS|all SECONDS [FLAG...]  fuzz without building (CTest: the build is a fixture)
 #
-# Harnesses: obj_mtl mtl ply matrix_market npz validate_patch. The fuzz tree is $RADWALK_FUZZ_BUILD_DIR (default
+# Harnesses: obj_mtl mtl ply stl gltf vtk matrix_market npz validate_patch. The fuzz tree is $RADWALK_FUZZ_BUILD_DIR (default
 # build/fuzz): clang++ ($RADWALK_FUZZ_CXX, default clang++) with libFuzzer, ASan and UBSan, through
 # $RADWALK_FUZZ_LAUNCHER (default ccache when installed). Where clang++ cannot link -fsanitize=fuzzer the script
 # says why and exits 77 (CTest's SKIP_RETURN_CODE).
@@ -18,7 +18,7 @@ set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${RADWALK_FUZZ_BUILD_DIR:-$root/build/fuzz}
 cxx=${RADWALK_FUZZ_CXX:-clang++}
-all_harnesses=(obj_mtl mtl ply stl gltf matrix_market npz validate_patch)
+all_harnesses=(obj_mtl mtl ply stl gltf vtk matrix_market npz validate_patch)
 
 usage() {
   sed -n '2,/^set -euo/p' "$0" | sed '$d' | sed 's/^# \{0,1\}//' >&2

@@ -339,8 +339,7 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
       mesh.materials[static_cast<std::size_t>(material_for(cell))].two_sided = true;
       return;
     }
-    const std::int32_t material = material_for(cell);
-    if (side) mesh.materials[static_cast<std::size_t>(material)].two_sided = true;
+    const std::int32_t material = material_for(cell);  // two-sided only if a back cell has its material
     std::vector<std::int32_t> corners;
     for (const std::int32_t p : without_straight_corners(point_ids, points))
       corners.push_back(vertex_of[static_cast<std::size_t>(p)]);
