@@ -7,6 +7,7 @@
 #include <map>
 #include <cctype>
 #include <tuple>
+#include <vector>
 
 #include <vtkAbstractArray.h>
 #include <vtkCellArray.h>
@@ -174,6 +175,77 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
                                              std::to_string(bytes.size()) + " bytes can hold"));
 }
 
+// An ASCII legacy file's geometry sections hold what their headers say, before VTK reads them: POINTS n TYPE is
+// followed by 3 n numbers; POLYGONS, TRIANGLE_STRIPS, VERTICES and LINES n size by `size` whole numbers >= 0 (the
+// format of version 5.1 instead by OFFSETS TYPE and CONNECTIVITY TYPE sections of whole numbers >= 0, of n and
+// size). VTK 9.1's legacy reader, given a section whose numbers do not parse (a word among a polygon's indices),
+// goes on reading the stream it closed and crashes (found by the vtk fuzz harness); the first section that is
+// short or holds something else is refused here in one line naming its line. The header's first three lines (the
+// version, the title, ASCII) are not sections.
+void check_ascii_legacy_sections(const std::string& path, std::string_view bytes) {
+  struct Token {
+    std::string_view text;
+    long line;
+  };
+  std::vector<Token> tokens;
+  bool ascii = false;
+  for_each_line(bytes, [&](long line, std::string_view content) {
+    if (line <= 3) {
+      if (line == 3) ascii = split_tokens(content).size() == 1 && split_tokens(content)[0] == "ASCII";
+      return;
+    }
+    for (std::string_view t : split_tokens(content)) tokens.push_back({t, line});
+  });
+  if (!ascii) return;
+  std::size_t k = 0;
+  // Requires `count` tokens after k of the kind `whole` (else numbers), naming `what` and the line of its header.
+  auto require = [&](double count, bool whole, const std::string& what, long header_line) {
+    for (double i = 0; i < count; ++i, ++k) {
+      if (k >= tokens.size())
+        throw InputError(locate(path, header_line, -1, what + " ends before its " + number_text(count) +
+                                                           (whole ? " indices" : " numbers")));
+      const bool ok = whole ? parse_long(tokens[k].text).value_or(-1) >= 0 : parse_double(tokens[k].text).has_value();
+      if (!ok)
+        throw InputError(locate(path, tokens[k].line, -1,
+                                what + " (line " + std::to_string(header_line) + "): '" + excerpt(tokens[k].text) +
+                                    "' is not " + (whole ? "a whole number >= 0" : "a number")));
+    }
+  };
+  auto count_at = [&](std::size_t at) -> double {
+    if (at >= tokens.size()) return -1;
+    const auto n = parse_double(tokens[at].text);
+    return n && *n >= 0 && *n == std::floor(*n) ? *n : -1;
+  };
+  while (k < tokens.size()) {
+    const std::string_view key = tokens[k].text;
+    const long line = tokens[k].line;
+    if (key == "POINTS") {
+      const double n = count_at(k + 1);
+      if (n < 0) throw InputError(locate(path, line, -1, "POINTS needs a count"));
+      k += 3;  // POINTS n TYPE
+      require(3 * n, false, "POINTS", line);
+    } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES") {
+      const double n = count_at(k + 1), size = count_at(k + 2);
+      if (n < 0 || size < 0) throw InputError(locate(path, line, -1, std::string(key) + " needs two counts"));
+      k += 3;
+      if (k < tokens.size() && tokens[k].text == "OFFSETS") {  // version 5.1: n offsets, size connectivity
+        k += 2;
+        require(n, true, std::string(key) + " OFFSETS", line);
+        if (k >= tokens.size() || tokens[k].text != "CONNECTIVITY")
+          throw InputError(locate(path, line, -1, std::string(key) + ": OFFSETS is not followed by CONNECTIVITY"));
+        k += 2;
+        require(size, true, std::string(key) + " CONNECTIVITY", line);
+      } else {
+        require(size, true, std::string(key), line);
+      }
+    } else if (key == "CELL_DATA" || key == "POINT_DATA") {
+      return;  // the attributes after the geometry: VTK's own checks (no crash found there)
+    } else {
+      ++k;
+    }
+  }
+}
+
 vtkSmartPointer<vtkPolyData> parse(const std::string& path, std::string_view bytes, bool xml) {
   CaptureScope capture;
   vtkSmartPointer<vtkPolyData> out;
@@ -245,6 +317,7 @@ Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options) {
 
 Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bool xml, const ReadOptions& options) {
   check_declared_counts(path, bytes, xml);
+  if (!xml) check_ascii_legacy_sections(path, bytes);
   const vtkSmartPointer<vtkPolyData> data = parse(path, bytes, xml);
   Mesh mesh;
   mesh.path = path;
