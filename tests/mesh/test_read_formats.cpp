@@ -255,6 +255,17 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("point.vtk", head + "0 0 0\n1 0 x\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n", false); },
       "point.vtk:7:", "POINTS (line 5): 'x' is not a number");
+  // Found by the vtk fuzz harness: an array type VTK does not know (a radwalk .vtp with "Int64" mutated to "Int28")
+  // crashed VTK 9.1's XML reader; now refused naming the type.
+  require_one_line_refusal(
+      [&] {
+        read_vtk_polydata_bytes("type.vtp",
+                                "<VTKFile type=\"PolyData\"><PolyData><FieldData><DataArray type=\"Int28\" "
+                                "Name=\"patches\" NumberOfTuples=\"1\" format=\"ascii\">1</DataArray></FieldData>"
+                                "</PolyData></VTKFile>",
+                                true);
+      },
+      "type.vtp", "DataArray of type \"Int28\": not one of Int8");
   // The version 5.1 layout (OFFSETS and CONNECTIVITY sections) is read as before.
   const Mesh v51 = read_vtk_polydata_bytes(
       "v51.vtk",
