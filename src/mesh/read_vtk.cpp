@@ -142,6 +142,72 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
                                                    "Int64, UInt64, Float32, Float64, String"));
       }
     }
+    // The header of every inline binary array (base64) must fit the file before VTK sizes its buffers by it (a
+    // mutated block size made VTK 9.1 allocate petabytes; found by the vtk fuzz harness): uncompressed, its byte
+    // count at most the file's bytes; compressed, the number of blocks (each with a header word in the file) at
+    // most the file's words, the block sizes at most 1032 (zlib's largest ratio) times the file's bytes and each
+    // block's compressed size at most the file's bytes.
+    const bool wide = text.find("header_type=\"UInt64\"") != std::string_view::npos;
+    for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
+      for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
+        const std::size_t end = text.find('>', at);
+        if (end == std::string_view::npos) break;
+        if (text.substr(at, end - at).find("format=\"binary\"") == std::string_view::npos) continue;
+        std::size_t k = end + 1;
+        while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+        const std::size_t word_bytes = wide ? 8 : 4;
+        // The little-endian words of the header (the base64 text decoded as far as needed); false when the text is
+        // not base64 that far (VTK refuses it).
+        std::vector<double> words;
+        auto decode = [&](std::size_t n_words) {
+          words.clear();
+          std::vector<unsigned char> raw;
+          const std::size_t need = n_words * word_bytes;
+          for (std::size_t q = k; raw.size() < need; q += 4) {
+            if (q + 4 > text.size()) return false;
+            std::uint32_t v = 0;
+            for (std::size_t c = 0; c < 4; ++c) {
+              const char ch = text[q + c];
+              int d = -1;
+              if (ch >= 'A' && ch <= 'Z') d = ch - 'A';
+              else if (ch >= 'a' && ch <= 'z') d = ch - 'a' + 26;
+              else if (ch >= '0' && ch <= '9') d = ch - '0' + 52;
+              else if (ch == '+') d = 62;
+              else if (ch == '/') d = 63;
+              else if (ch == '=') d = 0;  // the header's own padding: the words needed end before it
+              if (d < 0) return false;
+              v = (v << 6) | static_cast<std::uint32_t>(d);
+            }
+            raw.push_back(static_cast<unsigned char>(v >> 16));
+            raw.push_back(static_cast<unsigned char>(v >> 8));
+            raw.push_back(static_cast<unsigned char>(v));
+          }
+          for (std::size_t w = 0; w < n_words; ++w) {
+            double x = 0;
+            for (std::size_t b = word_bytes; b-- > 0;) x = x * 256 + raw[w * word_bytes + b];
+            words.push_back(x);
+          }
+          return true;
+        };
+        auto refuse = [&](double value, const char* what) {
+          throw InputError(locate(path, 0, -1, "a binary " + std::string(element.substr(1)) + "'s header declares " +
+                                                   number_text(value) + what + ", more than its " +
+                                                   std::to_string(bytes.size()) +
+                                                   " bytes can hold (truncated file or wrong count)"));
+        };
+        if (!decode(1)) continue;
+        if (!compressed) {
+          if (words[0] > size) refuse(words[0], " bytes");
+          continue;
+        }
+        // Compressed: [blocks, block size, last block's size, compressed size of each block].
+        const double blocks = words[0];
+        if (blocks > size / static_cast<double>(word_bytes)) refuse(blocks, " compressed blocks");
+        if (!decode(3 + static_cast<std::size_t>(blocks))) continue;
+        for (std::size_t w = 1; w < words.size(); ++w)
+          if (words[w] > (w < 3 ? kZlibMaxRatio : 1.0) * size) refuse(words[w], w < 3 ? " bytes in a block" : " compressed bytes");
+      }
+    }
     const double bound = (compressed ? kZlibMaxRatio : 1.0) * size;
     if (largest_count * largest_components > bound)
       throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
