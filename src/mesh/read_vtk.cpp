@@ -269,20 +269,32 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
 // short or holds something else is refused here in one line naming its line. The header's first three lines (the
 // version, the title, ASCII) are not sections.
 void check_ascii_legacy_sections(const std::string& path, std::string_view bytes) {
+  // The tokens as VTK's reader sees them: separated by white space, lines by '\n' (views into bytes).
   struct Token {
     std::string_view text;
     long line;
   };
   std::vector<Token> tokens;
-  bool ascii = false;
-  for_each_line(bytes, [&](long line, std::string_view content) {
-    if (line <= 3) {
-      if (line == 3) ascii = split_tokens(content).size() == 1 && split_tokens(content)[0] == "ASCII";
-      return;
+  std::vector<std::string_view> third_line;
+  long line_at = 1;
+  for (std::size_t i = 0; i < bytes.size();) {
+    const char c = bytes[i];
+    if (c == '\n') {
+      ++line_at;
+      ++i;
+      continue;
     }
-    for (std::string_view t : split_tokens(content)) tokens.push_back({t, line});
-  });
-  if (!ascii) return;
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[j]))) ++j;
+    if (line_at == 3) third_line.push_back(bytes.substr(i, j - i));
+    if (line_at > 3) tokens.push_back({bytes.substr(i, j - i), line_at});
+    i = j;
+  }
+  if (!(third_line.size() == 1 && third_line[0] == "ASCII")) return;
   std::size_t k = 0;
   // Requires `count` tokens after k of the kind `whole` (else numbers), naming `what` and the line of its header.
   auto require = [&](double count, bool whole, const std::string& what, long header_line) {
