@@ -94,6 +94,23 @@ class CaptureScope {
   vtkSmartPointer<CapturingOutputWindow> window_;
 };
 
+// The legacy keyword a token stands for, as VTK's legacy reader matches it: the token lowercased starts with the
+// keyword (VTK compares the keyword's length only: "POLYGONS`1" is POLYGONS); "" for none.
+std::string legacy_keyword(std::string_view token) {
+  static const char* const kKeywords[] = {"POINTS",   "POLYGONS", "TRIANGLE_STRIPS", "VERTICES",  "LINES",
+                                          "OFFSETS",  "CONNECTIVITY", "CELL_DATA", "POINT_DATA", "FIELD",
+                                          "SCALARS", "COLOR_SCALARS"};
+  for (const char* k : kKeywords) {
+    const std::string_view key(k);
+    if (token.size() < key.size()) continue;
+    bool same = true;
+    for (std::size_t i = 0; i < key.size() && same; ++i)
+      same = std::toupper(static_cast<unsigned char>(token[i])) == key[i];
+    if (same) return k;
+  }
+  return "";
+}
+
 // The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
 void check_declared_counts(const std::string& path, std::string_view bytes, bool xml) {
   const double size = static_cast<double>(bytes.size());
@@ -244,7 +261,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     line_number = line;
     const auto tokens = split_tokens(content);
     if (tokens.empty()) return;
-    const std::string_view key = tokens[0];
+    const std::string key = legacy_keyword(tokens[0]);
     std::vector<double> counts;
     auto number = [&](std::size_t k) {
       if (k >= tokens.size()) return;
@@ -336,7 +353,7 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
     return n && *n >= 0 && *n == std::floor(*n) ? *n : -1;
   };
   while (k < tokens.size()) {
-    const std::string_view key = tokens[k].text;
+    const std::string key = legacy_keyword(tokens[k].text);
     const long line = tokens[k].line;
     if (key == "POINTS") {
       const double n = count_at(k + 1);
@@ -347,10 +364,10 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
       const double n = count_at(k + 1), size = count_at(k + 2);
       if (n < 0 || size < 0) throw InputError(locate(path, line, -1, std::string(key) + " needs two counts"));
       k += 3;
-      if (k < tokens.size() && tokens[k].text == "OFFSETS") {  // version 5.1: n offsets, size connectivity
+      if (k < tokens.size() && legacy_keyword(tokens[k].text) == "OFFSETS") {  // version 5.1: n offsets, size connectivity
         k += 2;
         require(n, true, std::string(key) + " OFFSETS", line);
-        if (k >= tokens.size() || tokens[k].text != "CONNECTIVITY")
+        if (k >= tokens.size() || legacy_keyword(tokens[k].text) != "CONNECTIVITY")
           throw InputError(locate(path, line, -1, std::string(key) + ": OFFSETS is not followed by CONNECTIVITY"));
         k += 2;
         require(size, true, std::string(key) + " CONNECTIVITY", line);
