@@ -1,7 +1,9 @@
 #include "mesh/read_vtk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -164,6 +166,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
         const std::string_view content =
             text.substr(end + 1, stop == std::string_view::npos ? std::string_view::npos : stop - end - 1);
         const bool real = type == "Float32" || type == "Float64";
+        std::size_t values = 0;
         for (std::size_t i = 0; i < content.size();) {
           if (std::isspace(static_cast<unsigned char>(content[i]))) {
             ++i;
@@ -177,7 +180,50 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
                                                      std::string(type) + " holds '" + excerpt(token) + "', not " +
                                                      (real ? "a number" : "a whole number")));
           i = j;
+          ++values;
         }
+        // As many values as the array declares: a multiple of its components, its tuples when it names them, and
+        // in a piece's CellData one tuple per cell, in its PointData and Points one per point (a short E array
+        // crashed VTK 9.1's XML reader too; found by the vtk fuzz harness).
+        const auto attribute = [&](const char* name) -> double {
+          const std::size_t a = tag.find(std::string(" ") + name + "=\"");
+          if (a == std::string_view::npos) return -1;
+          const std::size_t v = a + std::strlen(name) + 3, e = tag.find('"', v);
+          const auto n = parse_double(tag.substr(v, e == std::string_view::npos ? 0 : e - v));
+          return n && *n >= 0 ? *n : -1;
+        };
+        if (type == "String") continue;  // its values are the bytes of its strings, not tuples
+        const double components = std::max(1.0, attribute("NumberOfComponents"));
+        double tuples = attribute("NumberOfTuples");
+        const std::size_t piece = text.rfind("<Piece", at);
+        if (tuples < 0 && piece != std::string_view::npos) {
+          const std::size_t piece_end = text.find('>', piece);
+          const std::string_view piece_tag = text.substr(piece, piece_end == std::string_view::npos ? 0 : piece_end - piece);
+          const auto count = [&](const char* name) {
+            const std::size_t a = piece_tag.find(std::string(name) + "=\"");
+            if (a == std::string_view::npos) return 0.0;
+            const std::size_t v = a + std::strlen(name) + 2, e = piece_tag.find('"', v);
+            const auto n = parse_double(piece_tag.substr(v, e == std::string_view::npos ? 0 : e - v));
+            return n && *n >= 0 ? *n : 0.0;
+          };
+          const auto inside = [&](const char* open, const char* close) {
+            const std::size_t o = text.rfind(open, at);
+            return o != std::string_view::npos && o > piece && (text.rfind(close, at) == std::string_view::npos ||
+                                                                text.rfind(close, at) < o);
+          };
+          if (inside("<CellData", "</CellData"))
+            tuples = count("NumberOfVerts") + count("NumberOfLines") + count("NumberOfStrips") + count("NumberOfPolys");
+          else if (inside("<PointData", "</PointData") || inside("<Points", "</Points"))
+            tuples = count("NumberOfPoints");
+        }
+        const bool fits = tuples >= 0 ? values == tuples * components
+                                      : std::fmod(static_cast<double>(values), components) == 0;
+        if (!fits)
+          throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " holds " +
+                                                   std::to_string(values) + " values, not " +
+                                                   (tuples >= 0 ? number_text(tuples) + " tuples of "
+                                                                : std::string("a multiple of ")) +
+                                                   number_text(components) + " components"));
       }
     }
     // The header of every inline binary array (base64) must fit the file before VTK sizes its buffers by it (a
