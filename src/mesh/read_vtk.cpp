@@ -148,7 +148,8 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
         const std::size_t end = text.find('>', at);
         const std::string_view tag = text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
         const std::size_t t = tag.find(" type=\"");
-        if (t == std::string_view::npos) continue;
+        if (t == std::string_view::npos)  // VTK 9.1 crashed on an array without a type too (the vtk fuzz harness)
+          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " without a type"));
         const std::size_t close = tag.find('"', t + 7);
         const std::string_view type = tag.substr(t + 7, close == std::string_view::npos ? 0 : close - t - 7);
         static const char* const kTypes[] = {"Int8",  "UInt8",  "Int16",   "UInt16",  "Int32", "UInt32",
