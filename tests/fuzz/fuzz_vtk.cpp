@@ -9,7 +9,7 @@
 // Oracles:
 //   (a) a refusal is one line of printable UTF-8 that starts with the file's path; so is every warning;
 //   (reader) an accepted Mesh is what read_vtk.h promises: faces of 3 or 4 corners, each a vertex; materials -1
-//       or an index; every material's Kd and Ke finite, or the Kd missing (a file without rho) with Ke 0;
+//       or an index; every material's Ke finite and its Kd finite unless missing (a file without rho);
 //   (b) validate_mesh accepts it or refuses it in one line (a), and what it accepts passes check_validated_mesh.
 #include <cstddef>
 #include <string>
@@ -33,11 +33,9 @@ void check_vtk_mesh(const Mesh& mesh) {
                        "face " + std::to_string(f) + ": material out of range");
   }
   for (const Material& m : mesh.materials) {
-    if (m.reflectance_missing) {
-      RADWALK_FUZZ_CHECK((m.Ke == 0).all(), "material '" + m.name + "': no rho field, but an emission");
-      continue;
-    }
-    RADWALK_FUZZ_CHECK(m.Kd.allFinite() && m.Ke.allFinite(), "material '" + m.name + "': rho or Ke not finite");
+    // A file without rho still gives its E (read_vtk.h): the missing Kd is what validation refuses, naming --set.
+    RADWALK_FUZZ_CHECK(m.Ke.allFinite(), "material '" + m.name + "': Ke not finite");
+    if (!m.reflectance_missing) RADWALK_FUZZ_CHECK(m.Kd.allFinite(), "material '" + m.name + "': rho not finite");
   }
 }
 
