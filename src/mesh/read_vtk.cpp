@@ -426,6 +426,30 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
       } else {
         require(size, true, std::string(key), line);
       }
+    } else if (key == "FIELD") {
+      // FIELD NAME n, then n arrays NAME components tuples TYPE of components x tuples values (a bad array
+      // header crashed VTK 9.1's legacy reader too; found by the vtk fuzz harness).
+      const double arrays = count_at(k + 2);
+      if (arrays < 0) throw InputError(locate(path, line, -1, "FIELD needs a name and a count of arrays"));
+      k += 3;
+      static const char* const kLegacyTypes[] = {"bit",  "unsigned_char", "char",   "unsigned_short", "short",
+                                                 "unsigned_int", "int", "unsigned_long", "long", "float",
+                                                 "double", "vtkIdType", "vtktypeint64", "vtktypeuint64"};
+      for (double a = 0; a < arrays; ++a) {
+        if (k + 3 >= tokens.size())
+          throw InputError(locate(path, line, -1, "FIELD ends before its " + number_text(arrays) + " arrays"));
+        const long at_line = tokens[k].line;
+        const double components = count_at(k + 1), tuples = count_at(k + 2);
+        const std::string_view type = tokens[k + 3].text;
+        bool known = false;
+        for (const char* t : kLegacyTypes) known = known || type == t;
+        if (components < 0 || tuples < 0 || !known)
+          throw InputError(locate(path, at_line, -1, "FIELD (line " + std::to_string(line) + "): the array '" +
+                                                         excerpt(tokens[k].text) +
+                                                         "' needs NAME COMPONENTS TUPLES TYPE with a numeric type"));
+        k += 4;
+        require(components * tuples, false, "FIELD array", at_line);
+      }
     } else if (key == "CELL_DATA" || key == "POINT_DATA") {
       return;  // the attributes after the geometry: VTK's own checks (no crash found there)
     } else {
