@@ -384,7 +384,14 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
     if (line_at > 3) tokens.push_back({bytes.substr(i, j - i), line_at});
     i = j;
   }
-  if (!(third_line.size() == 1 && third_line[0] == "ASCII")) return;
+  // VTK takes the file as ASCII when the third line starts with "ascii" in any case ("ASCII\\0" is ASCII).
+  const auto ascii_word = [](std::string_view w) {
+    if (w.size() < 5) return false;
+    for (std::size_t i = 0; i < 5; ++i)
+      if (std::tolower(static_cast<unsigned char>(w[i])) != "ascii"[i]) return false;
+    return true;
+  };
+  if (third_line.empty() || !ascii_word(third_line[0])) return;
   std::size_t k = 0;
   // Requires `count` tokens after k of the kind `whole` (else numbers), naming `what` and the line of its header.
   auto require = [&](double count, bool whole, const std::string& what, long header_line) {
