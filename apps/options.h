@@ -22,7 +22,7 @@ struct SceneOptions {
   bool strict = false;     // --strict: refuse what the readers and validation would repair
   double scale = 1;        // --scale S: coordinates times S (mesh/length_unit.h)
   std::string orient = "outward";  // --orient none|consistent|outward (mesh/orient_shells.h)
-  std::string open_shells = "one-sided";  // --open-shells one-sided|two-sided (mesh/validate.h)
+  std::string open_shells = "auto";  // --open-shells auto|one-sided|two-sided (mesh/validate.h OpenShellSides)
   std::string unit;        // --unit mm|cm|m|in|ft: the unit of the file's coordinates ("" not given)
   std::vector<std::string> set_material;  // --set MATERIAL.Kd=r,g,b / MATERIAL.Ke=...: material overrides
   double rho_scale = 1;    // --rho-scale s: every Kd times s (after --set)

@@ -36,6 +36,7 @@
 #include "io/vtp_writer.h"
 #include "mesh/length_unit.h"
 #include "mesh/material_override.h"
+#include "mesh/prepare_mesh.h"
 #include "mesh/read_scene.h"
 #include "mesh/t_junctions.h"
 #include "mesh/validate.h"
@@ -207,7 +208,6 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     });
     mesh = read_scene(options.scene, read);
     set_input_observer({});
-    scale_mesh(mesh, options.scale);
     if (!options.form_factors_input.empty()) {
       const std::uint64_t digest = file_bytes_digest(options.form_factors_input);
       input_bytes.add(digest);
@@ -219,12 +219,14 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
       if (!m.file.empty()) libraries.push_back({"the scene's material library", m.file});
     const std::string clash = check_distinct_files(options.outputs, libraries);
     if (!clash.empty()) throw InputError(clash);
-    apply_material_overrides(mesh, overrides, options.rho_scale);
-    ValidationTolerances tolerances;
-    tolerances.strict = options.strict;
-    tolerances.orient = parse_orient_mode(options.orient);
-    tolerances.open_shells_two_sided = options.open_shells == "two-sided";
-    validate_mesh(mesh, tolerances);
+    MeshPreparation preparation;
+    preparation.scale = options.scale;
+    preparation.overrides = overrides;
+    preparation.rho_scale = options.rho_scale;
+    preparation.tolerances.strict = options.strict;
+    preparation.tolerances.orient = parse_orient_mode(options.orient);
+    preparation.tolerances.open_shells = parse_open_shell_sides(options.open_shells);
+    prepare_mesh(mesh, preparation);
   } catch (const MeshRefused& e) {
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
     const std::vector<Finding>& all = e.findings();
@@ -271,12 +273,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
 
 }  // namespace
 
-LengthUnit length_unit(const SceneOptions& options) {
-  LengthUnit unit;
-  unit.file_unit = options.unit;
-  unit.scale = options.scale;
-  return unit;
-}
+LengthUnit length_unit(const SceneOptions& options) { return checked_length_unit(options.unit, options.scale); }
 
 Mesh load_validated_mesh(const SceneOptions& options, RunSummary& summary) {
   // Every rank reads and validates its own copy of the inputs, then the ranks compare what they read

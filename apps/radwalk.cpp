@@ -216,10 +216,11 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
       ->check(CLI::IsMember({"none", "consistent", "outward"}))
       ->capture_default_str();
   cmd->add_option("--open-shells", o.open_shells,
-                  "Faces of open shells (surfaces that enclose no volume: sheets, bottomless boxes): one-sided as "
+                  "Faces of open shells (surfaces that enclose no volume: sheets, bottomless boxes): auto (two-sided "
+                  "inside a closed room, where light reaches their backs; one-sided in an open scene), one-sided as "
                   "the file has them, or two-sided (a front and a back patch, so light reaching their backs is not "
                   "lost)")
-      ->check(CLI::IsMember({"one-sided", "two-sided"}))
+      ->check(CLI::IsMember({"auto", "one-sided", "two-sided"}))
       ->capture_default_str();
   cmd->add_flag("--strict", o.strict,
                 "Refuse what would be repaired (polygons of more than 4 corners, zero-area faces, bent or "

@@ -44,6 +44,11 @@ struct Scene {
   double max_edge = 0;
   double max_area = 0;
   bool strict = false;
+  std::string orient = "outward";     // --orient
+  std::string open_shells = "auto";   // --open-shells
+  double scale = 1;                   // --scale
+  std::string unit;                   // --unit as given ("" for none)
+  std::string length_unit = "mesh unit", radiosity_unit = "W per mesh unit^2";  // after scaling (length_unit.h)
   bool two_sided = false;    // every material two-sided (the CLI's --two-sided)
   bool contact_cut = false;  // faces cut along the footprints of objects standing on them (--contact-cut)
   PatchSet patches;

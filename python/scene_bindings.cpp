@@ -1,5 +1,6 @@
 // radwalk.load and the Scene type: the PatchSet of a validated, patched scene, with numpy views of its arrays.
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -9,7 +10,9 @@
 #include "bindings.h"
 #include "core/error.h"
 #include "interruptible.h"
+#include "mesh/material_override.h"
 #include "mesh/mesh_from_arrays.h"
+#include "mesh/prepare_mesh.h"
 #include "mesh/read_scene.h"
 #include "mesh/validate.h"
 #include "patch/patch_scene.h"
@@ -43,14 +46,14 @@ void keep_used_groups(const Mesh& mesh, Scene& scene) {
 // The Scene of a mesh: validated and patched as every CLI command does (validate_mesh, then patch_scene: the CLI's
 // load_patches without its notes); its repairs and notices are one UserWarning that counts them (the lines are in
 // Scene.warnings).
+// `preparation` is the CLI's scaling, material overrides and validation options (mesh/prepare_mesh.h).
 Scene patched_scene(std::function<Mesh()> read, const std::string& path, double max_edge, double max_area,
-                    bool strict, bool two_sided, bool contact_cut) {
+                    const MeshPreparation& preparation, bool two_sided, bool contact_cut) {
   Scene scene;
+  const bool strict = preparation.tolerances.strict;
   interruptible([&] {
     Mesh mesh = read();
-    ValidationTolerances tolerances;
-    tolerances.strict = strict;
-    validate_mesh(mesh, tolerances);
+    prepare_mesh(mesh, preparation);
     ScenePatchingOptions patching;
     patching.split.max_edge = max_edge;
     patching.split.max_area = max_area;
@@ -66,6 +69,8 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
   scene.max_edge = max_edge;
   scene.max_area = max_area;
   scene.strict = strict;
+  scene.orient = orient_mode_name(preparation.tolerances.orient);
+  scene.open_shells = open_shell_sides_name(preparation.tolerances.open_shells);
   scene.two_sided = two_sided;
   scene.contact_cut = contact_cut;
   if (!scene.warnings.empty()) {
@@ -78,18 +83,46 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
   return scene;
 }
 
-// Reads, validates and patches a scene file (load_scene's read, then patched_scene).
+// Reads, validates and patches a scene file (read_scene, then patched_scene with the CLI's reading options: the
+// same parsers and order as --orient, --open-shells, --scale, --unit, --set and --rho-scale).
 Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
-           bool contact_cut) {
+           bool contact_cut, const std::string& orient, const std::string& open_shells, double scale,
+           const py::object& unit, const py::object& set, double rho_scale) {
   const std::string path = file.string();
-  return patched_scene(
+  MeshPreparation preparation;
+  preparation.tolerances.strict = strict;
+  preparation.tolerances.orient = parse_orient_mode(orient);
+  preparation.tolerances.open_shells = parse_open_shell_sides(open_shells);
+  if (!unit.is_none() && !py::isinstance<py::str>(unit)) throw InputError("unit must be a str (mm, cm, m, in, ft) or None");
+  const LengthUnit length = checked_length_unit(unit.is_none() ? std::string() : unit.cast<std::string>(), scale);
+  preparation.scale = scale;
+  if (!(std::isfinite(rho_scale) && rho_scale >= 0)) throw InputError("rho_scale must be a finite number >= 0");
+  preparation.rho_scale = rho_scale;
+  if (!set.is_none()) {
+    // One "NAME.Kd=r,g,b" string or a list of them, each parsed as --set parses it.
+    if (py::isinstance<py::str>(set)) {
+      preparation.overrides.push_back(parse_material_override(set.cast<std::string>()));
+    } else {
+      for (const py::handle item : py::iter(set)) {
+        if (!py::isinstance<py::str>(item))
+          throw InputError("set: each override is a str 'NAME.Kd=r,g,b' or 'NAME.Ke=r,g,b', as the CLI's --set");
+        preparation.overrides.push_back(parse_material_override(item.cast<std::string>()));
+      }
+    }
+  }
+  Scene scene = patched_scene(
       [&] {
         if (!std::filesystem::exists(path)) throw InputError(path + ": no such file");
         ReadOptions read;
         read.strict = strict;
         return read_scene(path, read);
       },
-      path, max_edge, max_area, strict, two_sided, contact_cut);
+      path, max_edge, max_area, preparation, two_sided, contact_cut);
+  scene.scale = scale;
+  scene.unit = length.file_unit;
+  scene.length_unit = length.length();
+  scene.radiosity_unit = length.radiosity();
+  return scene;
 }
 
 // A float64 array of shape (rows, columns) from any array-like (a (rows,) array or a number is repeated over the
@@ -172,8 +205,10 @@ Scene scene_from_arrays(const py::object& vertices, const py::object& faces, con
       arrays.group.push_back(g.cast<std::string>());
     }
   }
+  MeshPreparation preparation;
+  preparation.tolerances.strict = strict;
   return patched_scene([&] { ReadOptions read; read.strict = strict; return mesh_from_arrays(arrays, name, read); },
-                       name, max_edge, max_area, strict, two_sided, contact_cut);
+                       name, max_edge, max_area, preparation, two_sided, contact_cut);
 }
 
 namespace {
@@ -271,6 +306,13 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
                     "The max_area it was patched with (float, mesh length units squared; 0: no bound).")
       .def_readonly("strict", &Scene::strict, "Whether repairs were refused (bool), as the CLI's --strict.")
       .def_readonly("two_sided", &Scene::two_sided, "Whether every material was made two-sided (bool), as --two-sided.")
+      .def_readonly("orient", &Scene::orient, "The orientation it was read with (str), as --orient.")
+      .def_readonly("open_shells", &Scene::open_shells, "The sides given to open shells (str), as --open-shells.")
+      .def_readonly("scale", &Scene::scale, "The factor every coordinate was multiplied by (float), as --scale.")
+      .def_readonly("unit", &Scene::unit, "The file's unit as given (str; \"\" for the file's own), as --unit.")
+      .def_readonly("length_unit", &Scene::length_unit,
+                    "The unit of lengths after scaling (str: \"m\", \"mesh unit\", ...), as the CLI's summaries name it.")
+      .def_readonly("radiosity_unit", &Scene::radiosity_unit, "The unit of B (str: \"W/m^2\", ...).")
       .def_readonly("contact_cut", &Scene::contact_cut,
                     "Whether faces were cut along the footprints of objects standing on them (bool), as --contact-cut.")
       .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, a list of str, one line each (as the CLI's).")
@@ -368,6 +410,8 @@ set_radiometry_from_materials), so per-patch edits of rho or E made before are r
 
   m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0,
         py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = false,
+        py::arg("orient") = "outward", py::arg("open_shells") = "auto", py::arg("scale") = 1.0,
+        py::arg("unit") = py::none(), py::arg("set") = py::none(), py::arg("rho_scale") = 1.0,
         R"doc(Reads, validates and patches a scene (OBJ with MTL, PLY, STL, glTF/GLB, .vtp/.vtk): a Scene.
 
 max_edge: split faces until no patch edge is longer than this (mesh units); 0 keeps the input faces (patch i is
@@ -378,6 +422,16 @@ two_sided: every material two-sided (a front and a back patch per face), as --tw
   `radwalk_two_sided 1` in their MTL block are two-sided either way.
 contact_cut: cut the faces that objects stand on along their footprints before splitting (only when max_edge or
   max_area splits faces), as --contact-cut.
+orient: "outward" (faces agree with their shells' neighbours, closed objects face out, the enclosing room in),
+  "consistent" or "none", as --orient.
+open_shells: "auto" (two-sided inside a closed room, one-sided in an open scene), "one-sided" or "two-sided", as
+  --open-shells.
+scale: every coordinate times this before anything else (lengths, areas, max_edge and B in the scaled unit), as
+  --scale; unit: the file's unit ("mm", "cm", "m", "in", "ft" or None), as --unit; the unit after scaling is
+  Scene.length_unit, that of B Scene.radiosity_unit.
+set: material overrides, one str or a list of them, "NAME.Kd=r,g,b" or "NAME.Ke=r,g,b" (one number: grey), as
+  --set (the only way to give STL solids and VTK surfaces without rho their reflectance); rho_scale: every Kd
+  times this after the overrides, as --rho-scale.
 Repairs are reported as one UserWarning that counts them and kept in Scene.warnings; refusals raise radwalk.InputError (a
 ValueError) with the CLI's one-line message ("FILE:LINE: face F: what is wrong").)doc");
 }

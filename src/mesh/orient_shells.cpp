@@ -138,7 +138,7 @@ OrientationResult orient_shells(Mesh& mesh, OrientMode mode) {
   // The room: a closed shell whose box holds every other shell's, with a point of another shell inside it (or the
   // only shell).
   std::vector<char> room(m, 0);
-  if (mode == OrientMode::outward) {
+  {
     Vec3 all_lo = lo[0], all_hi = hi[0];
     for (std::size_t s = 1; s < m; ++s) {
       all_lo = all_lo.cwiseMin(lo[s]);
@@ -172,7 +172,8 @@ OrientationResult orient_shells(Mesh& mesh, OrientMode mode) {
   // Decide each shell's orientation and flip.
   for (std::size_t s = 0; s < m; ++s) {
     out.closed_shells += closed[s];
-    out.rooms += room[s];
+    out.enclosing_shells += room[s];
+    if (mode == OrientMode::outward) out.rooms += room[s];
     if (!orientable[s]) {
       ++out.non_orientable;
       out.non_orientable_faces.push_back(members[s][0]);

@@ -44,6 +44,9 @@ struct OpenShell {
 
 struct OrientationResult {
   std::size_t shells = 0, closed_shells = 0, rooms = 0, non_orientable = 0;
+  // Closed shells that enclose the rest of the scene (the room's test above, in every mode; rooms counts those
+  // turned in, by outward only).
+  std::size_t enclosing_shells = 0;
   std::size_t flipped_faces = 0;
   double flipped_area = 0;
   std::vector<std::size_t> flipped;           // the faces flipped (mesh order)

@@ -291,13 +291,36 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
   mesh.group_object = scan.group_object;
   mesh.group_name = scan.group_name;
   PolygonFaces faces(mesh, options.strict);
+  // Materials that usemtl names but no library defines (given the default unless strict): the material, its first
+  // face and usemtl statement, and how many faces use it.
+  struct MissingMaterial {
+    int material;
+    std::size_t first_face;
+    std::int32_t usemtl;
+    std::size_t faces;
+  };
+  std::vector<MissingMaterial> missing;
   for (std::size_t f = 0; f < n_faces; ++f) {
     const ScannedFace& sf = scan.faces[f];
     std::int32_t material = -1;
     bool refused = false;
     if (sf.usemtl >= 0) {
       const NamedLine& use = scan.usemtl[static_cast<std::size_t>(sf.usemtl)];
-      const auto it = by_name.find(use.name);
+      auto it = by_name.find(use.name);
+      if (it == by_name.end() && !options.strict) {
+        // Not in any library: the faces get the default material (rho 0.5, no emission, as a face without
+        // material) under the name they use, so that --set NAME.Kd=r,g,b reaches them; one warning per name.
+        Material d;
+        d.name = use.name;
+        d.Kd = Rgb::Constant(0.5);
+        const int index = static_cast<int>(mesh.materials.size());
+        mesh.materials.push_back(d);
+        it = by_name.emplace(use.name, index).first;
+        missing.push_back({index, f, sf.usemtl, 0});
+      }
+      if (it != by_name.end())
+        for (MissingMaterial& m : missing)
+          if (m.material == it->second) ++m.faces;
       if (it == by_name.end()) {
         std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
         for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
@@ -320,6 +343,22 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
     // A refused face is left out (the scene is refused after validation, with every finding).
     if (refused) continue;
     faces.add(sf.v, sf.line, material, sf.group, static_cast<std::int32_t>(f));
+  }
+
+  for (const MissingMaterial& m : missing) {
+    const NamedLine& use = scan.usemtl[static_cast<std::size_t>(m.usemtl)];
+    std::string where = libraries.empty() ? std::string("no mtllib statement") : "not in ";
+    for (std::size_t l = 0; l < libraries.size(); ++l) where += (l ? ", " : "") + libraries[l];
+    const ScannedFace& first = scan.faces[m.first_face];
+    Finding given = mesh.finding_of(static_cast<long>(m.first_face), use.line, m.material, first.group,
+                                    "unknown material given the default", Severity::repair,
+                                    "unknown material '" + excerpt(use.name) + "' (usemtl at line " +
+                                        std::to_string(use.line) + ": " + where + "): its " +
+                                        std::to_string(m.faces) + (m.faces == 1 ? " face gets" : " faces get") +
+                                        " the default material (rho 0.5, no emission) under that name; --set '" +
+                                        excerpt(use.name) + ".Kd=r,g,b' sets it (--strict refuses it)");
+    given.material = use.name;
+    mesh.findings.push_back(given);
   }
 
   if (scan.ignored_elements > 0)

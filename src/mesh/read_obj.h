@@ -18,9 +18,11 @@
 // read. Everything else is collected, so that one run reports every finding: as error findings naming file, line
 // and face (mesh.findings; the face is left out and validate_mesh refuses the scene with every other finding): a
 // vertex without three numbers (kept as a NaN vertex so that the numbering holds), a corner that is not an index,
-// index 0, a relative index before the first vertex, an index too large, an unknown usemtl name (when a face uses
-// it); as repairs (polygon_faces.h; refusals with options.strict): a face of fewer than 3 corners, repeated
-// corners. Non-finite coordinates are kept (validate_mesh refuses the faces that use them).
+// index 0, a relative index before the first vertex, an index too large, and with options.strict an unknown
+// usemtl name (per face that uses it); as repairs (refusals with options.strict): a face of fewer than 3 corners,
+// repeated corners (polygon_faces.h), and an unknown usemtl name, whose faces get the default material (Kd 0.5, no
+// emission, as validate_mesh gives a face without material) under that name, one repair per name naming its first
+// usemtl line, the libraries searched and the count of faces. Non-finite coordinates are kept (validate_mesh refuses the faces that use them).
 // tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
 // reader here.
 // Out-of-range vertex indices are kept and reported by validate_mesh.

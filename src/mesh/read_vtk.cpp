@@ -1,12 +1,15 @@
 #include "mesh/read_vtk.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
 #include <cctype>
 #include <tuple>
+#include <vector>
 
 #include <vtkAbstractArray.h>
 #include <vtkCellArray.h>
@@ -93,6 +96,23 @@ class CaptureScope {
   vtkSmartPointer<CapturingOutputWindow> window_;
 };
 
+// The legacy keyword a token stands for, as VTK's legacy reader matches it: the token lowercased starts with the
+// keyword (VTK compares the keyword's length only: "POLYGONS`1" is POLYGONS); "" for none.
+std::string legacy_keyword(std::string_view token) {
+  static const char* const kKeywords[] = {"POINTS",   "POLYGONS", "TRIANGLE_STRIPS", "VERTICES",  "LINES",
+                                          "OFFSETS",  "CONNECTIVITY", "CELL_DATA", "POINT_DATA", "FIELD",
+                                          "SCALARS", "COLOR_SCALARS"};
+  for (const char* k : kKeywords) {
+    const std::string_view key(k);
+    if (token.size() < key.size()) continue;
+    bool same = true;
+    for (std::size_t i = 0; i < key.size() && same; ++i)
+      same = std::toupper(static_cast<unsigned char>(token[i])) == key[i];
+    if (same) return k;
+  }
+  return "";
+}
+
 // The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
 void check_declared_counts(const std::string& path, std::string_view bytes, bool xml) {
   const double size = static_cast<double>(bytes.size());
@@ -121,6 +141,163 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
       else
         largest_count = std::max(largest_count, *n);
     }
+    // Every array's type is one VTK knows: VTK 9.1's XML reader dereferences the array it could not create for
+    // another (a DataArray of type "Int28" crashed it; found by the vtk fuzz harness).
+    for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
+      for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
+        const std::size_t end = text.find('>', at);
+        const std::string_view tag = text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
+        const std::size_t t = tag.find(" type=\"");
+        if (t == std::string_view::npos)  // VTK 9.1 crashed on an array without a type too (the vtk fuzz harness)
+          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " without a type"));
+        const std::size_t close = tag.find('"', t + 7);
+        const std::string_view type = tag.substr(t + 7, close == std::string_view::npos ? 0 : close - t - 7);
+        static const char* const kTypes[] = {"Int8",  "UInt8",  "Int16",   "UInt16",  "Int32", "UInt32",
+                                             "Int64", "UInt64", "Float32", "Float64", "String"};
+        bool known = false;
+        for (const char* k : kTypes) known = known || type == k;
+        if (!known)
+          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " of type \"" + excerpt(type) +
+                                                   "\": not one of Int8, UInt8, Int16, UInt16, Int32, UInt32, "
+                                                   "Int64, UInt64, Float32, Float64, String"));
+        // An ascii array holds numbers only (whole ones but for Float32 and Float64; a String array its bytes):
+        // VTK 9.1's XML reader crashed on a word among an ascii array's numbers (found by the vtk fuzz harness).
+        if (end == std::string_view::npos || tag.find("format=\"ascii\"") == std::string_view::npos) continue;
+        const std::size_t stop = text.find('<', end + 1);
+        const std::string_view content =
+            text.substr(end + 1, stop == std::string_view::npos ? std::string_view::npos : stop - end - 1);
+        const bool real = type == "Float32" || type == "Float64";
+        std::size_t values = 0;
+        for (std::size_t i = 0; i < content.size();) {
+          if (std::isspace(static_cast<unsigned char>(content[i]))) {
+            ++i;
+            continue;
+          }
+          std::size_t j = i;
+          while (j < content.size() && !std::isspace(static_cast<unsigned char>(content[j]))) ++j;
+          const std::string_view token = content.substr(i, j - i);
+          if (real ? !parse_double(token) : !parse_long(token))
+            throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " of type " +
+                                                     std::string(type) + " holds '" + excerpt(token) + "', not " +
+                                                     (real ? "a number" : "a whole number")));
+          i = j;
+          ++values;
+        }
+        // As many values as the array declares: a multiple of its components, its tuples when it names them, and
+        // in a piece's CellData one tuple per cell, in its PointData and Points one per point (a short E array
+        // crashed VTK 9.1's XML reader too; found by the vtk fuzz harness).
+        const auto attribute = [&](const char* name) -> double {
+          const std::size_t a = tag.find(std::string(" ") + name + "=\"");
+          if (a == std::string_view::npos) return -1;
+          const std::size_t v = a + std::strlen(name) + 3, e = tag.find('"', v);
+          const auto n = parse_double(tag.substr(v, e == std::string_view::npos ? 0 : e - v));
+          return n && *n >= 0 ? *n : -1;
+        };
+        if (type == "String") continue;  // its values are the bytes of its strings, not tuples
+        const double components = std::max(1.0, attribute("NumberOfComponents"));
+        double tuples = attribute("NumberOfTuples");
+        const std::size_t piece = text.rfind("<Piece", at);
+        if (tuples < 0 && piece != std::string_view::npos) {
+          const std::size_t piece_end = text.find('>', piece);
+          const std::string_view piece_tag = text.substr(piece, piece_end == std::string_view::npos ? 0 : piece_end - piece);
+          const auto count = [&](const char* name) {
+            const std::size_t a = piece_tag.find(std::string(name) + "=\"");
+            if (a == std::string_view::npos) return 0.0;
+            const std::size_t v = a + std::strlen(name) + 2, e = piece_tag.find('"', v);
+            const auto n = parse_double(piece_tag.substr(v, e == std::string_view::npos ? 0 : e - v));
+            return n && *n >= 0 ? *n : 0.0;
+          };
+          const auto inside = [&](const char* open, const char* close) {
+            const std::size_t o = text.rfind(open, at);
+            return o != std::string_view::npos && o > piece && (text.rfind(close, at) == std::string_view::npos ||
+                                                                text.rfind(close, at) < o);
+          };
+          if (inside("<CellData", "</CellData"))
+            tuples = count("NumberOfVerts") + count("NumberOfLines") + count("NumberOfStrips") + count("NumberOfPolys");
+          else if (inside("<PointData", "</PointData") || inside("<Points", "</Points"))
+            tuples = count("NumberOfPoints");
+        }
+        const bool fits = tuples >= 0 ? values == tuples * components
+                                      : std::fmod(static_cast<double>(values), components) == 0;
+        if (!fits)
+          throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " holds " +
+                                                   std::to_string(values) + " values, not " +
+                                                   (tuples >= 0 ? number_text(tuples) + " tuples of "
+                                                                : std::string("a multiple of ")) +
+                                                   number_text(components) + " components"));
+      }
+    }
+    // The header of every inline binary array (base64) must fit the file before VTK sizes its buffers by it (a
+    // mutated block size made VTK 9.1 allocate petabytes; found by the vtk fuzz harness): uncompressed, its byte
+    // count at most the file's bytes; compressed, the number of blocks (each with a header word in the file) at
+    // most the file's words, the block sizes at most 1032 (zlib's largest ratio) times the file's bytes and each
+    // block's compressed size at most the file's bytes.
+    const bool wide = text.find("header_type=\"UInt64\"") != std::string_view::npos;
+    for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
+      for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
+        const std::size_t end = text.find('>', at);
+        if (end == std::string_view::npos) break;
+        if (text.substr(at, end - at).find("format=\"binary\"") == std::string_view::npos) continue;
+        std::size_t k = end + 1;
+        while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+        const std::size_t word_bytes = wide ? 8 : 4;
+        // The little-endian words of the header (the base64 text decoded as far as needed); false when the text is
+        // not base64 that far (VTK refuses it).
+        std::vector<double> words;
+        auto decode = [&](std::size_t n_words) {
+          words.clear();
+          std::vector<unsigned char> raw;
+          const std::size_t need = n_words * word_bytes;
+          for (std::size_t q = k; raw.size() < need; q += 4) {
+            if (q + 4 > text.size()) return false;
+            std::uint32_t v = 0;
+            for (std::size_t c = 0; c < 4; ++c) {
+              const char ch = text[q + c];
+              int d = -1;
+              if (ch >= 'A' && ch <= 'Z') d = ch - 'A';
+              else if (ch >= 'a' && ch <= 'z') d = ch - 'a' + 26;
+              else if (ch >= '0' && ch <= '9') d = ch - '0' + 52;
+              else if (ch == '+') d = 62;
+              else if (ch == '/') d = 63;
+              else if (ch == '=') d = 0;  // the header's own padding: the words needed end before it
+              if (d < 0) return false;
+              v = (v << 6) | static_cast<std::uint32_t>(d);
+            }
+            raw.push_back(static_cast<unsigned char>(v >> 16));
+            raw.push_back(static_cast<unsigned char>(v >> 8));
+            raw.push_back(static_cast<unsigned char>(v));
+          }
+          for (std::size_t w = 0; w < n_words; ++w) {
+            double x = 0;
+            for (std::size_t b = word_bytes; b-- > 0;) x = x * 256 + raw[w * word_bytes + b];
+            words.push_back(x);
+          }
+          return true;
+        };
+        auto refuse = [&](double value, const char* what) {
+          throw InputError(locate(path, 0, -1, "a binary " + std::string(element.substr(1)) + "'s header declares " +
+                                                   number_text(value) + what + ", more than its " +
+                                                   std::to_string(bytes.size()) +
+                                                   " bytes can hold (truncated file or wrong count)"));
+        };
+        if (!decode(1)) continue;
+        if (!compressed) {
+          if (words[0] > size) refuse(words[0], " bytes");
+          continue;
+        }
+        // Compressed: [blocks, block size, last block's size, compressed size of each block].
+        const double blocks = words[0];
+        if (blocks > size / static_cast<double>(word_bytes)) refuse(blocks, " compressed blocks");
+        if (!decode(3 + static_cast<std::size_t>(blocks))) continue;
+        // VTK divides by the block size (a block size of 0 stopped it with a floating-point exception; found by the
+        // vtk fuzz harness).
+        if (blocks > 0 && !(words[1] > 0))
+          throw InputError(locate(path, 0, -1, "a binary " + std::string(element.substr(1)) +
+                                                   "'s header declares compressed blocks of 0 bytes"));
+        for (std::size_t w = 1; w < words.size(); ++w)
+          if (words[w] > (w < 3 ? kZlibMaxRatio : 1.0) * size) refuse(words[w], w < 3 ? " bytes in a block" : " compressed bytes");
+      }
+    }
     const double bound = (compressed ? kZlibMaxRatio : 1.0) * size;
     if (largest_count * largest_components > bound)
       throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
@@ -136,7 +313,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     line_number = line;
     const auto tokens = split_tokens(content);
     if (tokens.empty()) return;
-    const std::string_view key = tokens[0];
+    const std::string key = legacy_keyword(tokens[0]);
     std::vector<double> counts;
     auto number = [&](std::size_t k) {
       if (k >= tokens.size()) return;
@@ -172,6 +349,120 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
                                              number_text(largest_components) + " components, more than its " +
                                              std::to_string(bytes.size()) + " bytes can hold"));
+}
+
+// An ASCII legacy file's geometry sections hold what their headers say, before VTK reads them: POINTS n TYPE is
+// followed by 3 n numbers; POLYGONS, TRIANGLE_STRIPS, VERTICES and LINES n size by `size` whole numbers >= 0 (the
+// format of version 5.1 instead by OFFSETS TYPE and CONNECTIVITY TYPE sections of whole numbers >= 0, of n and
+// size). VTK 9.1's legacy reader, given a section whose numbers do not parse (a word among a polygon's indices),
+// goes on reading the stream it closed and crashes (found by the vtk fuzz harness); the first section that is
+// short or holds something else is refused here in one line naming its line. The header's first three lines (the
+// version, the title, ASCII) are not sections.
+void check_ascii_legacy_sections(const std::string& path, std::string_view bytes) {
+  // The tokens as VTK's reader sees them: separated by white space, lines by '\n' (views into bytes).
+  struct Token {
+    std::string_view text;
+    long line;
+  };
+  std::vector<Token> tokens;
+  std::vector<std::string_view> third_line;
+  long line_at = 1;
+  for (std::size_t i = 0; i < bytes.size();) {
+    const char c = bytes[i];
+    if (c == '\n') {
+      ++line_at;
+      ++i;
+      continue;
+    }
+    if (std::isspace(static_cast<unsigned char>(c))) {
+      ++i;
+      continue;
+    }
+    std::size_t j = i;
+    while (j < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[j]))) ++j;
+    if (line_at == 3) third_line.push_back(bytes.substr(i, j - i));
+    if (line_at > 3) tokens.push_back({bytes.substr(i, j - i), line_at});
+    i = j;
+  }
+  // VTK takes the file as ASCII when the third line starts with "ascii" in any case ("ASCII\\0" is ASCII).
+  const auto ascii_word = [](std::string_view w) {
+    if (w.size() < 5) return false;
+    for (std::size_t i = 0; i < 5; ++i)
+      if (std::tolower(static_cast<unsigned char>(w[i])) != "ascii"[i]) return false;
+    return true;
+  };
+  if (third_line.empty() || !ascii_word(third_line[0])) return;
+  std::size_t k = 0;
+  // Requires `count` tokens after k of the kind `whole` (else numbers), naming `what` and the line of its header.
+  auto require = [&](double count, bool whole, const std::string& what, long header_line) {
+    for (double i = 0; i < count; ++i, ++k) {
+      if (k >= tokens.size())
+        throw InputError(locate(path, header_line, -1, what + " ends before its " + number_text(count) +
+                                                           (whole ? " indices" : " numbers")));
+      const bool ok = whole ? parse_long(tokens[k].text).value_or(-1) >= 0 : parse_double(tokens[k].text).has_value();
+      if (!ok)
+        throw InputError(locate(path, tokens[k].line, -1,
+                                what + " (line " + std::to_string(header_line) + "): '" + excerpt(tokens[k].text) +
+                                    "' is not " + (whole ? "a whole number >= 0" : "a number")));
+    }
+  };
+  auto count_at = [&](std::size_t at) -> double {
+    if (at >= tokens.size()) return -1;
+    const auto n = parse_double(tokens[at].text);
+    return n && *n >= 0 && *n == std::floor(*n) ? *n : -1;
+  };
+  while (k < tokens.size()) {
+    const std::string key = legacy_keyword(tokens[k].text);
+    const long line = tokens[k].line;
+    if (key == "POINTS") {
+      const double n = count_at(k + 1);
+      if (n < 0) throw InputError(locate(path, line, -1, "POINTS needs a count"));
+      k += 3;  // POINTS n TYPE
+      require(3 * n, false, "POINTS", line);
+    } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES") {
+      const double n = count_at(k + 1), size = count_at(k + 2);
+      if (n < 0 || size < 0) throw InputError(locate(path, line, -1, std::string(key) + " needs two counts"));
+      k += 3;
+      if (k < tokens.size() && legacy_keyword(tokens[k].text) == "OFFSETS") {  // version 5.1: n offsets, size connectivity
+        k += 2;
+        require(n, true, std::string(key) + " OFFSETS", line);
+        if (k >= tokens.size() || legacy_keyword(tokens[k].text) != "CONNECTIVITY")
+          throw InputError(locate(path, line, -1, std::string(key) + ": OFFSETS is not followed by CONNECTIVITY"));
+        k += 2;
+        require(size, true, std::string(key) + " CONNECTIVITY", line);
+      } else {
+        require(size, true, std::string(key), line);
+      }
+    } else if (key == "FIELD") {
+      // FIELD NAME n, then n arrays NAME components tuples TYPE of components x tuples values (a bad array
+      // header crashed VTK 9.1's legacy reader too; found by the vtk fuzz harness).
+      const double arrays = count_at(k + 2);
+      if (arrays < 0) throw InputError(locate(path, line, -1, "FIELD needs a name and a count of arrays"));
+      k += 3;
+      static const char* const kLegacyTypes[] = {"bit",  "unsigned_char", "char",   "unsigned_short", "short",
+                                                 "unsigned_int", "int", "unsigned_long", "long", "float",
+                                                 "double", "vtkIdType", "vtktypeint64", "vtktypeuint64"};
+      for (double a = 0; a < arrays; ++a) {
+        if (k + 3 >= tokens.size())
+          throw InputError(locate(path, line, -1, "FIELD ends before its " + number_text(arrays) + " arrays"));
+        const long at_line = tokens[k].line;
+        const double components = count_at(k + 1), tuples = count_at(k + 2);
+        const std::string_view type = tokens[k + 3].text;
+        bool known = false;
+        for (const char* t : kLegacyTypes) known = known || type == t;
+        if (components < 0 || tuples < 0 || !known)
+          throw InputError(locate(path, at_line, -1, "FIELD (line " + std::to_string(line) + "): the array '" +
+                                                         excerpt(tokens[k].text) +
+                                                         "' needs NAME COMPONENTS TUPLES TYPE with a numeric type"));
+        k += 4;
+        require(components * tuples, false, "FIELD array", at_line);
+      }
+    } else if (key == "CELL_DATA" || key == "POINT_DATA") {
+      return;  // the attributes after the geometry: VTK's own checks (no crash found there)
+    } else {
+      ++k;
+    }
+  }
 }
 
 vtkSmartPointer<vtkPolyData> parse(const std::string& path, std::string_view bytes, bool xml) {
@@ -245,6 +536,7 @@ Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options) {
 
 Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bool xml, const ReadOptions& options) {
   check_declared_counts(path, bytes, xml);
+  if (!xml) check_ascii_legacy_sections(path, bytes);
   const vtkSmartPointer<vtkPolyData> data = parse(path, bytes, xml);
   Mesh mesh;
   mesh.path = path;
@@ -339,8 +631,7 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
       mesh.materials[static_cast<std::size_t>(material_for(cell))].two_sided = true;
       return;
     }
-    const std::int32_t material = material_for(cell);
-    if (side) mesh.materials[static_cast<std::size_t>(material)].two_sided = true;
+    const std::int32_t material = material_for(cell);  // two-sided only if a back cell has its material
     std::vector<std::int32_t> corners;
     for (const std::int32_t p : without_straight_corners(point_ids, points))
       corners.push_back(vertex_of[static_cast<std::size_t>(p)]);

@@ -20,6 +20,10 @@
 // Bounded: before VTK parses anything, every count the file declares (NumberOf... attributes of a .vtp; the counts
 // after POINTS, POLYGONS, TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays of a .vtk) times
 // the largest component count must fit the file's bytes (times 1032, zlib's largest ratio, for a compressed .vtp).
+// Checked too before VTK reads the file, since VTK 9.1's readers crash on them (each found by the vtk fuzz harness,
+// tests/fuzz/fuzz_vtk.cpp): in an ASCII .vtk, the numbers of the POINTS and cell sections (keywords matched by
+// prefix, as VTK matches them); in a .vtp, every array's type (one VTK knows), the numbers of every ascii array,
+// and the header of every inline binary array (block count, block sizes > 0, sizes within the file).
 // A VTK error is one InputError naming the file and VTK's own message; face f is the f-th surface cell.
 #include <string>
 #include <string_view>

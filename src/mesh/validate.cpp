@@ -305,7 +305,9 @@ double scene_diagonal(const Mesh& mesh) {
 // Step (a repair unless strict): faces without area are dropped (they carry no power); quads bent beyond the
 // planarity limit, non-convex, or whose area is ambiguous beyond tol.area_ambiguity, are split into two triangles
 // along the better diagonal (triangulate.h). A self-intersecting quad (a bow-tie) is split at its crossing into its
-// two lobes (polygon_crossings.h) when it is planar; otherwise it is left to check_face_geometry, which refuses it.
+// two lobes (polygon_crossings.h) when it is planar; a folded one off its plane (vector area below half its area)
+// along the diagonal whose two triangles, each with area, turn the Newell normal's way (split_quad: they do not
+// overlap seen along it); one neither splits is left to check_face_geometry, which refuses it.
 void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   if (tol.strict) return;  // check_face_geometry refuses what would be repaired here
   const double diagonal = scene_diagonal(mesh);
@@ -360,6 +362,30 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
                 split_message("quad", pieces, triangles->size()) +
                     new_vertices(mesh.vertices.size() - pieces.new_points.size(), mesh.vertices.size()) +
                     " (--strict refuses it)");
+        continue;
+      }
+    }
+    if (!split && folded) {
+      // Folded off its plane (a bow-tie in some projection, not in its own plane): the diagonal whose two
+      // triangles both turn the Newell normal's way (split_quad), so that seen along that normal they lie on
+      // either side of the diagonal and do not overlap, each with area; its two triangles are the area as drawn.
+      const auto fold = split_quad(p);
+      auto triangle_area = [&](const std::array<std::int32_t, 3>& t) {
+        const Vec3& a = p[static_cast<std::size_t>(t[0])];
+        return 0.5 * (p[static_cast<std::size_t>(t[1])] - a).cross(p[static_cast<std::size_t>(t[2])] - a).norm();
+      };
+      if (fold && triangle_area((*fold)[0]) > min_area && triangle_area((*fold)[1]) > min_area) {
+        for (const auto& t : *fold)
+          keep(f, {mesh.faces[f][static_cast<std::size_t>(t[0])], mesh.faces[f][static_cast<std::size_t>(t[1])],
+                   mesh.faces[f][static_cast<std::size_t>(t[2])], -1});
+        changed = true;
+        log.add("folded quad split", Severity::repair, f,
+                "folded quad split into two triangles along its diagonal " +
+                    std::string((*fold)[0][0] == 0 ? "0-2" : "1-3") + " (vector area " +
+                    fmt(face_vector_area(mesh, f).norm()) + " below half its area " + fmt(area) +
+                    ": its outline folds over itself; the triangles, of area " +
+                    fmt(triangle_area((*fold)[0]) + triangle_area((*fold)[1])) +
+                    ", do not overlap seen along its normal; --strict refuses it)");
         continue;
       }
     }
@@ -547,7 +573,9 @@ void orient_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) 
                        std::to_string(r.closed_shells) + " closed, " + std::to_string(r.rooms) +
                        " enclosing the scene and facing in; --orient none keeps the file's orientation)");
   }
-  if (tol.open_shells_two_sided && !r.open_shell_faces.empty()) {
+  const bool two_sided = tol.open_shells == OpenShellSides::two_sided ||
+                         (tol.open_shells == OpenShellSides::automatic && r.enclosing_shells > 0);
+  if (two_sided && !r.open_shell_faces.empty()) {
     std::map<std::int32_t, std::int32_t> two_sided_of;  // material -> its two-sided copy
     for (std::size_t f : r.open_shell_faces) {
       std::int32_t& m = mesh.face_material[f];
@@ -563,7 +591,11 @@ void orient_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) 
     }
     log.add_global("open shells made two-sided", Severity::warning,
                    std::to_string(r.open_shell_faces.size()) + " faces of " + std::to_string(r.open_shells.size()) +
-                       " open shells made two-sided (--open-shells two-sided): each a front and a back patch");
+                       " open shells made two-sided (--open-shells " + open_shell_sides_name(tol.open_shells) +
+                       (tol.open_shells == OpenShellSides::automatic
+                            ? ": in a closed room, where the light reaches their backs"
+                            : "") +
+                       "): each a front and a back patch; --open-shells one-sided keeps them one-sided");
     return;
   }
   for (const OpenShell& o : r.open_shells)
@@ -733,6 +765,22 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
 }
 
 }  // namespace
+
+const char* open_shell_sides_name(OpenShellSides sides) {
+  switch (sides) {
+    case OpenShellSides::automatic: return "auto";
+    case OpenShellSides::one_sided: return "one-sided";
+    case OpenShellSides::two_sided: return "two-sided";
+  }
+  return "?";
+}
+
+OpenShellSides parse_open_shell_sides(const std::string& name) {
+  if (name == "auto") return OpenShellSides::automatic;
+  if (name == "one-sided") return OpenShellSides::one_sided;
+  if (name == "two-sided") return OpenShellSides::two_sided;
+  throw InputError("--open-shells: '" + name + "' is not one of auto, one-sided, two-sided");
+}
 
 std::vector<std::string> validation_lines(const std::vector<Finding>& findings, std::size_t per_kind) {
   return grouped_lines(findings, {Severity::repair, Severity::warning}, per_kind);

@@ -15,7 +15,7 @@
 //   degenerate face (area <= degenerate_area * D^2, D = diagonal of the scene's bounding box), non-planar quad
 //   (quad_nonplanarity > planar_error), non-convex quad (quad_min_turn_sine < -convex_sine), area-ambiguous quad
 //   (quad area ambiguity > area_ambiguity, below); self-intersecting quad (bow-tie); repeated corners; duplicate
-//   faces; always: a bow-tie off its plane; material index out of range; reflectance Kd outside [0, 1) or
+//   faces; always: a bow-tie off its plane that neither diagonal splits; material index out of range; reflectance Kd outside [0, 1) or
 //   emission Ke negative, not finite or above 1e300, for a material some face uses; a used material without
 //   reflectance (Material::reflectance_missing: an STL solid, a VTK surface without rho), naming the --set that
 //   gives one.
@@ -27,7 +27,10 @@
 //   face without material -> material "radwalk_default" (rho 0.5, no emission); degenerate face dropped;
 //   non-planar, non-convex or area-ambiguous quad split into two triangles along the better diagonal; a planar
 //   self-intersecting quad (a bow-tie) split at its crossing into its two lobes (polygon_crossings.h: a new vertex
-//   there, both facing along the quad's dominant normal).
+//   there, both facing along the quad's dominant normal); a folded quad off its plane (vector area below half its
+//   area, a bow-tie in projection) split along the diagonal whose two triangles both have area and turn the Newell
+//   normal's way, so that they do not overlap seen along it (the two triangles are its area as drawn); refused
+//   when neither diagonal gives such triangles.
 // Orientation (orient_shells.h, tolerances.orient): faces flipped to agree with their shells and closed shells
 //   turned outward (the room inward): one warning with the count, area and objects; non-orientable shells a
 //   warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
@@ -43,10 +46,29 @@
 // The area ambiguity of a quad (face_geometry.h): its bilinear surface (where its patches lie) and its two
 // triangulations differ in area by at most ambiguity x area, so a validated quad's patches add up to its area
 // within area_ambiguity.
+#include <string>
+
 #include "mesh/mesh.h"
 #include "mesh/orient_shells.h"
 
 namespace radwalk {
+
+// The sides of the faces of open shells (orient_shells.h; docs/units-and-formats.md, "Orientation"):
+//   two_sided: every open shell's faces get two-sided copies of their materials (a front and a back patch);
+//   one_sided: the faces stay as the file has them;
+//   automatic (the default): the choice that loses least. In a scene enclosed by a closed shell (a room, found as
+//     orient_shells finds it) no light escapes, so the light interreflected in the room reaches the backs of the
+//     open shells in it, which a one-sided face absorbs entirely and a two-sided back reflects by its rho:
+//     two-sided, which never loses more. In a scene that no closed shell encloses (an open box such as the
+//     Cornell box, whose walls are themselves an open shell facing the void with their backs) one-sided, as the
+//     file has them: the open room's backs see no light, and the open shells are noted with the suggestion to
+//     make them two-sided.
+enum class OpenShellSides { automatic, one_sided, two_sided };
+
+// "auto", "one-sided", "two-sided".
+const char* open_shell_sides_name(OpenShellSides sides);
+// The value of a name above; InputError naming the valid ones for another.
+OpenShellSides parse_open_shell_sides(const std::string& name);
 
 struct ValidationTolerances {
   double degenerate_area = 1e-10;  // relative to the squared bounding-box diagonal
@@ -68,9 +90,8 @@ struct ValidationTolerances {
   double max_offset_ratio = 1e4;
   // Orientation of the shells (orient_shells.h): outward by default; the flips are one warning.
   OrientMode orient = OrientMode::outward;
-  // Faces of open shells (not emitters alone) get two-sided copies of their materials (--open-shells two-sided):
-  // an open surface has two sides that light can reach, a closed one only its outside.
-  bool open_shells_two_sided = false;
+  // The sides of open shells' faces (not emitters alone; --open-shells, OpenShellSides above).
+  OpenShellSides open_shells = OpenShellSides::automatic;
   // Repairs (dropping zero-area faces, splitting bent or concave quads, repeated corners, duplicate faces) become
   // refusals.
   bool strict = false;

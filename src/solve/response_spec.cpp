@@ -5,6 +5,7 @@
 #include <sstream>
 #include <unordered_map>
 
+#include "core/csv_records.h"
 #include "core/did_you_mean.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -28,12 +29,6 @@ bool whole_number(const std::string& s, long& value) {
   const std::optional<long> v = parse_long(s);
   if (v) value = *v;
   return v.has_value();
-}
-
-// A line without its trailing '\r' (a CRLF file).
-std::string chomp(std::string line) {
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  return line;
 }
 
 // The name of an OBJ object or group in Mesh::groups' "object 'chair', group 'seat'" form: true if NAME is one
@@ -71,11 +66,17 @@ std::vector<std::int32_t> patch_groups(const Mesh& mesh, const PatchSet& patches
 
 Eigen::VectorXd response_from_csv(const std::string& text, const std::string& file, const std::string& column,
                                   const std::string& spec, std::size_t patch_count) {
-  std::istringstream in(text);
-  std::string line;
-  std::getline(in, line);
-  const std::vector<std::string> header = split(chomp(line), ',');
-  const std::string at_header = file + ":1: --response " + spec + ": ";
+  const std::string context = " --response " + spec + ":";
+  std::vector<CsvRecord> records;
+  try {
+    records = read_csv_records(text, file);
+  } catch (const InputError& e) {  // "FILE:LINE: what" -> "FILE:LINE: --response SPEC: what"
+    std::string m = e.what();
+    const std::size_t at = m.find(": ", file.size());
+    throw InputError(at == std::string::npos ? m : m.substr(0, at + 1) + context + m.substr(at + 1));
+  }
+  const std::vector<std::string> header = records.empty() ? std::vector<std::string>{""} : records[0].fields;
+  const std::string at_header = file + ":1:" + context + " ";
   // Step 1: the header: every name once, a `patch` column and the weight column.
   std::unordered_map<std::string, std::size_t> column_of;
   for (std::size_t k = 0; k < header.size(); ++k)
@@ -87,16 +88,15 @@ Eigen::VectorXd response_from_csv(const std::string& text, const std::string& fi
   if (weight_at == column_of.end())
     throw InputError(at_header + "no column '" + printable(column) + "'" + did_you_mean(column, header));
   const std::size_t patch_col = patch_at->second, weight_col = weight_at->second;
-  // Step 2: the rows: as many cells as the header, a patch listed once, a finite weight.
+  // Step 2: the records (RFC 4180: quoted names may hold commas, quotes and line breaks): as many cells as the
+  // header, a patch listed once, a finite weight.
   Eigen::VectorXd R = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(patch_count));
   std::vector<long> listed_on(patch_count, 0);  // the line that listed each patch, 0 if none
-  long line_number = 1;
-  while (std::getline(in, line)) {
-    ++line_number;
-    line = chomp(line);
-    if (line.empty()) continue;
-    const std::vector<std::string> cells = split(line, ',');
-    const std::string where = file + ":" + std::to_string(line_number) + ": --response " + spec + ": ";
+  for (std::size_t r = 1; r < records.size(); ++r) {
+    const std::vector<std::string>& cells = records[r].fields;
+    const long line_number = records[r].line;
+    if (cells.size() == 1 && cells[0].empty()) continue;  // an empty line
+    const std::string where = file + ":" + std::to_string(line_number) + ":" + context + " ";
     if (cells.size() != header.size())
       throw InputError(where + "the row has " + std::to_string(cells.size()) + " cells, the header " +
                        std::to_string(header.size()));

@@ -26,12 +26,13 @@ Response parse_response(const std::string& spec, const PatchSet& patches, const 
                         const std::vector<std::string>& groups, const std::string& scene);
 
 // The weights of column `column` of a CSV text (the contents of `file`) as radwalk writes them: a header line of
-// comma-separated names, each once, then one row per line with as many cells as the header, cells without
-// quotes; a trailing '\r' (CRLF files) and blank lines are ignored. R_i = the weight of the row whose `patch`
+// comma-separated names, each once, then one record per row with as many cells as the header, read by RFC 4180
+// (core/csv_records.h: a quoted cell, as radwalk writes a name holding a comma, a quote or a line break, may hold
+// all three, quotes doubled, and span lines); a trailing '\r' (CRLF files) and blank lines are ignored. R_i = the weight of the row whose `patch`
 // cell is i; each patch is listed at most once; patches the file does not list weigh 0. Every row must hold a
 // whole patch number in [0, patch_count) and a finite number in the column, both under the scene readers' number
 // rule (mesh/text_scan.h: parse_long, parse_number). Anything else is an InputError "FILE:LINE: --response SPEC:
-// what is wrong" (line 1 for the header).
+// what is wrong" (line 1 for the header, the line a record starts on for a row).
 Eigen::VectorXd response_from_csv(const std::string& text, const std::string& file, const std::string& column,
                                   const std::string& spec, std::size_t patch_count);
 

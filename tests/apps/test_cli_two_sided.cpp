@@ -50,14 +50,19 @@ TEST_CASE("radwalk: radwalk_two_sided and --two-sided give back patches, a side 
   struct Case {
     bool statement, flag;
     long patches, back;
+    const char* open_shells;  // extra option
   };
-  // 6 cube faces + 2 panel faces; the panel's 2 faces doubled by the statement, all 8 by --two-sided.
-  for (const Case c : {Case{false, false, 8, 0}, Case{true, false, 10, 2}, Case{false, true, 16, 8}}) {
+  // 6 cube faces + 2 panel faces; the panel's 2 faces doubled by the statement, or by default (--open-shells
+  // auto: the panel is an open shell inside the closed cube), all 8 by --two-sided; none with --open-shells
+  // one-sided.
+  for (const Case c : {Case{false, false, 8, 0, " --open-shells one-sided"}, Case{false, false, 10, 2, ""},
+                       Case{true, false, 10, 2, ""}, Case{true, false, 10, 2, " --open-shells one-sided"},
+                       Case{false, true, 16, 8, ""}}) {
     const fs::path obj = write_panel_scene(dir, c.statement);
     const fs::path csv = dir / "out.csv", json = dir / "out.json";
     const Run r = run("solve " + obj.string() + " --rays 2000 --csv " + csv.string() + " --json " + json.string() +
-                      (c.flag ? " --two-sided" : ""));
-    INFO("statement " << c.statement << ", --two-sided " << c.flag << ": " << r.out);
+                      (c.flag ? " --two-sided" : "") + c.open_shells);
+    INFO("statement " << c.statement << ", --two-sided " << c.flag << c.open_shells << ": " << r.out);
     REQUIRE(r.exit_code == 0);
     const nlohmann::json j = nlohmann::json::parse(std::ifstream(json));
     CHECK(j["patches"] == c.patches);

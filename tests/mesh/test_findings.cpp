@@ -11,6 +11,7 @@
 #include "mesh/edge_table.h"
 #include "mesh/finding.h"
 #include "mesh/material_override.h"
+#include "mesh/read_obj.h"
 #include "mesh/read_scene.h"
 #include "mesh/t_junctions.h"
 #include "mesh/validate.h"
@@ -67,11 +68,13 @@ TEST_CASE("a file with several different defects reports all of them in one run,
   // Errors of every kind, with their faces, lines, object, group and material.
   CHECK(count_kind(findings, "bad vertex index") == 12);
   CHECK(count_kind(findings, "non-finite coordinate") == 1);
-  // Repaired since exporters write them: the triangle 5 5 6 (no area, dropped) and a copy of face 0 (dropped).
+  // Repaired since exporters write them: the triangle 5 5 6 (no area, dropped), a copy of face 0 (dropped), the
+  // face of the unknown material (given the default) and its copy of material 'bright' (dropped).
   CHECK(count_kind(findings, "face without area dropped") == 1);
-  CHECK(count_kind(findings, "duplicate face dropped") == 1);
+  CHECK(count_kind(findings, "duplicate face dropped") == 2);
   CHECK(count_kind(findings, "self-intersecting quad") == 1);
-  CHECK(count_kind(findings, "unknown material") == 1);
+  CHECK(count_kind(findings, "unknown material") == 0);
+  CHECK(count_kind(findings, "unknown material given the default") == 1);
   CHECK(count_kind(findings, "reflectance out of range") == 1);
   // Repairs found in the same run.
   CHECK(count_kind(findings, "polygon triangulated") == 1);
@@ -84,28 +87,29 @@ TEST_CASE("a file with several different defects reports all of them in one run,
   CHECK(bad->object == "table");
   CHECK(bad->group == "top");
   CHECK(bad->material == "white");
-  const Finding* unknown = first_of(findings, "unknown material");
+  const Finding* unknown = first_of(findings, "unknown material given the default");
   REQUIRE(unknown != nullptr);
+  CHECK(unknown->severity == Severity::repair);
   CHECK(unknown->face == 19);
+  CHECK(unknown->line == 50);  // the usemtl line
   CHECK(unknown->material == "no_such_material");
   const Finding* nan = first_of(findings, "non-finite coordinate");
   REQUIRE(nan != nullptr);
   CHECK(nan->face == 13);
   // One line: the first error and the count of the others.
   CHECK(message.find('\n') == std::string::npos);
-  CHECK(contains(message, "many_defects.obj:51: face 19: unknown material"));
-  CHECK(contains(message, "and 15 more"));
+  CHECK(contains(message, "many_defects.obj:32: face 1: bad vertex index"));
+  CHECK(contains(message, "and 14 more"));
   CHECK(contains(message, "12 bad vertex index"));
 
   // Grouped lines: 10 of the 12 bad indices, then "2 more (12 in all)"; kinds in order of first appearance.
   const std::vector<std::string> lines = grouped_lines(findings, {Severity::error}, 10);
-  REQUIRE(lines.size() == 1 + 11 + 1 + 1 + 1);
-  CHECK(contains(lines[0], "unknown material"));
-  CHECK(contains(lines[1], "many_defects.obj:32: face 1: bad vertex index"));
-  CHECK(contains(lines[1], "(object 'table', group 'top', material 'white')"));
-  CHECK(contains(lines[11], "bad vertex index: 2 more (12 in all)"));
+  REQUIRE(lines.size() == 11 + 1 + 1 + 1);
+  CHECK(contains(lines[0], "many_defects.obj:32: face 1: bad vertex index"));
+  CHECK(contains(lines[0], "(object 'table', group 'top', material 'white')"));
+  CHECK(contains(lines[10], "bad vertex index: 2 more (12 in all)"));
   CHECK(count_by_kind(findings, Severity::error) ==
-        "16 errors (1 unknown material, 12 bad vertex index, 1 non-finite coordinate, 1 self-intersecting quad, "
+        "15 errors (12 bad vertex index, 1 non-finite coordinate, 1 self-intersecting quad, "
         "1 reflectance out of range)");
 }
 
@@ -261,4 +265,48 @@ TEST_CASE("material overrides: --set and --rho-scale act like the edited MTL", "
     if (m.name == "white") CHECK((m.Kd == Rgb(0.25, 0.125, 0.0625)).all());
   Mesh too_bright = mesh;  // white has Kd 0.73 or so: twice that reaches 1
   CHECK_THROWS_WITH(apply_material_overrides(too_bright, {}, 2.0), Catch::Contains("reaches 1"));
+}
+
+TEST_CASE("usemtl naming a material no library defines: its faces get the default material under that name, one "
+          "warning with the count, --strict refuses",
+          "[mesh][findings]") {
+  const std::string mtl = "newmtl wall\nKd 0.3 0.3 0.3\nnewmtl light\nKd 0 0 0\nKe 1 1 1\n";
+  const MtlSource one_library = {[](const std::string& p) { return p.size() >= 5 && p.compare(p.size() - 5, 5, "m.mtl") == 0; },
+                                 [&](const std::string&) { return mtl; }};
+  const std::string obj =
+      "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"  // lines 1-9
+      "o shelf\ng board\nusemtl oak\nf 1 2 3\nf 1 3 4\n"                                        // lines 10-14
+      "usemtl light\nf 8 7 6 5\n"                                                                  // lines 15-16
+      "usemtl oak\nf 1 2 6 5\n";                                                                   // lines 17-18
+  Mesh mesh = read_obj_text("shelf.obj", obj, one_library);
+  std::size_t warnings = 0;
+  for (const Finding& f : mesh.findings) {
+    CHECK(f.severity != Severity::error);
+    if (f.kind != "unknown material given the default") continue;
+    ++warnings;
+    CHECK(f.severity == Severity::repair);
+    CHECK(finding_line(f) ==
+          "shelf.obj:12: face 0: unknown material 'oak' (usemtl at line 12: not in m.mtl): its 3 faces get the "
+          "default material (rho 0.5, no emission) under that name; --set 'oak.Kd=r,g,b' sets it (--strict refuses "
+          "it) (object 'shelf', group 'board', material 'oak')");
+  }
+  CHECK(warnings == 1);
+  REQUIRE(mesh.face_count() == 4);
+  for (std::size_t f : {0, 1, 3}) {
+    const Material& m = mesh.materials[static_cast<std::size_t>(mesh.face_material[f])];
+    CHECK(m.name == "oak");
+    CHECK((m.Kd == 0.5).all());
+    CHECK((m.Ke == 0).all());
+  }
+  REQUIRE_NOTHROW(validate_mesh(mesh));
+  // --strict: each face is refused as before.
+  ReadOptions strict;
+  strict.strict = true;
+  Mesh refused = read_obj_text("shelf.obj", obj, one_library, strict);
+  std::size_t errors = 0;
+  for (const Finding& f : refused.findings) errors += f.kind == "unknown material" && f.severity == Severity::error;
+  CHECK(errors == 3);
+  ValidationTolerances strict_tol;
+  strict_tol.strict = true;
+  CHECK_THROWS_WITH(validate_mesh(refused, strict_tol), Catch::StartsWith("shelf.obj:13: face 0: unknown material 'oak'"));
 }

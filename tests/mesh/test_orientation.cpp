@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -144,9 +145,77 @@ TEST_CASE("an open shell is reported with the suggestion to make it two-sided", 
   Mesh validated = with_materials();
   add_box(validated, {-5, -5, -5}, {5, 5, 5}, false, 1);
   add_box(validated, {0, 0, 0}, {1, 1, 1}, true, 0, 5);
-  validate_mesh(validated);
+  ValidationTolerances one_sided;
+  one_sided.open_shells = OpenShellSides::one_sided;
+  validate_mesh(validated, one_sided);
   bool reported = false;
   for (const Finding& f : validated.findings)
     if (f.kind == "open shell") reported = f.message.find("two-sided") != std::string::npos && f.face == 6;
   CHECK(reported);
+}
+
+namespace {
+
+// How many faces carry a two-sided material, and whether a finding of `kind` is there.
+std::size_t two_sided_faces(const Mesh& mesh) {
+  std::size_t n = 0;
+  for (std::int32_t m : mesh.face_material) n += mesh.materials[static_cast<std::size_t>(m)].two_sided;
+  return n;
+}
+bool has_kind(const Mesh& mesh, const std::string& kind) {
+  for (const Finding& f : mesh.findings)
+    if (f.kind == kind) return true;
+  return false;
+}
+
+}  // namespace
+
+TEST_CASE("open shells by default (auto): two-sided in a closed room, one-sided in an open scene",
+          "[mesh][orientation]") {
+  // A closed room (emitting ceiling box) with a bottomless box and a sheet in it: both open shells two-sided by
+  // default (6 faces), the room one-sided and facing in; one warning names the count.
+  auto room = [] {
+    Mesh mesh = with_materials();
+    add_box(mesh, {-5, -5, -5}, {5, 5, 5}, false, 1);
+    add_box(mesh, {0, 0, 0}, {1, 1, 1}, true, 0, 5);  // open: no top
+    const auto base = static_cast<std::int32_t>(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), {{2, 2, 2}, {3, 2, 2}, {3, 3, 2}, {2, 3, 2}});
+    mesh.faces.push_back({base, base + 1, base + 2, base + 3});  // a sheet
+    mesh.face_material.push_back(0);
+    return mesh;
+  };
+  Mesh automatic = room();
+  validate_mesh(automatic);
+  CHECK(two_sided_faces(automatic) == 6);
+  for (std::size_t f = 0; f < 6; ++f) CHECK_FALSE(automatic.materials[static_cast<std::size_t>(automatic.face_material[f])].two_sided);
+  CHECK(has_kind(automatic, "open shells made two-sided"));
+  CHECK_FALSE(has_kind(automatic, "open shell"));
+  // Asked for: one-sided keeps the file's sides (and notes the shells), two-sided is as auto here.
+  ValidationTolerances tol;
+  tol.open_shells = OpenShellSides::one_sided;
+  Mesh one = room();
+  validate_mesh(one, tol);
+  CHECK(two_sided_faces(one) == 0);
+  CHECK(has_kind(one, "open shell"));
+  tol.open_shells = OpenShellSides::two_sided;
+  Mesh two = room();
+  validate_mesh(two, tol);
+  CHECK(two_sided_faces(two) == 6);
+  // The same room also with --orient none (the room's test does not depend on the mode).
+  tol.open_shells = OpenShellSides::automatic;
+  tol.orient = OrientMode::none;
+  Mesh none = room();
+  validate_mesh(none, tol);
+  CHECK(two_sided_faces(none) == 6);
+
+  // An open scene (a box without its front, like the Cornell box, with a block): nothing encloses it, so auto
+  // keeps every face one-sided and notes the open shell.
+  Mesh open = with_materials();
+  add_box(open, {-5, -5, -5}, {5, 5, 5}, false, 0, 2);  // no -y wall
+  add_box(open, {-1, -1, 4.8}, {1, 1, 4.9}, true, 1);    // a closed lamp
+  validate_mesh(open);
+  CHECK(two_sided_faces(open) == 0);
+  CHECK(has_kind(open, "open shell"));
+  CHECK(parse_open_shell_sides("auto") == OpenShellSides::automatic);
+  CHECK_THROWS_WITH(parse_open_shell_sides("both"), "--open-shells: 'both' is not one of auto, one-sided, two-sided");
 }

@@ -273,3 +273,52 @@ TEST_CASE("a planar bow-tie quad is split into its two lobes, a folded one and -
   Mesh folded = bowtie(0.5);
   CHECK_THROWS_WITH(validate_mesh(folded), Catch::Contains("face 0: self-intersecting or folded quad"));
 }
+
+TEST_CASE("a quad folded off its plane (a bow-tie seen from above) is split along the diagonal whose triangles do not "
+          "overlap, --strict refuses it",
+          "[mesh][crossings]") {
+  // Corners (0,0,0) (1,1,0) (1,0,h) (0,1,h): seen from +z a bow-tie (edges 1-2 and 3-4 cross), seen along its
+  // Newell normal (0,-h,0) a rectangle. Vector area h = 0.3 is below half its area: formerly refused as "folded".
+  // Both diagonals give two triangles turning the normal's way, each of area sqrt(1 + 2 h^2) / 2; the diagonal 0-2
+  // (the first of the tie, triangulate.h) is taken.
+  const std::string obj =
+      "v 0 0 0\nv 1 1 0\nv 1 0 0.3\nv 0 1 0.3\nv -5 -5 4\nv 5 -5 4\nv 5 5 4\nv -5 5 4\n"
+      "o chair\ng seat\nf 1 2 3 4\ng lamp\nf 8 7 6 5\n";
+  Mesh mesh = read_obj_text("chair.obj", obj, no_libraries());
+  mesh.materials.resize(1);
+  mesh.materials[0].name = "m";
+  mesh.materials[0].Kd = Rgb::Constant(0.5);
+  mesh.materials[0].Ke = Rgb::Ones();
+  mesh.face_material.assign(mesh.face_count(), 0);
+  Mesh strict_copy = mesh;
+  validate_mesh(mesh);
+  const Finding* f = first_of(mesh.findings, "folded quad split");
+  REQUIRE(f != nullptr);
+  CHECK(f->severity == Severity::repair);
+  const std::string line = finding_line(*f);
+  CHECK(line.find("chair.obj:11: face 0: folded quad split into two triangles along its diagonal 0-2") == 0);
+  CHECK(line.find("(object 'chair', group 'seat', material 'm')") != std::string::npos);
+  CHECK(line.find("--strict refuses it") != std::string::npos);
+  double area = 0;
+  Vec3 first = Vec3::Zero();
+  std::size_t pieces = 0;
+  for (std::size_t k = 0; k < mesh.face_count(); ++k) {
+    if (mesh.face_source[k] != 0) continue;
+    ++pieces;
+    const auto& c = mesh.faces[k];
+    REQUIRE(c[3] == -1);
+    const Vec3 v = 0.5 * (mesh.vertices[static_cast<std::size_t>(c[1])] - mesh.vertices[static_cast<std::size_t>(c[0])])
+                             .cross(mesh.vertices[static_cast<std::size_t>(c[2])] - mesh.vertices[static_cast<std::size_t>(c[0])]);
+    if (first == Vec3::Zero()) first = v;
+    CHECK(v.dot(Vec3(0, -1, 0)) > 0);  // both turn the Newell normal's way
+    area += v.norm();
+  }
+  CHECK(pieces == 2);
+  const double as_drawn = std::sqrt(1 + 2 * 0.3 * 0.3);
+  CHECK(std::abs(area - as_drawn) <= 8 * std::numeric_limits<double>::epsilon() * as_drawn);  // to rounding
+
+  ValidationTolerances strict;
+  strict.strict = true;
+  CHECK_THROWS_WITH(validate_mesh(strict_copy, strict),
+                    Catch::StartsWith("chair.obj:11: face 0: self-intersecting or folded quad"));
+}

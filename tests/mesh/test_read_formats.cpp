@@ -243,6 +243,36 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
                                 false);
       },
       "big.vtk", "more than its");
+  // Found by the vtk fuzz harness: a word among a polygon's indices made VTK 9.1's legacy reader read the stream it
+  // had closed (a segmentation fault); now refused naming the line. So are a short section and a bad point.
+  const std::string head = "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n";
+  require_one_line_refusal(
+      [&] { read_vtk_polydata_bytes("word.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\nfloat 0 1 2 3\n", false); },
+      "word.vtk:11:", "POLYGONS (line 10): 'float' is not a whole number >= 0");
+  require_one_line_refusal(
+      [&] { read_vtk_polydata_bytes("short.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2\n", false); },
+      "short.vtk:10:", "POLYGONS ends before its 5 indices");
+  require_one_line_refusal(
+      [&] { read_vtk_polydata_bytes("point.vtk", head + "0 0 0\n1 0 x\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n", false); },
+      "point.vtk:7:", "POINTS (line 5): 'x' is not a number");
+  // Found by the vtk fuzz harness: an array type VTK does not know (a radwalk .vtp with "Int64" mutated to "Int28")
+  // crashed VTK 9.1's XML reader; now refused naming the type.
+  require_one_line_refusal(
+      [&] {
+        read_vtk_polydata_bytes("type.vtp",
+                                "<VTKFile type=\"PolyData\"><PolyData><FieldData><DataArray type=\"Int28\" "
+                                "Name=\"patches\" NumberOfTuples=\"1\" format=\"ascii\">1</DataArray></FieldData>"
+                                "</PolyData></VTKFile>",
+                                true);
+      },
+      "type.vtp", "DataArray of type \"Int28\": not one of Int8");
+  // The version 5.1 layout (OFFSETS and CONNECTIVITY sections) is read as before.
+  const Mesh v51 = read_vtk_polydata_bytes(
+      "v51.vtk",
+      "# vtk DataFile Version 5.1\nsquare\nASCII\nDATASET POLYDATA\nPOINTS 4 float\n0 0 0 1 0 0 1 1 0 0 1 0\n"
+      "POLYGONS 2 4\nOFFSETS vtktypeint64\n0 4\nCONNECTIVITY vtktypeint64\n0 1 2 3\n",
+      false);
+  REQUIRE(v51.face_count() == 1);
   require_one_line_refusal([&] { read_vtk_polydata_bytes("bad.vtp", "<VTKFile type=\"PolyData\"><Poly", true); },
                            "bad.vtp", "VTK cannot read it");
   require_one_line_refusal(

@@ -18,12 +18,16 @@ The room is written in cm and inside out (its faces pointing outwards); radwalk 
 
   check       exit 0 with the repairs of every class above in one run, the room flipped (faces flipped names
               'room'), lengths in m and B in W/m^2; --strict exits 2;
-  solve       (default one-sided faces) every model keeps at least 90 % of its area as drawn (patch areas of the
-              model's faces, front and back of the faces made two-sided, over its faces' Newell areas);
-              --orient none loses most of the light into the backs of the inside-out room (negative control);
-              with --open-shells two-sided the power lost into back faces is below 1 % of the emitted power
-              (power_balance.lost_to_back_faces + 3 standard errors < 0.01);
-  pathtrace   --open-shells two-sided: exit 0, power_balance lost into back faces below 1 % likewise.
+  solve       by default (--open-shells auto: the open shells inside the closed room two-sided) the power lost
+              into back faces is below 1 % of the emitted power: a one-sided z-test of H0 "lost >= 0.01" with the
+              standard error the JSON reports, z = (lost_to_back_faces - 0.01) / lost_to_back_faces_se, H0
+              rejected (the test passes) when z < -3.090 (alpha = 0.001); the same test on the former default,
+              --open-shells one-sided, must keep H0 (it lost 3.1 % +- 0.2: the test can fail); with one-sided
+              open shells (the sides change no area) every model keeps at least 90 % of its area as drawn (patch
+              areas of the model's faces, front and back of the back-to-back faces made two-sided, over its
+              faces' Newell areas); --orient none loses most of the light into the backs of the inside-out room
+              (negative control);
+  pathtrace   by default: exit 0, lost into back faces below 1 % by the same z-test.
 
 The furniture is downloaded with apt-get download and unpacked with dpkg -x into WORK_DIR/.. when
 /usr/share/sweethome3d/furniture is missing (skipped, exit 77, when that fails).
@@ -109,11 +113,20 @@ def main(radwalk, source, work):
     r = run(radwalk, "check", "-q", "--strict", *units, room)
     expect(r.returncode == 2, "--strict refuses the repairs (exit %d)" % r.returncode)
 
-    # solve, default one-sided: the area each model keeps.
+    # The z-test of "less than 1 % of the emitted power lost into back faces" (one-sided, alpha = 0.001): H0 is
+    # lost >= 0.01; it is rejected (below 1 %) when z = (lost - 0.01) / se < -z_crit.
+    z_crit = 3.090  # the 0.999 quantile of the standard normal
+    def below_one_percent(balance):
+        se = balance["lost_to_back_faces_se"]
+        z = (balance["lost_to_back_faces"] - 0.01) / se if se > 0 else (-float("inf") if balance["lost_to_back_faces"] < 0.01 else float("inf"))
+        return z < -z_crit, z
+
+    # solve with one-sided open shells (the former default): the area each model keeps (the sides change no
+    # area), and the loss test must not pass (it can fail).
     csv_path = os.path.join(work, "solve.csv")
-    r = run(radwalk, "solve", "-q", *units, "--max-edge", "0.5", "--rays", "256", "--csv", csv_path, "--json",
-            os.path.join(work, "solve.json"), room)
-    expect(r.returncode == 0, "solve (exit %d)" % r.returncode)
+    r = run(radwalk, "solve", "-q", *units, "--open-shells", "one-sided", "--max-edge", "0.5", "--rays", "256",
+            "--csv", csv_path, "--json", os.path.join(work, "solve_one_sided.json"), room)
+    expect(r.returncode == 0, "solve --open-shells one-sided (exit %d)" % r.returncode)
     area = {m["name"]: 0.0 for m in models}
     for row in csv.DictReader(open(csv_path)):
         face = int(row["face"])
@@ -125,8 +138,12 @@ def main(radwalk, source, work):
         kept = area[m["name"]] / drawn
         expect(kept >= 0.9, "%s keeps %.4f of its area as drawn (%.4f m^2 of %.4f m^2)" % (m["model"], kept,
                                                                                            area[m["name"]], drawn))
-    one_sided = json.load(open(os.path.join(work, "solve.json")))["power_balance"]
+    one_sided = json.load(open(os.path.join(work, "solve_one_sided.json")))["power_balance"]
     print("one-sided open shells: power_balance", json.dumps(one_sided, sort_keys=True))
+    passed, z = below_one_percent(one_sided)
+    expect(not passed, "--open-shells one-sided: lost into back faces %.4f +- %.4f, z = %.1f: the test keeps H0 "
+           "(the former default loses more than 1 %%)" % (one_sided["lost_to_back_faces"],
+                                                         one_sided["lost_to_back_faces_se"], z))
 
     # Negative control: without orientation the inside-out room swallows the light.
     r = run(radwalk, "solve", "-q", *units, "--rays", "64", "--orient", "none", "--json",
@@ -137,17 +154,22 @@ def main(radwalk, source, work):
     expect(any("lost into the backs" in w for w in json.load(open(os.path.join(work, "solve_none.json")))["warnings"]),
            "--orient none warns about the power lost into backs")
 
-    # solve and pathtrace with the open shells two-sided: below 1 % lost into back faces.
+    # solve and pathtrace by default (no --orient, no --open-shells): below 1 % lost into back faces.
     for command, extra in [("solve", ["--max-edge", "0.5", "--rays", "256"]), ("pathtrace", ["--max-edge", "0.5", "--spp", "16"])]:
-        path = os.path.join(work, command + "_two_sided.json")
-        r = run(radwalk, command, "-q", *units, "--open-shells", "two-sided", *extra, "--json", path, room)
-        expect(r.returncode == 0, "%s --open-shells two-sided (exit %d)" % (command, r.returncode))
-        b = json.load(open(path))["power_balance"]
+        path = os.path.join(work, command + "_default.json")
+        r = run(radwalk, command, "-q", *units, *extra, "--json", path, room)
+        expect(r.returncode == 0, "%s by default (exit %d)" % (command, r.returncode))
+        j = json.load(open(path))
+        expect(j.get("open_shells") == "auto", "%s: the default --open-shells is auto (%s)" % (command, j.get("open_shells")))
+        b = j["power_balance"]
         print(command + ": power_balance", json.dumps(b, sort_keys=True))
-        expect(b["lost_to_back_faces"] + 3 * b["lost_to_back_faces_se"] < 0.01,
-               "%s: lost into back faces %.4f +- %.4f of the emitted power (< 0.01)"
-               % (command, b["lost_to_back_faces"], b["lost_to_back_faces_se"]))
+        passed, z = below_one_percent(b)
+        expect(passed, "%s by default: lost into back faces %.4f +- %.4f of the emitted power, z = %.1f < -%.3f "
+               "(below 1 %%, alpha = 0.001)" % (command, b["lost_to_back_faces"], b["lost_to_back_faces_se"], z, z_crit))
         expect(b["escaped"] < 0.01, "%s: escaped %.2g" % (command, b["escaped"]))
+        expect(any(f["kind"] == "open shells made two-sided" for f in j.get("findings", [])) or
+               any("open shells made two-sided" in w for w in j.get("warnings", [])),
+               "%s: the open shells made two-sided are reported" % command)
 
     if failures:
         print("%d check(s) failed" % len(failures))

@@ -44,6 +44,32 @@ TEST_CASE("response_from_csv: the weights of a column by the patch column", "[so
   CHECK(crlf == (Eigen::VectorXd(4) << 1.5e-3, 0, 0.25, 0).finished());
 }
 
+TEST_CASE("response_from_csv: names quoted by RFC 4180 (commas, quotes, line breaks) as radwalk's CSV writes them",
+          "[solve][response]") {
+  // The name columns of a radwalk CSV: a name holding a comma, a quote or a line break is quoted, quotes doubled
+  // (io's CSV writer, docs/units-and-formats.md "Outputs"); the record of patch 1 spans two lines.
+  const std::string text =
+      "patch,face,object,group,material,B_r,run_id\n"
+      "0,0,\"chair, left\",seat,wood,0.5,d2db41ed9183ff0e\n"
+      "1,1,\"say \"\"hi\"\"\",\"two\nlines\",\"a,b\",0.25,d2db41ed9183ff0e\r\n"
+      "2,2,,,\"\",0.125,d2db41ed9183ff0e\n";
+  const Eigen::VectorXd R = response_from_csv(text, "b.csv", "B_r", "csv:b.csv:B_r", 3);
+  CHECK(R == (Eigen::VectorXd(3) << 0.5, 0.25, 0.125).finished());
+  // A column whose own name is quoted.
+  CHECK(response_from_csv("patch,\"w, weighted\"\n1,2\n", "b.csv", "w, weighted", "csv:b.csv:w, weighted", 2) ==
+        (Eigen::VectorXd(2) << 0, 2).finished());
+  // Lines are counted across the quoted line break: the record after it starts on line 4.
+  const auto refused = [](const std::string& t) {
+    return refusal([&] { response_from_csv(t, "q.csv", "w", "csv:q.csv:w", 3); });
+  };
+  CHECK(refused("patch,name,w\n0,\"a\nb\",1\n7,x,1\n") ==
+        "q.csv:4: --response csv:q.csv:w: expected a patch number in [0, 3) and a weight");
+  // A quote that never closes, and text after a closing quote, are refused naming the line.
+  CHECK(refused("patch,name,w\n0,x,1\n1,\"open,2\n") == "q.csv:3: --response csv:q.csv:w: a quoted field is never closed");
+  CHECK(refused("patch,name,w\n0,\"a\"b,1\n") ==
+        "q.csv:2: --response csv:q.csv:w: a closing quote must be followed by ',' or the end of the line");
+}
+
 TEST_CASE("response_from_csv: every malformed row is a one-line refusal naming file and line", "[solve][response]") {
   const auto refused = [](const std::string& text, const std::string& column) {
     return refusal([&] { response_from_csv(text, "w.csv", column, "csv:w.csv:" + column, 3); });
