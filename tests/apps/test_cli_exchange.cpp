@@ -184,7 +184,7 @@ TEST_CASE("exchange: the traced route agrees with the analytic one within its er
   REQUIRE(n == 24);
   REQUIRE(t["q"].size() == n);
   // The known-temperature patches are compared by q, the re-radiating ones by T; family-wise alpha = 0.01, Sidak.
-  const double alpha = 0.01, z_crit = radwalk::test::z_critical(radwalk::test::sidak(alpha, n));
+  const double alpha = 0.01, z_crit = radwalk::z_critical(radwalk::sidak(alpha, n));
   double worst = 0;
   for (std::size_t i = 0; i < n; ++i) {
     const bool given = t["temperature_given"][i] == 1;

@@ -118,7 +118,9 @@ TEST_CASE("net radiation: the unit cube with exact F, six emissivities and tempe
       double total = 0, row_defect = 0;
       for (std::size_t i = 0; i < 6; ++i) {
         total += r.Q[i];
-        row_defect += in.area[i] * r.J[i] * std::abs(1.0 - double(F.row(Eigen::Index(i)).sum()));
+        double row = 0;  // in double: the float rows' own sums differ from 1 by their rounding
+        for (SparseF::InnerIterator it(F, Eigen::Index(i)); it; ++it) row += double(it.value());
+        row_defect += in.area[i] * r.J[i] * std::abs(1.0 - row);
       }
       INFO("sum of Q = " << total << " W, bound from the rows' rounding " << row_defect << " W");
       CHECK(std::abs(total) <= row_defect + 1e-12 * q_scale);
@@ -152,7 +154,8 @@ TEST_CASE("net radiation: the dense radiosity-form reference agrees with the phy
 //   q_1 A_1 = sigma (T_1^4 - T_2^4) A_1 / (1/eps_1 + (A_1/A_2)(1/eps_2 - 1)).
 TEST_CASE("net radiation: a convex body inside an enclosure (F_12 = 1) matches the closed form, with a known "
           "temperature or a known (negative) heat flux", "[net_radiation]") {
-  const double A1 = 2.0, A2 = 7.0, e1 = 0.4, e2 = 0.8, T1 = 500, T2 = 300;
+  const double A1 = 2.0, A2 = 8.0,  // A1/A2 and 1 - A1/A2 exact in float: F reciprocal, rows summing to 1
+               e1 = 0.4, e2 = 0.8, T1 = 500, T2 = 300;
   std::vector<Eigen::Triplet<float, std::int32_t>> t = {{0, 1, 1.0f},
                                                        {1, 0, static_cast<float>(A1 / A2)},
                                                        {1, 1, static_cast<float>(1 - A1 / A2)}};
@@ -172,16 +175,16 @@ TEST_CASE("net radiation: a convex body inside an enclosure (F_12 = 1) matches t
     CHECK(std::abs(r.Q[0] - exact) < 1e-10 * exact);
     CHECK(std::abs(r.Q[0] + r.Q[1]) < 1e-10 * exact);  // closed and reciprocal: the balance to rounding
   }
-  // The reverse: the body's heat flux given as a gain (q_1 = -Q/4 < 0, a negative source), its temperature
-  // solved: T_1^4 = T_2^4 - (T_1^4 - T_2^4) / 4 by the same closed form.
+  // The reverse: the body's heat flux given as a gain (q_1 = -Q/10 < 0, a negative source), its temperature
+  // solved: T_1^4 = T_2^4 - (T_1^4 - T_2^4) / 10 by the same closed form.
   in.surface[0] = SurfaceCondition{e1, false, 0, 0};
-  in.surface[0].heat_flux = -0.25 * exact / A1;
+  in.surface[0].heat_flux = -0.1 * exact / A1;
   const NetRadiationResult r2 =
       net_radiation_result(in, F, radiosity_of(solve_radiosity(net_radiation_problem(in, F))));
-  const double T1_expected = std::pow(std::pow(T2, 4) - 0.25 * (std::pow(T1, 4) - std::pow(T2, 4)), 0.25);
+  const double T1_expected = std::pow(std::pow(T2, 4) - 0.1 * (std::pow(T1, 4) - std::pow(T2, 4)), 0.25);
   INFO("T_1 = " << r2.T[0] << " K, closed form " << T1_expected << " K");
   CHECK(std::abs(r2.T[0] - T1_expected) < 1e-9 * T1_expected);
-  CHECK(r2.q[0] == -0.25 * exact / A1);
+  CHECK(r2.q[0] == -0.1 * exact / A1);
 }
 
 TEST_CASE("net radiation: a surface open to an ambient exchanges eps sigma (T^4 - T_a^4) with it, and a "
