@@ -323,12 +323,20 @@ int run_exchange(const ExchangeCommand& command) {
   jx["balance_residual"] = residual;
   jx["balance_residual_se"] = std::sqrt(var_residual);
   jx["sky_area"] = sky_area;
-  std::fprintf(report_stream(),
-               "energy balance: sum of Q = %.6g W (+- %.2g); to the ambient %.6g W (+- %.2g), from it %.6g W; lost "
-               "into the backs of one-sided faces %.6g W (+- %.2g); residual %.3g W (+- %.2g, the form factors' "
-               "reciprocity defect%s)\n",
-               total, total_se, to_ambient, std::sqrt(var_to_ambient), from_ambient, into_backs,
-               std::sqrt(var_backs), residual, std::sqrt(var_residual), traced ? "" : "; no ray counts: error unknown");
+  if (traced && error_note.empty()) {
+    std::fprintf(report_stream(),
+                 "energy balance: sum of Q = %.6g W (+- %.2g); to the ambient %.6g W (+- %.2g), from it %.6g W; lost "
+                 "into the backs of one-sided faces %.6g W (+- %.2g); residual %.3g W (+- %.2g, the form factors' "
+                 "reciprocity defect)\n",
+                 total, total_se, to_ambient, std::sqrt(var_to_ambient), from_ambient, into_backs,
+                 std::sqrt(var_backs), residual, std::sqrt(var_residual));
+  } else {
+    // F not traced here: no statistical error (exact F: the residual is its rounding; a read F: unknown).
+    std::fprintf(report_stream(),
+                 "energy balance: sum of Q = %.6g W; to the ambient %.6g W, from it %.6g W; residual %.3g W (the form "
+                 "factors' reciprocity defect and rows' rounding; F not traced here, so no error bars)\n",
+                 total, to_ambient, from_ambient, residual);
+  }
   if (!error_note.empty()) std::fprintf(report_stream(), "errors: %s\n", error_note.c_str());
   double largest = 0;
   for (double Q : r.Q) largest += std::abs(Q);
@@ -426,8 +434,9 @@ int run_exchange(const ExchangeCommand& command) {
                    [&](int a, int b) { return std::abs(group_Q[std::size_t(a)]) > std::abs(group_Q[std::size_t(b)]); });
   for (std::size_t k = 0; k < order.size() && k < 10; ++k) {
     const auto g = std::size_t(order[k]);
-    std::fprintf(report_stream(), "  %s %s: Q = %.6g W (+- %.2g), area %.4g, radiant temperature %.2f K\n",
-                 command.group_by.c_str(), names[g].c_str(), group_Q[g], std::sqrt(group_Q_var[g]), gv.area[g],
+    const std::string se = error_note.empty() ? " (+- " + fmt(std::sqrt(group_Q_var[g]), "%.2g") + ")" : "";
+    std::fprintf(report_stream(), "  %s %s: Q = %.6g W%s, area %.4g m^2, radiant temperature %.2f K\n",
+                 command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g],
                  std::pow(group_T4[g] / gv.area[g], 0.25));
   }
   if (order.size() > 10) std::fprintf(report_stream(), "  ... %zu more (--groups FILE.csv)\n", order.size() - 10);
