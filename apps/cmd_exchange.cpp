@@ -90,28 +90,36 @@ std::string group_name(const PatchSet& patches, std::size_t i, const std::string
 std::vector<bool> contact_patches(const Mesh& mesh, const PatchSet& patches) {
   std::vector<bool> in_contact(patches.size(), false);
   const std::vector<Contact> contacts = find_contacts(mesh);
+  const double tol = kContactTolerance * std::max(patches.scene_extent(), 1e-300);
   for (const Contact& c : contacts) {
+    const std::size_t m = c.footprint.size();
+    if (m < 3) continue;
+    // The support's normal: the footprint runs counter-clockwise about it (Newell).
+    Vec3 n = Vec3::Zero();
+    for (std::size_t k = 0; k < m; ++k) n += c.footprint[k].cross(c.footprint[(k + 1) % m]);
+    if (!(n.norm() > 0)) continue;
+    n.normalize();
     std::vector<long> lying, supports;
     if (c.lying)
       for (std::int32_t f : c.standing) lying.push_back(mesh.source_face(std::size_t(f)));
     for (std::int32_t f : c.supports) supports.push_back(mesh.source_face(std::size_t(f)));
-    const std::size_t m = c.footprint.size();
     for (std::size_t i = 0; i < patches.size(); ++i) {
       const long face = patches.face[i];
       if (std::find(lying.begin(), lying.end(), face) != lying.end()) {
         in_contact[i] = true;
         continue;
       }
-      if (m < 3 || std::find(supports.begin(), supports.end(), face) == supports.end()) continue;
-      // The centroid inside the convex footprint (counter-clockwise about the support's normal n): on the inner
-      // side of every edge.
-      const Vec3& n = patches.normal[i];
+      // A patch in the support's plane whose centroid is inside the footprint: a face lying back to back on the
+      // support (normal opposite: a bottom) or the support's own part under it (normal along, a support face).
+      const Vec3& x = patches.centroid[i];
+      if (std::abs((x - c.footprint[0]).dot(n)) > tol) continue;
+      const double along = patches.normal[i].dot(n);
+      const bool bottom = along < -0.999;
+      const bool under = along > 0.999 && std::find(supports.begin(), supports.end(), face) != supports.end();
+      if (!bottom && !under) continue;
       bool inside = true;
-      for (std::size_t k = 0; k < m && inside; ++k) {
-        const Vec3& a = c.footprint[k];
-        const Vec3& b = c.footprint[(k + 1) % m];
-        inside = (b - a).cross(patches.centroid[i] - a).dot(n) > 0;
-      }
+      for (std::size_t k = 0; k < m && inside; ++k)
+        inside = (c.footprint[(k + 1) % m] - c.footprint[k]).cross(x - c.footprint[k]).dot(n) > tol * tol;
       if (inside) in_contact[i] = true;
     }
   }
@@ -359,7 +367,7 @@ int run_exchange(const ExchangeCommand& command) {
     if (contact_count > 0 && !exclude)
       warn(summary, std::to_string(contact_count) + " patches (" + fmt(contact_area) + " m^2) touch another surface "
                     "(faces lying on a support, e.g. furniture bottoms on the floor, and the support under them): "
-                    "they radiate " + fmt(radiated) + " W into the backs of faces and their net heat is " + fmt(net) +
+                    "they radiate " + fmt(radiated) + " W into the backs of faces or out through the support, and their net heat is " + fmt(net) +
                     " W, which in reality is conduction through the contact; --contact-faces exclude leaves them out "
                     "of the exchange");
     else if (contact_count > 0)
