@@ -233,3 +233,48 @@ TEST_CASE("exchange: missing or contradictory thermal properties, lengths not in
   REQUIRE(r.exit_code == 0);
   CHECK(read_columns(csv)["T"][0] == 300);
 }
+
+TEST_CASE("exchange: a block's bottom lying on the floor is a contact patch, reported in W and left out with "
+          "--contact-faces exclude; the balance closes within its error either way", "[cli][exchange]") {
+  const fs::path dir = scratch_dir("exchange_contact");
+  {
+    std::ofstream mtl(dir / "c.mtl");
+    mtl << "newmtl wall\nradwalk_emissivity 0.9\nradwalk_temperature 293\n"
+           "newmtl block\nradwalk_emissivity 0.8\nradwalk_temperature 330\n";
+    std::ofstream obj(dir / "c.obj");
+    obj << "mtllib c.mtl\n";
+    // A 2 m room facing in, a 0.5 m block facing out standing on its floor (z = 0).
+    const auto box = [&](const char* name, const char* mat, double x0, double x1, double z1, bool inward, int base) {
+      obj << "o " << name << "\nusemtl " << mat << "\n";
+      const double y0 = x0, y1 = x1;
+      obj << "v " << x0 << " " << y0 << " 0\nv " << x1 << " " << y0 << " 0\nv " << x1 << " " << y1 << " 0\nv " << x0
+          << " " << y1 << " 0\nv " << x0 << " " << y0 << " " << z1 << "\nv " << x1 << " " << y0 << " " << z1
+          << "\nv " << x1 << " " << y1 << " " << z1 << "\nv " << x0 << " " << y1 << " " << z1 << "\n";
+      const int f[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {1, 2, 6, 5}, {0, 4, 7, 3}};
+      for (const auto& q : f) {
+        obj << "f";
+        for (int k = 0; k < 4; ++k) obj << " " << base + 1 + q[inward ? 3 - k : k];
+        obj << "\n";
+      }
+    };
+    box("room", "wall", 0, 2, 2, true, 0);
+    box("block", "block", 0.5, 1.0, 0.5, false, 8);
+  }
+  nlohmann::json x[2];
+  const char* modes[2] = {"include", "exclude"};
+  for (int k = 0; k < 2; ++k) {
+    const fs::path json = dir / (std::string(modes[k]) + ".json");
+    const Run r = run("exchange " + (dir / "c.obj").string() + " --rays 20000 --solver direct --contact-faces " +
+                      modes[k] + " --json " + json.string());
+    INFO(r.out);
+    REQUIRE(r.exit_code == 0);
+    x[k] = nlohmann::json::parse(text_of(json)).at("exchange");
+    INFO(x[k].dump());
+    CHECK(x[k].at("contact_patches").get<int>() == 1);
+    // The balance: the residual within 3.5 of its standard errors (alpha about 5e-4 per run).
+    CHECK(std::abs(x[k].at("balance_residual").get<double>()) <= 3.5 * x[k].at("balance_residual_se").get<double>());
+  }
+  CHECK(x[0].at("contact_radiated").get<double>() > 100);  // the bottom radiates through the floor (about 134 W)
+  CHECK(x[1].at("contact_radiated").get<double>() == 0);
+  CHECK(x[1].at("sum_Q").get<double>() < x[0].at("sum_Q").get<double>() - 100);
+}
