@@ -235,7 +235,7 @@ TEST_CASE("exchange: missing or contradictory thermal properties, lengths not in
 }
 
 TEST_CASE("exchange: a block's bottom lying on the floor is a contact patch, reported in W and left out with "
-          "--contact-faces exclude; the balance closes within its error either way", "[cli][exchange]") {
+          "--contact-faces exclude, and the balance closes within its error either way", "[cli][exchange]") {
   const fs::path dir = scratch_dir("exchange_contact");
   {
     std::ofstream mtl(dir / "c.mtl");
