@@ -38,6 +38,12 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
      [](const SolveCommand& c) { return c.refine > 0; }, "with --refine"},
 };
 
+const std::vector<Rule<ExchangeCommand>> kExchangeRules = {
+    {{"--tol", "--max-iterations"}, [](const ExchangeCommand& c) { return c.solver != "direct"; },
+     "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
+    {{"--min-rays"}, [](const ExchangeCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
+};
+
 const std::vector<Rule<FormFactorsCommand>> kFormFactorsRules = {
     {{"--min-rays"}, [](const FormFactorsCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
 };
@@ -97,6 +103,9 @@ std::vector<std::string> apply(const std::vector<Rule<Command>>& rules, const Co
 
 std::vector<std::string> ignored_options(const SolveCommand& command, const OptionGiven& given) {
   return apply(kSolveRules, command, given);
+}
+std::vector<std::string> ignored_options(const ExchangeCommand& command, const OptionGiven& given) {
+  return apply(kExchangeRules, command, given);
 }
 std::vector<std::string> ignored_options(const FormFactorsCommand& command, const OptionGiven& given) {
   return apply(kFormFactorsRules, command, given);

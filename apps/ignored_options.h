@@ -20,6 +20,7 @@ using OptionGiven = std::function<bool(const std::string& name)>;
 // The messages (without the "radwalk: error: " prefix) for the options `command` cannot honour, one per rule.
 std::vector<std::string> ignored_options(const SolveCommand& command, const OptionGiven& given);
 std::vector<std::string> ignored_options(const FormFactorsCommand& command, const OptionGiven& given);
+std::vector<std::string> ignored_options(const ExchangeCommand& command, const OptionGiven& given);
 std::vector<std::string> ignored_options(const CompareCommand& command, const OptionGiven& given);
 std::vector<std::string> ignored_options(const MeasureCommand& command, const OptionGiven& given);
 std::vector<std::string> ignored_options(const PathtraceCommand& command, const OptionGiven& given);

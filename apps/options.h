@@ -127,7 +127,23 @@ struct MeasureCommand {
   int width = 256, height = 256;
 };
 
+// radwalk exchange: grey diffuse radiative heat exchange by the net-radiation method (solve/net_radiation.h).
+struct ExchangeCommand {
+  SceneOptions scene;
+  FormFactorCliOptions ff;
+  std::string solver = "auto";       // auto | direct | jacobi | gauss-seidel | southwell
+  double tol = 1e-12;
+  long max_iterations = 0;           // 0: the solver's default
+  double ambient_temperature = 0;    // --ambient-temperature T (K): what escaping rays reach (emissivity 1)
+  bool ambient_given = false;
+  std::string group_by = "object";   // --group-by object|group|material
+  std::string groups_csv;            // --groups FILE.csv: Q per group
+  std::string group_factors;         // --group-factors FILE.csv: F between groups (from, to, F)
+  std::string contact_faces = "include";  // --contact-faces include|exclude: patches touching other surfaces
+};
+
 int run_check(const SceneOptions& options);
+int run_exchange(const ExchangeCommand& command);
 int run_measure(const MeasureCommand& command);
 int run_patch(const PatchCommand& command);
 int run_formfactors(const FormFactorsCommand& command);

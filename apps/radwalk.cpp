@@ -30,6 +30,7 @@
 #include "core/path_length.h"
 #include "core/progress.h"
 #include "io/run_summary.h"
+#include "mesh/material_override.h"
 #include "mesh/text_scan.h"
 #include "walk/measure_by_method.h"
 #include "walk/named_choice.h"
@@ -580,6 +581,53 @@ int run_main(int argc, char** argv) {
       "... batches of walks (time = walks; costs about one more run)")
       ->check(kSeriesDirectory);
 
+  ExchangeCommand exchange;
+  auto* exchange_cmd = app.add_subcommand(
+      "exchange", "Grey diffuse radiative heat exchange (net-radiation method): emissivity and temperature or heat "
+                  "flux per material in; J, q, Q, T per patch, the energy balance and group tables out");
+  add_scene_options(exchange_cmd, exchange.scene);
+  add_form_factor_options(exchange_cmd, exchange.ff);
+  exchange_cmd->add_option("-o,--output", exchange.scene.vtp, "Write J, q, Q, T and their errors per patch as .vtp")
+      ->check(output_file(OutputFile::vtp));
+  exchange_cmd
+      ->add_option("--solver", exchange.solver,
+                   "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell")
+      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell"}))
+      ->capture_default_str();
+  exchange_cmd
+      ->add_option("--tol", exchange.tol, "Iterative solvers stop at this relative residual of the radiosity form")
+      ->transform(kPositive)
+      ->capture_default_str();
+  exchange_cmd->add_option("--max-iterations", exchange.max_iterations, "Iteration budget of the iterative solvers")
+      ->check(kPositive);
+  exchange_cmd
+      ->add_option_function<double>(
+          "--ambient-temperature",
+          [&exchange](double T) {
+            exchange.ambient_temperature = T;
+            exchange.ambient_given = true;
+          },
+          "Temperature (K) of the black ambient that escaping radiation reaches (open scenes); default 0 K")
+      ->transform(kNonNegative);
+  exchange_cmd
+      ->add_option("--group-by", exchange.group_by,
+                   "What the group tables aggregate: object, group (OBJ o / g, glTF node / mesh) or material")
+      ->check(one_of({"object", "group", "material"}))
+      ->capture_default_str();
+  exchange_cmd
+      ->add_option("--contact-faces", exchange.contact_faces,
+                   "Patches touching another surface (faces lying on a support, e.g. furniture bottoms on the floor, "
+                   "and the support under them; patch/contact.h): include them in the exchange (reported in W) or "
+                   "exclude them (their rows and columns of F removed; heat through a contact is conduction)")
+      ->check(one_of({"include", "exclude"}))
+      ->capture_default_str();
+  exchange_cmd->add_option("--groups", exchange.groups_csv, "Write Q (W), area, radiant temperature per group as CSV")
+      ->check(output_file(OutputFile::csv));
+  exchange_cmd
+      ->add_option("--group-factors", exchange.group_factors,
+                   "Write the view factors between groups as CSV (from, to, F, exchange_area A_from F)")
+      ->check(output_file(OutputFile::csv));
+
   CompareCommand compare;
   auto* compare_cmd =
       app.add_subcommand("compare", "Run random-walk estimators repeatedly; compare their variance and cost");
@@ -716,13 +764,15 @@ int run_main(int argc, char** argv) {
   }
   Progress::set_enabled(!g_quiet);
   set_quiet(g_quiet);
-  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene, &measure.scene}) {
+  for (SceneOptions* o : {&check, &patch.scene, &ff.scene, &solve.scene, &compare.scene, &pt.scene, &measure.scene,
+                          &exchange.scene}) {
     o->argv = args;
     report_to_stderr_if_stdout_written(*o);  // --csv - or --json -: stdout carries that output alone
   }
   // --paraview-state: a Python state file, and only beside a .vtp.
   for (const auto& [o, vtp] : {std::pair{&patch.scene, patch.output}, std::pair{&ff.scene, ff.diagnostics_vtp},
                                std::pair{&solve.scene, solve.scene.vtp}, std::pair{&compare.scene, compare.scene.vtp},
+                               std::pair{&exchange.scene, exchange.scene.vtp},
                                std::pair{&pt.scene, pt.scene.vtp}}) {
     if (!refusal.empty() || help_or_version || o->paraview_state.empty()) continue;
     const bool py = o->paraview_state.size() > 3 && o->paraview_state.rfind(".py") == o->paraview_state.size() - 3;
@@ -752,9 +802,13 @@ int run_main(int argc, char** argv) {
       o->outputs = outputs({{"-o", o->vtp}, {"--csv", o->csv}, {"--json", o->json},
                             {"--paraview-state", o->paraview_state}});
     for (NamedFile& f : outputs({{"--image", pt.image}})) pt.scene.outputs.push_back(std::move(f));
+    exchange.scene.outputs = outputs({{"-o", exchange.scene.vtp}, {"--csv", exchange.scene.csv},
+                                      {"--json", exchange.scene.json}, {"--paraview-state", exchange.scene.paraview_state},
+                                      {"--groups", exchange.groups_csv}, {"--group-factors", exchange.group_factors}});
     const std::vector<std::pair<SceneOptions*, std::string>> commands = {
         {&check, ""}, {&patch.scene, ""}, {&ff.scene, ff.ff.form_factors}, {&solve.scene, solve.ff.form_factors},
-        {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}, {&measure.scene, measure.ff.form_factors}};
+        {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}, {&measure.scene, measure.ff.form_factors},
+        {&exchange.scene, exchange.ff.form_factors}};
     for (const auto& [o, form_factors] : commands) {
       o->form_factors_input = form_factors;
       const std::string clash =
@@ -778,7 +832,7 @@ int run_main(int argc, char** argv) {
   for (const auto& [o, cmd] : {std::pair{&check, check_cmd}, std::pair{&patch.scene, patch_cmd},
                                std::pair{&ff.scene, ff_cmd}, std::pair{&solve.scene, solve_cmd},
                                std::pair{&compare.scene, compare_cmd}, std::pair{&pt.scene, pt_cmd},
-                               std::pair{&measure.scene, measure_cmd}})
+                               std::pair{&measure.scene, measure_cmd}, std::pair{&exchange.scene, exchange_cmd}})
     if (refusal.empty() && !help_or_version && *cmd) {
       o->run_options = canonical_options(cmd);
       mine.command = cmd->get_name();
@@ -809,6 +863,18 @@ int run_main(int argc, char** argv) {
     if (*compare_cmd) refuse_inapplicable(compare_cmd, compare);
     if (*pt_cmd) refuse_inapplicable(pt_cmd, pt);
     if (*measure_cmd) refuse_inapplicable(measure_cmd, measure);
+    if (*exchange_cmd) refuse_inapplicable(exchange_cmd, exchange);
+    // The heat-exchange properties of --set are read by radwalk exchange alone.
+    for (const auto& [o, cmd] : {std::pair{&patch.scene, patch_cmd}, std::pair{&ff.scene, ff_cmd},
+                                 std::pair{&solve.scene, solve_cmd}, std::pair{&compare.scene, compare_cmd},
+                                 std::pair{&pt.scene, pt_cmd}, std::pair{&measure.scene, measure_cmd}})
+      if (*cmd)
+        for (const std::string& text : o->set_material) {
+          const MaterialOverride parsed = parse_material_override(text);
+          if (is_thermal_property(parsed.property))
+            throw InputError("--set '" + text + "': " + parsed.property + " is read by 'radwalk exchange' only; '" +
+                             cmd->get_name() + "' would ignore it: remove it");
+        }
 
     // --quiet: the count of the scene warnings it did not print (they are in --json).
     auto counted = [](int code) {
@@ -823,6 +889,7 @@ int run_main(int argc, char** argv) {
     if (*compare_cmd) return counted(run_compare(compare));
     if (*pt_cmd) return counted(run_pathtrace(pt));
     if (*measure_cmd) return counted(run_measure(measure));
+    if (*exchange_cmd) return counted(run_exchange(exchange));
   } catch (const InputError& e) {
     std::fprintf(stderr, "radwalk: error: %s\n", e.what());
     return 2;

@@ -17,6 +17,10 @@ std::string colour_text(const Rgb& c) {
 
 }  // namespace
 
+bool is_thermal_property(const std::string& property) {
+  return property == "emissivity" || property == "temperature" || property == "heat_flux";
+}
+
 MaterialOverride parse_material_override(const std::string& text) {
   const std::string where = "--set '" + printable(text) + "': ";
   const std::string::size_type eq = text.find('=');
@@ -29,9 +33,11 @@ MaterialOverride parse_material_override(const std::string& text) {
   o.text = text;
   o.material = text.substr(0, dot);
   o.property = text.substr(dot + 1, eq - dot - 1);
-  if (o.property != "Kd" && o.property != "Ke")
+  if (o.property != "Kd" && o.property != "Ke" && !is_thermal_property(o.property))
     throw InputError(where + "unknown property '" + printable(o.property) + "'" +
-                     did_you_mean(o.property, {"Kd", "Ke"}) + "; --set changes Kd (rho) or Ke (emitted radiance)");
+                     did_you_mean(o.property, {"Kd", "Ke", "emissivity", "temperature", "heat_flux"}) +
+                     "; --set changes Kd (rho) or Ke (emitted radiance), and for radwalk exchange emissivity, "
+                     "temperature (K) or heat_flux (W/m^2)");
   std::vector<double> values;
   const std::string list = text.substr(eq + 1);
   std::string::size_type start = 0;
@@ -46,6 +52,14 @@ MaterialOverride parse_material_override(const std::string& text) {
     if (comma == std::string::npos) break;
     start = comma + 1;
   }
+  if (is_thermal_property(o.property) && values.size() != 1)
+    throw InputError(where + o.property + " needs 1 number, found " + std::to_string(values.size()));
+  if (o.property == "emissivity" && !(values[0] > 0 && values[0] <= 1))
+    throw InputError(where + "emissivity " + number_text(values[0]) + " out of range: it must be in (0, 1]");
+  if (o.property == "temperature" && !(values[0] >= 0 && values[0] <= 1e6))
+    throw InputError(where + "temperature " + number_text(values[0]) + " out of range: kelvin in [0, 1e6]");
+  if (o.property == "heat_flux" && !(std::abs(values[0]) <= 1e12))
+    throw InputError(where + "heat_flux " + number_text(values[0]) + " out of range: W/m^2 of magnitude <= 1e12");
   if (values.size() != 1 && values.size() != 3)
     throw InputError(where + o.property + " needs 1 or 3 numbers, found " + std::to_string(values.size()));
   o.value = values.size() == 1 ? Rgb::Constant(values[0]) : Rgb(values[0], values[1], values[2]);
@@ -63,8 +77,19 @@ void apply_material_overrides(Mesh& mesh, const std::vector<MaterialOverride>& o
     bool found = false;
     for (Material& m : mesh.materials)
       if (m.name == o.material) {
-        (o.property == "Kd" ? m.Kd : m.Ke) = o.value;
-        if (o.property == "Kd") m.reflectance_missing = false;
+        if (o.property == "emissivity") {
+          m.emissivity = o.value[0];
+          m.reflectance_missing = false;  // the exchange's reflectance is 1 - emissivity
+        } else if (o.property == "temperature") {
+          m.temperature = o.value[0];
+          m.heat_flux.reset();  // a later condition replaces an earlier one (or the file's)
+        } else if (o.property == "heat_flux") {
+          m.heat_flux = o.value[0];
+          m.temperature.reset();
+        } else {
+          (o.property == "Kd" ? m.Kd : m.Ke) = o.value;
+          if (o.property == "Kd") m.reflectance_missing = false;
+        }
         found = true;
       }
     if (found) continue;

@@ -17,10 +17,15 @@ namespace radwalk {
 
 struct MaterialOverride {
   std::string material;  // name as in newmtl (PLY: the generated colour names)
-  std::string property;  // "Kd" or "Ke"
+  std::string property;  // "Kd", "Ke", or "emissivity", "temperature", "heat_flux" (value[0])
   Rgb value = Rgb::Zero();
   std::string text;      // as given, for messages
 };
+
+// The heat-exchange properties (emissivity, temperature, heat_flux: one number each, radwalk exchange only). A
+// temperature override drops the material's heat flux and a heat_flux override its temperature (a surface has one
+// condition).
+bool is_thermal_property(const std::string& property);
 
 // "NAME.PROP=v" or "NAME.PROP=r,g,b". Throws InputError naming the text for a missing '.' or '=', a property
 // other than Kd and Ke (with did-you-mean), a number that is not finite or a count other than 1 or 3, a Kd

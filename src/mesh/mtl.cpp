@@ -84,7 +84,8 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
       return;
     }
     const bool known = key == "Kd" || key == "Ke" || key == "Ks" || key == "illum" || key == "Ni" || key == "Ns" ||
-                       key == "Pr" || key == "Pm" || key == kTwoSidedStatement;
+                       key == "Pr" || key == "Pm" || key == kTwoSidedStatement || key == kEmissivityStatement ||
+                       key == kTemperatureStatement || key == kHeatFluxStatement;
     if (!known) return;
     if (entries.empty())
       throw InputError(locate(path, line, -1, std::string(key) + " before the first newmtl statement"));
@@ -94,6 +95,24 @@ std::vector<MtlEntry> scan_mtl_text(const std::string& path, std::string_view te
     else if (key == "Ks") e.Ks = parse_colour(tokens, path, line);
     else if (key == "Ni") e.Ni = parse_scalar(tokens, path, line);
     else if (key == "Ns") e.Ns = parse_scalar(tokens, path, line);
+    else if (key == kEmissivityStatement) {
+      e.emissivity = parse_scalar(tokens, path, line);
+      if (!(*e.emissivity > 0 && *e.emissivity <= 1))
+        throw InputError(locate(path, line, -1, std::string(kEmissivityStatement) + " must be in (0, 1], found " +
+                                                    excerpt(tokens[1])));
+    } else if (key == kTemperatureStatement) {
+      e.temperature = parse_scalar(tokens, path, line);
+      if (!(*e.temperature >= 0 && *e.temperature <= 1e6))
+        throw InputError(locate(path, line, -1, std::string(kTemperatureStatement) +
+                                                    " must be a temperature in kelvin in [0, 1e6], found " +
+                                                    excerpt(tokens[1])));
+    } else if (key == kHeatFluxStatement) {
+      e.heat_flux = parse_scalar(tokens, path, line);
+      if (!(std::abs(*e.heat_flux) <= 1e12))
+        throw InputError(locate(path, line, -1, std::string(kHeatFluxStatement) +
+                                                    " must be a heat flux in W/m^2 of magnitude <= 1e12, found " +
+                                                    excerpt(tokens[1])));
+    }
     else if (key == "Pr") {
       e.Pr = parse_scalar(tokens, path, line);
       if (!(*e.Pr >= 0 && *e.Pr <= 1))  // the roughness Pr^2 is a GGX alpha (and 1e300^2 is no number)
@@ -126,6 +145,9 @@ Material material_from_mtl(const MtlEntry& e) {
   if (e.Ni) m.Ni = *e.Ni;
   m.illum = e.illum.value_or(-1);
   m.two_sided = e.two_sided.value_or(false);
+  m.emissivity = e.emissivity;
+  m.temperature = e.temperature;
+  m.heat_flux = e.heat_flux;
   m.metallic = e.Pm.value_or(0.0);
   const double Pr = e.Pr.value_or(0.0);
 

@@ -43,12 +43,19 @@ struct MtlEntry {
   std::optional<int> illum;
   std::optional<double> Ni, Ns, Pr, Pm;
   std::optional<bool> two_sided;  // radwalk_two_sided 0|1
+  // The grey-body heat-exchange keys (radwalk exchange, docs/heat-exchange.md): radwalk_emissivity E,
+  // radwalk_temperature T (K), radwalk_heat_flux q (W/m^2, net leaving); other programs ignore them.
+  std::optional<double> emissivity, temperature, heat_flux;
   std::optional<std::string> map_Kd;  // the texture file of map_Kd as written (options such as -s u v w skipped)
   long map_Kd_line = 0;
 };
 
 // The MTL statement that makes a material two-sided.
 inline constexpr const char* kTwoSidedStatement = "radwalk_two_sided";
+// The MTL statements of the heat-exchange keys.
+inline constexpr const char* kEmissivityStatement = "radwalk_emissivity";
+inline constexpr const char* kTemperatureStatement = "radwalk_temperature";
+inline constexpr const char* kHeatFluxStatement = "radwalk_heat_flux";
 
 // All newmtl blocks of an MTL file, in file order. Throws InputError naming file and line for a statement
 // radwalk cannot read (a number that does not parse, is out of range or not finite, a spectral or xyz colour,
