@@ -1,22 +1,11 @@
 #include "apps/discretisation_error.h"
 
-#include <cstdio>
-
 #include "apps/statistical_error.h"
 #include "core/timer.h"
 #include "solve/discretisation_error.h"
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
-namespace {
-
-std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
-  return text;
-}
-
-}  // namespace
 
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
                                      RunSummary& summary, int directions, std::uint64_t seed) {

@@ -12,15 +12,12 @@
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
-namespace {
 
 std::string percent(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
   return text;
 }
-
-}  // namespace
 
 double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
   // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.

@@ -29,4 +29,7 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
 // over the reflecting (rho > 0), non-emitting patches (0 when there are none, or B is 0 there).
 double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d);
 
+// A relative error as the summary lines print it: "0.63 %" (two significant digits).
+std::string percent(double x);
+
 }  // namespace radwalk::app
