@@ -33,6 +33,7 @@
 #include "core/types.h"
 #include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
+#include "solve/problem.h"
 
 namespace radwalk::python {
 
@@ -100,6 +101,12 @@ void check_solved(const Solution& solution);
 // FormFactors estimated by rays; empty rays otherwise), for its error (solve/form_factor_error.h).
 SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, std::uint64_t seed, int threads,
                            std::map<std::string, double>& timings, FormFactors* sampling = nullptr);
+
+// Sets r.solution.B_disc, the estimated discretisation error (solve/discretisation_error.h), as the CLI's solve
+// does with --discretisation-directions `directions` and --seed `seed` (0 directions: not estimated; a refused
+// or failed solve: nothing), timed as "discretisation_error". Call with the GIL released.
+void add_discretisation_error(Result& r, const Scene& scene, const RadiosityProblem& problem, int directions,
+                              std::uint64_t seed);
 
 // The metadata of a result as a JSON text: `run` (the options) plus the CLI's "solution" object, scene, max_edge,
 // patches and timings_s.

@@ -26,7 +26,7 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
              long rays, std::uint64_t seed, long long threads_arg, int discretisation_directions) {
   if (discretisation_directions < 0)
     throw InputError("discretisation_directions must be >= 0 (0: not estimated), got " +
-                     std::to_string(discretisation_directions));
+                     std::to_string(discretisation_directions));  // before any form factor is traced
   const int threads = check_run(scene, threads_arg);
   Result r;
   FormFactors sampling;
@@ -49,15 +49,9 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
       r.solution.info["sampling_factor_emitter"] = error.calibration.factors.emitter;
       r.timings["error_estimate"] = timer.seconds();
     }
-    // B_disc: the estimated discretisation error (as the CLI's solve, --discretisation-directions).
-    if (discretisation_directions > 0 && r.solution.status != SolveStatus::refused &&
-        r.solution.B.rows() == static_cast<Eigen::Index>(scene.patches.size())) {
-      const EmbreeVisibility visibility(scene.patches);
-      const DiscretisationError d =
-          discretisation_error(scene.patches, visibility, problem, r.solution.B, discretisation_directions, seed);
-      r.solution.B_disc = d.standard_error;
-      r.timings["discretisation_error"] = d.seconds;
-    }
+    // As the CLI's solve with --seed: the seed F was traced with, when radwalk traced it.
+    add_discretisation_error(r, scene, problem, discretisation_directions,
+                             has_noise_model(sampling) ? sampling.options.seed : seed);
   });
   check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;
@@ -67,6 +61,19 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
 }
 
 }  // namespace
+
+void add_discretisation_error(Result& r, const Scene& scene, const RadiosityProblem& problem, int directions,
+                              std::uint64_t seed) {
+  if (directions < 0)
+    throw InputError("discretisation_directions must be >= 0 (0: not estimated), got " + std::to_string(directions));
+  if (directions == 0 || r.solution.status == SolveStatus::refused ||
+      r.solution.B.rows() != static_cast<Eigen::Index>(scene.patches.size()) || !r.solution.B.allFinite())
+    return;
+  const EmbreeVisibility visibility(scene.patches);
+  const DiscretisationError d = discretisation_error(scene.patches, visibility, problem, r.solution.B, directions, seed);
+  r.solution.B_disc = d.standard_error;
+  r.timings["discretisation_error"] = d.seconds;
+}
 
 std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json run) {
   run["schema_version"] = RunSummary::kSchemaVersion;  // the key names of docs/json-schema.md

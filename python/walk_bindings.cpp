@@ -67,7 +67,10 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
                    const std::string& survival, double survival_constant, bool theory,
                    const std::vector<int>& patches, long rays, long long threads_arg, bool progress,
                    bool control_variate, const std::string& sampler, int replicates, bool direct_light,
-                   long shadow_rays) {
+                   long shadow_rays, int discretisation_directions) {
+  if (discretisation_directions < 0)
+    throw InputError("discretisation_directions must be >= 0 (0: not estimated), got " +
+                     std::to_string(discretisation_directions));
   const int threads = check_run(scene, threads_arg);
   WalkOptions w = walk_options(method, kernel, walks_per_patch.value_or(1000), particles.value_or(1000), seed,
                                survival, survival_constant, patches);
@@ -101,6 +104,7 @@ Result random_walk(const Scene& scene, const py::object& F, const std::string& m
       r.solution.B_se = combined_standard_error(r.solution.B_se, error.standard_error);
       r.timings["error_estimate"] = timer.seconds();
     }
+    add_discretisation_error(r, scene, problem, discretisation_directions, seed);  // as the CLI's solve
   });
   check_solved(r.solution);
   r.timings["solve"] = r.solution.seconds;
@@ -233,6 +237,8 @@ sampler, replicates, direct_light, shadow_rays: shooting, as the CLI's --sampler
   the first bounce apart (ray kernel: point-to-polygon form factors x visibility with shadow_rays samples per
   receiving patch, 0: particles / (2 N); matrix kernel: exact from F). The random sampler reads neither
   replicates nor shadow_rays, and direct_light needs sobol or jacobi (InputError, as the CLI).
+discretisation_directions: Result.B_disc, the estimated discretisation error, with that many directions per point
+  (the CLI's --discretisation-directions; 0: not estimated, None); Result.B_err the total.
 Raises radwalk.InputError for an unknown name (with the valid ones and the nearest) or a bad count;
 radwalk.NumericalError when the walks refuse the system (spectral radius >= 1), with the walks' message.)doc");
   py::class_<EstimatorComparison>(m, "EstimatorComparison",
@@ -378,7 +384,8 @@ efficiency), e.g. pandas.DataFrame(c.rows); timings: stage -> seconds.)doc")
         py::arg("progress") = false, py::arg("control_variate") = false,
         py::arg("sampler") = std::string(sampler_name(WalkOptions{}.sampler)),
         py::arg("replicates") = WalkOptions{}.replicates, py::arg("direct_light") = WalkOptions{}.direct_light,
-        py::arg("shadow_rays") = WalkOptions{}.shadow_rays, random_walk_doc.c_str());
+        py::arg("shadow_rays") = WalkOptions{}.shadow_rays, py::arg("discretisation_directions") = 16,
+        random_walk_doc.c_str());
 
   m.def("compare", &compare, py::arg("scene"), py::arg("F") = py::none(), py::arg("methods") = py::none(),
         py::arg("runs") = 5, py::arg("walks_per_patch") = 1000, py::arg("kernel") = "matrix", py::arg("seed") = 1,

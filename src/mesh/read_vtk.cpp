@@ -113,6 +113,31 @@ std::string legacy_keyword(std::string_view token) {
   return "";
 }
 
+// The value of the attribute `name` of the file's <VTKFile ...> element, as an XML parser reads it (the name
+// preceded by white space, then optional white space, '=', optional white space and a quoted value), or "" when the
+// element or the attribute is missing. Substring matches would be wrong: in `byte_orderheader_type="UInt64"` VTK
+// sees no header_type (and takes 32-bit headers), where a search for `header_type="UInt64"` finds one (a fuzz
+// finding: the headers were then read with the wrong width and VTK divided by a block size of 0).
+std::string_view vtkfile_attribute(std::string_view text, std::string_view name) {
+  const std::size_t start = text.find("<VTKFile");
+  if (start == std::string_view::npos) return {};
+  const std::size_t end = text.find('>', start);
+  const std::string_view element = text.substr(start, end == std::string_view::npos ? text.npos : end - start);
+  for (std::size_t at = element.find(name); at != std::string_view::npos; at = element.find(name, at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(element[at - 1]))) continue;
+    std::size_t k = at + name.size();
+    while (k < element.size() && std::isspace(static_cast<unsigned char>(element[k]))) ++k;
+    if (k >= element.size() || element[k] != '=') continue;
+    ++k;
+    while (k < element.size() && std::isspace(static_cast<unsigned char>(element[k]))) ++k;
+    if (k >= element.size() || (element[k] != '"' && element[k] != '\'')) continue;
+    const std::size_t close = element.find(element[k], k + 1);
+    if (close == std::string_view::npos) return {};
+    return element.substr(k + 1, close - k - 1);
+  }
+  return {};
+}
+
 // The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
 void check_declared_counts(const std::string& path, std::string_view bytes, bool xml) {
   const double size = static_cast<double>(bytes.size());
@@ -122,7 +147,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     // Only the XML markup: a raw appended section is binary and declares nothing.
     const std::size_t appended = text.find("<AppendedData");
     if (appended != std::string_view::npos) text = text.substr(0, appended);
-    const bool compressed = text.find("compressor=") != std::string_view::npos;
+    const bool compressed = !vtkfile_attribute(text, "compressor").empty();
     // Every NumberOfNAME="VALUE" attribute (scanned by hand: no regex backtracking over megabytes of markup).
     for (std::size_t at = text.find("NumberOf"); at != std::string_view::npos; at = text.find("NumberOf", at + 1)) {
       std::size_t k = at + 8;
@@ -232,7 +257,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     // count at most the file's bytes; compressed, the number of blocks (each with a header word in the file) at
     // most the file's words, the block sizes at most 1032 (zlib's largest ratio) times the file's bytes and each
     // block's compressed size at most the file's bytes.
-    const bool wide = text.find("header_type=\"UInt64\"") != std::string_view::npos;
+    const bool wide = vtkfile_attribute(text, "header_type") == "UInt64";
     for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
       for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
         const std::size_t end = text.find('>', at);

@@ -57,7 +57,8 @@ TEST_CASE("radwalk: a mistyped command or option says what was meant and points 
   CHECK(one_error("pathtrace " + cube + " --sp=4") ==
         "radwalk: error: unknown option '--sp' (did you mean '--spp'?); see 'radwalk pathtrace --help'\n");
   CHECK(one_error("") ==
-        "radwalk: error: a command is required: check, patch, formfactors, solve, compare, measure or pathtrace; "
+        "radwalk: error: a command is required: check, patch, formfactors, solve, exchange, compare, measure or "
+        "pathtrace; "
         "see 'radwalk --help'\n");
   // Nothing near: no suggestion; other parse errors keep their own words and point at the help.
   CHECK(one_error("solve " + cube + " --zzzzzz") ==
