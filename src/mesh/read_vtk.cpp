@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <optional>
+#include <string_view>
 #include <cctype>
 #include <tuple>
 #include <vector>
@@ -113,29 +115,34 @@ std::string legacy_keyword(std::string_view token) {
   return "";
 }
 
-// The value of the attribute `name` of the file's <VTKFile ...> element, as an XML parser reads it (the name
-// preceded by white space, then optional white space, '=', optional white space and a quoted value), or "" when the
-// element or the attribute is missing. Substring matches would be wrong: in `byte_orderheader_type="UInt64"` VTK
-// sees no header_type (and takes 32-bit headers), where a search for `header_type="UInt64"` finds one (a fuzz
-// finding: the headers were then read with the wrong width and VTK divided by a block size of 0).
+// The value of the attribute `name` in an element's start tag (the text from '<' to before '>'), as an XML parser
+// reads it (the name preceded by white space, then optional white space, '=', optional white space and a quoted
+// value), or nullopt. Substring matches would be wrong: in `byte_orderheader_type="UInt64"` VTK sees no
+// header_type (and takes 32-bit headers) where a search for `header_type="UInt64"` finds one, and `foreat="ascii"`
+// is no format (both fuzz findings: VTK then divided by a block size of 0, or crashed reading the piece).
+std::optional<std::string_view> tag_attribute(std::string_view tag, std::string_view name) {
+  for (std::size_t at = tag.find(name); at != std::string_view::npos; at = tag.find(name, at + 1)) {
+    if (at == 0 || !std::isspace(static_cast<unsigned char>(tag[at - 1]))) continue;
+    std::size_t k = at + name.size();
+    while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
+    if (k >= tag.size() || tag[k] != '=') continue;
+    ++k;
+    while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
+    if (k >= tag.size() || (tag[k] != '"' && tag[k] != '\'')) continue;
+    const std::size_t close = tag.find(tag[k], k + 1);
+    if (close == std::string_view::npos) return std::nullopt;
+    return tag.substr(k + 1, close - k - 1);
+  }
+  return std::nullopt;
+}
+
+// The attribute `name` of the file's <VTKFile ...> element ("" when the element or the attribute is missing).
 std::string_view vtkfile_attribute(std::string_view text, std::string_view name) {
   const std::size_t start = text.find("<VTKFile");
   if (start == std::string_view::npos) return {};
   const std::size_t end = text.find('>', start);
-  const std::string_view element = text.substr(start, end == std::string_view::npos ? text.npos : end - start);
-  for (std::size_t at = element.find(name); at != std::string_view::npos; at = element.find(name, at + 1)) {
-    if (at == 0 || !std::isspace(static_cast<unsigned char>(element[at - 1]))) continue;
-    std::size_t k = at + name.size();
-    while (k < element.size() && std::isspace(static_cast<unsigned char>(element[k]))) ++k;
-    if (k >= element.size() || element[k] != '=') continue;
-    ++k;
-    while (k < element.size() && std::isspace(static_cast<unsigned char>(element[k]))) ++k;
-    if (k >= element.size() || (element[k] != '"' && element[k] != '\'')) continue;
-    const std::size_t close = element.find(element[k], k + 1);
-    if (close == std::string_view::npos) return {};
-    return element.substr(k + 1, close - k - 1);
-  }
-  return {};
+  return tag_attribute(text.substr(start, end == std::string_view::npos ? text.npos : end - start), name)
+      .value_or(std::string_view());
 }
 
 // The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
@@ -185,14 +192,21 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
           throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " of type \"" + excerpt(type) +
                                                    "\": not one of Int8, UInt8, Int16, UInt16, Int32, UInt32, "
                                                    "Int64, UInt64, Float32, Float64, String"));
+        // Every array names its format, one of VTK's three (an array whose format attribute was mangled crashed
+        // VTK 9.1's reader; found by the vtk fuzz harness).
+        const std::optional<std::string_view> format = tag_attribute(tag, "format");
+        if (!format || (*format != "ascii" && *format != "binary" && *format != "appended"))
+          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " without a format of ascii, binary "
+                                                   "or appended"));
         // An ascii array holds numbers only (whole ones but for Float32 and Float64; a String array its bytes):
         // VTK 9.1's XML reader crashed on a word among an ascii array's numbers (found by the vtk fuzz harness).
-        if (end == std::string_view::npos || tag.find("format=\"ascii\"") == std::string_view::npos) continue;
+        if (end == std::string_view::npos || *format != "ascii") continue;
         const std::size_t stop = text.find('<', end + 1);
         const std::string_view content =
             text.substr(end + 1, stop == std::string_view::npos ? std::string_view::npos : stop - end - 1);
         const bool real = type == "Float32" || type == "Float64";
-        std::size_t values = 0;
+        std::size_t values = 0, zeros = 0;  // zeros: a String array's terminators
+        bool last_zero = true;
         for (std::size_t i = 0; i < content.size();) {
           if (std::isspace(static_cast<unsigned char>(content[i]))) {
             ++i;
@@ -207,6 +221,8 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
                                                      (real ? "a number" : "a whole number")));
           i = j;
           ++values;
+          last_zero = type == "String" && parse_long(token) && *parse_long(token) == 0;
+          if (last_zero) ++zeros;
         }
         // As many values as the array declares: a multiple of its components, its tuples when it names them, and
         // in a piece's CellData one tuple per cell, in its PointData and Points one per point (a short E array
@@ -218,7 +234,17 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
           const auto n = parse_double(tag.substr(v, e == std::string_view::npos ? 0 : e - v));
           return n && *n >= 0 ? *n : -1;
         };
-        if (type == "String") continue;  // its values are the bytes of its strings, not tuples
+        if (type == "String") {
+          // Its values are the bytes of its strings, each ended by 0: VTK 9.1 stores every string it finds and
+          // wrote past an array of NumberOfTuples strings when the text held more (found by the vtk fuzz harness).
+          const double strings = static_cast<double>(zeros + (last_zero ? 0 : 1));
+          const double declared = attribute("NumberOfTuples") * std::max(1.0, attribute("NumberOfComponents"));
+          if (values > 0 && attribute("NumberOfTuples") >= 0 && strings > declared)
+            throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " of strings holds " +
+                                                     number_text(strings) + " strings, more than the " +
+                                                     number_text(declared) + " it declares"));
+          continue;
+        }
         const double components = std::max(1.0, attribute("NumberOfComponents"));
         double tuples = attribute("NumberOfTuples");
         const std::size_t piece = text.rfind("<Piece", at);
@@ -262,7 +288,7 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
       for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
         const std::size_t end = text.find('>', at);
         if (end == std::string_view::npos) break;
-        if (text.substr(at, end - at).find("format=\"binary\"") == std::string_view::npos) continue;
+        if (tag_attribute(text.substr(at, end - at), "format").value_or("") != "binary") continue;
         std::size_t k = end + 1;
         while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
         const std::size_t word_bytes = wide ? 8 : 4;
