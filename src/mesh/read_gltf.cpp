@@ -250,7 +250,14 @@ class GltfReader {
           owned_.push_back(std::move(*decoded));
         } else {
           const std::string file = percent_decode(u);
-          owned_.push_back(resources_.read(!file.empty() && file[0] == '/' ? file : directory_of(path_) + file));
+          // A message that would quote bytes that are not printable UTF-8 (the uri may hold any; a fuzz finding) quotes
+          // an excerpt instead.
+          try {
+            owned_.push_back(resources_.read(!file.empty() && file[0] == '/' ? file : directory_of(path_) + file));
+          } catch (const InputError& e) {
+            if (printable(e.what()) == e.what()) throw;
+            fail(where, "buffer '" + excerpt(file) + "' cannot be read (" + excerpt(e.what()) + ")");
+          }
         }
         data = owned_.back();
       }
