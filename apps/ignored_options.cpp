@@ -36,6 +36,8 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
     {{"--refine-steps", "--max-patches", "--refine-floor", "--refine-noise"},
      [](const SolveCommand& c) { return c.refine > 0; }, "with --refine"},
+    {{"--discretisation-directions"}, [](const SolveCommand& c) { return !(c.refine > 0); },
+     "without --refine (adaptive patching does not estimate B_disc yet)"},
 };
 
 const std::vector<Rule<ExchangeCommand>> kExchangeRules = {
