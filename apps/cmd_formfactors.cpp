@@ -7,6 +7,7 @@
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
 #include "core/timer.h"
+#include "formfactor/emitter_form_factors.h"
 #include "formfactor/form_factor_file.h"
 
 namespace radwalk::app {
@@ -16,7 +17,11 @@ int run_formfactors(const FormFactorsCommand& command) {
   const PatchSet patches = load_patches(command.scene, summary);
   // Over MPI each rank traces and keeps its rows; rank 0 gathers the whole F (the others' rows in rank order) to
   // write the one file, the same bytes as one process's, and to compute the diagnostics, then drops it.
-  const FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary, RowsHeld::own_rows);
+  // F as geometry: the emitter columns serve the lighting of one solve (their entries are unbiased but a row may
+  // sum above 1), so `auto` means none here; --emitter-columns M still asks for them.
+  FormFactorCliOptions options = command.ff;
+  if (options.emitter_samples == kAutoEmitterSamples) options.emitter_samples = 0;
+  const FormFactors ff = obtain_form_factors(command.scene, options, patches, summary, RowsHeld::own_rows);
   const std::uint64_t nonzeros = total_nonzeros(ff.F, ff.row_blocks);
   std::vector<CellField> diagnostics;
   {

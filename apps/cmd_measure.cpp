@@ -1,5 +1,6 @@
 // radwalk measure SCENE --response SPEC [--method M]: one measurement M = <R, B>_A = sum_i A_i R_i B_i with its
 // standard error (walk/measure_by_method.h: every method; apps/measure_response.h: the response).
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -42,6 +43,8 @@ int run_measure(const MeasureCommand& command) {
   ThreadLimit limit(command.scene.threads);
   Measurement measurement;
   std::string form_factor_part;  // what the standard error covers besides the walks
+  Rgb M_disc = Rgb::Zero();      // the estimated discretisation error (matrix-kernel methods)
+  bool has_disc = false;
   if (!measure_needs_form_factors(options)) {
     const auto n = static_cast<Eigen::Index>(patches.size());
     const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
@@ -52,9 +55,18 @@ int run_measure(const MeasureCommand& command) {
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F));
     measurement = measure_by_method(problem, nullptr, nullptr, response, options);
     Timer timer;
+    const PatchRgb B = discrete_solution(patches, problem);
     summary.json()["error_estimate"]["statistical"] =
-        add_form_factor_error(patches, ff, problem, response, measurement, form_factor_part);
+        add_form_factor_error(patches, ff, problem, B, response, measurement, form_factor_part);
     summary.add_timing("error_estimate", timer.seconds());
+    double seconds = 0;
+    const nlohmann::json disc = add_measurement_discretisation_error(
+        patches, problem, B, response, command.discretisation_directions, command.scene.seed, M_disc, seconds);
+    if (!disc.is_null()) {
+      summary.json()["error_estimate"]["discretisation"] = disc;
+      summary.add_timing("discretisation_error", seconds);
+      has_disc = true;
+    }
   }
   const MeasureEstimate& est = measurement.estimate;
   const bool deterministic = measurement.deterministic;
@@ -73,6 +85,18 @@ int run_measure(const MeasureCommand& command) {
     std::fprintf(report_stream(), "%s)", form_factor_part.c_str());
   }
   std::fprintf(report_stream(), ", %.3f s\n", est.seconds);
+  if (has_disc) {
+    Rgb total;
+    summary.json()["error_estimate"]["total"] = measurement_total_error(est.se, M_disc, total);
+    std::fprintf(report_stream(),
+                 "estimated discretisation error of M (%.3g, %.3g, %.3g), total error (%.3g, %.3g, %.3g) (1 standard "
+                 "deviation: statistical and discretisation combined)\n",
+                 M_disc(0), M_disc(1), M_disc(2), total(0), total(1), total(2));
+  } else if (!measure_needs_form_factors(options)) {
+    std::fprintf(report_stream(), "discretisation error of M: not estimated (the ray kernel computes no B to "
+                                  "estimate it from)\n");
+    summary.json()["error_estimate"]["discretisation"] = "not estimated: the ray kernel computes no B";
+  }
   if (command.theory && !deterministic)
     std::fprintf(report_stream(), "exact per-walk variance (%.6g, %.6g, %.6g), sample (%.6g, %.6g, %.6g)\n", est.var_theory(0),
                 est.var_theory(1), est.var_theory(2), est.var(0), est.var(1), est.var(2));

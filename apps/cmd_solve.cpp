@@ -12,11 +12,9 @@
 #include "apps/discretisation_error.h"
 #include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
+#include "apps/target_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "formfactor/analytic_form_factors.h"
-#include "formfactor/emitter_form_factors.h"
-#include "formfactor/reciprocity.h"
 #include "solve/adaptive_refinement.h"
 #include "solve/discretisation_error.h"
 #include "solve/problem.h"
@@ -46,6 +44,9 @@ SolveOptions solve_options(const SolveCommand& c, std::size_t patches) {
 
 // One-line refusals of option combinations that cannot work.
 void check_combinations(const SolveCommand& c) {
+  if (c.target_error > 0 && c.refine > 0)
+    throw InputError("--target-error and --refine cannot be combined: --target-error splits patches itself, where "
+                     "its discretisation estimate says");
   if (c.refine > 0) {
     if (c.solver == "random-walk")
       throw InputError("--refine needs a deterministic solver (auto, direct, jacobi, gauss-seidel, southwell)");
@@ -72,27 +73,7 @@ RefinedSolution run_refinement(const SolveCommand& command, PatchSet patches, Ru
   int calls = 0;
   const FormFactorStage stage = [&](const PatchSet& p) {
     if (calls++ == 0) return obtain_form_factors(command.scene, command.ff, p, summary);
-    if (command.ff.analytic) {
-      AnalyticFormFactorOptions a;
-      a.seed = command.scene.seed;
-      a.max_visibility_samples = command.ff.visibility_samples;
-      a.cutoff = command.ff.analytic_cutoff;
-      a.cutoff_rays = command.ff.analytic_cutoff_rays;
-      const EmbreeVisibility visibility(p);
-      return analytic_form_factors(p, visibility, a).form_factors;
-    }
-    FormFactorOptions o;
-    o.rays_per_patch = command.ff.rays;
-    o.rays_per_area = command.ff.rays_per_area;
-    o.min_rays = command.ff.min_rays;
-    o.seed = command.scene.seed;
-    o.sobol = command.ff.sobol_rays;
-    const EmbreeVisibility visibility(p);
-    FormFactors ff = command.ff.emitter_samples > 0
-                         ? estimate_emitter_form_factors(p, visibility, o, command.ff.emitter_samples).form_factors
-                         : estimate_form_factors(p, visibility, o);
-    if (command.ff.reciprocity) enforce_reciprocity(ff.F, p.area);
-    return ff;
+    return trace_form_factors(command.scene, command.ff, p);
   };
   const auto report = [](const RefineStep& s) {
     note("refine step " + std::to_string(s.step) + ": " + std::to_string(s.patches) + " patches, form factors " +
@@ -178,7 +159,16 @@ int run_solve(const SolveCommand& command) {
                                                       command.discretisation_directions, command.scene.seed);
     if (!line.empty()) error_line += (error_line.empty() ? "" : "\n") + line;
   };
-  if (command.refine > 0) {
+  std::optional<TargetErrorRun> target;
+  if (command.target_error > 0) {
+    target = run_target_error(command, std::move(patches), summary);
+    TargetErrorResult& r = target->result;
+    patches = std::move(r.patches);
+    fates = {r.form_factors.rays, r.form_factors.escaped, r.form_factors.back_hits};
+    if (per_patch_output) fields = form_factor_fields(r.form_factors, patches);
+    solution = std::move(r.solution);
+    error_line = target->error_line;
+  } else if (command.refine > 0) {
     RefinedSolution refined = run_refinement(command, std::move(patches), summary);
     patches = std::move(refined.patches);
     fates = {refined.form_factors.rays, refined.form_factors.escaped, refined.form_factors.back_hits};
@@ -290,9 +280,19 @@ int run_solve(const SolveCommand& command) {
       metadata.set_real("tol", command.tol);
     }
     if (command.refine > 0) metadata.set_real("refine_tol", command.refine);
+    if (target) metadata.set_real("target_error", command.target_error);
     write_outputs(command.scene, patches, fields, summary, metadata);
   } else if (!command.scene.json.empty()) {
     summary.write(command.scene.json);
+  }
+  if (target && solution.status == SolveStatus::converged && !target->result.reached) {
+    const TargetErrorStep& last = target->result.steps.back();
+    std::fprintf(stderr,
+                 "radwalk: target error %s not reached (%s stopped it after %zu steps): the answer written has an "
+                 "estimated error of %s with %zu patches and %ld rays a patch\n",
+                 percent(command.target_error).c_str(), target->result.stop_reason.c_str(), target->result.steps.size(),
+                 percent(last.total).c_str(), last.patches, last.rays_per_patch);
+    return 1;
   }
   if (solution.status == SolveStatus::converged) return 0;
   std::fprintf(stderr, "radwalk: %s did not converge: %s\n", solution.method.c_str(), solution.message.c_str());

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "formfactor/form_factor_noise.h"
+#include "solve/discretisation_error.h"
 #include "solve/form_factor_error.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
@@ -55,8 +56,43 @@ nlohmann::json measurement_json(const Measurement& m, const Response& response, 
   return j;
 }
 
+PatchRgb discrete_solution(const PatchSet& patches, const RadiosityProblem& problem) {
+  SolveOptions o;
+  o.tol = 1e-4;
+  o.max_iterations = default_max_iterations(o.solver, patches.size());
+  const Solution b = solve_radiosity(problem, o);
+  if (b.B.rows() != static_cast<Eigen::Index>(patches.size()))
+    throw InputError("error estimate: the radiosity for the measurement's error could not be solved: " + b.message);
+  return b.B;
+}
+
+nlohmann::json measurement_total_error(const Rgb& M_se, const Rgb& M_disc, Rgb& total) {
+  for (int c = 0; c < 3; ++c) total(c) = std::hypot(M_se(c), M_disc(c));
+  return {{"M_err", {total(0), total(1), total(2)}}, {"combination", "M_err = sqrt(M_se^2 + M_disc^2)"}};
+}
+
+nlohmann::json add_measurement_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem,
+                                                    const PatchRgb& B, const Response& response, int directions,
+                                                    std::uint64_t seed, Rgb& M_disc, double& seconds) {
+  if (directions <= 0) return nullptr;
+  const EmbreeVisibility visibility(patches);
+  const Eigen::VectorXd W = problem.area.cwiseProduct(response.R);
+  const MeasurementDiscretisationError e =
+      measurement_discretisation_error(patches, visibility, problem, B, W, directions, seed);
+  M_disc = e.standard_error;
+  seconds = e.seconds;
+  return {{"M_disc", {e.standard_error(0), e.standard_error(1), e.standard_error(2)}},
+          {"estimate", {e.estimate(0), e.estimate(1), e.estimate(2)}},
+          {"directions_per_point", directions},
+          {"rays", e.rays},
+          {"adjoint_sweeps", e.sweeps},
+          {"method", "eps = sum_j Psi_j d_j with the adjoint Psi = (I - H)^-T A R and the within-patch fluctuation "
+                     "source d; M_disc = sqrt(eps^2 + Var(eps)) (docs/theory/discretisation_error.md)"}};
+}
+
 nlohmann::json add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                                     const Response& response, Measurement& measurement, std::string& covers) {
+                                     const PatchRgb& B, const Response& response, Measurement& measurement,
+                                     std::string& covers) {
   nlohmann::json j;
   if (!has_noise_model(ff)) {
     const bool analytic = !ff.row_std_error.empty();
@@ -66,16 +102,9 @@ nlohmann::json add_form_factor_error(const PatchSet& patches, const FormFactors&
                       : ", without the noise of the form factors read from the file";
     return j;
   }
-  // The radiosity the variance formula weighs the rays' targets with (to 1e-4: it needs only a few digits).
-  SolveOptions o;
-  o.tol = 1e-4;
-  o.max_iterations = default_max_iterations(o.solver, patches.size());
-  const Solution b = solve_radiosity(problem, o);
-  if (b.B.rows() != static_cast<Eigen::Index>(patches.size()))
-    throw InputError("error estimate: the radiosity for the form factors' noise could not be solved: " + b.message);
   const EmbreeVisibility visibility(patches);
   const Eigen::VectorXd W = problem.area.cwiseProduct(response.R);
-  const MeasurementError e = measurement_form_factor_error(patches, visibility, ff, problem, b.B, W);
+  const MeasurementError e = measurement_form_factor_error(patches, visibility, ff, problem, B, W);
   MeasureEstimate& est = measurement.estimate;
   const Rgb walks_se = est.se;
   const Rgb& F_se = e.standard_error;

@@ -37,8 +37,25 @@ nlohmann::json measurement_json(const Measurement& measurement, const Response& 
 // walks' own noise given F, so the variances add), for F as `ff` describes it (its F moved into `problem`).
 // Returns the JSON's "error_estimate.statistical" object (the parts, the sampling factors, the adjoint's sweeps)
 // and sets `covers` to what the printed standard error then covers (", with the form factors' noise", or that F
-// read from a file or the analytic route's visibility noise is not included). Solves B (to 1e-4) for the formula.
+// read from a file or the analytic route's visibility noise is not included). B: the discrete solution (a few
+// digits suffice; discrete_solution below).
 nlohmann::json add_form_factor_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                                     const Response& response, Measurement& measurement, std::string& covers);
+                                     const PatchRgb& B, const Response& response, Measurement& measurement,
+                                     std::string& covers);
+
+// The discrete radiosity B of `problem` to a relative change of 1e-4, for the error estimates of a measurement
+// (whose methods give M, not B). InputError when it cannot be solved.
+PatchRgb discrete_solution(const PatchSet& patches, const RadiosityProblem& problem);
+
+// M_err = sqrt(M_se^2 + M_disc^2) per channel (without squaring values near the largest double) into `total`;
+// returns the JSON's "error_estimate.total" object.
+nlohmann::json measurement_total_error(const Rgb& M_se, const Rgb& M_disc, Rgb& total);
+
+// The estimated discretisation error of the measurement (solve/discretisation_error.h,
+// measurement_discretisation_error) with `directions` per point (0: not estimated; returns null). Sets
+// M_disc and the stage's seconds and returns the JSON's "error_estimate.discretisation" object.
+nlohmann::json add_measurement_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem,
+                                                    const PatchRgb& B, const Response& response, int directions,
+                                                    std::uint64_t seed, Rgb& M_disc, double& seconds);
 
 }  // namespace radwalk::app

@@ -47,9 +47,10 @@ struct FormFactorCliOptions {
   long min_rays = 16;
   std::string form_factors;    // --form-factors F.mtx: read instead of estimating
   bool reciprocity = false;    // --reciprocity: average A_i F_ij and A_j F_ji
-  bool sobol_rays = false;     // --sobol-rays: randomised Sobol cosine rays (FormFactorOptions::sobol)
-  long emitter_samples = 0;    // --emitter-columns M: the emitter columns from M shadow samples per patch
-                               // (formfactor/emitter_form_factors.h); 0: from the cosine rays
+  bool sobol_rays = true;      // --sobol-rays / --no-sobol-rays: randomised Sobol cosine rays (FormFactorOptions::sobol)
+  long emitter_samples = -1;   // --emitter-columns M: the emitter columns from M shadow samples per patch
+                               // (formfactor/emitter_form_factors.h); 0: from the cosine rays; -1 (auto):
+                               // choose_emitter_samples's choice
   bool analytic = false;       // --analytic: exact exchange areas x visibility (formfactor/analytic_form_factors.h)
   double analytic_cutoff = 0;     // --analytic-cutoff: pairs whose F bound is at most this are dropped (reported)
   long analytic_cutoff_rays = 0; // --analytic-cutoff-rays: cosine rays a row that estimate the dropped pairs instead
@@ -85,6 +86,10 @@ struct SolveCommand {
   long max_patches = 20000;
   double refine_floor = 1;  // floor of the relative difference, as a fraction of the mean irradiance
   double refine_noise = 0;  // differences within this many form-factor standard errors do not split (0: off)
+  // --target-error E (apps/target_error.h): steps of rays and patch splits until the estimated total error is at
+  // most E; 0: off. The steps stop at max_patches or after max_seconds (0: no limit).
+  double target_error = 0;
+  double max_seconds = 0;
   int discretisation_directions = 16;  // --discretisation-directions L: directions per point of the discretisation
                                       // error estimate (solve/fluctuation_source.h); 0: not estimated
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
@@ -122,6 +127,7 @@ struct MeasureCommand {
   double defensive = -1;           // importance walks: the defensive fraction alpha (importance_walk.h); -1: 0 with
                                    // the exact importance, 0.1 with an approximate one
   bool theory = false;             // also the exact per-walk variance (matrix kernel, N <= 2000)
+  int discretisation_directions = 16;  // M_disc's directions per point (solve/fluctuation_source.h); 0: not estimated
   // --response camera: the view (as pathtrace's --camera; empty: the scene's default) and the image size
   std::vector<double> camera;
   int width = 256, height = 256;

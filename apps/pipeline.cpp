@@ -427,6 +427,33 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
 
 }  // namespace
 
+FormFactors trace_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options, const PatchSet& patches) {
+  ThreadLimit limit(scene.threads);
+  const EmbreeVisibility visibility(patches);
+  FormFactors ff;
+  if (options.analytic) {
+    AnalyticFormFactorOptions a;
+    a.seed = scene.seed;
+    a.max_visibility_samples = options.visibility_samples;
+    a.cutoff = options.analytic_cutoff;
+    a.cutoff_rays = options.analytic_cutoff_rays;
+    ff = analytic_form_factors(patches, visibility, a).form_factors;
+  } else {
+    FormFactorOptions o;
+    o.rays_per_patch = options.rays;
+    o.rays_per_area = options.rays_per_area;
+    o.min_rays = options.min_rays;
+    o.seed = scene.seed;
+    o.sobol = options.sobol_rays;
+    const long emitter_samples = choose_emitter_samples(patches, o, options.emitter_samples).samples;
+    ff = estimate_form_factors(patches, visibility, o);
+    if (emitter_samples > 0)
+      ff = replace_emitter_columns(std::move(ff), patches, visibility, emitter_samples).form_factors;
+  }
+  if (options.reciprocity) enforce_reciprocity(ff.F, patches.area);
+  return ff;
+}
+
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
                                 const PatchSet& patches, RunSummary& summary, RowsHeld held) {
   FormFactors ff;
@@ -524,15 +551,22 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     const EmbreeVisibility visibility(patches);
     summary.add_timing("embree_scene", timer.seconds());
     timer.reset();
-    if (options.emitter_samples > 0) {
-      EmitterFormFactors ef = estimate_emitter_form_factors(patches, visibility, o, options.emitter_samples);
+    const EmitterSampleChoice emitter = choose_emitter_samples(patches, o, options.emitter_samples);
+    ff = own_rows ? estimate_form_factor_rows(patches, visibility, o) : estimate_form_factors(patches, visibility, o);
+    summary.json()["emitter_samples"] = emitter.samples;
+    summary.json()["emitter_samples_choice"] = emitter.reason;
+    if (emitter.samples > 0) {
+      EmitterFormFactors ef = replace_emitter_columns(std::move(ff), patches, visibility, emitter.samples);
+      long shadow_rays = 0;  // over the ranks' rows (each traced its own)
+      for (long r : distributed::allgather_concat(std::vector<long>{ef.shadow_rays})) shadow_rays += r;
       summary.json()["emitter_columns"] = ef.emitter_columns;
-      summary.json()["emitter_shadow_rays"] = ef.shadow_rays;
+      summary.json()["emitter_shadow_rays"] = shadow_rays;
       note("form factors: " + std::to_string(ef.emitter_columns) + " emitter columns from " +
-           std::to_string(ef.shadow_rays) + " shadow rays");
-      ff = std::move(ef.form_factors);  // every row on every rank (the emitter columns are not distributed)
-    } else {
-      ff = own_rows ? estimate_form_factor_rows(patches, visibility, o) : estimate_form_factors(patches, visibility, o);
+           std::to_string(shadow_rays) + " shadow rays (" + std::to_string(emitter.samples) + " a patch, " +
+           emitter.reason + ")");
+      ff = std::move(ef.form_factors);
+    } else if (options.emitter_samples == kAutoEmitterSamples) {
+      note("form factors: no emitter columns (" + emitter.reason + ")");
     }
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);

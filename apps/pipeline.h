@@ -51,6 +51,10 @@ enum class RowsHeld { every_row, own_rows };
 FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options,
                                 const PatchSet& patches, RunSummary& summary, RowsHeld held = RowsHeld::every_row);
 
+// The same estimate (rays with the emitter columns, or the analytic route, then --reciprocity) without notes,
+// summary or MPI distribution, for the patches of a re-patched scene (--refine, --target-error).
+FormFactors trace_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options, const PatchSet& patches);
+
 // Per-patch form-factor diagnostics as cell fields: row_sum, escaped, back_hits, reciprocity_error,
 // row_std_error (the counts only when F was estimated here). Collective over MPI when ff is row-distributed:
 // rank 0 computes them on the whole F (`gathered`, from gather_rows_to_root, when the caller has it; otherwise

@@ -24,6 +24,7 @@
 #include "apps/pipeline.h"
 #include "apps/rank_agreement.h"
 #include "core/did_you_mean.h"
+#include "formfactor/emitter_form_factors.h"
 #include "core/distributed.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -270,13 +271,31 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
       ->needs(file);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
-  cmd->add_flag("--sobol-rays", o.sobol_rays,
-                "Cosine rays from randomised Sobol points (stratified in origin and direction together)");
-  auto* sobol = cmd->get_option("--sobol-rays");
+  auto* sobol = cmd->add_flag("--sobol-rays,!--no-sobol-rays", o.sobol_rays,
+                "Cosine rays from randomised Sobol points, stratified in origin and direction together (the default); "
+                "--no-sobol-rays: jittered strata")
+      ->capture_default_str();
   auto* emitter = cmd->add_option("--emitter-columns", o.emitter_samples,
                   "Each F_ie to an emitter e from M shadow samples per patch: the exact point-to-polygon form factor "
-                  "corrected for occlusion (exact where unoccluded), replacing the cosine rays' count")
-      ->check(kPositive);
+                  "corrected for occlusion (exact where unoccluded), replacing the cosine rays' count. auto (the "
+                  "default): M = a third of the rays per patch for small lights (emitters on at most 10 % of the "
+                  "area, in at most M patches), else none; 0: none")
+      ->transform(CLI::Validator(
+          [](std::string& text) {
+            if (text == "auto") {
+              text = std::to_string(kAutoEmitterSamples);
+              return std::string();
+            }
+            try {
+              std::size_t used = 0;
+              const long m = std::stol(text, &used);
+              if (used == text.size() && m >= 0) return std::string();
+            } catch (...) {
+            }
+            return std::string("must be auto or an integer >= 0");
+          },
+          "auto|M"))
+      ->default_str("auto");
   auto* analytic = cmd->add_flag("--analytic", o.analytic,
                 "Exact form factors of every pair of patches that face each other (contour integration) times their "
                 "visibility: 1 where nothing is between them, 0 where one patch hides them, otherwise estimated by "
@@ -553,8 +572,21 @@ int run_main(int argc, char** argv) {
   solve_cmd->add_option("--refine-steps", solve.refine_steps, "Adaptive patching: at most K refinement steps")
       ->check(kNonNegative)
       ->capture_default_str();
-  solve_cmd->add_option("--max-patches", solve.max_patches, "Adaptive patching: never split beyond M patches")
+  auto* target = solve_cmd
+      ->add_option("--target-error", solve.target_error,
+                   "Accuracy on request: solve in steps, adding rays where the statistical error dominates and "
+                   "splitting patches where the discretisation error does, until the estimated total error (area-"
+                   "weighted RMS relative over the reflecting patches, docs/accuracy.md) is at most E (e.g. 0.01), "
+                   "or --max-patches / --max-seconds stop it (exit code 1)")
+      ->check(CLI::Range(1e-6, 0.999999));
+  solve_cmd->add_option("--max-patches", solve.max_patches,
+                        "Adaptive patching and --target-error: never split beyond M patches")
       ->check(kPositive)
+      ->capture_default_str();
+  solve_cmd->add_option("--max-seconds", solve.max_seconds,
+                        "--target-error: start no step that would end after S seconds of the run (0: no limit)")
+      ->transform(kNonNegative)
+      ->needs(target)
       ->capture_default_str();
   solve_cmd
       ->add_option("--refine-floor", solve.refine_floor,
@@ -718,6 +750,12 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   measure_cmd->add_flag("--theory", measure.theory,
                         "Also the exact per-walk variance (matrix kernel, at most 2000 patches)");
+  measure_cmd
+      ->add_option("--discretisation-directions", measure.discretisation_directions,
+                   "Directions per point of M's discretisation error estimate M_disc (24 L rays per patch; 0: not "
+                   "estimated)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
 
   PathtraceCommand pt;
   auto* pt_cmd = app.add_subcommand("pathtrace", "Continuous path tracer: patch averages and images");

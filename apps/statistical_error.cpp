@@ -8,6 +8,7 @@
 #include "core/moments.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_noise.h"
+#include "solve/target_error.h"
 #include "solve/form_factor_error.h"
 #include "visibility/embree_visibility.h"
 
@@ -17,19 +18,6 @@ std::string percent(double x) {
   char text[32];
   std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
   return text;
-}
-
-double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
-  // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
-  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
-  double error = 0, size = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    if (patches.E[i].maxCoeff() > 0 || !(patches.rho[i].maxCoeff() > 0)) continue;
-    const auto row = static_cast<Eigen::Index>(i);
-    error += patches.area[i] * (d.row(row) / s).square().sum();
-    size += patches.area[i] * (B.row(row) / s).square().sum();
-  }
-  return size > 0 ? std::sqrt(error / size) : 0.0;
 }
 
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,

@@ -16,6 +16,7 @@
 #include "io/run_summary.h"
 #include "patch/patch_set.h"
 #include "solve/problem.h"
+#include "solve/target_error.h"
 
 namespace radwalk::app {
 
@@ -24,10 +25,7 @@ namespace radwalk::app {
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
                                   Solution& solution, RunSummary& summary);
 
-// The relative error e of the benchmarks (docs/benchmarks.md) for a per-patch error d:
-//   e = sqrt(sum_{i,c} A_i d_ic^2 / sum_{i,c} A_i B_ic^2)
-// over the reflecting (rho > 0), non-emitting patches (0 when there are none, or B is 0 there).
-double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d);
+// relative_error (the relative error e of the benchmarks for a per-patch error): solve/target_error.h.
 
 // A relative error as the summary lines print it: "0.63 %" (two significant digits).
 std::string percent(double x);

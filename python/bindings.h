@@ -6,6 +6,7 @@
 //   solver_bindings.cpp       radwalk.solve -> Result (the deterministic solvers); the Result type
 //   walk_bindings.cpp         radwalk.random_walk, radwalk.compare, radwalk.exact_variance
 //   refine_bindings.cpp       radwalk.solve_adaptive -> AdaptiveResult (adaptive patching)
+//   target_error_bindings.cpp radwalk.solve_to_target_error -> TargetErrorResult (accuracy on request)
 //   measure_bindings.cpp      radwalk.measure -> Measurement (M = <R, B>_A by any method of `radwalk measure`)
 //   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
 //   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
@@ -108,6 +109,10 @@ SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, s
 void add_discretisation_error(Result& r, const Scene& scene, const RadiosityProblem& problem, int directions,
                               std::uint64_t seed);
 
+// A Scene of refined patches (patch/refine.h: each keeps its input face) with everything else of `scene`: each
+// patch's group is its input face's (refine_bindings.cpp).
+Scene refined_scene(const Scene& scene, PatchSet patches);
+
 // The metadata of a result as a JSON text: `run` (the options) plus the CLI's "solution" object, scene, max_edge,
 // patches and timings_s.
 std::string result_metadata(const Result& r, const Scene& scene, nlohmann::json run);
@@ -120,6 +125,7 @@ void bind_form_factors(py::module_& m);
 void bind_solvers(py::module_& m);
 void bind_walks(py::module_& m);
 void bind_refinement(py::module_& m);
+void bind_target_error(py::module_& m);
 void bind_measure(py::module_& m);
 void bind_pathtrace(py::module_& m);
 void bind_writers(py::module_& m);

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "bindings.h"
+#include "formfactor/emitter_form_factors.h"
 #include "core/error.h"
 #include "interruptible.h"
 #include "core/parallel.h"
@@ -28,9 +29,12 @@ py::object csr_view(const SparseF& F, py::handle base) {
                           py::arg("copy") = false);
 }
 
-FormFactors estimate(const Scene& scene, const FormFactorOptions& options, int threads,
+// F by cosine rays with `options`, then the emitter columns of choose_emitter_samples(emitter_request) (as the
+// CLI's form-factor stage, apps/pipeline.cpp).
+FormFactors estimate(const Scene& scene, const FormFactorOptions& options, long emitter_request, int threads,
                      std::map<std::string, double>& timings) {
   check_thread_count(threads, "threads");
+  const long emitter_samples = choose_emitter_samples(scene.patches, options, emitter_request).samples;
   return interruptible([&] {
     ThreadLimit limit(threads);
     Timer timer;
@@ -38,9 +42,24 @@ FormFactors estimate(const Scene& scene, const FormFactorOptions& options, int t
     timings["embree_scene"] = timer.seconds();
     timer.reset();
     FormFactors ff = estimate_form_factors(scene.patches, visibility, options);
+    if (emitter_samples > 0)
+      ff = replace_emitter_columns(std::move(ff), scene.patches, visibility, emitter_samples).form_factors;
     timings["form_factors"] = timer.seconds();
     return ff;
   });
+}
+
+// emitter_columns as Python gives it: "auto" (or None) -> kAutoEmitterSamples, an int >= 0 as is.
+long emitter_request(const py::object& emitter_columns) {
+  if (emitter_columns.is_none()) return kAutoEmitterSamples;
+  if (py::isinstance<py::str>(emitter_columns)) {
+    if (emitter_columns.cast<std::string>() == "auto") return kAutoEmitterSamples;
+  } else if (py::isinstance<py::int_>(emitter_columns) && !py::isinstance<py::bool_>(emitter_columns)) {
+    const long long m = emitter_columns.cast<long long>();
+    if (m >= 0 && m <= (1LL << 30)) return static_cast<long>(m);
+  }
+  throw InputError("emitter_columns must be 'auto' or an int in [0, 2^30], got " +
+                   py::repr(emitter_columns).cast<std::string>());
 }
 
 // --- A caller's F, checked before scipy reads its structure ---------------------------------------------------
@@ -216,8 +235,10 @@ py::dict diagnostics(const FormFactorsResult& r) {
 
 FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_area, long min_rays,
                                std::uint64_t seed, bool reciprocity, bool stratified, long long threads,
-                               bool analytic, long visibility_samples, double analytic_cutoff) {
+                               bool analytic, long visibility_samples, double analytic_cutoff, bool sobol_rays,
+                               const py::object& emitter_columns) {
   check_thread_count(threads, "threads");
+  const long emitters = emitter_request(emitter_columns);
   FormFactorsResult r;
   r.area = scene.patches.area;
   if (!analytic && analytic_cutoff != 0)
@@ -226,9 +247,10 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
     throw InputError("analytic_cutoff must be in [0, 1), got " + std::to_string(analytic_cutoff));
   if (analytic) {
     // The ray options mean nothing to the analytic route: refused when changed from their defaults.
-    if (rays != 1000 || rays_per_area != 0 || min_rays != 16 || !stratified)
-      throw InputError("analytic=True computes F without cosine rays: rays, rays_per_area, min_rays and stratified "
-                       "cannot be honoured (leave them at their defaults)");
+    if (rays != 1000 || rays_per_area != 0 || min_rays != 16 || !stratified || !sobol_rays ||
+        emitters != kAutoEmitterSamples)
+      throw InputError("analytic=True computes F without cosine rays: rays, rays_per_area, min_rays, stratified, "
+                       "sobol_rays and emitter_columns cannot be honoured (leave them at their defaults)");
     AnalyticFormFactorOptions a;
     a.seed = seed;
     a.max_visibility_samples = visibility_samples;
@@ -255,13 +277,16 @@ FormFactorsResult form_factors(const Scene& scene, long rays, double rays_per_ar
     });
     return r;
   }
+  if (!stratified && sobol_rays)
+    throw InputError("stratified=False (independent rays) needs sobol_rays=False: Sobol points are stratified");
   FormFactorOptions o;
   o.rays_per_patch = rays;
   o.rays_per_area = rays_per_area;
   o.min_rays = min_rays;
   o.seed = seed;
   o.stratified = stratified;
-  r.ff = estimate(scene, o, static_cast<int>(threads), r.timings);
+  o.sobol = sobol_rays;
+  r.ff = estimate(scene, o, emitters, static_cast<int>(threads), r.timings);
   if (reciprocity) {
     const ReciprocityChange change = interruptible([&] { return enforce_reciprocity(r.ff.F, r.area); });
     r.info["reciprocity_max_relative_change"] = change.max_relative_change;
@@ -277,10 +302,11 @@ SparseF form_factor_matrix(const py::object& F, const Scene& scene, long rays, s
                            std::map<std::string, double>& timings, FormFactors* sampling) {
   const auto n = static_cast<Eigen::Index>(scene.patches.size());
   if (F.is_none()) {
-    FormFactorOptions o;
+    FormFactorOptions o;  // the recommended route, as the CLI's defaults
     o.rays_per_patch = rays;
     o.seed = seed;
-    FormFactors ff = estimate(scene, o, threads, timings);
+    o.sobol = true;
+    FormFactors ff = estimate(scene, o, kAutoEmitterSamples, threads, timings);
     SparseF f = std::move(ff.F);
     if (sampling) *sampling = std::move(ff);
     return f;
@@ -371,7 +397,8 @@ Pass the object itself (not .F) to solve, random_walk, compare, exact_variance: 
   m.def("form_factors", &form_factors, py::arg("scene"), py::arg("rays") = 1000, py::arg("rays_per_area") = 0.0,
         py::arg("min_rays") = 16, py::arg("seed") = 1, py::arg("reciprocity") = false, py::arg("stratified") = true,
         py::arg("threads") = 0, py::arg("analytic") = false, py::arg("visibility_samples") = 1024,
-        py::arg("analytic_cutoff") = 0.0, R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
+        py::arg("analytic_cutoff") = 0.0, py::arg("sobol_rays") = true, py::arg("emitter_columns") = "auto",
+        R"doc(Estimates the form factors of the scene by cosine-weighted ray shooting (Embree): a FormFactors.
 
 The FormFactors holds F, an (N, N) float32 scipy.sparse.csr_matrix of dimensionless fractions, and (N,) per-patch
 ray counts.
@@ -381,7 +408,10 @@ same seed (bit-identical for any thread count):
   rays: rays per patch (--rays); rays_per_area > 0 (rays per mesh length unit squared):
   max(min_rays, round(rays_per_area * area)) instead
   (--rays-per-area, --min-rays); seed (--seed); reciprocity: average A_i F_ij and A_j F_ji (--reciprocity);
-  stratified=False draws plain binomial counts (tests); threads: 0 = all cores.
+  sobol_rays: randomised Sobol cosine rays (--sobol-rays, the default; False: jittered strata, --no-sobol-rays);
+  stratified=False with sobol_rays=False draws plain binomial counts (tests); emitter_columns: "auto" (the
+  default: a third of the rays per patch as shadow samples of the emitter columns when the scene has at most that
+  many emitter patches), 0 (none) or M (--emitter-columns); threads: 0 = all cores.
 analytic=True: the CLI's --analytic (docs/form-factors.md, "The analytic route"): the exact form factor of every
   pair of patches that face each other times its visibility (1 or 0 where proven, else estimated by at most
   visibility_samples point pairs, a power of 2 >= 32); reciprocal; diagnostics["row_std_error"] per row, info

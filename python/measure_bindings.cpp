@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "apps/measure_response.h"
+#include "formfactor/form_factor_noise.h"
 #include "apps/run_metadata.h"
 #include "bindings.h"
 #include "core/timer.h"
@@ -24,6 +25,8 @@ struct MeasureResult {
   Response response;
   std::map<std::string, double> timings;
   std::string metadata;  // JSON: the CLI's "measurement" object, with "importance" and "camera" where it has them
+  bool has_disc = false;  // M_disc estimated (matrix-kernel methods with discretisation_directions > 0)
+  Rgb M_disc = Rgb::Zero();
 };
 
 py::array_t<double> rgb_array(const Rgb& v) {
@@ -60,7 +63,11 @@ Response response_of(const Scene& scene, const py::object& response, const std::
 MeasureResult measure(const Scene& scene, const py::object& response, const py::object& F, const std::string& method,
                       long walks, const std::string& kernel, const std::string& survival, double survival_constant,
                       int importance_sweeps, double defensive, bool theory, const std::vector<double>& camera,
-                      int width, int height, long rays, std::uint64_t seed, long long threads_arg) {
+                      int width, int height, long rays, std::uint64_t seed, long long threads_arg,
+                      int discretisation_directions) {
+  if (discretisation_directions < 0)
+    throw InputError("discretisation_directions must be >= 0 (0: not estimated), got " +
+                     std::to_string(discretisation_directions));
   const int threads = check_run(scene, threads_arg);
   MeasureOptions o;
   o.method = method;
@@ -80,7 +87,7 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
   FormFactors sampling;  // how F was traced, for its noise in M_se (as the CLI's measure)
   SparseF f = measure_needs_form_factors(o) ? form_factor_matrix(F, scene, rays, seed, threads, r.timings, &sampling)
                                             : SparseF(n, n);
-  nlohmann::json error_estimate;
+  nlohmann::json error_estimate, disc;
   interruptible([&] {
     ThreadLimit limit(threads);
     const RadiosityProblem problem = make_problem(scene.patches, std::move(f));
@@ -90,11 +97,27 @@ MeasureResult measure(const Scene& scene, const py::object& response, const py::
     if (measure_needs_form_factors(o)) {
       std::string covers;
       Timer timer;
-      error_estimate = app::add_form_factor_error(scene.patches, sampling, problem, r.response, r.measurement, covers);
+      const PatchRgb B = app::discrete_solution(scene.patches, problem);
+      double seconds = 0;
+      error_estimate = app::add_form_factor_error(scene.patches, sampling, problem, B, r.response, r.measurement, covers);
       r.timings["error_estimate"] = timer.seconds();
+      // As the CLI's measure: the seed F was traced with, when radwalk traced it.
+      disc = app::add_measurement_discretisation_error(scene.patches, problem, B, r.response,
+                                                       discretisation_directions,
+                                                       has_noise_model(sampling) ? sampling.options.seed : seed,
+                                                       r.M_disc, seconds);
+      r.has_disc = !disc.is_null();
+      if (r.has_disc) r.timings["discretisation_error"] = seconds;
     }
   });
   if (!error_estimate.is_null()) metadata["error_estimate"]["statistical"] = error_estimate;
+  if (!disc.is_null()) {
+    metadata["error_estimate"]["discretisation"] = disc;
+    Rgb total;
+    metadata["error_estimate"]["total"] = app::measurement_total_error(r.measurement.estimate.se, r.M_disc, total);
+  } else if (!measure_needs_form_factors(o)) {
+    metadata["error_estimate"]["discretisation"] = "not estimated: the ray kernel computes no B";
+  }
   r.timings["measure"] = r.measurement.estimate.seconds;
   metadata["measurement"] = app::measurement_json(r.measurement, r.response, theory);
   if (is_importance_measure(method))
@@ -131,6 +154,14 @@ R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI'
       .def_property_readonly(
           "M_se", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.se); },
           "Standard error of M, (3,) float64, in M's unit (0 for a deterministic method).")
+      .def_property_readonly(
+          "M_disc",
+          [](const MeasureResult& r) -> py::object {
+            if (!r.has_disc) return py::none();
+            return rgb_array(r.M_disc);
+          },
+          "The estimated discretisation error of M, (3,) float64, in M's unit (one standard deviation equivalent, "
+          "docs/accuracy.md), or None where not estimated (ray-kernel walks, discretisation_directions=0).")
       .def_property_readonly(
           "var_per_walk", [](const MeasureResult& r) { return rgb_array(r.measurement.estimate.var); },
           "Sample variance of one walk's score, (3,) float64, in M's unit squared.")
@@ -178,7 +209,7 @@ R is, in words), R (N,): the weights; deterministic; timings; metadata: the CLI'
         py::arg("survival") = "analog", py::arg("survival_constant") = 0.5, py::arg("importance_sweeps") = -1,
         py::arg("defensive") = -1.0, py::arg("theory") = false, py::arg("camera") = std::vector<double>{},
         py::arg("width") = 256, py::arg("height") = 256, py::arg("rays") = 1000, py::arg("seed") = 1,
-        py::arg("threads") = 0,
+        py::arg("threads") = 0, py::arg("discretisation_directions") = 16,
         R"doc(One measurement M = <R, B>_A = sum_i A_i R_i B_i per channel, with its standard error: a Measurement.
 
 As `radwalk measure SCENE --response RESPONSE --method METHOD --walks WALKS ...` (same seed, same M):

@@ -89,6 +89,7 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   bind_solvers(m);
   bind_walks(m);
   bind_refinement(m);
+  bind_target_error(m);
   bind_measure(m);
   bind_pathtrace(m);
   bind_writers(m);

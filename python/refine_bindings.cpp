@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "core/parallel.h"
 #include "interruptible.h"
+#include "formfactor/emitter_form_factors.h"
 #include "formfactor/reciprocity.h"
 #include "io/run_summary.h"
 #include "solve/adaptive_refinement.h"
@@ -48,9 +49,12 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
   f.rays_per_area = rays_per_area;
   f.min_rays = min_rays;
   f.seed = seed;
+  f.sobol = true;  // the CLI's defaults: the recommended route
   const FormFactorStage stage = [&](const PatchSet& p) {
     const EmbreeVisibility visibility(p);
     FormFactors ff = estimate_form_factors(p, visibility, f);
+    const long emitter_samples = choose_emitter_samples(p, f, kAutoEmitterSamples).samples;
+    if (emitter_samples > 0) ff = replace_emitter_columns(std::move(ff), p, visibility, emitter_samples).form_factors;
     if (reciprocity) enforce_reciprocity(ff.F, p.area);
     return ff;
   };
@@ -61,20 +65,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
   });
   check_solved(refined.solution);
   AdaptiveResult a;
-  // The refined patches keep their input face, hence its group.
-  std::unordered_map<std::int32_t, std::int32_t> group_of_face;
-  for (std::size_t i = 0; i < scene.patches.size(); ++i) group_of_face[scene.patches.face[i]] = scene.group[i];
-  a.scene.path = scene.path;
-  a.scene.max_edge = scene.max_edge;
-  a.scene.max_area = scene.max_area;
-  a.scene.strict = scene.strict;
-  a.scene.two_sided = scene.two_sided;
-  a.scene.contact_cut = scene.contact_cut;
-  a.scene.groups = scene.groups;
-  a.scene.group_names = scene.group_names;
-  a.scene.patches = std::move(refined.patches);
-  a.scene.group.resize(a.scene.patches.size());
-  for (std::size_t i = 0; i < a.scene.patches.size(); ++i) a.scene.group[i] = group_of_face.at(a.scene.patches.face[i]);
+  a.scene = refined_scene(scene, std::move(refined.patches));
   a.form_factors.area = a.scene.patches.area;
   a.form_factors.ff = std::move(refined.form_factors);
   a.jump = std::move(refined.jump);
@@ -107,6 +98,31 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
 }
 
 }  // namespace
+
+Scene refined_scene(const Scene& scene, PatchSet patches) {
+  // The refined patches keep their input face, hence its group.
+  std::unordered_map<std::int32_t, std::int32_t> group_of_face;
+  for (std::size_t i = 0; i < scene.patches.size(); ++i) group_of_face[scene.patches.face[i]] = scene.group[i];
+  Scene out;
+  out.path = scene.path;
+  out.max_edge = scene.max_edge;
+  out.max_area = scene.max_area;
+  out.strict = scene.strict;
+  out.orient = scene.orient;
+  out.open_shells = scene.open_shells;
+  out.scale = scene.scale;
+  out.unit = scene.unit;
+  out.length_unit = scene.length_unit;
+  out.radiosity_unit = scene.radiosity_unit;
+  out.two_sided = scene.two_sided;
+  out.contact_cut = scene.contact_cut;
+  out.groups = scene.groups;
+  out.group_names = scene.group_names;
+  out.patches = std::move(patches);
+  out.group.resize(out.patches.size());
+  for (std::size_t i = 0; i < out.patches.size(); ++i) out.group[i] = group_of_face.at(out.patches.face[i]);
+  return out;
+}
 
 void bind_refinement(py::module_& m) {
   py::class_<AdaptiveResult>(m, "AdaptiveResult", R"doc(What solve_adaptive() returns.

@@ -1,6 +1,7 @@
 #include "formfactor/emitter_form_factors.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -40,15 +41,53 @@ std::vector<EmitterEntry> estimate_emitter_row(const PatchSet& patches, const Vi
   return entries;
 }
 
+EmitterSampleChoice choose_emitter_samples(const PatchSet& patches, const FormFactorOptions& options,
+                                           long requested) {
+  if (requested >= 0) return {requested, requested > 0 ? "as requested" : "off as requested"};
+  if (requested != kAutoEmitterSamples)
+    throw InputError("form factors: emitter samples must be >= 0 or auto, got " + std::to_string(requested));
+  const std::size_t N = patches.size();
+  if (N == 0) return {0, "off: no patches"};
+  double rays = 0;
+  for (std::size_t i = 0; i < N; ++i) rays += ray_count(options, patches.area[i]);
+  const long M = std::max<long>(1, std::lround(rays / double(N) / 3));
+  const std::vector<std::size_t> emitters = emitter_patches(patches);
+  const std::size_t m = emitters.size();
+  if (m == 0) return {0, "off: the scene has no emitter"};
+  double emitting = 0;
+  for (std::size_t e : emitters) emitting += patches.area[e];
+  if (emitting > kMaxEmitterAreaFraction * patches.total_area())
+    return {0, "off: the emitters cover " + std::to_string(static_cast<int>(std::lround(100 * emitting / patches.total_area()))) +
+                   " % of the area (the cosine rays sample large emitters well; the emitter columns pay off for small "
+                   "lights)"};
+  if (static_cast<double>(m) > static_cast<double>(M))
+    return {0, "off: " + std::to_string(m) + " emitter patches, more than the " + std::to_string(M) +
+                   " shadow samples a row would have (at least one each)"};
+  if (static_cast<double>(N) * static_cast<double>(m) > kMaxEmitterEntries)
+    return {0, "off: " + std::to_string(N) + " rows x " + std::to_string(m) + " emitter columns is above " +
+                   std::to_string(static_cast<long>(kMaxEmitterEntries)) + " entries"};
+  return {M, "auto: a third of the mean cosine rays per patch"};
+}
+
 EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
                                                  const FormFactorOptions& options, long shadow_samples_per_patch) {
+  return replace_emitter_columns(estimate_form_factors(patches, visibility, options), patches, visibility,
+                                 shadow_samples_per_patch);
+}
+
+EmitterFormFactors replace_emitter_columns(FormFactors form_factors, const PatchSet& patches,
+                                           const Visibility& visibility, long shadow_samples_per_patch) {
   if (shadow_samples_per_patch < 1)
     throw InputError("form factors: shadow samples per patch must be >= 1, got " +
                      std::to_string(shadow_samples_per_patch));
   EmitterFormFactors out;
-  out.form_factors = estimate_form_factors(patches, visibility, options);
+  out.form_factors = std::move(form_factors);
   out.form_factors.emitter_samples = shadow_samples_per_patch;
+  const FormFactorOptions& options = out.form_factors.options;
   const std::size_t N = patches.size();
+  // The rows this process holds (all of them unless F is row-distributed over MPI): only those are replaced, with
+  // the same streams, so row i is the same bits on the rank that holds it as on one process.
+  const distributed::Range held = own_rows(out.form_factors.row_blocks, N);
   const std::vector<std::size_t> emitters = emitter_patches(patches);
   std::vector<std::int32_t> column_of(N, -1);  // emitter rank of a patch, -1 for a non-emitter
   for (std::size_t k = 0; k < emitters.size(); ++k) column_of[emitters[k]] = static_cast<std::int32_t>(k);
@@ -61,8 +100,9 @@ EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const 
   std::vector<long> rays(N, 0);
   const VisibleFormFactor visible(patches, visibility);
   parallel_for(
-      N,
-      [&](std::size_t i) {
+      held.end - held.begin,
+      [&](std::size_t q) {
+        const std::size_t i = held.begin + q;
         for (const EmitterEntry& entry :
              estimate_emitter_row(patches, visible, options, shadow_samples_per_patch, emitters, i, rays[i])) {
           const auto k = static_cast<std::size_t>(column_of[entry.column]);

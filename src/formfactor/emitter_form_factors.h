@@ -17,6 +17,7 @@
 // rays, unchanged. Emitter patches' own rows are treated like every other row. Deterministic: the result does not
 // depend on the thread count.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "formfactor/form_factors.h"
@@ -34,6 +35,29 @@ struct EmitterFormFactors {
 // form_factors also record the replaced columns and each replaced entry's variance (form_factors.h).
 EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
                                                  const FormFactorOptions& options, long shadow_samples_per_patch);
+
+// The same replacement applied to F already traced by cosine rays (estimate_form_factors, or over MPI
+// estimate_form_factor_rows: then only the rows this process holds are replaced, each the same bits as one
+// process gives it). form_factors.options must be those it was traced with (their seed picks the streams).
+EmitterFormFactors replace_emitter_columns(FormFactors form_factors, const PatchSet& patches,
+                                           const Visibility& visibility, long shadow_samples_per_patch);
+
+// The shadow samples per patch M for a request: `requested` >= 0 is taken as given (0: no emitter columns);
+// kAutoEmitterSamples chooses M = round(mean cosine rays per patch / 3), at least 1 (a quarter of all the rays on
+// the emitter columns, the setting measured best on the Cornell box, docs/measurements.md), for small lights: when
+// the emitters cover at most kMaxEmitterAreaFraction of the area, the scene has between 1 and M emitter patches and
+// N x emitters stays within kMaxEmitterEntries; otherwise 0 (large emitters get many cosine hits, and where most
+// patches emit, as in a thermal scene or a furnace, every row would need at least one sample per emitter it sees;
+// there the cosine rays' rows also sum to exactly 1 in a closed scene). `reason` says which, for the summary.
+inline constexpr long kAutoEmitterSamples = -1;
+inline constexpr double kMaxEmitterEntries = double(1 << 24);
+inline constexpr double kMaxEmitterAreaFraction = 0.1;
+struct EmitterSampleChoice {
+  long samples = 0;
+  std::string reason;
+};
+EmitterSampleChoice choose_emitter_samples(const PatchSet& patches, const FormFactorOptions& options,
+                                           long requested);
 
 // The emitters: the patches with E > 0 in some channel, increasing.
 std::vector<std::size_t> emitter_patches(const PatchSet& patches);

@@ -66,6 +66,29 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   return out;
 }
 
+MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& patches, const Visibility& visibility,
+                                                                const RadiosityProblem& p, const PatchRgb& B,
+                                                                const Eigen::VectorXd& W, int directions,
+                                                                std::uint64_t seed) {
+  Timer timer;
+  RADWALK_CHECK_EQ(B.rows(), static_cast<Eigen::Index>(patches.size()));
+  MeasurementDiscretisationError out;
+  const FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed);
+  out.rays = source.rays;
+  // Scaled before squaring (core/moments.h): W and d near the largest double.
+  const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
+  const PatchRgb psi = adjoint_weights(p, W / r, out.sweeps);
+  const double s = moment_scale(source.d.size() > 0 ? source.d.abs().maxCoeff() : 0.0);
+  const PatchRgb d = source.d / s;
+  const PatchRgb var = source.variance / (s * s);
+  const Rgb eps = (psi * d).colwise().sum().transpose();
+  const Rgb v = (psi.square() * var).colwise().sum().transpose();
+  out.estimate = eps * (r * s);
+  out.standard_error = (eps.square() + v).sqrt() * (r * s);
+  out.seconds = timer.seconds();
+  return out;
+}
+
 PatchRgb total_error(const PatchRgb& B_se, const PatchRgb& B_disc) {
   if (B_se.size() && B_disc.size()) return combined_standard_error(B_se, B_disc);
   return B_se.size() ? B_se : B_disc;

@@ -6,9 +6,10 @@
 // (H = diag(rho) F), so the discrete solution B_h is off by
 //   e = Bbar - B_h = (I - H)^{-1} d,
 // estimated with d's estimate (solve/fluctuation_source.h) (Jacobi sweeps, solve/block_jacobi.h) and its variance propagated as the form
-// factors' noise is (solve/error_propagation.h). The reported error is the root mean square of e given the
-// estimate, as one standard deviation of an error of unknown sign:
-//   B_disc_i = sqrt(e_i^2 + Var(e_i))      per channel.
+// factors' noise is (solve/error_propagation.h). The reported error B_disc is an empirical-Bayes root mean square
+// of e given the estimate (a prior e_ic ~ N(0, t_c^2 B_ic^2) with t_c fitted over the patches, so that the
+// estimate's own noise is not counted as error):
+//   B_disc_ic^2 = max(w^2 e_ic^2 + w Var(e_ic), e_ic^2 - Var(e_ic)),  w = t_c^2 B_ic^2 / (t_c^2 B_ic^2 + Var(e_ic)).
 #include <cstdint>
 
 #include "core/types.h"
@@ -20,7 +21,7 @@ namespace radwalk {
 
 struct DiscretisationError {
   PatchRgb estimate;        // e (signed): Bbar - B_h estimated
-  PatchRgb standard_error;  // B_disc = sqrt(e^2 + Var(e))
+  PatchRgb standard_error;  // B_disc (above)
   int points = 0;           // per patch and replicate (fluctuation_source.h)
   int directions = 0;       // per point and kind
   long rays = 0;
@@ -36,6 +37,26 @@ struct DiscretisationError {
 DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
                                          const RadiosityProblem& p, const PatchRgb& B, int directions,
                                          std::uint64_t seed);
+
+// The discretisation error of a measurement M_c = sum_i W_i B_ic (W = A R, solve/measurement.h): with the
+// adjoint Psi = (I - H)^{-T} W (solve/form_factor_error.h, adjoint_weights) and the source d of the exact
+// equation above,
+//   eps_c = sum_i W_i e_ic = sum_j Psi_jc d_jc        (signed: the continuous M minus the discrete one),
+//   Var(eps_c) = sum_j Psi_jc^2 Var(d_jc)            (d's rows are independent),
+//   M_disc_c = sqrt(eps_c^2 + Var(eps_c))            (the root mean square of the error given eps under a flat
+//                                                     prior: one number has no population to fit a prior to).
+// p must hold every row of F; B the discrete solution (to a few digits).
+struct MeasurementDiscretisationError {
+  Rgb estimate = Rgb::Zero();        // eps
+  Rgb standard_error = Rgb::Zero();  // M_disc
+  long rays = 0;
+  long sweeps = 0;
+  double seconds = 0;
+};
+MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& patches, const Visibility& visibility,
+                                                                const RadiosityProblem& p, const PatchRgb& B,
+                                                                const Eigen::VectorXd& W, int directions,
+                                                                std::uint64_t seed);
 
 // The total error B_err = sqrt(B_se^2 + B_disc^2) per patch and channel (statistical and discretisation errors are
 // independent); either may be empty (then the other is returned; both empty: empty).

@@ -26,6 +26,30 @@ PatchRgb combined_standard_error(const PatchRgb& a, const PatchRgb& b) {
   return (larger > 0).select(larger * ((a.min(b) / larger).square() + 1.0).sqrt(), PatchRgb::Zero(a.rows(), 3));
 }
 
+PatchRgb adjoint_weights(const RadiosityProblem& p, const Eigen::VectorXd& W, long& sweeps) {
+  const Eigen::Index N = static_cast<Eigen::Index>(p.size());
+  RADWALK_CHECK_EQ(W.size(), N);
+  RADWALK_CHECK(p.row_blocks.empty());
+  // Psi = W + F^T (rho Psi), all channels at once; F^T applied by scattering F's rows.
+  PatchRgb psi(N, 3), next(N, 3);
+  for (int c = 0; c < 3; ++c) psi.col(c) = W.array();
+  for (;;) {
+    for (int c = 0; c < 3; ++c) next.col(c) = W.array();
+    for (Eigen::Index i = 0; i < N; ++i) {
+      const auto source = (p.rho.row(i) * psi.row(i)).eval();
+      for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source;
+    }
+    ++sweeps;
+    const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
+    psi.swap(next);
+    if (!(change > 1e-10 * size)) break;
+    if (sweeps >= 100000)
+      throw InputError("error estimate: the adjoint of the measurement did not converge in 100,000 sweeps "
+                       "(spectral radius of diag(rho) F near 1)");
+  }
+  return psi;
+}
+
 MeasurementError measurement_form_factor_error(const PatchSet& patches, const Visibility& visibility,
                                                const FormFactors& ff, const RadiosityProblem& p, const PatchRgb& B,
                                                const Eigen::VectorXd& W) {
@@ -38,23 +62,7 @@ MeasurementError measurement_form_factor_error(const PatchSet& patches, const Vi
   const PatchRgb b = B / s;
   out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b);
   const PatchRgb V = gather_variance(p.F, ff, b).scaled(out.calibration.factors);
-  // Psi = W + F^T (rho Psi), all channels at once; F^T applied by scattering F's rows.
-  PatchRgb psi(N, 3), next(N, 3);
-  for (int c = 0; c < 3; ++c) psi.col(c) = W.array() / r;
-  for (;;) {
-    for (int c = 0; c < 3; ++c) next.col(c) = W.array() / r;
-    for (Eigen::Index i = 0; i < N; ++i) {
-      const auto source = (p.rho.row(i) * psi.row(i)).eval();
-      for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source;
-    }
-    ++out.sweeps;
-    const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
-    psi.swap(next);
-    if (!(change > 1e-10 * size)) break;
-    if (out.sweeps >= 100000)
-      throw InputError("error estimate: the adjoint of the measurement did not converge in 100,000 sweeps "
-                       "(spectral radius of diag(rho) F near 1)");
-  }
+  const PatchRgb psi = adjoint_weights(p, W / r, out.sweeps);
   out.standard_error = ((psi * p.rho).square() * V).colwise().sum().transpose().sqrt() * s * r;
   return out;
 }

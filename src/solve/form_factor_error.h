@@ -30,6 +30,12 @@ FormFactorError form_factor_error(const PatchSet& patches, const Visibility& vis
 // independent errors (a walk's own and the form factors' noise).
 PatchRgb combined_standard_error(const PatchRgb& a, const PatchRgb& b);
 
+// The adjoint weights Psi = (I - H)^{-T} W of a measurement M_c = sum_i W_i B_ic (per channel: Psi_c = W +
+// F^T diag(rho_c) Psi_c, Jacobi sweeps to a relative change below 1e-10; InputError after 100,000 sweeps), so that
+// for any source d, sum_i W_i ((I - H)^{-1} d)_ic = sum_j Psi_jc d_jc. p's F must hold every row (checked);
+// the sweeps are added to `sweeps`.
+PatchRgb adjoint_weights(const RadiosityProblem& p, const Eigen::VectorXd& W, long& sweeps);
+
 // The variance of a measurement M_c = sum_i W_i B_ic (W = A R, solve/measurement.h) from F's noise: with
 // Psi = (I - H)^{-T} W (the adjoint, by Jacobi sweeps of Psi = W + F^T diag(rho) Psi to a relative change below
 // 1e-10), dM = sum_j Psi_j rho_j dg_j and so

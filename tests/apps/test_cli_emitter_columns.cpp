@@ -23,7 +23,7 @@ std::string text_of(const fs::path& p) {
 
 }  // namespace
 
-TEST_CASE("the form-factor options sobol-rays and emitter-columns run, report, are thread-independent, refuse M <= 0",
+TEST_CASE("the form-factor options sobol-rays and emitter-columns run, report, are thread-independent, refuse M < 0",
           "[cli][formfactor]") {
   const fs::path dir = scratch_dir("emitter_columns");
   const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 200 --rays 200";
@@ -40,9 +40,45 @@ TEST_CASE("the form-factor options sobol-rays and emitter-columns run, report, a
               (dir / "r2.json").string())
               .exit_code == 0);
   CHECK(text_of(csv1) == text_of(csv2));
-  REQUIRE(run("solve " + scene + " --csv " + plain.string()).exit_code == 0);
+  REQUIRE(run("solve " + scene + " --no-sobol-rays --emitter-columns 0 --csv " + plain.string()).exit_code == 0);
   CHECK(text_of(csv1) != text_of(plain));
-  r = run("solve " + scene + " --emitter-columns 0");
-  CHECK(r.exit_code == 2);
-  CHECK(r.out.find("--emitter-columns") != std::string::npos);
+  for (const char* bad : {"-1", "abc", "3.5"}) {
+    r = run("solve " + scene + " --emitter-columns " + bad);
+    CHECK(r.exit_code == 2);
+    CHECK(r.out.find("--emitter-columns") != std::string::npos);
+  }
+}
+
+TEST_CASE("the defaults are the recommended route: Sobol rays and emitter columns of a third of the rays, off where "
+          "every row would need more samples than that or the emitters are large",
+          "[cli][formfactor]") {
+  const fs::path dir = scratch_dir("emitter_defaults");
+  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 100";
+  const fs::path json = dir / "d.json", by_default = dir / "d.csv", spelled = dir / "s.csv";
+  Run r = run("solve " + scene + " --rays 300 --json " + json.string() + " --csv " + by_default.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  std::string summary = text_of(json);
+  CHECK(summary.find("\"emitter_samples\": 100") != std::string::npos);
+  CHECK(summary.find("\"emitter_columns\": 4") != std::string::npos);
+  // Spelled out, the same run (the CSV's values; its run id records the options as given).
+  REQUIRE(run("solve " + scene + " --rays 300 --sobol-rays --emitter-columns 100 --csv " + spelled.string()).exit_code == 0);
+  const auto values = [](const std::string& csv) {  // every line without its last column, the run id
+    std::istringstream in(csv);
+    std::string line, out;
+    while (std::getline(in, line)) out += line.substr(0, line.rfind(',')) + "\n";
+    return out;
+  };
+  CHECK(values(text_of(by_default)) == values(text_of(spelled)));
+  // 4 emitter patches, rays 6: M = 2 < 4, so auto leaves the emitter columns to the cosine rays, and says so.
+  r = run("solve " + scene + " --rays 6 --json " + json.string());
+  REQUIRE(r.exit_code == 0);
+  summary = text_of(json);
+  CHECK(summary.find("\"emitter_samples\": 0") != std::string::npos);
+  // Every patch of the closed cube emits (a furnace): large emitters keep the cosine rays' rows, which sum to 1.
+  r = run("solve " + source("meshes/cube.obj") + " --set white.Ke=1 --json " + json.string());
+  REQUIRE(r.exit_code == 0);
+  CHECK(text_of(json).find("\"emitter_samples_choice\": \"off: the emitters cover 100 % of the area") != std::string::npos);
+  CHECK(summary.find("\"emitter_samples_choice\": \"off: 4 emitter patches, more than the 2 shadow samples") !=
+        std::string::npos);
 }

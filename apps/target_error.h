@@ -1,0 +1,24 @@
+#pragma once
+// `radwalk solve SCENE --target-error E`: the steps of solve/target_error.h on the command's traced form-factor
+// route (its --rays as the first step's, Sobol rays and emitter columns as the command says, the automatic
+// solver), each step's errors estimated as a plain solve's (apps/statistical_error.h, apps/discretisation_error.h).
+// The first step's form factors report as a plain solve's do (obtain_form_factors: notes, warnings, JSON); every
+// step prints a progress line. Records "target_error" in the JSON (target, budgets, reached, stop_reason,
+// seconds, steps) and leaves the last step's "error_estimate".
+#include <string>
+
+#include "apps/options.h"
+#include "io/run_summary.h"
+#include "patch/patch_set.h"
+#include "solve/target_error.h"
+
+namespace radwalk::app {
+
+struct TargetErrorRun {
+  TargetErrorResult result;
+  std::string error_line;  // the last step's summary line(s) of its estimated error
+};
+
+TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary);
+
+}  // namespace radwalk::app

@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""What `radwalk solve --target-error E` delivers: its measured error against the path tracer, and its CPU.
+
+For each target E and seed, `radwalk solve SCENE --target-error E` writes its final patches (.vtp) and B; the
+continuous reference is `radwalk pathtrace` of that .vtp (the same patches, read back) with --spp N. Printed per
+run, over the reflecting non-emitting patches the path tracer sees (B > 0) and their channels:
+  patches, rays  - of the last step; steps - solves run;
+  e_est          - the run's estimated total error (its JSON's error_estimate.total);
+  e              - the measured relative error sqrt(sum A (B - B_pt)^2 / sum A B_pt^2), the path tracer's own
+                   noise taken out (sum A B_se_pt^2 subtracted);
+  cpu            - user + system CPU seconds of the solve (all its steps).
+The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
+the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
+scaled: --scene-options go to the solves only). Example:
+  python3 bench/target_error.py --targets 0.03,0.01 --seeds 3 --spp 2048 \\
+      --hand "--max-edge 100 --rays 1000" --hand "--max-edge 50 --rays 1000"
+"""
+import argparse
+import csv
+import json
+import os
+import resource
+import shlex
+import subprocess
+import sys
+import tempfile
+
+import numpy as np
+
+
+def cpu_of(cmd):
+    """Runs cmd; returns (exit code, CPU seconds of the child)."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    code = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return code, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
+
+
+def table(path):
+    rows = list(csv.DictReader(open(path)))
+    get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows])
+    return {k: get(k) for k in ("B", "B_se", "E", "rho")} | {"area": np.array([float(r["area"]) for r in rows])}
+
+
+def measured_error(run_csv, pt_csv):
+    r, pt = table(run_csv), table(pt_csv)
+    keep = (pt["E"].max(1) == 0)[:, None] & (pt["rho"] > 0) & (pt["B"] > 0)
+    W = np.repeat(pt["area"][:, None], 3, 1)[keep]
+    err2 = float((W * (r["B"] - pt["B"])[keep] ** 2).sum())
+    noise2 = float((W * pt["B_se"][keep] ** 2).sum())
+    size2 = float((W * pt["B"][keep] ** 2).sum())
+    return np.sqrt(max(err2 - noise2, 0.0) / size2), np.sqrt(noise2 / size2)
+
+
+def main():
+    here = os.path.dirname(os.path.abspath(__file__))
+    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    p.add_argument("--radwalk", default=os.path.join(here, "..", "build", "apps", "radwalk"))
+    p.add_argument("--scene", default=os.path.join(here, "..", "meshes", "cornell_box.obj"))
+    p.add_argument("--scene-options", default="", help="options for every command (--unit, --scale, ...)")
+    p.add_argument("--targets", default="0.03,0.01")
+    p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--spp", type=int, default=2048)
+    p.add_argument("--run", default="", help="more options of the --target-error runs (--max-patches, ...)")
+    p.add_argument("--hand", action="append", default=[], help="a fixed setting to compare (repeatable)")
+    a = p.parse_args()
+    scene_options = ["-q"] + shlex.split(a.scene_options)
+    runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",")] + a.hand
+    print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
+    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "pt_noise", "cpu_s"))
+    with tempfile.TemporaryDirectory() as tmp:
+        for options in runs:
+            for seed in range(1, a.seeds + 1):
+                vtp, run_csv, js, pt_csv = (os.path.join(tmp, n) for n in ("run.vtp", "run.csv", "run.json", "pt.csv"))
+                code, cpu = cpu_of([a.radwalk, "solve", a.scene, "--seed", str(seed), "-o", vtp, "--csv", run_csv,
+                                    "--json", js] + scene_options + shlex.split(options))
+                if code not in (0, 1):
+                    print("%-44s %5d failed with exit code %d" % (options, seed, code))
+                    continue
+                summary = json.load(open(js))
+                target = summary.get("target_error", {})
+                steps = len(target.get("steps", [])) or 1
+                rays = summary.get("rays_per_patch", 0)
+                e_est = summary["error_estimate"]["total"]["relative"]
+                subprocess.run([a.radwalk, "pathtrace", vtp, "--spp", str(a.spp), "--seed", str(1000 + seed), "--csv",
+                                pt_csv, "-q"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                e, noise = measured_error(run_csv, pt_csv)
+                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.2f%s" %
+                      (options, seed, summary["patches"], rays, steps, e_est, e, noise, cpu,
+                       "" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")"))
+                sys.stdout.flush()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

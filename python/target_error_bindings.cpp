@@ -1,0 +1,143 @@
+// radwalk.solve_to_target_error: accuracy on request (solve/target_error.h) as `radwalk solve SCENE --target-error
+// E` runs it: each step traces F by the recommended route (Sobol rays, automatic emitter columns) with the step's
+// rays, solves with the automatic solver, and estimates B_se and B_disc as radwalk.solve does; the same seed
+// gives the CLI's patches and B.
+#include <nlohmann/json.hpp>
+
+#include "bindings.h"
+#include "core/parallel.h"
+#include "formfactor/emitter_form_factors.h"
+#include "interruptible.h"
+#include "solve/discretisation_error.h"
+#include "solve/form_factor_error.h"
+#include "solve/solve_radiosity.h"
+#include "solve/target_error.h"
+#include "visibility/embree_visibility.h"
+
+namespace radwalk::python {
+namespace {
+
+struct TargetErrorPyResult {
+  Scene scene;                     // the last step's patches
+  FormFactorsResult form_factors;  // their F
+  Result result;                   // their solve, with B_se and B_disc
+  std::vector<TargetErrorStep> steps;
+  bool reached = false;
+  std::string stop_reason;
+};
+
+nlohmann::json step_json(const TargetErrorStep& s) {
+  return {{"patches", s.patches},       {"rays_per_patch", s.rays_per_patch}, {"statistical", s.statistical},
+          {"discretisation", s.discretisation}, {"total", s.total},        {"seconds", s.seconds},
+          {"split", s.split},           {"next_rays_per_patch", s.next_rays_per_patch}};
+}
+
+TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_error, long rays, long max_patches,
+                                             double max_seconds, double tol, std::uint64_t seed,
+                                             long long threads_arg, int discretisation_directions) {
+  const int threads = check_run(scene, threads_arg);
+  if (discretisation_directions < 1)
+    throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
+                     ">= 1, got " + std::to_string(discretisation_directions));
+  if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
+  TargetErrorOptions options;
+  options.target = target_error;
+  options.rays = rays;
+  options.max_patches = static_cast<std::size_t>(max_patches);
+  options.max_seconds = max_seconds;
+  const TargetErrorWork work = [&](const PatchSet& p, long step_rays, int) {
+    TargetErrorStage stage;
+    const EmbreeVisibility visibility(p);
+    FormFactorOptions o;  // the CLI's defaults: the recommended route
+    o.rays_per_patch = step_rays;
+    o.seed = seed;
+    o.sobol = true;
+    const long emitter_samples = choose_emitter_samples(p, o, kAutoEmitterSamples).samples;
+    stage.form_factors = estimate_form_factors(p, visibility, o);
+    if (emitter_samples > 0)
+      stage.form_factors = replace_emitter_columns(std::move(stage.form_factors), p, visibility, emitter_samples).form_factors;
+    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
+    SolveOptions s;
+    s.tol = tol;
+    s.max_iterations = default_max_iterations(s.solver, p.size());
+    stage.solution = solve_radiosity(problem, s);
+    if (stage.solution.status == SolveStatus::converged) {
+      stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
+      stage.solution.B_disc =
+          discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions, seed).standard_error;
+    }
+    return stage;
+  };
+  TargetErrorResult r;
+  interruptible([&] {
+    ThreadLimit limit(threads);
+    r = solve_to_target_error(scene.patches, work, options);
+  });
+  check_solved(r.solution);
+  TargetErrorPyResult out;
+  out.scene = refined_scene(scene, std::move(r.patches));
+  out.form_factors.area = out.scene.patches.area;
+  out.form_factors.ff = std::move(r.form_factors);
+  out.steps = std::move(r.steps);
+  out.reached = r.reached;
+  out.stop_reason = r.stop_reason;
+  out.result.solution = std::move(r.solution);
+  out.result.timings = {{"target_error", r.seconds}};
+  nlohmann::json target = {{"target", target_error},    {"max_patches", max_patches}, {"max_seconds", max_seconds},
+                           {"reached", out.reached},    {"stop_reason", out.stop_reason}, {"seconds", r.seconds},
+                           {"steps", nlohmann::json::array()}};
+  for (const TargetErrorStep& s : out.steps) target["steps"].push_back(step_json(s));
+  nlohmann::json run = {{"solver", "auto"}, {"tol", tol}, {"seed", seed}, {"threads", threads},
+                        {"rays_per_patch", out.steps.back().rays_per_patch}, {"target_error", target}};
+  out.result.metadata = result_metadata(out.result, out.scene, run);
+  return out;
+}
+
+}  // namespace
+
+void bind_target_error(py::module_& m) {
+  py::class_<TargetErrorPyResult>(m, "TargetErrorResult", R"doc(What solve_to_target_error() returns.
+
+scene: a Scene of the last step's patches (each keeps its input face, group and material); form_factors: their
+FormFactors; result: their Result (B, B_se, B_disc, B_err; metadata holds the CLI's JSON "target_error" object);
+steps: one dict per step (patches, rays_per_patch, statistical, discretisation, total: relative errors; seconds;
+split, next_rays_per_patch: what the next step changed); reached: whether the estimated total error is at most the
+target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps", "rays" or "solver".)doc")
+      .def_readonly("scene", &TargetErrorPyResult::scene, "The Scene of the last step's patches, N of them.")
+      .def_readonly("form_factors", &TargetErrorPyResult::form_factors, "The FormFactors of those patches, (N, N).")
+      .def_readonly("result", &TargetErrorPyResult::result,
+                    "The Result of the last solve: B, B_se, B_disc, B_err (N, 3) float64 in W per unit length squared.")
+      .def_property_readonly(
+          "steps",
+          [](const TargetErrorPyResult& a) {
+            py::list l;
+            for (const TargetErrorStep& s : a.steps) l.append(json_to_python(step_json(s).dump()));
+            return l;
+          },
+          "One dict per step (a list): patches, rays_per_patch, statistical, discretisation, total (relative "
+          "errors), seconds, split, next_rays_per_patch (the JSON's target_error.steps).")
+      .def_readonly("reached", &TargetErrorPyResult::reached, "Whether the target was reached (bool).")
+      .def_readonly("stop_reason", &TargetErrorPyResult::stop_reason, "Why the steps stopped (str).")
+      .def("__repr__", [](const TargetErrorPyResult& a) {
+        return "<radwalk.TargetErrorResult " + std::to_string(a.scene.patches.size()) + " patches after " +
+               std::to_string(a.steps.size()) + " steps (" + a.stop_reason + ")>";
+      });
+
+  m.def("solve_to_target_error", &solve_to_target_error_py, py::arg("scene"), py::arg("target_error"),
+        py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
+        py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
+        py::arg("discretisation_directions") = 16,
+        R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
+
+As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
+MAX_SECONDS --seed SEED` (src/solve/target_error.h, docs/accuracy.md "Accuracy on request"): target_error is the
+area-weighted RMS relative total error over the reflecting patches (dimensionless, e.g. 0.01); each step traces
+F by the recommended route with its rays per patch (rays: the first step's), solves with the automatic solver and
+estimates B_se and B_disc; where the statistical part dominates the next step has more rays, where the
+discretisation part dominates the patches with the largest B_disc are split in 4. max_patches bounds the patches,
+max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it first,
+reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is not
+changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.)doc");
+}
+
+}  // namespace radwalk::python

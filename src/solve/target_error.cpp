@@ -1,0 +1,147 @@
+#include "solve/target_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+#include "core/error.h"
+#include "core/moments.h"
+#include "core/timer.h"
+#include "patch/refine.h"
+#include "solve/discretisation_error.h"
+
+namespace radwalk {
+namespace {
+
+constexpr long kMaxRaysPerPatch = 1L << 24;
+
+bool counted(const PatchSet& patches, std::size_t i) {
+  return patches.E[i].maxCoeff() <= 0 && patches.rho[i].maxCoeff() > 0;
+}
+
+// The patches to split: the largest contributions c_i = A_i sum_c B_disc_ic^2 of the counted patches until their
+// sum reaches `fraction` of the total, at most `room` of them (ties: lower index first).
+std::vector<bool> patches_to_split(const PatchSet& patches, const PatchRgb& B_disc, double fraction, std::size_t room) {
+  const std::size_t N = patches.size();
+  const double s = moment_scale(B_disc.size() > 0 ? B_disc.abs().maxCoeff() : 0.0);
+  std::vector<double> c(N, 0.0);
+  for (std::size_t i = 0; i < N; ++i)
+    if (counted(patches, i)) c[i] = patches.area[i] * (B_disc.row(static_cast<Eigen::Index>(i)) / s).square().sum();
+  const double total = std::accumulate(c.begin(), c.end(), 0.0);
+  std::vector<std::size_t> order(N);
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return c[a] > c[b]; });
+  std::vector<bool> split(N, false);
+  double marked = 0;
+  std::size_t count = 0;
+  for (std::size_t i : order) {
+    if (count >= room || !(c[i] > 0) || marked >= fraction * total) break;
+    split[i] = true;
+    marked += c[i];
+    ++count;
+  }
+  return split;
+}
+
+}  // namespace
+
+double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
+  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
+  double error = 0, size = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (!counted(patches, i)) continue;
+    const auto row = static_cast<Eigen::Index>(i);
+    error += patches.area[i] * (d.row(row) / s).square().sum();
+    size += patches.area[i] * (B.row(row) / s).square().sum();
+  }
+  return size > 0 ? std::sqrt(error / size) : 0.0;
+}
+
+TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
+                                        const std::function<void(const TargetErrorStep&, int step)>& on_step) {
+  const double E = options.target;
+  if (!(E > 0 && E < 1)) throw InputError("the target error must be in (0, 1), got " + std::to_string(E));
+  if (options.rays < 1) throw InputError("the target error's rays per patch must be >= 1");
+  if (!(options.max_seconds >= 0)) throw InputError("the target error's time budget must be >= 0 seconds");
+  if (options.max_patches < patches.size())
+    throw InputError("the patch budget " + std::to_string(options.max_patches) + " is below the scene's " +
+                     std::to_string(patches.size()) + " patches");
+  Timer run;
+  TargetErrorResult out;
+  long rays = options.rays;
+  for (int step = 0;; ++step) {
+    Timer timer;
+    TargetErrorStage stage = work(patches, rays, step);
+    const Solution& solution = stage.solution;
+    const bool solved = solution.status == SolveStatus::converged &&
+                        solution.B.rows() == static_cast<Eigen::Index>(patches.size());
+    if (solved && solution.B_disc.rows() != solution.B.rows())
+      throw InputError("the target error needs the discretisation estimate, which this step did not give");
+    TargetErrorStep s;
+    s.patches = patches.size();
+    s.rays_per_patch = rays;
+    if (solved) {
+      s.statistical = solution.B_se.size() ? relative_error(patches, solution.B, solution.B_se) : 0.0;
+      s.discretisation = relative_error(patches, solution.B, solution.B_disc);
+      s.total = relative_error(patches, solution.B, total_error(solution.B_se, solution.B_disc));
+    }
+    s.seconds = timer.seconds();
+
+    // Stop, or plan the next step.
+    std::string stop;
+    std::vector<bool> split;
+    long next_rays = rays;
+    if (!solved) {
+      stop = "solver";
+    } else if (s.total <= E) {
+      stop = "target reached";
+    } else if (step + 1 >= options.max_steps) {
+      stop = "max-steps";
+    } else {
+      const bool refine = s.discretisation > 0.8 * E;
+      const double t_d = refine ? 0.7 * E : s.discretisation;
+      const double t_s = refine ? 0.7 * E : std::sqrt(E * E - s.discretisation * s.discretisation);
+      if (s.statistical > t_s) {
+        const double factor = std::max(1.25, 1.1 * (s.statistical / t_s) * (s.statistical / t_s));
+        next_rays = static_cast<long>(std::ceil(std::min(double(kMaxRaysPerPatch), double(rays) * factor)));
+      }
+      std::size_t marked = 0;
+      if (refine) {
+        const double fraction = std::min(1.0, 2 * (1 - t_d * t_d / (s.discretisation * s.discretisation)));
+        split = patches_to_split(patches, solution.B_disc, fraction, (options.max_patches - patches.size()) / 3);
+        marked = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
+      }
+      const bool more_rays = next_rays > rays;
+      if (refine && marked == 0 && !more_rays) {
+        stop = "max-patches";
+      } else if (!refine && !more_rays) {
+        stop = "rays";  // at their bound
+      } else if (options.max_seconds > 0) {
+        const double next = double(patches.size() + 3 * marked) * double(next_rays);
+        const double predicted = s.seconds * next / (double(patches.size()) * double(rays));
+        if (run.seconds() + predicted > options.max_seconds) stop = "max-seconds";
+      }
+      if (stop.empty()) {
+        s.split = marked;
+        s.next_rays_per_patch = next_rays;
+      }
+    }
+    out.steps.push_back(s);
+    if (on_step) on_step(s, step);
+    if (!stop.empty()) {
+      out.reached = stop == "target reached";
+      out.stop_reason = stop;
+      out.patches = std::move(patches);
+      out.form_factors = std::move(stage.form_factors);
+      out.solution = std::move(stage.solution);
+      break;
+    }
+    if (s.split > 0) patches = split_patches(patches, split);
+    rays = next_rays;
+  }
+  out.seconds = run.seconds();
+  return out;
+}
+
+}  // namespace radwalk

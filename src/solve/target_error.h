@@ -1,0 +1,75 @@
+#pragma once
+// Accuracy on request: solve in steps until the estimated total error is at most a target (docs/accuracy.md,
+// "Accuracy on request").
+//
+// Each step's work (trace F with R rays per patch, solve, estimate B_se and B_disc) is the caller's stage. After
+// it, over the reflecting non-emitting patches (relative_error below): the statistical part e_s (B_se), the
+// discretisation part e_d (B_disc) and the total e (B_err = sqrt(B_se^2 + B_disc^2)). The run stops when e <= E.
+// Otherwise the budget E^2 is split: when e_d <= 0.8 E the discretisation part stays and the statistical target
+// is t_s = sqrt(E^2 - e_d^2); otherwise both targets are 0.7 E (0.49 + 0.49 < 1). Then for the next step:
+//   - rays: if e_s > t_s, R grows to R (e_s / t_s)^2 x 1.1, at least x 1.25 (a statistical error falls at least
+//     as 1 / sqrt(R); randomised Sobol points do better, so this is conservative); at most 2^24;
+//   - patches: if e_d > t_d, the patches with the largest contributions c_i = A_i sum_c B_disc_ic^2 are split in
+//     4 (patch/refine.h) until the marked contributions reach 2 (1 - t_d^2 / e_d^2) of the total (a split patch's
+//     contribution taken as halved: first order would quarter it; a patch across a shadow line only halves it).
+// Budgets: never more than max_patches (the largest contributions split first, as many as fit); no step started
+// when the elapsed time plus the last step's time scaled by the rays the next traces (N' R' / (N R)) would pass
+// max_seconds (0: no limit); at most max_steps solves. When a budget stops the run first, `reached` is false and
+// stop_reason names the budget; the last solution is kept (the most accurate), with its own error estimates.
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "core/solution.h"
+#include "formfactor/form_factors.h"
+#include "patch/patch_set.h"
+
+namespace radwalk {
+
+// e = sqrt(sum_{i,c} A_i d_ic^2 / sum_{i,c} A_i B_ic^2) over the reflecting (rho > 0), non-emitting patches (0
+// when there are none or B is 0 there): the relative error of the benchmarks (docs/benchmarks.md) for a
+// per-patch error d. Scaled before squaring (B near the largest double).
+double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d);
+
+struct TargetErrorOptions {
+  double target = 0.01;           // E, in (0, 1)
+  long rays = 1000;               // R of the first step
+  std::size_t max_patches = 20000;
+  double max_seconds = 0;         // 0: no limit
+  int max_steps = 12;
+};
+
+// What a step's stage returns: F (with its record of how it was traced) and the solution with B_se and B_disc
+// (B_disc empty means not estimated: InputError, the run needs it).
+struct TargetErrorStage {
+  FormFactors form_factors;
+  Solution solution;
+};
+using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
+
+struct TargetErrorStep {
+  std::size_t patches = 0;
+  long rays_per_patch = 0;
+  double statistical = 0, discretisation = 0, total = 0;  // relative errors
+  double seconds = 0;
+  std::size_t split = 0;         // patches split after this step
+  long next_rays_per_patch = 0;  // the next step's rays (0 after the last)
+};
+
+struct TargetErrorResult {
+  PatchSet patches;          // the last step's
+  FormFactors form_factors;  // its F and record
+  Solution solution;         // with B_se and B_disc
+  std::vector<TargetErrorStep> steps;
+  bool reached = false;
+  std::string stop_reason;   // "target reached", "max-patches", "max-seconds", "max-steps", "rays", "solver"
+  double seconds = 0;
+};
+
+// InputError for options out of range or max_patches below the scene's patches. on_step, if set, is called after
+// each step's record is complete.
+TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
+                                        const std::function<void(const TargetErrorStep&, int step)>& on_step = {});
+
+}  // namespace radwalk

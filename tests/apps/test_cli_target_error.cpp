@@ -1,0 +1,57 @@
+// `radwalk solve --target-error E` end to end (apps/target_error.h, docs/accuracy.md "Accuracy on request"): a
+// reachable target is reached, its steps are in the JSON and the final estimate is at most E; a patch budget too
+// small stops it with exit 1, one line saying what was reached, and the files of the last solution written; the
+// options it chooses itself are refused with exit 2.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "radwalk_runner.h"
+#include "run_id_reader.h"
+
+namespace fs = std::filesystem;
+
+TEST_CASE("solve --target-error reaches a reachable target and lists its steps", "[cli][target_error]") {
+  const fs::path dir = scratch_dir("target_error");
+  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 200 --rays 300";
+  const fs::path json = dir / "t.json", csv = dir / "t.csv";
+  const Run r = run("solve " + scene + " --target-error 0.03 --json " + json.string() + " --csv " + csv.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(file_text(json));
+  const auto& t = j.at("target_error");
+  CHECK(t.at("reached").get<bool>());
+  CHECK(t.at("stop_reason") == "target reached");
+  REQUIRE(t.at("steps").size() >= 2);  // 109 patches of at most 200 mm: an estimated 4.3 %
+  const auto& last = t.at("steps").back();
+  CHECK(last.at("total").get<double>() <= 0.03);
+  CHECK(last.at("total").get<double>() == Approx(j.at("error_estimate").at("total").at("relative").get<double>()));
+  CHECK(j.at("patches").get<std::size_t>() == last.at("patches").get<std::size_t>());
+  CHECK(fs::exists(csv));
+}
+
+TEST_CASE("solve --target-error stopped by its patch budget exits 1 with one line and writes the last solution",
+          "[cli][target_error]") {
+  const fs::path dir = scratch_dir("target_error_budget");
+  const fs::path vtp = dir / "b.vtp";
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --rays 300 --target-error 0.005 --max-patches 60 -o " +
+                    vtp.string());
+  INFO(r.out);
+  CHECK(r.exit_code == 1);
+  CHECK(r.out.find("radwalk: target error 0.5 % not reached (max-patches stopped it after") != std::string::npos);
+  CHECK(fs::exists(vtp));
+}
+
+TEST_CASE("solve --target-error refuses the options it chooses itself", "[cli][target_error]") {
+  const std::string scene = source("meshes/cornell_box.obj") + " --target-error 0.05 ";
+  for (const std::string extra : {"--solver jacobi", "--refine 0.1", "--rays-per-area 1e-3"}) {
+    const Run r = run("solve " + scene + extra);
+    INFO(extra << "\n" << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+  }
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --max-seconds 10");
+  CHECK(r.exit_code == 2);
+}

@@ -1,0 +1,123 @@
+// Accuracy on request (solve/target_error.h): the control of rays and patch splits, with stages whose errors follow
+// known laws, so that every decision has an exact expected outcome:
+//   - statistical part e_s = s0 sqrt(1000 / R) (the Monte Carlo law), discretisation part B_disc_i = d0 h_i (first
+//     order in the patch size h_i = sqrt(A_i)), B = 1 everywhere, on the unit cube room with its ceiling emitting.
+// Checked: a target already met stops at once; a statistical excess raises the rays by (e_s / t_s)^2 x 1.1 and
+// splits nothing; a discretisation excess splits the patches and keeps the rays; the patch budget and the time
+// budget stop the run with reached = false; a failed solve stops it; the relative error counts only reflecting
+// non-emitting patches.
+#include <catch2/catch.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <thread>
+
+#include "core/error.h"
+#include "solve/target_error.h"
+#include "support/box_scenes.h"
+
+using namespace radwalk;
+
+namespace {
+
+PatchSet lit_cube() {
+  PatchSet p = test::unit_cube_room(1);
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    p.rho[i] = Rgb(0.5, 0.5, 0.5);
+    p.E[i] = p.centroid[i].z() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  }
+  return p;
+}
+
+// A stage with e_s = s0 sqrt(1000 / R) and B_disc_i = d0 sqrt(A_i), B = 1.
+TargetErrorWork lawful(double s0, double d0, int* calls = nullptr, double sleep_seconds = 0) {
+  return [=](const PatchSet& p, long rays, int) {
+    if (calls) ++*calls;
+    if (sleep_seconds > 0) std::this_thread::sleep_for(std::chrono::duration<double>(sleep_seconds));
+    const auto N = static_cast<Eigen::Index>(p.size());
+    TargetErrorStage s;
+    s.solution.status = SolveStatus::converged;
+    s.solution.B = PatchRgb::Ones(N, 3);
+    s.solution.B_se = PatchRgb::Constant(N, 3, s0 * std::sqrt(1000.0 / double(rays)));
+    s.solution.B_disc.resize(N, 3);
+    for (Eigen::Index i = 0; i < N; ++i) s.solution.B_disc.row(i).setConstant(d0 * std::sqrt(p.area[std::size_t(i)]));
+    return s;
+  };
+}
+
+}  // namespace
+
+TEST_CASE("target error: a target already met stops after one step") {
+  TargetErrorOptions o;
+  o.target = 0.05;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.02, 0.02), o);
+  REQUIRE(r.steps.size() == 1);
+  CHECK(r.reached);
+  CHECK(r.stop_reason == "target reached");
+  CHECK(r.steps[0].total == Approx(std::sqrt(0.02 * 0.02 + 0.02 * 0.02)).epsilon(1e-12));
+}
+
+TEST_CASE("target error: a statistical excess raises the rays by (e_s / t_s)^2 x 1.1 and splits nothing") {
+  TargetErrorOptions o;
+  o.target = 0.02;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.1, 0.0), o);
+  REQUIRE(r.steps.size() == 2);
+  CHECK(r.reached);
+  CHECK(r.steps[0].split == 0);
+  CHECK(double(r.steps[0].next_rays_per_patch) == Approx(1000 * 25 * 1.1).margin(1));  // ceil of a rounded product
+  CHECK(r.steps[1].statistical <= 0.02);
+  CHECK(r.patches.size() == 6);
+}
+
+TEST_CASE("target error: a discretisation excess splits the patches, keeps the rays, and halves the error per split") {
+  TargetErrorOptions o;
+  o.target = 0.03;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.0, 0.1), o);
+  // 0.1 -> every counted patch split (the fraction 2 (1 - 0.021^2 / 0.1^2) exceeds 1) -> 0.05 -> again -> 0.025.
+  REQUIRE(r.steps.size() == 3);
+  CHECK(r.reached);
+  CHECK(r.steps[0].patches == 6);
+  CHECK(r.steps[0].split == 5);  // the emitting ceiling is not counted
+  CHECK(r.steps[1].patches == 21);
+  CHECK(r.steps[1].split == 20);
+  CHECK(r.steps[2].patches == 81);
+  for (const TargetErrorStep& s : r.steps) CHECK(s.rays_per_patch == 1000);
+  CHECK(r.steps[2].discretisation == Approx(0.025).epsilon(1e-9));
+}
+
+TEST_CASE("target error: the patch budget stops the run, not reached, with the largest contributions split first") {
+  TargetErrorOptions o;
+  o.target = 0.01;
+  o.max_patches = 10;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.0, 0.1), o);
+  REQUIRE(r.steps.size() == 2);
+  CHECK_FALSE(r.reached);
+  CHECK(r.stop_reason == "max-patches");
+  CHECK(r.steps[0].split == 1);  // room for (10 - 6) / 3 = 1 split
+  CHECK(r.patches.size() == 9);
+  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), lawful(0.0, 0.1), TargetErrorOptions{0.01, 1000, 5}), InputError);
+}
+
+TEST_CASE("target error: the time budget stops the run before a step that would pass it") {
+  TargetErrorOptions o;
+  o.target = 0.001;
+  o.max_seconds = 0.01;
+  int calls = 0;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.1, 0.0, &calls, 0.02), o);
+  CHECK(calls == 1);
+  CHECK_FALSE(r.reached);
+  CHECK(r.stop_reason == "max-seconds");
+}
+
+TEST_CASE("target error: a failed solve stops the run") {
+  TargetErrorOptions o;
+  const TargetErrorWork failing = [](const PatchSet&, long, int) {
+    TargetErrorStage s;
+    s.solution.status = SolveStatus::diverged;
+    return s;
+  };
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), failing, o);
+  CHECK_FALSE(r.reached);
+  CHECK(r.stop_reason == "solver");
+  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), failing, TargetErrorOptions{1.5}), InputError);
+}
