@@ -57,7 +57,7 @@ std::vector<double> central_difference(const NetRadiationInput& in, const Sparse
     return group_Q(m, F, group, groups);
   };
   const std::vector<double> up = moved(step), down = moved(-step);
-  std::vector<double> d(std::size_t(groups));
+  std::vector<double> d(static_cast<std::size_t>(groups));
   for (int G = 0; G < groups; ++G) d[std::size_t(G)] = (up[std::size_t(G)] - down[std::size_t(G)]) / (2 * step);
   return d;
 }
@@ -66,7 +66,7 @@ void check_against_differences(const std::vector<int>& faces, const std::vector<
                                double ambient) {
   NetRadiationInput in = cube_input(faces);
   in.ambient_temperature = ambient;
-  const SparseF F = unit_cube_F(faces);
+  const SparseF F = test::unit_cube_F(faces);
   if (faces.size() < 6) {
     in.sky.resize(faces.size());
     for (std::size_t i = 0; i < faces.size(); ++i) in.sky[i] = 1 - double(F.row(Eigen::Index(i)).sum());
@@ -127,7 +127,7 @@ TEST_CASE("net radiation sensitivities: a known-flux group's Q does not move, an
           "[net_radiation][sensitivity]") {
   const std::vector<int> faces = {0, 1, 2, 3, 4, 5};
   const NetRadiationInput in = cube_input(faces);
-  const SparseF F = unit_cube_F(faces);
+  const SparseF F = test::unit_cube_F(faces);
   const NetRadiationResult r = net_radiation_result(in, F, dense_net_radiation(in, F));
   const std::vector<std::int32_t> group = {0, 1, 2, 3, 4, 5};
   const NetRadiationSensitivity s = net_radiation_sensitivity(in, F, r, group, 6, {3, 0});
