@@ -60,8 +60,8 @@ void apply_closure(FormFactors& ff, const PatchSet& patches, RunSummary& summary
   auto& j = summary.json()["closure"];
   j["method"] = "least-squares adjustment of the exchange areas, variance-weighted, symmetric, rows summing to 1, "
                 "non-negative (docs/theory/closure.md)";
-  j["rays_leaked_before"] = leaked;
-  j["rays"] = rays;
+  j["rays_leaked_total"] = leaked;
+  j["rays_total"] = rays;
   j["max_change"] = c.max_change;
   j["rms_change"] = c.rms_change;
   j["max_row_defect_before"] = c.max_row_defect_before;

@@ -15,7 +15,7 @@ inline constexpr double kClosureLeakTolerance = 1e-3;
 // patch that leaks most when the scene is open (the adjustment would send the escaping radiation back into the
 // scene). Writes the change into the summary (JSON `closure`), a note line with max and RMS change, and per row
 // into ff.closure_max_change and ff.closure_rms_change; the leaked rays are counted into F, so ff.escaped and
-// ff.back_hits are set to 0 (their totals before are in the JSON). `source` names where F came from.
+// ff.back_hits are set to 0 (their totals before are in the JSON, closure.rays_leaked_total). `source` names where F came from.
 void apply_closure(FormFactors& ff, const PatchSet& patches, RunSummary& summary, const std::string& source);
 
 }  // namespace radwalk::app
