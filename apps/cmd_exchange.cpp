@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "apps/options.h"
+#include "apps/exchange_discretisation.h"
+#include "apps/exchange_sensitivities.h"
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
 #include "core/error.h"
@@ -288,6 +290,31 @@ int run_exchange(const ExchangeCommand& command) {
     summary.json()["exchange"]["error_method"] = "not included: " + error_note;
   }
 
+  // The discretisation error of J, q, Q, T and the totals sqrt(se^2 + disc^2) (apps/exchange_discretisation.h).
+  ExchangeDiscretisation disc;
+  if (command.discretisation_directions > 0) {
+    disc = exchange_discretisation(patches, problem, solution.B, input, r, command.discretisation_directions,
+                                   command.scene.seed, summary);
+    summary.add_timing("discretisation_error", disc.seconds);
+    double J_disc_max = 0, J_rel = 0, J_power = 0, Q_disc_sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      J_disc_max = std::max(J_disc_max, disc.J[i]);
+      J_rel += patches.area[i] * disc.J[i] * disc.J[i];
+      J_power += patches.area[i] * r.J[i] * r.J[i];
+      Q_disc_sum += disc.Q[i];
+    }
+    const double relative = J_power > 0 ? std::sqrt(J_rel / J_power) : 0.0;
+    auto& jd = summary.json()["exchange"]["discretisation"];
+    jd["J_disc_max"] = J_disc_max;
+    jd["J_disc_relative"] = relative;
+    jd["Q_disc_sum"] = Q_disc_sum;
+    std::fprintf(report_stream(),
+                 "discretisation error (1 sd equivalent): J_disc up to %.3g W/m^2, %.3g %% of J (area-weighted RMS); "
+                 "sum of |Q_disc| %.3g W; per patch J_disc, q_disc, Q_disc, T_disc and the totals J_err, q_err, "
+                 "Q_err, T_err = sqrt(se^2 + disc^2)\n",
+                 J_disc_max, 100 * relative, Q_disc_sum);
+  }
+
   // The energy balance, W: sum_i Q_i = (to the ambient) - (from the ambient) + (into the backs of one-sided faces)
   // + R, R = sum_i A_i sum_j F_ij (J_i - J_j) - sum_i A_i J_i (1 - r_i - s_i - b_i): the reciprocity defect of F,
   // zero for a reciprocal F. Its standard error from each row's rays (J held fixed, first order):
@@ -449,6 +476,10 @@ int run_exchange(const ExchangeCommand& command) {
   }
   if (order.size() > 10) std::fprintf(report_stream(), "  ... %zu more (--groups FILE.csv)\n", order.size() - 10);
 
+  if (!command.sensitivities.empty())
+    report_sensitivities(command.sensitivities, command.sensitivities_csv, command.group_by, input, problem.F, r,
+                         group, names, traced, summary);
+
   // Per-patch outputs.
   std::vector<double> eps(n), given(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -466,6 +497,21 @@ int run_exchange(const ExchangeCommand& command) {
   fields.push_back(scalar_field("Q_se", Q_se));
   fields.push_back(scalar_field("T", r.T));
   fields.push_back(scalar_field("T_se", T_se));
+  if (!disc.J.empty()) {
+    const auto total = [](const std::vector<double>& se, const std::vector<double>& d) {
+      std::vector<double> t(se.size());
+      for (std::size_t i = 0; i < se.size(); ++i) t[i] = std::sqrt(se[i] * se[i] + d[i] * d[i]);
+      return t;
+    };
+    fields.push_back(scalar_field("J_disc", disc.J));
+    fields.push_back(scalar_field("J_err", total(J_se, disc.J)));
+    fields.push_back(scalar_field("q_disc", disc.q));
+    fields.push_back(scalar_field("q_err", total(q_se, disc.q)));
+    fields.push_back(scalar_field("Q_disc", disc.Q));
+    fields.push_back(scalar_field("Q_err", total(Q_se, disc.Q)));
+    fields.push_back(scalar_field("T_disc", disc.T));
+    fields.push_back(scalar_field("T_err", total(T_se, disc.T)));
+  }
   fields.push_back(scalar_field("sky", input.sky));
   std::vector<double> contact(n);
   for (std::size_t i = 0; i < n; ++i) contact[i] = in_contact[i] ? 1 : 0;

@@ -47,6 +47,7 @@ struct FormFactorCliOptions {
   long min_rays = 16;
   std::string form_factors;    // --form-factors F.mtx: read instead of estimating
   bool reciprocity = false;    // --reciprocity: average A_i F_ij and A_j F_ji
+  bool enforce_closure = false;  // --enforce-closure: least-squares closure + reciprocity (formfactor/closure.h)
   bool sobol_rays = true;      // --sobol-rays / --no-sobol-rays: randomised Sobol cosine rays (FormFactorOptions::sobol)
   long emitter_samples = -1;   // --emitter-columns M: the emitter columns from M shadow samples per patch
                                // (formfactor/emitter_form_factors.h); 0: from the cosine rays; -1 (auto):
@@ -146,6 +147,9 @@ struct ExchangeCommand {
   std::string groups_csv;            // --groups FILE.csv: Q per group
   std::string group_factors;         // --group-factors FILE.csv: F between groups (from, to, F)
   std::string contact_faces = "include";  // --contact-faces include|exclude: patches touching other surfaces
+  std::string sensitivities;         // --sensitivities all|G1,G2: response groups of dQ/deps, dQ/dT (adjoint)
+  std::string sensitivities_csv;     // --sensitivities-csv FILE.csv: group_from,group_to,dQ_deps_W,dQ_dT_W_per_K
+  int discretisation_directions = 16;  // --discretisation-directions L: J_disc (apps/exchange_discretisation.h); 0 off
 };
 
 int run_check(const SceneOptions& options);

@@ -31,6 +31,7 @@
 #include "formfactor/form_factor_rows.h"
 #include "formfactor/matrix_market.h"
 #include "formfactor/reciprocity.h"
+#include "apps/closure_option.h"
 #include "io/csv_writer.h"
 #include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
@@ -620,6 +621,16 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
          " % on average, at most " + std::to_string(100 * change.max_relative_change) + " %; " +
          std::to_string(change.rows_rescaled) + " rows rescaled to keep row sums <= 1");
   }
+  if (options.enforce_closure) {
+    // The adjustment couples all rows: over MPI the whole F is gathered, then each rank keeps its rows again.
+    const RowBlocks blocks = ff.row_blocks;
+    gather_whole_rows(ff.F, ff.row_blocks);
+    apply_closure(ff, patches, summary, options.form_factors.empty() ? "the form factors" : options.form_factors);
+    if (holds_own_rows_only(blocks)) {
+      ff.F = keep_rows(ff.F, blocks[static_cast<std::size_t>(distributed::rank())]);
+      ff.row_blocks = blocks;
+    }
+  }
   if (distributed::size() > 1)  // what each rank holds (docs/json-schema.md)
     summary.json()["mpi"]["form_factor_nonzeros_by_rank"] = nonzeros_by_rank(ff.F);
   return ff;
@@ -645,6 +656,10 @@ std::vector<CellField> form_factor_fields(const FormFactors& ff, const PatchSet&
     fields.push_back(scalar_field("escaped", escaped, FieldKind::count));
     fields.push_back(scalar_field("back_hits", back, FieldKind::count));
     fields.push_back(scalar_field("row_std_error", d.row_std_error));
+  }
+  if (!ff.closure_max_change.empty()) {  // --enforce-closure: how much each row was adjusted
+    fields.push_back(scalar_field("closure_max_change", ff.closure_max_change));
+    fields.push_back(scalar_field("closure_rms_change", ff.closure_rms_change));
   }
   if (!ff.row_std_error.empty())  // the analytic route: each row sum's standard error from its visibility estimates
     fields.push_back(scalar_field("row_std_error", ff.row_std_error));

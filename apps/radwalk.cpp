@@ -271,6 +271,10 @@ void add_form_factor_options(CLI::App* cmd, FormFactorCliOptions& o) {
       ->needs(file);
   cmd->add_flag("--reciprocity", o.reciprocity,
                 "Replace A_i F_ij and A_j F_ji by their mean (reports the change; rows never exceed 1)");
+  cmd->add_flag("--enforce-closure", o.enforce_closure,
+                "Closed scenes: adjust F by least squares (variance-weighted, non-negative, same pattern) so that "
+                "every row sums to 1 and A_i F_ij = A_j F_ji (docs/theory/closure.md); refused when rays escape")
+      ->excludes(cmd->get_option("--reciprocity"));
   auto* sobol = cmd->add_flag("--sobol-rays,!--no-sobol-rays", o.sobol_rays,
                 "Cosine rays from randomised Sobol points, stratified in origin and direction together (the default); "
                 "--no-sobol-rays: jittered strata")
@@ -659,6 +663,21 @@ int run_main(int argc, char** argv) {
       ->add_option("--group-factors", exchange.group_factors,
                    "Write the view factors between groups as CSV (from, to, F, exchange_area A_from F)")
       ->check(output_file(OutputFile::csv));
+  exchange_cmd
+      ->add_option("--discretisation-directions", exchange.discretisation_directions,
+                   "Directions per point of the discretisation error estimate J_disc (24 L rays per patch; 0: not "
+                   "estimated)")
+      ->check(CLI::Range(0, 1 << 20))
+      ->capture_default_str();
+  auto* sensitivities = exchange_cmd->add_option(
+      "--sensitivities", exchange.sensitivities,
+      "dQ_G/d eps_H (W) and dQ_G/d T_H (W/K) for the response groups G named here (comma-separated names of "
+      "--group-by, or 'all') and every group H, by one adjoint solve per G (docs/heat-exchange.md)");
+  exchange_cmd
+      ->add_option("--sensitivities-csv", exchange.sensitivities_csv,
+                   "Write the sensitivities as CSV (group_from, group_to, dQ_deps_W, dQ_dT_W_per_K)")
+      ->check(output_file(OutputFile::csv))
+      ->needs(sensitivities);
 
   CompareCommand compare;
   auto* compare_cmd =
@@ -842,7 +861,8 @@ int run_main(int argc, char** argv) {
     for (NamedFile& f : outputs({{"--image", pt.image}})) pt.scene.outputs.push_back(std::move(f));
     exchange.scene.outputs = outputs({{"-o", exchange.scene.vtp}, {"--csv", exchange.scene.csv},
                                       {"--json", exchange.scene.json}, {"--paraview-state", exchange.scene.paraview_state},
-                                      {"--groups", exchange.groups_csv}, {"--group-factors", exchange.group_factors}});
+                                      {"--groups", exchange.groups_csv}, {"--group-factors", exchange.group_factors},
+                                      {"--sensitivities-csv", exchange.sensitivities_csv}});
     const std::vector<std::pair<SceneOptions*, std::string>> commands = {
         {&check, ""}, {&patch.scene, ""}, {&ff.scene, ff.ff.form_factors}, {&solve.scene, solve.ff.form_factors},
         {&compare.scene, compare.ff.form_factors}, {&pt.scene, ""}, {&measure.scene, measure.ff.form_factors},

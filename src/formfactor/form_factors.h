@@ -68,6 +68,9 @@ struct FormFactors {
   long emitter_samples = 0;
   std::vector<std::int32_t> emitter_columns;
   SparseF emitter_variance;
+  // With --enforce-closure (formfactor/closure.h): per row, max_j |F'_ij - F_ij| and the RMS change over its
+  // entries; empty otherwise.
+  std::vector<double> closure_max_change, closure_rms_change;
 };
 
 // One row of F exactly as estimate_form_factors traces it (the same stream, so the same rays): the columns hit
