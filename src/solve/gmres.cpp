@@ -200,12 +200,12 @@ Solution solve_gmres(const RadiosityProblem& p, const SolveOptions& options) {
   for (int c = 0; c < 3 && verdict == Verdict::keep_going; ++c) {
     int same = -1;  // an earlier channel with the same rho and E
     for (int e = 0; e < c && same < 0; ++e)
-      if (p.rho.col(e) == p.rho.col(c) && p.E.col(e) == p.E.col(c)) same = e;
+      if ((p.rho.col(e) == p.rho.col(c)).all() && (p.E.col(e) == p.E.col(c)).all()) same = e;
     if (same >= 0) {
       B.col(c) = B.col(same);
       continue;
     }
-    const Vector rho = p.rho.col(c);
+    const Vector rho = p.rho.col(c).matrix();
     const Splitting S(p.F, rho);
     if (!(S.diagonal().array() > 0).all()) {
       verdict = Verdict::diverged;
@@ -213,13 +213,13 @@ Solution solve_gmres(const RadiosityProblem& p, const SolveOptions& options) {
             " is not positive (rho F_ii >= 1: the patch reflects all it sends onto itself)";
       break;
     }
-    const Vector b = p.E.col(c);
+    const Vector b = p.E.col(c).matrix();
     Vector x;
     const ChannelResult result = gmres_channel(S, b, options.tol * scale(c), options.max_iterations - iterations, x,
                                                history, scale(c), progress, iterations);
     iterations += result.iterations;
     ++solved;
-    B.col(c) = x;
+    B.col(c) = x.array();
     if (result.broke_down) {
       verdict = Verdict::diverged;
       why = "gmres broke down on channel " + std::to_string(c) + " (the residual is not finite)";
@@ -231,6 +231,22 @@ Solution solve_gmres(const RadiosityProblem& p, const SolveOptions& options) {
     }
   }
   progress.finish();
+  // E >= 0 and I - H a nonsingular M-matrix (radius of H below 1) give B = (I - H)^-1 E >= E >= 0; a clearly
+  // negative B means the radius is not below 1 (a singular system that the float rounding of F made barely
+  // invertible): no physical radiosity, whatever the residual.
+  const double largest = B.abs().maxCoeff();
+  if (verdict == Verdict::keep_going && B.allFinite() && B.minCoeff() < -1e-6 * largest) {
+    verdict = Verdict::diverged;
+    why = "gmres: the solution has negative radiosities (down to " + std::to_string(B.minCoeff()) +
+          " against a largest |B| of " + std::to_string(largest) + "): I - diag(rho) F is singular or not an "
+          "M-matrix (the spectral radius of diag(rho) F is >= 1), so no finite non-negative radiosity exists. In "
+          "`exchange`: every surface re-radiating with nothing absorbing; give one a temperature.";
+    finish_iterative(s, p, options, std::move(B), verdict, why, iterations, std::move(history), "iterations");
+    s.status = SolveStatus::diverged;  // even where the residual met tol
+    s.message = why;
+    s.seconds = timer.seconds();
+    return s;
+  }
   s.info["restart"] = kGmresRestart;
   s.info["channels_solved"] = solved;
   finish_iterative(s, p, options, std::move(B), verdict, why, iterations, std::move(history), "iterations");
