@@ -5,14 +5,15 @@ Usage: office_exchange.py [--radwalk BUILD/apps/radwalk] [--work DIR] [--max-edg
                           [--build-only] [-- EXTRA radwalk exchange OPTIONS]
 
 Builds a furnished office (5 m x 2.8 m x 4 m, in metres) from Debian's sweethome3d-furniture: a desk with its
-hutch, an office chair, a filing cabinet with a laptop on it, a full bookcase, a radiator under the window and a
-plant, each scaled to the width, height and depth of its furniture catalogue (PluginFurnitureCatalog.properties)
+hutch, an office chair, a filing cabinet with a printer on it (on 1 mm feet), a full bookcase, a radiator under the
+window and a plant, each scaled to the width, height and depth of its furniture catalogue (PluginFurnitureCatalog.properties)
 and placed on the floor (or the cabinet). The room's six walls are one conforming grid (the window is a cell of the
 window wall, so every edge is shared and the room stays closed). Each model's MTL is copied with the thermal
 statements added to every material block (radwalk_emissivity and radwalk_temperature or radwalk_heat_flux; the
 table THERMAL below, per object), its textures beside it. Then runs
 
-    radwalk exchange office.obj --max-edge M --rays N --group-by object --groups groups.csv
+    radwalk exchange office.obj --max-edge M --rays N --contact-faces exclude --ambient-temperature 293.15
+        --group-by object --groups groups.csv
         --group-factors group_factors.csv --csv patches.csv --json exchange.json -o office.vtp
 
 and prints the table per object (area, Q with its standard error, radiant temperature) and the energy balance with
