@@ -21,9 +21,7 @@ its error bars, from the JSON. The furniture is the installed /usr/share/sweetho
 apt-get download and unpacked with dpkg -x into DIR/.. (tests/realmesh/run_sweethome_room.py's helper).
 """
 import argparse
-import csv
 import json
-import math
 import os
 import re
 import subprocess
