@@ -131,6 +131,7 @@ std::vector<bool> contact_patches(const Mesh& mesh, const PatchSet& patches) {
 SolveOptions solve_options(const ExchangeCommand& c, std::size_t patches) {
   SolveOptions o;
   o.solver = c.solver;
+  o.auto_iterative = "gmres";  // re-radiating rows (rho = 1): docs/theory/net_radiation.md, "The Krylov solver"
   o.tol = c.tol;
   o.max_iterations = c.max_iterations > 0 ? c.max_iterations : default_max_iterations(c.solver, patches);
   return o;

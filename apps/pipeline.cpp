@@ -693,6 +693,7 @@ void write_outputs(const SceneOptions& options, const PatchSet& patches, const s
       StateColouring colouring;
       for (const CellField& f : fields)
         if (f.name == "B" && f.components == 3) colouring = radiosity_colouring(patches, f.values);
+        else if (f.name == "q" && f.components == 1) colouring = heat_flux_colouring(f.values);  // exchange
       const ViewPoint view = view_point(scene_camera(options.scene, patches), patches);  // pathtrace's camera
       write_paraview_state(options.paraview_state, options.vtp, view, colouring, run_id_of(summary));
       note("wrote " + options.paraview_state + " (ParaView state: File > Load State)");

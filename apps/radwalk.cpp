@@ -502,8 +502,8 @@ int run_main(int argc, char** argv) {
   solve_cmd
       ->add_option("--solver", solve.solver,
                    "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell, "
-                   "random-walk")
-      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "random-walk"}))
+                   "gmres, random-walk")
+      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "gmres", "random-walk"}))
       ->capture_default_str();
   solve_cmd
       ->add_option(
@@ -627,8 +627,8 @@ int run_main(int argc, char** argv) {
       ->check(output_file(OutputFile::vtp));
   exchange_cmd
       ->add_option("--solver", exchange.solver,
-                   "auto (direct where it fits, else gauss-seidel), direct, jacobi, gauss-seidel, southwell")
-      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell"}))
+                   "auto (direct where it fits, else gmres), direct, jacobi, gauss-seidel, southwell, gmres")
+      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "gmres"}))
       ->capture_default_str();
   exchange_cmd
       ->add_option("--tol", exchange.tol, "Iterative solvers stop at this relative residual of the radiosity form")

@@ -57,6 +57,16 @@ StateColouring radiosity_colouring(const PatchSet& patches, const std::vector<do
   return colouring;  // no finite value: 0..1
 }
 
+StateColouring heat_flux_colouring(const std::vector<double>& q) {
+  StateColouring colouring{"q", "q [W/m^2] (net leaving)", -1.0, 1.0, "Cool to Warm",
+                           "symmetric about 0: blue gains heat, red loses it"};
+  double largest = 0;
+  for (double v : q)
+    if (std::isfinite(v)) largest = std::max(largest, std::abs(v));
+  if (largest > 0) colouring.lo = -largest, colouring.hi = largest;
+  return colouring;
+}
+
 void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view,
                           const StateColouring& colouring, const std::string& run_id) {
   const std::filesystem::path data(vtp);
@@ -67,7 +77,8 @@ void write_paraview_state(const std::string& path, const std::string& vtp, const
     out << "# ParaView state written by radwalk: File > Load State, `paraview --state=THIS.py` or `pvpython "
            "THIS.py`.\n"
            "# Shows " << data.filename().string() << (colouring.field.empty() ? std::string() :
-           " coloured by " + colouring.field + " (Viridis, range without the emitters, colour bar, smooth)") <<
+           " coloured by " + colouring.field + " (" + colouring.preset + ", " + colouring.range_rule +
+           ", colour bar, smooth)") <<
            ", unlit, from the camera of the one camera rule (scripts/camera_rule.py).\n";
     if (!run_id.empty()) out << "# run_id " << run_id << "\n";
     out <<
@@ -81,7 +92,7 @@ void write_paraview_state(const std::string& path, const std::string& vtp, const
            "field = " << python_string(colouring.field) << "\n"
            "title = " << python_string(colouring.title) << "\n"
            "value_range = [" << python_number(colouring.lo) << ", " << python_number(colouring.hi) << "]"
-           "  # the colour map's range: the field over the non-emitting patches\n"
+           "  # the colour map's range: " << colouring.range_rule << "\n"
            "reader = simple.XMLPolyDataReader(registrationName=name, FileName=[path])\n"
            "view = simple.GetActiveViewOrCreate('RenderView')\n"
            "display = simple.Show(reader, view)\n"
@@ -93,7 +104,7 @@ void write_paraview_state(const std::string& path, const std::string& vtp, const
            "    display.Ambient = 1.0\n"
            "    display.Diffuse = 0.0\n"
            "    lut = simple.GetColorTransferFunction(field)\n"
-           "    lut.ApplyPreset('Viridis (matplotlib)', True)\n"
+           "    lut.ApplyPreset(" << python_string(colouring.preset) << ", True)\n"
            "    lut.AutomaticRescaleRangeMode = 'Never'\n"
            "    lut.RescaleTransferFunction(value_range[0], value_range[1])\n"
            "    simple.GetOpacityTransferFunction(field).RescaleTransferFunction(value_range[0], value_range[1])\n"

@@ -29,12 +29,19 @@ struct StateColouring {
   std::string field;  // the one-component array to colour by ("B"); empty: ParaView's defaults
   std::string title;  // the colour bar's title: the field's name and unit
   double lo = 0, hi = 1;  // the colour map's range, lo < hi
+  std::string preset = "Viridis (matplotlib)";  // ParaView's colour map preset
+  std::string range_rule = "range without the emitters";  // how lo..hi were chosen, for the file's comment
 };
 
 // The colouring of the radiosity: B's channel mean over the patches that emit nothing (E = 0 in every channel;
 // over all patches when every patch emits), titled "B [W/unit^2]" (unit: the scene's length unit). B_rgb holds
 // N x 3 values, patch-major. A range of one value is widened to lo < hi.
 StateColouring radiosity_colouring(const PatchSet& patches, const std::vector<double>& B_rgb);
+
+// The colouring of a heat exchange (`radwalk exchange`): the net heat flux q (one component, W/m^2 leaving) with
+// the diverging preset "Cool to Warm" (blue: heat gained, red: heat lost) over a range symmetric about 0,
+// [-max |q|, max |q|] over the finite values, titled "q [W/m^2] (net leaving)"; 0..1 widened when q is 0 everywhere.
+StateColouring heat_flux_colouring(const std::vector<double>& q);
 
 // run_id: when not empty, the comment line "# run_id RUN_ID" (the run of the .vtp, apps/run_metadata.h).
 void write_paraview_state(const std::string& path, const std::string& vtp, const ViewPoint& view,

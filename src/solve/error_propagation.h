@@ -6,7 +6,9 @@
 //   Var(B_i) = sum_j G_ij^2 q_j,     G = (I - H)^{-1},  q_j = rho_j^2 V_j           (per channel),
 // the diagonal of G diag(q) G^T. G is never formed: K Gaussian probes z ~ N(0, diag(q)) are solved, x = G z (by
 // Jacobi sweeps of x = z + H x, all probes and channels at once, to a relative change below 1e-6; over MPI each
-// process sweeps the rows of F it holds and the rows are shared, the same result bit for bit), and
+// process sweeps the rows of F it holds and the rows are shared, the same result bit for bit; when some rho >= 0.99,
+// as the re-radiating rows of the net-radiation system, on one process by the block GMRES of block_gmres.h to a
+// relative residual below 1e-6 per column, since the sweeps' rate is then close to 1), and
 //   Var(B_i) ~ q_i + (1/K) sum_k (x_ik^2 - z_ik^2),
 // an unbiased estimate (E z_i^2 = q_i) whose noise comes only from what the other rows add (x - z): the row's own
 // gather, usually the largest part, enters exactly. Since G_ii >= 1 the result is never below q_i (clamped there).

@@ -9,7 +9,11 @@
 namespace radwalk {
 
 struct SolveOptions {
-  std::string solver = "auto";  // "auto" | "direct" | "jacobi" | "gauss-seidel" | "southwell"
+  std::string solver = "auto";  // "auto" | "direct" | "jacobi" | "gauss-seidel" | "southwell" | "gmres"
+  // The iterative solver "auto" takes above kAutoDirectMaxPatches: "gauss-seidel" (radiosity, rho < 1: its
+  // sweeps converge at the rate of the spectral radius) or "gmres" (the net-radiation system, whose re-radiating
+  // rows rho = 1 bring the radius close to 1; docs/theory/net_radiation.md, "The Krylov solver").
+  std::string auto_iterative = "gauss-seidel";
   double tol = 1e-10;           // stop when max_c ||E_c - (I - H_c) B_c||_inf / ||E_c||_inf <= tol (> 0)
   long max_iterations = 10000;  // sweeps (Jacobi, Gauss-Seidel) or shots (Southwell), >= 0
   bool record_history = true;   // fill Solution.residual_history (one entry per sweep, or per N shots)

@@ -36,15 +36,20 @@ Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options)
   if (name == "jacobi") return solve_jacobi(p, options);
   if (name == "gauss-seidel") return solve_gauss_seidel(p, options);
   if (name == "southwell") return whole(southwell, options);
+  const auto gmres = [](const RadiosityProblem& q, const SolveOptions& o) { return solve_gmres(q, o); };
+  if (name == "gmres") return whole(gmres, options);
   if (name != "auto")
-    throw InputError("unknown solver '" + name + "' (expected auto, direct, jacobi, gauss-seidel or southwell)");
+    throw InputError("unknown solver '" + name + "' (expected auto, direct, jacobi, gauss-seidel, southwell or gmres)");
 
   const long n = long(p.size());
   const bool use_direct = n <= kAutoDirectMaxPatches;
-  Solution s = use_direct ? whole(direct, options) : solve_gauss_seidel(p, options);
+  const bool krylov = options.auto_iterative == "gmres";
+  if (!krylov && options.auto_iterative != "gauss-seidel")
+    throw InputError("auto_iterative must be gauss-seidel or gmres (got '" + options.auto_iterative + "')");
+  Solution s = use_direct ? whole(direct, options) : krylov ? whole(gmres, options) : solve_gauss_seidel(p, options);
   const std::string why = use_direct ? "auto chose direct: " + std::to_string(n) + " patches <= " +
                                        std::to_string(kAutoDirectMaxPatches) + ", where the exact LU solve costs under about a second. "
-                                 : "auto chose gauss-seidel: " + std::to_string(n) + " patches > " +
+                                 : "auto chose " + options.auto_iterative + ": " + std::to_string(n) + " patches > " +
                                        std::to_string(kAutoDirectMaxPatches) +
                                        ", where LU grows as N^3 in time and N^2 in memory. ";
   s.message = why + s.message;

@@ -4,10 +4,12 @@
 //   "jacobi"        jacobi.h
 //   "gauss-seidel"  gauss_seidel.h
 //   "southwell"     southwell.h
+//   "gmres"         gmres.h           (restarted GMRES, Gauss-Seidel preconditioned)
 //   "auto"          the direct solve where it fits (N <= kAutoDirectMaxPatches), Gauss-Seidel otherwise; the
 //                   Solution's message starts with the choice and the reason.
 #include "solve/direct_solver.h"
 #include "solve/gauss_seidel.h"
+#include "solve/gmres.h"
 #include "solve/jacobi.h"
 #include "solve/problem.h"
 #include "core/solution.h"
