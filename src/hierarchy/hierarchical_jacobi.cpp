@@ -25,11 +25,31 @@ constexpr long kMinRays = 16;
 // A ray's end point and what it carries, recorded by the parallel trace for the ordered descent.
 struct Deposit {
   Vec3 point;
-  Rgb power;        // rho_h W_l / n_k (per channel)
-  double transfer;  // max_c rho_hc P_l cos_x cos_y / (pi |y - x|^2): T_e / A_e before the cap at 1
-  double cap;       // max_c rho_hc P_l: T_e's value when the form factor estimate reaches 1
-  std::int32_t patch;
+  Rgb power;             // rho_h W_l / n_k (per channel)
+  double cap;            // max_c rho_hc P_l: T_e's value when the form factor estimate reaches 1
+  std::int32_t patch;    // the patch hit
+  ElementIndex shooter;  // the leaf the ray left
 };
+
+// The oracle's transfer T_e from shooter leaf l to element e of patch h (hierarchical_jacobi.h): from the elements'
+// centres c, not from the ray's own end points, so every ray of one shooter landing in e takes the same decision at
+// e (a decision that depended on where in e the ray landed would move power between e's children: biased).
+double transfer(const ElementTree& tree, const std::vector<Vec3>& centre, std::size_t l, std::size_t e,
+                const Vec3& n_l, const Vec3& n_h, double cap) {
+  const Vec3 v = centre[e] - centre[l];
+  const double d2 = v.squaredNorm();
+  if (!(d2 > 0)) return cap;
+  const double d = std::sqrt(d2);
+  const double cos_x = std::max(0.0, v.dot(n_l) / d), cos_y = std::max(0.0, -v.dot(n_h) / d);
+  const double F = std::min(1.0, tree.area[e] * cos_x * cos_y / (kPi * d2));
+  return cap * F * std::min(1.0, std::sqrt(tree.area[e]) / d);
+}
+
+Vec3 centre_of(const ElementTree& tree, std::size_t e) {
+  Vec3 c = Vec3::Zero();
+  for (int k = 0; k < tree.corner_count[e]; ++k) c += tree.corner[e][static_cast<std::size_t>(k)];
+  return c / tree.corner_count[e];
+}
 
 void check_options(const HierarchicalOptions& o) {
   if (!(o.tol > 0) || !std::isfinite(o.tol))
@@ -174,11 +194,8 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
                 dep.patch = hit.patch;
                 dep.point = rays[q].origin + hit.t * rays[q].direction;
                 dep.power = roots.rho[h] * emission.weight(j) / static_cast<double>(n);
-                const double cos_x = std::max(0.0, rays[q].direction.dot(roots.normal[root]));
-                const double cos_y = std::max(0.0, -rays[q].direction.dot(roots.normal[h]));
                 dep.cap = rho_max[h] * tree.area[root] * pulled[root].maxCoeff();
-                const double t2 = std::max(hit.t * hit.t, 1e-300);
-                dep.transfer = dep.cap * cos_x * cos_y / (kPi * t2);
+                dep.shooter = static_cast<ElementIndex>(e);
                 parts[c].push_back(dep);
               }
             }
@@ -186,15 +203,22 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
           1);
       // The oracle's descents in ray order.
       std::vector<Rgb> gathered(tree.size(), Rgb::Zero());
+      std::vector<Vec3> centre(tree.size());
+      for (std::size_t e = 0; e < tree.size(); ++e) centre[e] = centre_of(tree, e);
       for (const auto& part : parts)
         for (const Deposit& dep : part) {
           auto e = static_cast<std::size_t>(dep.patch);
           const Vec3& normal = roots.normal[e];
+          const auto l = static_cast<std::size_t>(dep.shooter);
+          const Vec3& n_l = roots.normal[static_cast<std::size_t>(tree.root[l])];
           while (true) {
-            const double T = std::min(dep.cap, dep.transfer * tree.area[e]);
+            const double T = transfer(tree, centre, l, e, n_l, normal, dep.cap);
             if (!(T > result.epsilon) || tree.level[e] >= options.max_level || tree.area[e] / 4 < options.min_area)
               break;
-            if (tree.is_leaf(e)) split(e, r, gathered);
+            if (tree.is_leaf(e)) {
+              split(e, r, gathered);
+              for (std::size_t x = centre.size(); x < tree.size(); ++x) centre.push_back(centre_of(tree, x));
+            }
             e = static_cast<std::size_t>(tree.child_containing(e, dep.point, normal));
           }
           gathered[e] += dep.power / tree.area[e];
