@@ -12,12 +12,16 @@
 //    uniform point x of l along a cosine direction and carries W_l = A_l S_kl / pi_l (pi_l = its share of Phi_k).
 //    At its first hit y on the front of input patch h (reflectance rho_h) the oracle descends h's tree from the
 //    root: from element e it goes to the child containing y while
-//       T_e = max_c rho_hc * P_l * min(1, A_e cos_x cos_y / (pi |y - x|^2)) > epsilon,
+//       T_e = max_c rho_hc * P_l * min(1, A_e cos_x cos_y / (pi d^2)) * min(1, sqrt(A_e) / d) > epsilon,
 //       level(e) < max_level and A_e / 4 >= min_area,
-//    P_l = A_p max_c |S_k|_pc the unshot power of the shooter's whole patch p (|S_k| pulled to p's root: the rays
-//    of all p's leaves together carry the transfer from p, so how finely p is split must not change the receiver's
-//    level), the min(...) the point-to-disc estimate of the form factor from the shooter to e (splitting a leaf
-//    when the oracle asks for a child that does not exist yet), and the element e it
+//    d, cos_x, cos_y from the centre of the shooter leaf l to the centre of e (not from the ray's own points: every
+//    ray of one shooter landing in e must take the same decision at e, or power moves between e's children and the
+//    estimate is biased; the furnace test caught that), P_l = A_p max_c |S_k|_pc the unshot power of the shooter's
+//    whole patch p (|S_k| pulled to p's root: the rays of all p's leaves together carry the transfer from p, so how
+//    finely p is split must not change the receiver's level), min(1, A_e cos cos / (pi d^2)) the point-to-disc
+//    estimate of the form factor and sqrt(A_e) / d the kernel's relative variation over e (a constant over e
+//    misplaces about the transfer times that variation); a leaf is split when the oracle asks for a child that does
+//    not exist yet, and the element e it
 //    stops at gathers rho_h W_l / (n_k A_e). Then push (push_pull.h): every leaf's S_{k+1} is the sum of what it
 //    and its ancestors gathered, and B_r += S_{k+1}. Stop once Phi_k <= 1e-6 Phi_0 (or after 200 iterations).
 //    Given S_k and the tree, E[S_{k+1}] at leaf l is rho times the average over the element e(l, ray) the oracle
