@@ -1,5 +1,6 @@
 // radwalk solve SCENE [--solver ...] [-o B.vtp] [--csv] [--json]: radiosity of every patch.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 #include <optional>
@@ -15,6 +16,8 @@
 #include "apps/target_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "hierarchy/hierarchical_jacobi.h"
+#include "hierarchy/leaf_patches.h"
 #include "solve/adaptive_refinement.h"
 #include "solve/discretisation_error.h"
 #include "solve/problem.h"
@@ -47,6 +50,21 @@ void check_combinations(const SolveCommand& c) {
   if (c.target_error > 0 && c.refine > 0)
     throw InputError("--target-error and --refine cannot be combined: --target-error splits patches itself, where "
                      "its discretisation estimate says");
+  if (c.hierarchical) {
+    if (c.solver != "auto")
+      throw InputError("--hierarchical is a solver of its own (hierarchical stochastic Jacobi); it cannot take --solver " +
+                       c.solver);
+    if (c.target_error > 0)
+      throw InputError("--hierarchical and --target-error cannot be combined yet: --target-error refines uniform "
+                       "patches by the form-factor route");
+    if (c.refine > 0)
+      throw InputError("--hierarchical refines its element trees itself; it cannot be combined with --refine");
+    if (!c.progressive.empty()) throw InputError("--hierarchical and --progressive cannot be combined");
+    const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(c.hierarchical_points))));
+    if (side * side != c.hierarchical_points)
+      throw InputError("--hierarchical-points must be a square (1, 4, 9, 16, ...: a stratified grid); got " +
+                       std::to_string(c.hierarchical_points));
+  }
   if (c.refine > 0) {
     if (c.solver == "random-walk")
       throw InputError("--refine needs a deterministic solver (auto, direct, jacobi, gauss-seidel, southwell)");
@@ -130,6 +148,56 @@ Solution run_walks(const SolveCommand& command, const WalkOptions& walk, const R
   return solution;
 }
 
+// The hierarchical solve (hierarchy/hierarchical_jacobi.h) on the element trees of `roots`; returns the leaves as
+// the PatchSet of the outputs and records the "hierarchy" block of the JSON summary.
+PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, Solution& solution,
+                          RunSummary& summary) {
+  HierarchicalOptions h;
+  h.tol = command.hierarchical_tol;
+  h.max_level = command.hierarchical_levels;
+  h.min_area = command.hierarchical_min_area;
+  h.points_side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(command.hierarchical_points))));
+  h.particles = command.hierarchical_rays;
+  h.replicates = command.hierarchical_replicates;
+  h.seed = command.scene.seed;
+  const EmbreeVisibility visibility(roots);
+  const HierarchicalResult r = solve_hierarchical(roots, visibility, h);
+  solution.method = "hierarchical-jacobi";
+  solution.status = SolveStatus::converged;
+  solution.message = "unshot power below 1e-6 of the first shot's, or 200 iterations per replicate";
+  solution.B = r.B;
+  solution.B_se = r.B_se;
+  solution.var = r.var;
+  solution.walks = r.rays;
+  solution.iterations = r.iterations;
+  solution.seconds = r.seconds;
+  solution.info["shadow_rays"] = static_cast<double>(r.shadow_rays);
+  solution.info["replicates"] = h.replicates;
+  auto& j = summary.json()["hierarchy"];
+  j["roots"] = roots.size();
+  j["elements"] = r.tree.size();
+  j["leaves"] = r.leaves.size();
+  j["links"] = 0;     // per-ray level choice: no links are stored
+  j["clusters"] = 0;  // clustering of small faces: not implemented
+  j["memory_bytes"] = r.memory_bytes;
+  j["levels"] = r.tree.depth() + 1;
+  j["refinement_steps"] = {{"direct", r.direct_splits}, {"transport", r.transport_splits}};
+  j["tol"] = h.tol;
+  j["epsilon"] = r.epsilon;
+  j["max_level"] = h.max_level;
+  j["min_area"] = h.min_area;
+  j["points"] = h.points_side * h.points_side;
+  j["rays"] = r.rays;
+  j["shadow_rays"] = r.shadow_rays;
+  j["replicates"] = h.replicates;
+  j["iterations"] = r.iterations;
+  note("hierarchical: " + std::to_string(roots.size()) + " patches -> " + std::to_string(r.tree.size()) +
+       " elements, " + std::to_string(r.leaves.size()) + " leaves, " + std::to_string(r.tree.depth() + 1) +
+       " levels (" + std::to_string(r.direct_splits) + " splits by the direct light, " +
+       std::to_string(r.transport_splits) + " by the transport oracle)");
+  return leaf_patches(roots, r.tree, r.leaves);
+}
+
 }  // namespace
 
 int run_solve(const SolveCommand& command) {
@@ -175,6 +243,13 @@ int run_solve(const SolveCommand& command) {
     if (per_patch_output) fields = form_factor_fields(refined.form_factors, patches);
     fields.push_back(scalar_field("jump", refined.jump));
     solution = std::move(refined.solution);
+  } else if (command.hierarchical) {
+    patches = run_hierarchical(command, patches, solution, summary);
+    const auto n = static_cast<Eigen::Index>(patches.size());
+    const RadiosityProblem problem = make_problem(patches, SparseF(n, n));
+    fates = trace_ray_fates(patches, command.scene.seed);
+    summary.json()["patches"] = patches.size();
+    add_discretisation(problem);
   } else if (ray_walk) {
     // The ray kernel traces every step: no form factors are stored (memory O(N)).
     const auto n = static_cast<Eigen::Index>(patches.size());
@@ -265,8 +340,11 @@ int run_solve(const SolveCommand& command) {
     if (solution.var_theory.size())
       fields.push_back(with_csv_name(rgb_field("B_var_theory", solution.var_theory), "var_theory"));
     VtpMetadata metadata = solution_metadata(solution, patches);
-    metadata.set_text("solver", command.solver);
-    if (command.solver == "random-walk") {
+    metadata.set_text("solver", command.hierarchical ? "hierarchical" : command.solver);
+    if (command.hierarchical) {
+      metadata.set_real("hierarchical_tol", command.hierarchical_tol);
+      metadata.set_integer("rays", command.hierarchical_rays);
+    } else if (command.solver == "random-walk") {
       const WalkMethodRow& row = method_row(walk.method);
       metadata.set_text("walk", std::string(direction_name(row.direction)));
       metadata.set_text("estimator", std::string(row.estimator));

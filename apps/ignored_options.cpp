@@ -16,6 +16,7 @@ struct Rule {
 };
 
 bool random_walk(const SolveCommand& c) { return c.solver == "random-walk"; }
+bool hierarchical(const SolveCommand& c) { return c.hierarchical; }
 
 // Walk options by their command-line names.
 const std::vector<Rule<SolveCommand>> kSolveRules = {
@@ -23,8 +24,11 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
       "--survival-constant", "--theory"},
      random_walk, "with --solver random-walk"},
     {{"--tol", "--max-iterations"},
-     [](const SolveCommand& c) { return c.solver != "direct" && !random_walk(c); },
+     [](const SolveCommand& c) { return c.solver != "direct" && !random_walk(c) && !hierarchical(c); },
      "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
+    {{"--hierarchical-tol", "--hierarchical-levels", "--hierarchical-min-area", "--hierarchical-points",
+      "--hierarchical-rays", "--hierarchical-replicates"},
+     hierarchical, "with --hierarchical"},
     {{"--survival-constant"}, [](const SolveCommand& c) { return c.walk.survival.rule == SurvivalRule::constant; },
      "with --survival constant"},
     {{"--patches"}, [](const SolveCommand& c) { return is_gathering(c.walk.method); },
@@ -33,6 +37,9 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !(random_walk(c) && c.walk.kernel == WalkKernel::ray); },
      "for form factors, which --kernel ray does not use"},
+    {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns",
+      "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
+     [](const SolveCommand& c) { return !hierarchical(c); }, "for form factors, which --hierarchical does not use"},
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
     {{"--refine-steps", "--refine-floor", "--refine-noise"}, [](const SolveCommand& c) { return c.refine > 0; },
      "with --refine"},

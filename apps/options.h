@@ -93,6 +93,14 @@ struct SolveCommand {
   double max_seconds = 0;
   int discretisation_directions = 16;  // --discretisation-directions L: directions per point of the discretisation
                                       // error estimate (solve/fluctuation_source.h); 0: not estimated
+  // --hierarchical: hierarchical stochastic Jacobi on the element trees of the patches (hierarchy/hierarchical_jacobi.h)
+  bool hierarchical = false;
+  double hierarchical_tol = 1e-3;        // epsilon = tol x the emitted power (the refinement oracle's threshold)
+  int hierarchical_levels = 8;           // deepest element level below a patch
+  double hierarchical_min_area = 0;      // no element below this area (0: the levels alone bound the depth)
+  int hierarchical_points = 16;          // points per element for the direct light and its oracle (a square)
+  long hierarchical_rays = 1'000'000;    // rays of the indirect shooting in all
+  int hierarchical_replicates = 4;       // independent replicates for the error bars
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)
   std::string progressive;

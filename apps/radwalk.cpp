@@ -604,6 +604,35 @@ int run_main(int argc, char** argv) {
       ->capture_default_str();
   // The binomial standard errors it needs come from cosine-ray counts, which the analytic route has not.
   solve_cmd->get_option("--analytic")->excludes(refine_noise);
+  solve_cmd->add_flag("--hierarchical", solve.hierarchical,
+                      "Hierarchical stochastic Jacobi: every patch an element tree refined where a ray's transfer or the "
+                      "direct light's fluctuation exceeds --hierarchical-tol x the emitted power; outputs per leaf "
+                      "element (docs/hierarchy.md)");
+  solve_cmd->add_option("--hierarchical-tol", solve.hierarchical_tol,
+                        "Hierarchical: refine while the power an element misplaces exceeds TOL x the emitted power")
+      ->transform(kPositive)
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-levels", solve.hierarchical_levels,
+                        "Hierarchical: at most L levels of 4-way splits below a patch")
+      ->check(CLI::Range(0, 30))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-min-area", solve.hierarchical_min_area,
+                        "Hierarchical: no element below this area (mesh units squared; 0: the levels alone)")
+      ->transform(kNonNegative)
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-points", solve.hierarchical_points,
+                        "Hierarchical: points per element for the direct light and its refinement oracle (a square: "
+                        "1, 4, 9, 16, ...)")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-rays", solve.hierarchical_rays,
+                        "Hierarchical: rays of the indirect shooting, all replicates and iterations together")
+      ->check(CLI::Range(1L, 1L << 40))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-replicates", solve.hierarchical_replicates,
+                        "Hierarchical: independent replicates for the standard errors (>= 2)")
+      ->check(CLI::Range(2, 1 << 16))
+      ->capture_default_str();
   solve_cmd
       ->add_option("--discretisation-directions", solve.discretisation_directions,
                    "Directions per point of the discretisation error estimate B_disc (24 L rays per patch; 0: not "

@@ -48,6 +48,9 @@ enum class StreamDomain : std::uint64_t {
                               // replicated rows, a = 1 + k probe k; b = 0
   discretisation_estimate = 19,  // the fluctuation gather of the discretisation error (solve/fluctuation_gather.h): a =
                                  // patch i, b = 0
+  hierarchical_direct = 20,   // the direct light of an element (hierarchy/direct_refinement.h): a = element e, b = 0
+  hierarchical_jacobi = 21,   // hierarchical stochastic Jacobi (hierarchy/hierarchical_jacobi.h): the stratified
+                              // emission of iteration k of replicate r, b = r << 32 | k (a as jacobi_shift's)
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

@@ -134,6 +134,16 @@ TEST_CASE("radwalk: options the chosen method cannot honour are refused in one l
       run("solve " + source("meshes/cube.obj") + " --solver random-walk --kernel ray --walks-per-patch 10 --rays 10");
   CHECK(ray.out.find("radwalk: error: --rays does not apply here (used only for form factors, which --kernel ray "
                      "does not use)") != std::string::npos);
+  // --hierarchical stores no form factors and has its own tolerance; its options need it.
+  const Run hier = run("solve " + source("meshes/cube.obj") + " --hierarchical --rays 10 --tol 1e-3");
+  CHECK(hier.exit_code == 2);
+  CHECK(hier.out.find("--rays does not apply here (used only for form factors, which --hierarchical does not use)") !=
+        std::string::npos);
+  CHECK(hier.out.find("--tol does not apply here") != std::string::npos);
+  CHECK(run("solve " + source("meshes/cube.obj") + " --hierarchical-levels 3").out.find(
+            "--hierarchical-levels does not apply here (used only with --hierarchical)") != std::string::npos);
+  CHECK(run("solve " + source("meshes/cube.obj") + " --hierarchical --solver jacobi").out.find(
+            "--hierarchical is a solver of its own") != std::string::npos);
   // measure: the kernel of a method that does not walk (it ran on the matrix kernel before, silently).
   const Run importance = run("measure " + source("meshes/cube.obj") +
                              " --response patches:0 --method importance-gather --kernel ray --walks 100");

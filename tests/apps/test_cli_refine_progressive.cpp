@@ -12,6 +12,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <string>
 
 #include "radwalk_runner.h"
@@ -77,6 +78,44 @@ TEST_CASE("radwalk solve --refine: fewer patches than the uniform mesh of the sa
   CHECK(line.find("jump") != std::string::npos);
   while (std::getline(csv, line)) ++rows;
   CHECK(rows == final_patches);
+}
+
+TEST_CASE("radwalk solve --hierarchical: one CSV row and one .vtp cell per leaf, the JSON hierarchy block", "[cli]") {
+  const fs::path dir = scratch("hierarchical");
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --hierarchical-tol 0.01 " +
+                    "--hierarchical-rays 20000 --discretisation-directions 2 --json " + (dir / "h.json").string() +
+                    " --csv " + (dir / "h.csv").string() + " -o " + (dir / "h.vtp").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto j = read_json(dir / "h.json");
+  const auto& h = j["hierarchy"];
+  CHECK(h["roots"] == 37);
+  CHECK(h["links"] == 0);
+  CHECK(h["clusters"] == 0);
+  const std::size_t leaves = h["leaves"], elements = h["elements"];
+  CHECK(leaves > 37);  // something was refined
+  CHECK(elements == 37 + 4 * ((leaves - 37) / 3));  // every split turns one leaf into four
+  CHECK(h["levels"].get<int>() >= 2);
+  CHECK(h["memory_bytes"].get<std::size_t>() > 0);
+  CHECK(j["patches"] == leaves);
+  // Rows: one per leaf, each with its input face; every input face of the scene is there.
+  std::ifstream csv(dir / "h.csv");
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line.rfind("patch,face,", 0) == 0);
+  CHECK(line.find("B_disc_r") != std::string::npos);
+  std::size_t rows = 0;
+  std::set<int> faces;
+  while (std::getline(csv, line)) {
+    ++rows;
+    faces.insert(std::stoi(line.substr(line.find(',') + 1)));
+  }
+  CHECK(rows == leaves);
+  CHECK(faces.size() == 37);
+  vtkNew<vtkXMLPolyDataReader> reader;
+  reader->SetFileName((dir / "h.vtp").string().c_str());
+  reader->Update();
+  CHECK(static_cast<std::size_t>(reader->GetOutput()->GetNumberOfCells()) == leaves);
 }
 
 TEST_CASE("radwalk solve --refine: --max-patches caps the patch count", "[cli]") {

@@ -19,7 +19,8 @@ const std::vector<StreamDomain> kDomains = {
     StreamDomain::direct_light_shift, StreamDomain::emission_shift, StreamDomain::sobol_particle,
     StreamDomain::measure_walk,   StreamDomain::importance_walk, StreamDomain::visible_direct_light,
     StreamDomain::emitter_form_factor, StreamDomain::jacobi_shift, StreamDomain::analytic_visibility,
-    StreamDomain::error_estimate, StreamDomain::discretisation_estimate};
+    StreamDomain::error_estimate, StreamDomain::discretisation_estimate,
+    StreamDomain::hierarchical_direct, StreamDomain::hierarchical_jacobi};
 
 // The first 64 draws of a stream.
 std::vector<std::uint32_t> first_draws(Rng rng) {

@@ -1,0 +1,200 @@
+// Hierarchical stochastic Jacobi (hierarchy/hierarchical_jacobi.h) against uniform patching, at their measured
+// error against the path tracer: elements, CPU seconds and error side by side. A benchmark, not a test.
+//
+// Error measure (as scripts/experiments/adaptive_patching.py): the path tracer's patch averages B_ref on a fine
+// uniform grid (--ref-max-edge, --ref-spp samples per cell, seed + 1000), each fine cell given the value of the
+// mesh patch (same input face) that contains its centroid; over the cells that are neither hidden (B_ref = 0) nor
+// emitting, area-weighted over cells and channels,
+//   raw^2 = sum A (B_mesh - B_ref)^2 / sum A B_ref^2,  noise^2 = sum A se_ref^2 / sum A B_ref^2,
+//   error = sqrt(max(raw^2 - noise^2, 0)),
+// the relative L2 distance of the piecewise-constant solution from the continuous one (its statistical noise
+// included). CPU seconds: the process's CPU time of the solve alone (form factors and solve for uniform patching:
+// cosine rays with the emitter columns exact, the recommended route, then the auto solver; the whole
+// hierarchical solve), all threads together.
+//
+// Usage: bench_hierarchical [SCENE] [--ref-max-edge L] [--ref-spp N] [--max-edges 0,100,50] [--ff-rays N]
+//                           [--tols 0.01,0.003] [--rays N] [--levels L] [--seed S]
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "bench_scene.h"
+#include "formfactor/emitter_form_factors.h"
+#include "hierarchy/hierarchical_jacobi.h"
+#include "hierarchy/leaf_patches.h"
+#include "pathtrace/patch_average.h"
+#include "solve/problem.h"
+#include "solve/solve_radiosity.h"
+#include "visibility/embree_visibility.h"
+
+using namespace radwalk;
+
+namespace {
+
+std::vector<double> numbers(const std::string& s) {
+  std::vector<double> out;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(std::atof(item.c_str()));
+  return out;
+}
+
+// Signed distance of p inside the convex polygon (positive inside), about normal n.
+double inside(const std::array<Vec3, 4>& c, int k, const Vec3& p, const Vec3& n) {
+  double d = 1e300;
+  for (int a = 0; a < k; ++a) {
+    const Vec3 e = c[static_cast<std::size_t>((a + 1) % k)] - c[static_cast<std::size_t>(a)];
+    d = std::min(d, e.cross(p - c[static_cast<std::size_t>(a)]).dot(n) / e.norm());
+  }
+  return d;
+}
+
+struct Reference {
+  PatchSet cells;
+  PatchRgb B;
+  std::vector<char> keep;
+  double norm = 0, noise2 = 0;
+};
+
+// The error of a piecewise-constant solution whose value at a point p of input face f is value(f, p).
+template <class Value>
+double error_of(const Reference& ref, Value&& value, double* raw = nullptr) {
+  double r2 = 0;
+  for (std::size_t i = 0; i < ref.cells.size(); ++i) {
+    if (!ref.keep[i]) continue;
+    const Rgb b = value(static_cast<std::size_t>(ref.cells.face[i]), ref.cells.centroid[i]);
+    r2 += ref.cells.area[i] * (b - ref.B.row(static_cast<Eigen::Index>(i)).transpose()).square().sum();
+  }
+  r2 /= ref.norm;
+  if (raw) *raw = std::sqrt(r2);
+  return std::sqrt(std::max(r2 - ref.noise2, 0.0));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string scene = bench::default_scene();
+  double ref_edge = 10;
+  long ref_spp = 256, ff_rays = 4000, rays = 2'000'000;
+  int levels = 8;
+  std::uint64_t seed = 1;
+  std::vector<double> edges = {0, 100, 50, 35, 25}, tols = {0.01, 0.003, 0.001, 0.0003};
+  for (int a = 1; a < argc; ++a) {
+    const std::string k = argv[a];
+    const auto next = [&] { return std::string(a + 1 < argc ? argv[++a] : ""); };
+    if (k == "--ref-max-edge") ref_edge = std::atof(next().c_str());
+    else if (k == "--ref-spp") ref_spp = std::atol(next().c_str());
+    else if (k == "--max-edges") edges = numbers(next());
+    else if (k == "--ff-rays") ff_rays = std::atol(next().c_str());
+    else if (k == "--tols") tols = numbers(next());
+    else if (k == "--rays") rays = std::atol(next().c_str());
+    else if (k == "--levels") levels = std::atoi(next().c_str());
+    else if (k == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
+    else if (!k.empty() && k[0] != '-') scene = k;
+    else {
+      std::fprintf(stderr, "bench_hierarchical: unknown option %s\n", k.c_str());
+      return 2;
+    }
+  }
+  const Mesh mesh = load_scene(scene);
+  Reference ref;
+  ref.cells = make_patches(mesh, ref_edge);
+  {
+    const EmbreeVisibility vis(ref.cells);
+    PatchAverageOptions o;
+    o.spp = ref_spp;
+    o.seed = seed + 1000;
+    o.progress = false;
+    const Solution s = estimate_patch_averages(ref.cells, vis, o);
+    ref.B = s.B;
+    ref.keep.resize(ref.cells.size());
+    for (std::size_t i = 0; i < ref.cells.size(); ++i) {
+      const auto r = static_cast<Eigen::Index>(i);
+      ref.keep[i] = (s.B.row(r) > 0).any() && (ref.cells.E[i] == 0).all();
+      if (!ref.keep[i]) continue;
+      ref.norm += ref.cells.area[i] * s.B.row(r).square().sum();
+      ref.noise2 += ref.cells.area[i] * s.B_se.row(r).square().sum();
+    }
+    ref.noise2 /= ref.norm;
+  }
+  std::printf("scene %s\nreference: %zu cells (max edge %g), %ld samples each, relative noise %.4f\n", scene.c_str(),
+              ref.cells.size(), ref_edge, ref_spp, std::sqrt(ref.noise2));
+  std::printf("%-14s %10s %10s %10s %10s %10s\n", "method", "param", "elements", "cpu_s", "error", "raw_error");
+
+  for (const double L : edges) {
+    const PatchSet p = make_patches(mesh, L);
+    const double t0 = bench::cpu_seconds();
+    const EmbreeVisibility vis(p);
+    FormFactorOptions o;
+    o.rays_per_patch = ff_rays;
+    o.seed = seed;
+    EmitterFormFactors ff = estimate_emitter_form_factors(p, vis, o, 64);
+    const RadiosityProblem problem = make_problem(p, std::move(ff.form_factors.F));
+    const Solution s = solve_radiosity(problem);
+    const double cpu = bench::cpu_seconds() - t0;
+    std::vector<std::vector<std::size_t>> of_face;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const auto f = static_cast<std::size_t>(p.face[i]);
+      if (of_face.size() <= f) of_face.resize(f + 1);
+      of_face[f].push_back(i);
+    }
+    double raw = 0;
+    const double err = error_of(
+        ref,
+        [&](std::size_t f, const Vec3& x) {
+          std::size_t best = of_face[f].front();
+          double best_in = -1e300;
+          for (const std::size_t i : of_face[f]) {
+            std::array<Vec3, 4> c;
+            for (int k = 0; k < p.corner_count(i); ++k) c[static_cast<std::size_t>(k)] = p.corner(i, k);
+            const double d = inside(c, p.corner_count(i), x, p.normal[i]);
+            if (d > best_in) {
+              best_in = d;
+              best = i;
+            }
+          }
+          return Rgb(s.B.row(static_cast<Eigen::Index>(best)).transpose());
+        },
+        &raw);
+    std::printf("%-14s %10g %10zu %10.2f %10.4f %10.4f\n", "uniform", L, p.size(), cpu, err, raw);
+    std::fflush(stdout);
+  }
+
+  const PatchSet roots = make_patches(mesh, 0);
+  std::vector<std::size_t> root_of_face;
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    const auto f = static_cast<std::size_t>(roots.face[i]);
+    if (root_of_face.size() <= f) root_of_face.resize(f + 1);
+    root_of_face[f] = i;
+  }
+  for (const double tol : tols) {
+    const double t0 = bench::cpu_seconds();
+    const EmbreeVisibility vis(roots);
+    HierarchicalOptions o;
+    o.tol = tol;
+    o.max_level = levels;
+    o.particles = rays;
+    o.seed = seed;
+    const HierarchicalResult h = solve_hierarchical(roots, vis, o);
+    const double cpu = bench::cpu_seconds() - t0;
+    std::vector<Eigen::Index> row(h.tree.size(), -1);
+    for (std::size_t k = 0; k < h.leaves.size(); ++k) row[static_cast<std::size_t>(h.leaves[k])] = static_cast<Eigen::Index>(k);
+    double raw = 0;
+    const double err = error_of(
+        ref,
+        [&](std::size_t f, const Vec3& x) {
+          std::size_t e = root_of_face[f];
+          const Vec3& n = roots.normal[e];
+          while (!h.tree.is_leaf(e)) e = static_cast<std::size_t>(h.tree.child_containing(e, x, n));
+          return Rgb(h.B.row(row[e]).transpose());
+        },
+        &raw);
+    std::printf("%-14s %10g %10zu %10.2f %10.4f %10.4f   (%zu elements, %d levels, %ld direct + %ld transport splits)\n",
+                "hierarchical", tol, h.leaves.size(), cpu, err, raw, h.tree.size(), h.tree.depth() + 1,
+                h.direct_splits, h.transport_splits);
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -1,0 +1,120 @@
+#include "hierarchy/direct_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "core/parallel.h"
+#include "core/rng.h"
+#include "formfactor/point_polygon_form_factor.h"
+#include "visibility/ray_offset.h"
+
+namespace radwalk {
+
+std::vector<std::size_t> emitter_roots(const PatchSet& roots) {
+  std::vector<std::size_t> out;
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    if ((roots.E[i] > 0).any()) out.push_back(i);
+  return out;
+}
+
+namespace {
+
+struct ElementDirect {
+  Rgb D = Rgb::Zero(), variance = Rgb::Zero();
+  double indicator = 0;
+  long rays = 0;
+};
+
+// The M points of element e (the top of direct_refinement.h).
+ElementDirect estimate_element(const PatchSet& roots, const Visibility& visibility, const ElementTree& tree,
+                               std::size_t e, const std::vector<std::size_t>& emitters, double eps, int m,
+                               std::uint64_t seed) {
+  ElementDirect out;
+  const auto r = static_cast<std::size_t>(tree.root[e]);
+  const Rgb& rho = roots.rho[r];
+  if (!(rho > 0).any() || emitters.empty()) return out;
+  const Vec3& n = roots.normal[r];
+  const PatchRayOffset offset = patch_ray_offset(roots, r, eps);
+  Rng rng = stream(seed, StreamDomain::hierarchical_direct, e, 0);
+  const int M = m * m;
+  Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+  for (int s = 0; s < M; ++s) {
+    const double u1 = ((s % m) + rng.uniform()) / m, u2 = ((s / m) + rng.uniform()) / m;
+    const Vec3 x = element_point(tree, e, u1, u2);
+    Rgb f = Rgb::Zero();
+    for (const std::size_t k : emitters) {
+      if (k == r) continue;
+      const int count = roots.corner_count(k);
+      Vec3 c[4];
+      for (int a = 0; a < count; ++a) c[a] = roots.corner(k, a);
+      const double F = point_polygon_form_factor(x, n, c, count, roots.normal[k]);
+      const double v1 = rng.uniform(), v2 = rng.uniform();
+      if (!(F > 0)) continue;
+      const Vec3 y = sample_patch_point(roots, k, v1, v2);
+      const Vec3 d = y - x;
+      const double dist = d.norm();
+      if (!(dist > 0)) continue;
+      const Ray ray = spawn_ray(offset, x, d / dist);
+      const Hit hit = visibility.intersect(ray);
+      ++out.rays;
+      if (hit.missed() || hit.t >= dist * (1 - 1e-5) - 4 * eps) f += roots.E[k] * F;
+    }
+    sum += f;
+    sum2 += f * f;
+  }
+  const double Md = M;
+  const Rgb mean = sum / Md;
+  const Rgb s2 = M > 1 ? Rgb(((sum2 - Md * mean * mean) / (Md - 1)).max(0.0)) : Rgb(Rgb::Zero());
+  out.D = rho * mean;
+  out.variance = rho * rho * s2 / Md;
+  out.indicator = tree.area[e] * (rho * s2.sqrt()).maxCoeff();
+  return out;
+}
+
+}  // namespace
+
+DirectRefinement refine_direct_light(const PatchSet& roots, const Visibility& visibility, ElementTree& tree,
+                                     const DirectRefinementOptions& options) {
+  RADWALK_CHECK(options.points_side >= 1);
+  const std::vector<std::size_t> emitters = emitter_roots(roots);
+  const double eps = ray_epsilon(roots);
+  DirectRefinement result;
+  std::vector<ElementIndex> level = tree.leaves();
+  std::vector<ElementDirect> values;
+  auto grow = [&] {
+    result.D.resize(tree.size(), Rgb::Zero());
+    result.variance.resize(tree.size(), Rgb::Zero());
+    result.indicator.resize(tree.size(), 0.0);
+  };
+  grow();
+  while (!level.empty()) {
+    values.assign(level.size(), ElementDirect{});
+    parallel_for(
+        level.size(),
+        [&](std::size_t q) {
+          values[q] = estimate_element(roots, visibility, tree, static_cast<std::size_t>(level[q]), emitters, eps,
+                                       options.points_side, options.seed);
+        },
+        16);
+    std::vector<ElementIndex> next;
+    for (std::size_t q = 0; q < level.size(); ++q) {
+      const auto e = static_cast<std::size_t>(level[q]);
+      result.D[e] = values[q].D;
+      result.variance[e] = values[q].variance;
+      result.indicator[e] = values[q].indicator;
+      result.shadow_rays += values[q].rays;
+      if (values[q].indicator > options.epsilon && tree.level[e] < options.max_level &&
+          tree.area[e] / 4 >= options.min_area) {
+        const ElementIndex c = tree.split(e);
+        ++result.splits;
+        for (int k = 0; k < 4; ++k) next.push_back(c + k);
+      }
+    }
+    grow();
+    level = std::move(next);
+  }
+  return result;
+}
+
+}  // namespace radwalk
