@@ -274,7 +274,7 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
       false);
   REQUIRE(v51.face_count() == 1);
   require_one_line_refusal([&] { read_vtk_polydata_bytes("bad.vtp", "<VTKFile type=\"PolyData\"><Poly", true); },
-                           "bad.vtp", "VTK cannot read it");
+                           "bad.vtp", "not well-formed XML");
   require_one_line_refusal(
       [&] {
         read_vtk_polydata_bytes("big.vtp",
