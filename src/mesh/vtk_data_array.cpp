@@ -153,6 +153,7 @@ void inflate_block(const std::string& path, const VtpArray& array, std::size_t k
   z.avail_out = static_cast<uInt>(size);
   const std::string block = "compressed block " + std::to_string(k) + " ";
   int status = inflate(&z, Z_FINISH);
+  std::size_t missing = z.avail_out;  // declared bytes not produced
   if (status == Z_BUF_ERROR && z.avail_out == 0) {
     // The declared bytes are full: the stream must end here, without one byte more.
     unsigned char extra = 0;
@@ -164,8 +165,8 @@ void inflate_block(const std::string& path, const VtpArray& array, std::size_t k
                               " bytes (a zip bomb or a wrong header)");
   }
   if (status == Z_STREAM_END) {
-    if (z.avail_out != 0)
-      refuse(path, array, block + "inflates to " + std::to_string(size - z.avail_out) + " bytes, fewer than its "
+    if (missing != 0)
+      refuse(path, array, block + "inflates to " + std::to_string(size - missing) + " bytes, fewer than its "
                               "declared " + std::to_string(size));
     return;
   }
@@ -388,20 +389,24 @@ std::vector<std::string> decode_strings(const std::string& path, const VtpDocume
   } else {
     bytes = data_bytes(path, doc, array, 1, 1, -1);
   }
+  // The strings it must hold: its tuples x components (saturated), or any number without NumberOfTuples.
+  const std::uint64_t components = static_cast<std::uint64_t>(array.components);
+  const std::uint64_t declared =
+      array.tuples < 0 ? std::numeric_limits<std::uint64_t>::max()
+      : static_cast<std::uint64_t>(array.tuples) > std::numeric_limits<std::uint64_t>::max() / components
+          ? std::numeric_limits<std::uint64_t>::max()
+          : static_cast<std::uint64_t>(array.tuples) * components;
+  const std::string tuples = std::to_string(array.tuples) + " tuples" +
+                             (array.components > 1 ? " of " + std::to_string(array.components) + " components" : "");
   std::vector<std::string> strings;
-  const std::size_t declared =
-      array.tuples >= 0 ? static_cast<std::size_t>(array.tuples) * static_cast<std::size_t>(array.components)
-                        : std::numeric_limits<std::size_t>::max();
   for (std::size_t i = 0; i < bytes.size();) {
     const std::size_t end = std::min(bytes.find('\0', i), bytes.size());
-    if (strings.size() == declared)
-      refuse(path, array, "holds more strings than its " + std::to_string(declared) + " tuples");
+    if (strings.size() == declared) refuse(path, array, "holds more strings than its " + tuples);
     strings.push_back(bytes.substr(i, end - i));
     i = end + 1;
   }
   if (array.tuples >= 0 && strings.size() < declared)
-    refuse(path, array, "holds " + std::to_string(strings.size()) + " strings, fewer than its " +
-                            std::to_string(declared) + " tuples");
+    refuse(path, array, "holds " + std::to_string(strings.size()) + " strings, fewer than its " + tuples);
   return strings;
 }
 

@@ -126,7 +126,7 @@ struct Parser {
       array.offset = *offset;
     }
     in_array = true;
-    array_depth = stack.size();
+    array_depth = stack.size() - 1;  // the array's own entry (its parent's context) is on the stack
   }
 
   void start(const XML_Char* name_c, const XML_Char** atts) {
