@@ -134,6 +134,11 @@ TEST_CASE("vtk .vtp reader: every malformed class is refused in one line", "[mes
     text.resize(text.size() - 2);
     require_refusal([&] { read(vtp("", kPointsTag + "\"binary\">" + text + "</DataArray>")); }, "f.vtp:5: ",
                     "DataArray: its base64 text ends inside a group of 4 characters (truncated)");
+    // A character that is not base64.
+    std::string bad = base64(word(data.size()) + data);
+    bad[20] = '!';
+    require_refusal([&] { read(vtp("", kPointsTag + "\"binary\">" + bad + "</DataArray>")); }, "f.vtp:5: ",
+                    "DataArray: '!' in its base64 text is not a base64 character");
     // Whole groups, but fewer bytes than the header declares.
     require_refusal(
         [&] { read(vtp("", kPointsTag + "\"binary\">" + base64(word(data.size()) + data.substr(0, 48)) + "</DataArray>")); },
