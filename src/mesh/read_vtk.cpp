@@ -114,6 +114,26 @@ std::string legacy_keyword(std::string_view token) {
   return "";
 }
 
+// Whether `type` (after POINTS n) names a numeric type of VTK's legacy format, in any case as VTK lowercases it.
+// VTK 9.1 matches the type by its prefix, so "stringdouble" was a string array of points, on which its legacy
+// reader dereferenced a null pointer (found by the vtk fuzz harness): only the exact names are taken.
+bool legacy_numeric_type(std::string_view type) {
+  static const char* const kNumeric[] = {"unsigned_char", "char",          "signed_char", "unsigned_short",
+                                         "short",         "unsigned_int",  "int",         "unsigned_long",
+                                         "long",          "float",         "double",      "vtkidtype",
+                                         "vtktypeint64",  "vtktypeuint64"};
+  std::string lower(type);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* t : kNumeric)
+    if (lower == t) return true;
+  return false;
+}
+
+[[noreturn]] void refuse_points_type(const std::string& path, long line, std::string_view type) {
+  throw InputError(locate(path, line, -1, "POINTS of type '" + excerpt(type) +
+                                              "': not one of VTK's numeric types (float, double, int, ...)"));
+}
+
 // The bound of read_vtk.h on the counts a legacy file declares, before VTK allocates anything.
 void check_declared_counts(const std::string& path, std::string_view bytes) {
   const double size = static_cast<double>(bytes.size());
@@ -135,6 +155,8 @@ void check_declared_counts(const std::string& path, std::string_view bytes) {
     };
     if (key == "POINTS" || key == "CELL_DATA" || key == "POINT_DATA") {
       number(1);
+      if (key == "POINTS" && tokens.size() >= 3 && !legacy_numeric_type(tokens[2]))
+        refuse_points_type(path, line, tokens[2]);
       field_arrays = false;
     } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES" ||
                key == "OFFSETS" || key == "CONNECTIVITY") {
@@ -230,6 +252,8 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
     if (key == "POINTS") {
       const double n = count_at(k + 1);
       if (n < 0) throw InputError(locate(path, line, -1, "POINTS needs a count"));
+      if (k + 2 >= tokens.size() || !legacy_numeric_type(tokens[k + 2].text))
+        refuse_points_type(path, line, k + 2 < tokens.size() ? tokens[k + 2].text : std::string_view());
       k += 3;  // POINTS n TYPE
       require(3 * n, false, "POINTS", line);
     } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES") {

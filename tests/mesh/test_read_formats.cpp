@@ -255,6 +255,14 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("point.vtk", head + "0 0 0\n1 0 x\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n", false); },
       "point.vtk:7:", "POINTS (line 5): 'x' is not a number");
+  // Found by the vtk fuzz harness: VTK matches the POINTS type by its prefix, and "stringdouble" made its legacy
+  // reader read string points and dereference a null pointer; only VTK's numeric type names are taken.
+  require_one_line_refusal(
+      [&] {
+        read_vtk_polydata_bytes("string.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n"
+                                              "POINTS 3 stringdouble\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\n", false);
+      },
+      "string.vtk:5:", "POINTS of type 'stringdouble': not one of VTK's numeric types");
   // Found by the vtk fuzz harness: an array type VTK does not know (a radwalk .vtp with "Int64" mutated to "Int28")
   // crashed VTK 9.1's XML reader; now refused naming the type.
   require_one_line_refusal(
