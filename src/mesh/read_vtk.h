@@ -25,7 +25,7 @@
 // TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays) times the largest component count must
 // fit the file's bytes; and, since VTK 9.1's legacy reader crashes on them (found by the vtk fuzz harness,
 // tests/fuzz/fuzz_vtk.cpp), the numbers of the POINTS and cell sections of an ASCII file (keywords matched by
-// prefix, as VTK matches them). A VTK error is one InputError naming the file and VTK's own message; face f is the
+// prefix, as VTK matches them) and the type of POINTS (one of VTK's numeric type names, exactly). A VTK error is one InputError naming the file and VTK's own message; face f is the
 // f-th surface cell.
 #include <string>
 #include <string_view>
