@@ -234,11 +234,15 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
       if (k >= tokens.size())
         throw InputError(locate(path, header_line, -1, what + " ends before its " + number_text(count) +
                                                            (whole ? " indices" : " numbers")));
-      const bool ok = whole ? parse_long(tokens[k].text).value_or(-1) >= 0 : parse_double(tokens[k].text).has_value();
+      // VTK 9.1's legacy reader reads cell sections as 32-bit ints: a larger whole number made it fail, then
+      // dereference a null pointer (found by the vtk fuzz harness).
+      const long whole_value = whole ? parse_long(tokens[k].text).value_or(-1) : 0;
+      const bool ok = whole ? whole_value >= 0 && whole_value <= std::numeric_limits<std::int32_t>::max()
+                            : parse_double(tokens[k].text).has_value();
       if (!ok)
         throw InputError(locate(path, tokens[k].line, -1,
                                 what + " (line " + std::to_string(header_line) + "): '" + excerpt(tokens[k].text) +
-                                    "' is not " + (whole ? "a whole number >= 0" : "a number")));
+                                    "' is not " + (whole ? "a whole number from 0 to 2147483647" : "a number")));
     }
   };
   auto count_at = [&](std::size_t at) -> double {

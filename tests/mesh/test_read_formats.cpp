@@ -248,7 +248,11 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
   const std::string head = "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n";
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("word.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\nfloat 0 1 2 3\n", false); },
-      "word.vtk:11:", "POLYGONS (line 10): 'float' is not a whole number >= 0");
+      "word.vtk:11:", "POLYGONS (line 10): 'float' is not a whole number from 0 to 2147483647");
+  // Found by the vtk fuzz harness: VTK 9.1 reads legacy cell sections as 32-bit ints; 2^31 made it crash.
+  require_one_line_refusal(
+      [&] { read_vtk_polydata_bytes("wide.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 2147483648\n", false); },
+      "wide.vtk:11:", "POLYGONS (line 10): '2147483648' is not a whole number from 0 to 2147483647");
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("short.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2\n", false); },
       "short.vtk:10:", "POLYGONS ends before its 5 indices");
