@@ -4,7 +4,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config ccache
   libeigen3-dev libembree-dev libopenmesh-dev libvtk9-dev catch2 libtbb-dev libcli11-dev
-  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libjpeg-dev zlib1g-dev libboost-dev libopenexr-dev python3-matplotlib python3-scipy
+  nlohmann-json3-dev libtinyobjloader-dev libpng-dev libjpeg-dev zlib1g-dev libexpat1-dev libboost-dev libopenexr-dev python3-matplotlib python3-scipy
   pybind11-dev python3-dev python3-numpy python3-scipy python3-pytest  # the Python module (python/)
   python3-meshio  # Scene.from_meshio, Result.to_meshio (optional for the module, needed by its tests)
   python3-venv python3-pip python3-setuptools  # pip install . (pyproject.toml, setup.py)

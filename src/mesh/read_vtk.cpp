@@ -28,7 +28,6 @@
 #include <vtkPolyDataReader.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
-#include <vtkXMLPolyDataReader.h>
 
 #include "core/error.h"
 #include "core/excerpt.h"
@@ -36,11 +35,11 @@
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
 #include "mesh/triangulate.h"
+#include "mesh/vtk_data_array.h"
+#include "mesh/vtp_xml.h"
 
 namespace radwalk {
 namespace {
-
-constexpr double kZlibMaxRatio = 1032;  // zlib's largest compression ratio: a bound on what compressed bytes hold
 
 // Collects what VTK prints while radwalk reads, instead of printing it: the first error becomes the refusal.
 class CapturingOutputWindow : public vtkOutputWindow {
@@ -115,249 +114,32 @@ std::string legacy_keyword(std::string_view token) {
   return "";
 }
 
-// The value of the attribute `name` in an element's start tag (the text from '<' to before '>'), as an XML parser
-// reads it (the name preceded by white space, then optional white space, '=', optional white space and a quoted
-// value), or nullopt. Substring matches would be wrong: in `byte_orderheader_type="UInt64"` VTK sees no
-// header_type (and takes 32-bit headers) where a search for `header_type="UInt64"` finds one, and `foreat="ascii"`
-// is no format (both fuzz findings: VTK then divided by a block size of 0, or crashed reading the piece).
-std::optional<std::string_view> tag_attribute(std::string_view tag, std::string_view name) {
-  for (std::size_t at = tag.find(name); at != std::string_view::npos; at = tag.find(name, at + 1)) {
-    if (at == 0 || !std::isspace(static_cast<unsigned char>(tag[at - 1]))) continue;
-    std::size_t k = at + name.size();
-    while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
-    if (k >= tag.size() || tag[k] != '=') continue;
-    ++k;
-    while (k < tag.size() && std::isspace(static_cast<unsigned char>(tag[k]))) ++k;
-    if (k >= tag.size() || (tag[k] != '"' && tag[k] != '\'')) continue;
-    const std::size_t close = tag.find(tag[k], k + 1);
-    if (close == std::string_view::npos) return std::nullopt;
-    return tag.substr(k + 1, close - k - 1);
-  }
-  return std::nullopt;
+// Whether `type` (after POINTS n) names a numeric type of VTK's legacy format, in any case as VTK lowercases it.
+// VTK 9.1 matches the type by its prefix, so "stringdouble" was a string array of points, on which its legacy
+// reader dereferenced a null pointer (found by the vtk fuzz harness): only the exact names are taken.
+bool legacy_numeric_type(std::string_view type) {
+  static const char* const kNumeric[] = {"unsigned_char", "char",          "signed_char", "unsigned_short",
+                                         "short",         "unsigned_int",  "int",         "unsigned_long",
+                                         "long",          "float",         "double",      "vtkidtype",
+                                         "vtktypeint64",  "vtktypeuint64"};
+  std::string lower(type);
+  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* t : kNumeric)
+    if (lower == t) return true;
+  return false;
 }
 
-// The attribute `name` of the file's <VTKFile ...> element ("" when the element or the attribute is missing).
-std::string_view vtkfile_attribute(std::string_view text, std::string_view name) {
-  const std::size_t start = text.find("<VTKFile");
-  if (start == std::string_view::npos) return {};
-  const std::size_t end = text.find('>', start);
-  return tag_attribute(text.substr(start, end == std::string_view::npos ? text.npos : end - start), name)
-      .value_or(std::string_view());
+[[noreturn]] void refuse_points_type(const std::string& path, long line, std::string_view type) {
+  throw InputError(locate(path, line, -1, "POINTS of type '" + excerpt(type) +
+                                              "': not one of VTK's numeric types (float, double, int, ...)"));
 }
 
-// The bound of read_vtk.h on the counts a file declares, before VTK allocates anything.
-void check_declared_counts(const std::string& path, std::string_view bytes, bool xml) {
+// The bound of read_vtk.h on the counts a legacy file declares, before VTK allocates anything.
+void check_declared_counts(const std::string& path, std::string_view bytes) {
   const double size = static_cast<double>(bytes.size());
   double largest_count = 0, largest_components = 1;
-  std::string_view text = bytes;
-  if (xml) {
-    // Only the XML markup: a raw appended section is binary and declares nothing.
-    const std::size_t appended = text.find("<AppendedData");
-    if (appended != std::string_view::npos) text = text.substr(0, appended);
-    const bool compressed = !vtkfile_attribute(text, "compressor").empty();
-    // Every NumberOfNAME="VALUE" attribute (scanned by hand: no regex backtracking over megabytes of markup).
-    for (std::size_t at = text.find("NumberOf"); at != std::string_view::npos; at = text.find("NumberOf", at + 1)) {
-      std::size_t k = at + 8;
-      while (k < text.size() && std::isalpha(static_cast<unsigned char>(text[k]))) ++k;
-      const std::string what(text.substr(at + 8, k - at - 8));
-      if (text.substr(k, 2) != "=\"") continue;
-      const std::size_t close = text.find('"', k + 2);
-      if (close == std::string_view::npos) continue;
-      const std::string value(text.substr(k + 2, close - k - 2));
-      const auto n = parse_double(value);
-      if (!n || !(*n >= 0))
-        throw InputError(locate(path, 0, -1, "NumberOf" + excerpt(what) + "=\"" + excerpt(value) +
-                                                 "\" is not a count"));
-      if (what == "Components")
-        largest_components = std::max(largest_components, *n);
-      else
-        largest_count = std::max(largest_count, *n);
-    }
-    // Every array's type is one VTK knows: VTK 9.1's XML reader dereferences the array it could not create for
-    // another (a DataArray of type "Int28" crashed it; found by the vtk fuzz harness).
-    for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
-      for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
-        const std::size_t end = text.find('>', at);
-        const std::string_view tag = text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
-        const std::size_t t = tag.find(" type=\"");
-        if (t == std::string_view::npos)  // VTK 9.1 crashed on an array without a type too (the vtk fuzz harness)
-          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " without a type"));
-        const std::size_t close = tag.find('"', t + 7);
-        const std::string_view type = tag.substr(t + 7, close == std::string_view::npos ? 0 : close - t - 7);
-        static const char* const kTypes[] = {"Int8",  "UInt8",  "Int16",   "UInt16",  "Int32", "UInt32",
-                                             "Int64", "UInt64", "Float32", "Float64", "String"};
-        bool known = false;
-        for (const char* k : kTypes) known = known || type == k;
-        if (!known)
-          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " of type \"" + excerpt(type) +
-                                                   "\": not one of Int8, UInt8, Int16, UInt16, Int32, UInt32, "
-                                                   "Int64, UInt64, Float32, Float64, String"));
-        // Every array names its format, one of VTK's three (an array whose format attribute was mangled crashed
-        // VTK 9.1's reader; found by the vtk fuzz harness).
-        const std::optional<std::string_view> format = tag_attribute(tag, "format");
-        if (!format || (*format != "ascii" && *format != "binary" && *format != "appended"))
-          throw InputError(locate(path, 0, -1, std::string(element.substr(1)) + " without a format of ascii, binary "
-                                                   "or appended"));
-        // An ascii array holds numbers only (whole ones but for Float32 and Float64; a String array its bytes):
-        // VTK 9.1's XML reader crashed on a word among an ascii array's numbers (found by the vtk fuzz harness).
-        if (end == std::string_view::npos || *format != "ascii") continue;
-        const std::size_t stop = text.find('<', end + 1);
-        const std::string_view content =
-            text.substr(end + 1, stop == std::string_view::npos ? std::string_view::npos : stop - end - 1);
-        const bool real = type == "Float32" || type == "Float64";
-        std::size_t values = 0, zeros = 0;  // zeros: a String array's terminators
-        bool last_zero = true;
-        for (std::size_t i = 0; i < content.size();) {
-          if (std::isspace(static_cast<unsigned char>(content[i]))) {
-            ++i;
-            continue;
-          }
-          std::size_t j = i;
-          while (j < content.size() && !std::isspace(static_cast<unsigned char>(content[j]))) ++j;
-          const std::string_view token = content.substr(i, j - i);
-          if (real ? !parse_double(token) : !parse_long(token))
-            throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " of type " +
-                                                     std::string(type) + " holds '" + excerpt(token) + "', not " +
-                                                     (real ? "a number" : "a whole number")));
-          i = j;
-          ++values;
-          last_zero = type == "String" && parse_long(token) && *parse_long(token) == 0;
-          if (last_zero) ++zeros;
-        }
-        // As many values as the array declares: a multiple of its components, its tuples when it names them, and
-        // in a piece's CellData one tuple per cell, in its PointData and Points one per point (a short E array
-        // crashed VTK 9.1's XML reader too; found by the vtk fuzz harness).
-        const auto attribute = [&](const char* name) -> double {
-          const std::size_t a = tag.find(std::string(" ") + name + "=\"");
-          if (a == std::string_view::npos) return -1;
-          const std::size_t v = a + std::strlen(name) + 3, e = tag.find('"', v);
-          const auto n = parse_double(tag.substr(v, e == std::string_view::npos ? 0 : e - v));
-          return n && *n >= 0 ? *n : -1;
-        };
-        if (type == "String") {
-          // Its values are the bytes of its strings, each ended by 0: VTK 9.1 stores every string it finds and
-          // wrote past an array of NumberOfTuples strings when the text held more (found by the vtk fuzz harness).
-          const double strings = static_cast<double>(zeros + (last_zero ? 0 : 1));
-          const double declared = attribute("NumberOfTuples") * std::max(1.0, attribute("NumberOfComponents"));
-          if (values > 0 && attribute("NumberOfTuples") >= 0 && strings > declared)
-            throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " of strings holds " +
-                                                     number_text(strings) + " strings, more than the " +
-                                                     number_text(declared) + " it declares"));
-          continue;
-        }
-        const double components = std::max(1.0, attribute("NumberOfComponents"));
-        double tuples = attribute("NumberOfTuples");
-        const std::size_t piece = text.rfind("<Piece", at);
-        if (tuples < 0 && piece != std::string_view::npos) {
-          const std::size_t piece_end = text.find('>', piece);
-          const std::string_view piece_tag = text.substr(piece, piece_end == std::string_view::npos ? 0 : piece_end - piece);
-          const auto count = [&](const char* name) {
-            const std::size_t a = piece_tag.find(std::string(name) + "=\"");
-            if (a == std::string_view::npos) return 0.0;
-            const std::size_t v = a + std::strlen(name) + 2, e = piece_tag.find('"', v);
-            const auto n = parse_double(piece_tag.substr(v, e == std::string_view::npos ? 0 : e - v));
-            return n && *n >= 0 ? *n : 0.0;
-          };
-          const auto inside = [&](const char* open, const char* close) {
-            const std::size_t o = text.rfind(open, at);
-            return o != std::string_view::npos && o > piece && (text.rfind(close, at) == std::string_view::npos ||
-                                                                text.rfind(close, at) < o);
-          };
-          if (inside("<CellData", "</CellData"))
-            tuples = count("NumberOfVerts") + count("NumberOfLines") + count("NumberOfStrips") + count("NumberOfPolys");
-          else if (inside("<PointData", "</PointData") || inside("<Points", "</Points"))
-            tuples = count("NumberOfPoints");
-        }
-        const bool fits = tuples >= 0 ? values == tuples * components
-                                      : std::fmod(static_cast<double>(values), components) == 0;
-        if (!fits)
-          throw InputError(locate(path, 0, -1, "an ascii " + std::string(element.substr(1)) + " holds " +
-                                                   std::to_string(values) + " values, not " +
-                                                   (tuples >= 0 ? number_text(tuples) + " tuples of "
-                                                                : std::string("a multiple of ")) +
-                                                   number_text(components) + " components"));
-      }
-    }
-    // The header of every inline binary array (base64) must fit the file before VTK sizes its buffers by it (a
-    // mutated block size made VTK 9.1 allocate petabytes; found by the vtk fuzz harness): uncompressed, its byte
-    // count at most the file's bytes; compressed, the number of blocks (each with a header word in the file) at
-    // most the file's words, the block sizes at most 1032 (zlib's largest ratio) times the file's bytes and each
-    // block's compressed size at most the file's bytes.
-    const bool wide = vtkfile_attribute(text, "header_type") == "UInt64";
-    for (const std::string_view element : {std::string_view("<DataArray"), std::string_view("<Array")}) {
-      for (std::size_t at = text.find(element); at != std::string_view::npos; at = text.find(element, at + 1)) {
-        const std::size_t end = text.find('>', at);
-        if (end == std::string_view::npos) break;
-        if (tag_attribute(text.substr(at, end - at), "format").value_or("") != "binary") continue;
-        std::size_t k = end + 1;
-        while (k < text.size() && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
-        const std::size_t word_bytes = wide ? 8 : 4;
-        // The little-endian words of the header (the base64 text decoded as far as needed); false when the text is
-        // not base64 that far (VTK refuses it).
-        std::vector<double> words;
-        auto decode = [&](std::size_t n_words) {
-          words.clear();
-          std::vector<unsigned char> raw;
-          const std::size_t need = n_words * word_bytes;
-          for (std::size_t q = k; raw.size() < need; q += 4) {
-            if (q + 4 > text.size()) return false;
-            std::uint32_t v = 0;
-            for (std::size_t c = 0; c < 4; ++c) {
-              const char ch = text[q + c];
-              int d = -1;
-              if (ch >= 'A' && ch <= 'Z') d = ch - 'A';
-              else if (ch >= 'a' && ch <= 'z') d = ch - 'a' + 26;
-              else if (ch >= '0' && ch <= '9') d = ch - '0' + 52;
-              else if (ch == '+') d = 62;
-              else if (ch == '/') d = 63;
-              else if (ch == '=') d = 0;  // the header's own padding: the words needed end before it
-              if (d < 0) return false;
-              v = (v << 6) | static_cast<std::uint32_t>(d);
-            }
-            raw.push_back(static_cast<unsigned char>(v >> 16));
-            raw.push_back(static_cast<unsigned char>(v >> 8));
-            raw.push_back(static_cast<unsigned char>(v));
-          }
-          for (std::size_t w = 0; w < n_words; ++w) {
-            double x = 0;
-            for (std::size_t b = word_bytes; b-- > 0;) x = x * 256 + raw[w * word_bytes + b];
-            words.push_back(x);
-          }
-          return true;
-        };
-        auto refuse = [&](double value, const char* what) {
-          throw InputError(locate(path, 0, -1, "a binary " + std::string(element.substr(1)) + "'s header declares " +
-                                                   number_text(value) + what + ", more than its " +
-                                                   std::to_string(bytes.size()) +
-                                                   " bytes can hold (truncated file or wrong count)"));
-        };
-        if (!decode(1)) continue;
-        if (!compressed) {
-          if (words[0] > size) refuse(words[0], " bytes");
-          continue;
-        }
-        // Compressed: [blocks, block size, last block's size, compressed size of each block].
-        const double blocks = words[0];
-        if (blocks > size / static_cast<double>(word_bytes)) refuse(blocks, " compressed blocks");
-        if (!decode(3 + static_cast<std::size_t>(blocks))) continue;
-        // VTK divides by the block size (a block size of 0 stopped it with a floating-point exception; found by the
-        // vtk fuzz harness).
-        if (blocks > 0 && !(words[1] > 0))
-          throw InputError(locate(path, 0, -1, "a binary " + std::string(element.substr(1)) +
-                                                   "'s header declares compressed blocks of 0 bytes"));
-        for (std::size_t w = 1; w < words.size(); ++w)
-          if (words[w] > (w < 3 ? kZlibMaxRatio : 1.0) * size) refuse(words[w], w < 3 ? " bytes in a block" : " compressed bytes");
-      }
-    }
-    const double bound = (compressed ? kZlibMaxRatio : 1.0) * size;
-    if (largest_count * largest_components > bound)
-      throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
-                                               number_text(largest_components) + " components, more than its " +
-                                               std::to_string(bytes.size()) + " bytes can hold (truncated file or "
-                                               "wrong count)"));
-    return;
-  }
-  // Legacy: the numbers after the keywords that size VTK's arrays.
+  const std::string_view text = bytes;
+  // The numbers after the keywords that size VTK's arrays.
   long line_number = 0;
   bool field_arrays = false;
   for_each_line(text, [&](long line, std::string_view content) {
@@ -373,6 +155,8 @@ void check_declared_counts(const std::string& path, std::string_view bytes, bool
     };
     if (key == "POINTS" || key == "CELL_DATA" || key == "POINT_DATA") {
       number(1);
+      if (key == "POINTS" && tokens.size() >= 3 && !legacy_numeric_type(tokens[2]))
+        refuse_points_type(path, line, tokens[2]);
       field_arrays = false;
     } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES" ||
                key == "OFFSETS" || key == "CONNECTIVITY") {
@@ -450,11 +234,15 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
       if (k >= tokens.size())
         throw InputError(locate(path, header_line, -1, what + " ends before its " + number_text(count) +
                                                            (whole ? " indices" : " numbers")));
-      const bool ok = whole ? parse_long(tokens[k].text).value_or(-1) >= 0 : parse_double(tokens[k].text).has_value();
+      // VTK 9.1's legacy reader reads cell sections as 32-bit ints: a larger whole number made it fail, then
+      // dereference a null pointer (found by the vtk fuzz harness).
+      const long whole_value = whole ? parse_long(tokens[k].text).value_or(-1) : 0;
+      const bool ok = whole ? whole_value >= 0 && whole_value <= std::numeric_limits<std::int32_t>::max()
+                            : parse_double(tokens[k].text).has_value();
       if (!ok)
         throw InputError(locate(path, tokens[k].line, -1,
                                 what + " (line " + std::to_string(header_line) + "): '" + excerpt(tokens[k].text) +
-                                    "' is not " + (whole ? "a whole number >= 0" : "a number")));
+                                    "' is not " + (whole ? "a whole number from 0 to 2147483647" : "a number")));
     }
   };
   auto count_at = [&](std::size_t at) -> double {
@@ -468,6 +256,8 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
     if (key == "POINTS") {
       const double n = count_at(k + 1);
       if (n < 0) throw InputError(locate(path, line, -1, "POINTS needs a count"));
+      if (k + 2 >= tokens.size() || !legacy_numeric_type(tokens[k + 2].text))
+        refuse_points_type(path, line, k + 2 < tokens.size() ? tokens[k + 2].text : std::string_view());
       k += 3;  // POINTS n TYPE
       require(3 * n, false, "POINTS", line);
     } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES") {
@@ -516,44 +306,246 @@ void check_ascii_legacy_sections(const std::string& path, std::string_view bytes
   }
 }
 
-vtkSmartPointer<vtkPolyData> parse(const std::string& path, std::string_view bytes, bool xml) {
+// What radwalk takes from a polygonal data set, whichever reader read it: the points, the surface cells (polygons
+// and triangle strips, each a run of point ids) in cell-data order, and the cell and field data it uses.
+struct SurfaceData {
+  std::vector<Vec3> points;
+  std::size_t cells = 0;  // every cell, vertices and lines included: the length of a cell data array
+  std::size_t ignored = 0;  // vertex and line cells
+  struct Cell {
+    std::size_t index;       // its place in the cell data
+    bool strip;
+    std::size_t begin, end;  // its point ids: ids[begin, end)
+  };
+  std::vector<Cell> surface;
+  std::vector<std::int32_t> ids;
+  // The cell data arrays by name (3 components for rho and E, 1 for the others), each of `cells` tuples.
+  std::map<std::string, std::vector<double>> cell_data;
+  std::map<std::string, std::vector<std::string>> tables;  // field data string arrays by name
+};
+
+// The cell and field data radwalk uses (read_vtk.h), and their component counts.
+const std::pair<const char*, int> kCellFields[] = {{"rho", 3},         {"E", 3},        {"side", 1},
+                                                   {"material_id", 1}, {"group_id", 1}, {"object_id", 1}};
+const char* const kTables[] = {"material_names", "group_names", "object_names"};
+
+// --- legacy .vtk: VTK's reader ---------------------------------------------------------------------------------
+
+vtkSmartPointer<vtkPolyData> parse_legacy(const std::string& path, std::string_view bytes) {
   CaptureScope capture;
-  vtkSmartPointer<vtkPolyData> out;
-  if (xml) {
-    vtkNew<vtkXMLPolyDataReader> reader;
-    reader->ReadFromInputStringOn();
-    reader->SetInputString(std::string(bytes));
-    reader->Update();
-    out = reader->GetOutput();
-  } else {
-    if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-      throw InputError(locate(path, 0, -1, "a legacy .vtk file above 2 GiB is not read (write it as .vtp)"));
-    vtkNew<vtkPolyDataReader> reader;
-    reader->ReadFromInputStringOn();
-    reader->SetBinaryInputString(bytes.data(), static_cast<int>(bytes.size()));
-    reader->Update();
-    out = reader->GetOutput();
-  }
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw InputError(locate(path, 0, -1, "a legacy .vtk file above 2 GiB is not read (write it as .vtp)"));
+  vtkNew<vtkPolyDataReader> reader;
+  reader->ReadFromInputStringOn();
+  reader->SetBinaryInputString(bytes.data(), static_cast<int>(bytes.size()));
+  reader->Update();
+  vtkSmartPointer<vtkPolyData> out = reader->GetOutput();
   if (!capture.error().empty())
     throw InputError(locate(path, 0, -1, "VTK cannot read it: " + excerpt(capture.error())));
   if (!out) throw InputError(locate(path, 0, -1, "VTK read no polygonal data"));
   return out;
 }
 
-// A cell array of `components` numbers per cell by name, or nullptr.
-vtkDataArray* cell_array(vtkPolyData* data, const char* name, int components, std::size_t cells) {
-  vtkDataArray* a = data->GetCellData()->GetArray(name);
-  if (!a || a->GetNumberOfComponents() != components || static_cast<std::size_t>(a->GetNumberOfTuples()) != cells)
-    return nullptr;
-  return a;
+SurfaceData legacy_surface(const std::string& path, std::string_view bytes) {
+  check_declared_counts(path, bytes);
+  check_ascii_legacy_sections(path, bytes);
+  const vtkSmartPointer<vtkPolyData> data = parse_legacy(path, bytes);
+  SurfaceData s;
+  const vtkIdType n_points = data->GetNumberOfPoints();
+  if (n_points > std::numeric_limits<std::int32_t>::max() / 2)
+    throw InputError(locate(path, 0, -1, "too many points"));
+  s.points.resize(static_cast<std::size_t>(n_points));
+  for (vtkIdType k = 0; k < n_points; ++k) {
+    double p[3];
+    data->GetPoint(k, p);
+    s.points[static_cast<std::size_t>(k)] = Vec3(p[0], p[1], p[2]);
+  }
+  const vtkIdType n_verts = data->GetNumberOfVerts(), n_lines = data->GetNumberOfLines();
+  const vtkIdType n_polys = data->GetNumberOfPolys(), n_strips = data->GetNumberOfStrips();
+  s.cells = static_cast<std::size_t>(n_verts + n_lines + n_polys + n_strips);
+  s.ignored = static_cast<std::size_t>(n_verts + n_lines);
+  vtkNew<vtkIdList> ids;
+  std::size_t cell = s.ignored;
+  long face = 0;
+  for (const bool strip : {false, true}) {
+    vtkCellArray* cells = strip ? data->GetStrips() : data->GetPolys();
+    const vtkIdType n = strip ? n_strips : n_polys;
+    for (vtkIdType c = 0; c < n; ++c, ++cell) {
+      cells->GetCellAtId(c, ids);
+      if (!strip && static_cast<std::size_t>(ids->GetNumberOfIds()) > kMaxPolygonCorners)
+        throw InputError(locate(path, 0, face, "polygon of " + std::to_string(ids->GetNumberOfIds()) +
+                                                   " corners, more than " + std::to_string(kMaxPolygonCorners)));
+      const std::size_t begin = s.ids.size();
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
+        const vtkIdType id = ids->GetId(k);
+        if (id < 0 || id >= n_points)
+          throw InputError(locate(path, 0, face, "point id " + std::to_string(id) + " is out of range (" +
+                                                     std::to_string(n_points) + " points)"));
+        s.ids.push_back(static_cast<std::int32_t>(id));
+      }
+      face += strip ? std::max<long>(0, static_cast<long>(s.ids.size() - begin) - 2) : 1;
+      s.surface.push_back({cell, strip, begin, s.ids.size()});
+    }
+  }
+  for (const auto& [name, components] : kCellFields) {
+    vtkDataArray* a = data->GetCellData()->GetArray(name);
+    if (!a || a->GetNumberOfComponents() != components || static_cast<std::size_t>(a->GetNumberOfTuples()) != s.cells)
+      continue;
+    std::vector<double>& values = s.cell_data[name];
+    for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
+      for (int c = 0; c < components; ++c) values.push_back(a->GetComponent(t, c));
+  }
+  for (const char* name : kTables) {
+    auto* a = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(name));
+    if (!a) continue;
+    std::vector<std::string>& table = s.tables[name];
+    for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k) table.push_back(a->GetValue(k));
+  }
+  return s;
 }
 
-std::vector<std::string> string_table(vtkPolyData* data, const char* name) {
-  std::vector<std::string> out;
-  auto* a = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(name));
-  if (!a) return out;
-  for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k) out.push_back(a->GetValue(k));
+// --- XML .vtp: radwalk's own reader (vtp_xml.h, vtk_data_array.h) ------------------------------------------------
+
+// The cells of one kind of a piece (`count` of them, its NumberOf... attribute): the runs of its connectivity
+// between consecutive offsets (offsets are each cell's end; they rise from 0 to the connectivity's length), every
+// point id below `points`. Appends the ids, plus `first_id` (the points of the pieces before), to `all_ids` and
+// returns each cell's [begin, end) in it.
+std::vector<std::pair<std::size_t, std::size_t>> piece_cells(const std::string& path, const VtpDocument& doc,
+                                                             const VtpCells& cells, const char* kind,
+                                                             std::int64_t count, std::int64_t points,
+                                                             std::int64_t first_id, long piece_line,
+                                                             std::vector<std::int32_t>& all_ids) {
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  if (count == 0) return out;
+  if (!cells.present)
+    throw InputError(locate(path, piece_line, -1, "Piece declares " + std::to_string(count) + " " + kind +
+                                                      " but has no <" + kind + "> element"));
+  const VtpArray* connectivity = nullptr;
+  const VtpArray* offsets = nullptr;
+  for (const VtpArray& a : cells.arrays) {
+    if (a.name == "connectivity" && !connectivity) connectivity = &a;
+    if (a.name == "offsets" && !offsets) offsets = &a;
+  }
+  if (!connectivity || !offsets)
+    throw InputError(locate(path, cells.line, -1, std::string(kind) + " without a" +
+                                                      (connectivity ? "n offsets" : " connectivity") + " array"));
+  for (const VtpArray* a : {connectivity, offsets}) {
+    if (a->type == "Float32" || a->type == "Float64" || a->type == "String")
+      throw InputError(locate(path, a->line, -1, std::string(kind) + " " + array_label(*a) + " of type " + a->type +
+                                                     ": cell arrays hold whole numbers"));
+    if (a->components != 1)
+      throw InputError(locate(path, a->line, -1, std::string(kind) + " " + array_label(*a) + " of " +
+                                                     std::to_string(a->components) + " components, not 1"));
+  }
+  const std::vector<double> ends = decode_numbers(path, doc, *offsets, count);
+  const std::vector<double> ids = decode_numbers(path, doc, *connectivity, -1);
+  double previous = 0;
+  for (std::size_t c = 0; c < ends.size(); ++c) {
+    if (!(ends[c] >= previous && ends[c] <= static_cast<double>(ids.size())))
+      throw InputError(locate(path, offsets->line, -1,
+                              std::string(kind) + " offsets: offset " + number_text(ends[c]) + " of cell " +
+                                  std::to_string(c) + " is not between the previous offset " + number_text(previous) +
+                                  " and the connectivity's " + std::to_string(ids.size()) + " ids"));
+    previous = ends[c];
+  }
+  if (previous != static_cast<double>(ids.size()))
+    throw InputError(locate(path, offsets->line, -1, std::string(kind) + " offsets end at " + number_text(previous) +
+                                                         ", not at the connectivity's " + std::to_string(ids.size()) +
+                                                         " ids"));
+  std::size_t at = 0;
+  out.reserve(ends.size());
+  for (std::size_t c = 0; c < ends.size(); ++c) {
+    const auto end = static_cast<std::size_t>(ends[c]);
+    if (std::string_view(kind) == "Polys" && end - at > kMaxPolygonCorners)
+      throw InputError(locate(path, offsets->line, -1, "Polys: polygon " + std::to_string(c) + " of " +
+                                                           std::to_string(end - at) + " corners, more than " +
+                                                           std::to_string(kMaxPolygonCorners)));
+    const std::size_t begin = all_ids.size();
+    for (; at < end; ++at) {
+      const double id = ids[at];
+      if (!(id >= 0 && id < static_cast<double>(points)))
+        throw InputError(locate(path, connectivity->line, -1,
+                                std::string(kind) + " connectivity: point id " + number_text(id) + " of cell " +
+                                    std::to_string(c) + " is out of range (" + std::to_string(points) + " points)"));
+      all_ids.push_back(static_cast<std::int32_t>(first_id + static_cast<std::int64_t>(id)));
+    }
+    out.emplace_back(begin, all_ids.size());
+  }
   return out;
+}
+
+SurfaceData xml_surface(const std::string& path, std::string_view bytes) {
+  const VtpDocument doc = parse_vtp_document(path, bytes);
+  SurfaceData s;
+  std::map<std::string, std::size_t> pieces_with;  // cell data arrays: the pieces that have each (of the right shape)
+  std::int64_t total_points = 0;
+  for (const VtpPiece& piece : doc.pieces) {
+    if (piece.points > std::numeric_limits<std::int32_t>::max() / 2 - total_points)
+      throw InputError(locate(path, piece.line, -1, "too many points"));
+    const std::size_t first_cell = s.cells;
+    // Each point (3 values) and each cell (its offset) takes at least a byte, or 1/1032 of one compressed: a count
+    // above that is refused before anything is sized by it (and the sums below cannot overflow).
+    const double most = (doc.compressed ? kZlibLargestRatio : 1.0) * static_cast<double>(bytes.size());
+    for (const auto& [what, n] : {std::make_pair("points", piece.points), std::make_pair("vertex cells", piece.verts),
+                                  std::make_pair("line cells", piece.lines), std::make_pair("strips", piece.strips),
+                                  std::make_pair("polygons", piece.polys)})
+      if (static_cast<double>(n) > most)
+        throw InputError(locate(path, piece.line, -1, "Piece declares " + std::to_string(n) + " " + what +
+                                                          ", more than its " + std::to_string(bytes.size()) +
+                                                          " bytes can hold (truncated file or wrong count)"));
+    const std::int64_t cells = piece.verts + piece.lines + piece.strips + piece.polys;
+    if (piece.points > 0) {
+      if (!piece.has_points)
+        throw InputError(locate(path, piece.line, -1, "Piece declares " + std::to_string(piece.points) +
+                                                          " points but has no <Points> DataArray"));
+      const VtpArray& a = piece.point_coordinates;
+      if (a.components != 3)
+        throw InputError(locate(path, a.line, -1, "Points " + array_label(a) + " of " +
+                                                      std::to_string(a.components) + " components, not 3"));
+      const std::vector<double> xyz = decode_numbers(path, doc, a, 3 * piece.points);
+      for (std::size_t k = 0; k + 2 < xyz.size(); k += 3) s.points.emplace_back(xyz[k], xyz[k + 1], xyz[k + 2]);
+    }
+    // Cell order within a piece, as VTK numbers cells: vertices, lines, polygons, strips.
+    // Vertices and lines are checked, then forgotten (their ids are not kept).
+    std::vector<std::int32_t> ignored_ids;
+    const auto verts = piece_cells(path, doc, piece.verts_cells, "Verts", piece.verts, piece.points, total_points,
+                                   piece.line, ignored_ids);
+    const auto lines = piece_cells(path, doc, piece.lines_cells, "Lines", piece.lines, piece.points, total_points,
+                                   piece.line, ignored_ids);
+    s.ignored += verts.size() + lines.size();
+    std::size_t cell = first_cell + verts.size() + lines.size();
+    for (const bool strip : {false, true}) {
+      const auto runs = piece_cells(path, doc, strip ? piece.strips_cells : piece.polys_cells,
+                                    strip ? "Strips" : "Polys", strip ? piece.strips : piece.polys, piece.points,
+                                    total_points, piece.line, s.ids);
+      for (const auto& [begin, end] : runs) s.surface.push_back({cell++, strip, begin, end});
+    }
+    s.cells = cell;
+    total_points += piece.points;
+    // The cell data radwalk uses: by name, of the right component count and a numeric type (else not used, as
+    // before); its values must be there, one tuple per cell.
+    for (const auto& [name, components] : kCellFields) {
+      for (const VtpArray& a : piece.cell_data) {
+        if (a.name != name || a.components != components || a.type == "String") continue;
+        std::vector<double> values = decode_numbers(path, doc, a, cells * components);
+        std::vector<double>& all = s.cell_data[name];
+        all.resize(first_cell * static_cast<std::size_t>(components));  // pieces before without it: filled later
+        all.insert(all.end(), values.begin(), values.end());
+        ++pieces_with[name];
+        break;
+      }
+    }
+  }
+  // A cell data array used only when every piece has it.
+  for (auto it = s.cell_data.begin(); it != s.cell_data.end();)
+    it = pieces_with[it->first] == doc.pieces.size() ? std::next(it) : s.cell_data.erase(it);
+  for (const char* name : kTables)
+    for (const VtpArray& a : doc.field_data)
+      if (a.name == name && a.type == "String") {
+        s.tables[name] = decode_strings(path, doc, a);
+        break;
+      }
+  return s;
 }
 
 // Drops corners on the segment between their neighbours (see read_vtk.h), keeping at least 3.
@@ -586,46 +578,51 @@ Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options) {
 }
 
 Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bool xml, const ReadOptions& options) {
-  check_declared_counts(path, bytes, xml);
-  if (!xml) check_ascii_legacy_sections(path, bytes);
-  const vtkSmartPointer<vtkPolyData> data = parse(path, bytes, xml);
+  const SurfaceData data = xml ? xml_surface(path, bytes) : legacy_surface(path, bytes);
   Mesh mesh;
   mesh.path = path;
-  const vtkIdType n_points = data->GetNumberOfPoints();
-  if (n_points > std::numeric_limits<std::int32_t>::max() / 2)
-    throw InputError(locate(path, 0, -1, "too many points"));
-  std::vector<Vec3> points(static_cast<std::size_t>(n_points));
+  const std::vector<Vec3>& points = data.points;
   std::vector<std::int32_t> vertex_of(points.size());
   ExactVertices vertices(mesh.vertices);
-  for (vtkIdType k = 0; k < n_points; ++k) {
-    double p[3];
-    data->GetPoint(k, p);
-    points[static_cast<std::size_t>(k)] = Vec3(p[0], p[1], p[2]);
-    vertex_of[static_cast<std::size_t>(k)] = vertices.index(points[static_cast<std::size_t>(k)]);
-  }
-  const vtkIdType n_verts = data->GetNumberOfVerts(), n_lines = data->GetNumberOfLines();
-  const vtkIdType n_polys = data->GetNumberOfPolys(), n_strips = data->GetNumberOfStrips();
-  const auto cells = static_cast<std::size_t>(n_verts + n_lines + n_polys + n_strips);
-  if (n_polys + n_strips == 0) throw InputError(locate(path, 0, -1, "no polygons or triangle strips"));
-  if (n_verts + n_lines > 0)
+  for (std::size_t k = 0; k < points.size(); ++k) vertex_of[k] = vertices.index(points[k]);
+  if (data.surface.empty()) throw InputError(locate(path, 0, -1, "no polygons or triangle strips"));
+  if (data.ignored > 0)
     mesh.findings.push_back(mesh.finding_of(-1, 0, -1, -1, "line and point elements ignored", Severity::warning,
-                                            std::to_string(n_verts + n_lines) +
+                                            std::to_string(data.ignored) +
                                                 " vertex and line cells ignored: radiosity needs surfaces"));
 
-  vtkDataArray* rho = cell_array(data, "rho", 3, cells);
-  vtkDataArray* E = cell_array(data, "E", 3, cells);
-  vtkDataArray* side = cell_array(data, "side", 1, cells);
-  vtkDataArray* material_id = cell_array(data, "material_id", 1, cells);
-  vtkDataArray* group_id = cell_array(data, "group_id", 1, cells);
-  vtkDataArray* object_id = cell_array(data, "object_id", 1, cells);
-  const std::vector<std::string> material_names = string_table(data, "material_names");
-  const std::vector<std::string> group_names = string_table(data, "group_names");
-  const std::vector<std::string> object_names = string_table(data, "object_names");
-  auto name_at = [](const std::vector<std::string>& table, vtkDataArray* ids, std::size_t cell) -> std::string {
+  const auto field = [&](const char* name) -> const std::vector<double>* {
+    const auto it = data.cell_data.find(name);
+    return it == data.cell_data.end() ? nullptr : &it->second;
+  };
+  const std::vector<double>* rho = field("rho");
+  const std::vector<double>* E = field("E");
+  const std::vector<double>* side = field("side");
+  const std::vector<double>* material_id = field("material_id");
+  const std::vector<double>* group_id = field("group_id");
+  const std::vector<double>* object_id = field("object_id");
+  // rho and E are numbers: a value that is not finite is refused, naming its cell.
+  for (const auto& [name, values] : {std::make_pair("rho", rho), std::make_pair("E", E)}) {
+    if (!values) continue;
+    for (std::size_t k = 0; k < values->size(); ++k)
+      if (!std::isfinite((*values)[k]))
+        throw InputError(locate(path, 0, -1, std::string("cell data '") + name + "' of cell " +
+                                                 std::to_string(k / 3) + " is not finite (" +
+                                                 number_text((*values)[k]) + ")"));
+  }
+  const auto table = [&](const char* name) {
+    const auto it = data.tables.find(name);
+    return it == data.tables.end() ? std::vector<std::string>() : it->second;
+  };
+  const std::vector<std::string> material_names = table("material_names");
+  const std::vector<std::string> group_names = table("group_names");
+  const std::vector<std::string> object_names = table("object_names");
+  auto name_at = [](const std::vector<std::string>& names, const std::vector<double>* ids,
+                    std::size_t cell) -> std::string {
     if (!ids) return "";
-    const double id = ids->GetComponent(static_cast<vtkIdType>(cell), 0);
-    if (!(id >= 0 && id < static_cast<double>(table.size()))) return "";
-    return table[static_cast<std::size_t>(id)];
+    const double id = (*ids)[cell];
+    if (!(id >= 0 && id < static_cast<double>(names.size()))) return "";
+    return names[static_cast<std::size_t>(id)];
   };
 
   // Materials: by (name, rho, E); see read_vtk.h.
@@ -634,8 +631,8 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
   auto material_for = [&](std::size_t cell) -> std::int32_t {
     Rgb kd = Rgb::Zero(), e = Rgb::Zero();
     for (int c = 0; c < 3; ++c) {
-      if (rho) kd[c] = rho->GetComponent(static_cast<vtkIdType>(cell), c);
-      if (E) e[c] = E->GetComponent(static_cast<vtkIdType>(cell), c);
+      if (rho) kd[c] = (*rho)[3 * cell + static_cast<std::size_t>(c)];
+      if (E) e[c] = (*E)[3 * cell + static_cast<std::size_t>(c)];
     }
     std::string base = name_at(material_names, material_id, cell);
     if (!rho) base = std::filesystem::path(path).stem().string();
@@ -675,10 +672,9 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
 
   PolygonFaces faces(mesh, options.strict);
   std::int32_t face = 0;
-  vtkNew<vtkIdList> ids;
   auto add_cell = [&](std::size_t cell, const std::vector<std::int32_t>& point_ids) {
     const std::int32_t source = face++;
-    if (side && side->GetComponent(static_cast<vtkIdType>(cell), 0) == 1) {  // a back cell: its front stands for it
+    if (side && (*side)[cell] == 1) {  // a back cell: its front stands for it
       mesh.materials[static_cast<std::size_t>(material_for(cell))].two_sided = true;
       return;
     }
@@ -695,35 +691,18 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
     }
     faces.add(corners, 0, material, group_for(cell), source);
   };
-  auto point_ids_of = [&](vtkIdList* list) {
-    std::vector<std::int32_t> out;
-    for (vtkIdType k = 0; k < list->GetNumberOfIds(); ++k) {
-      const vtkIdType id = list->GetId(k);
-      if (id < 0 || id >= n_points)
-        throw InputError(locate(path, 0, face, "point id " + std::to_string(id) + " is out of range (" +
-                                                   std::to_string(n_points) + " points)"));
-      out.push_back(static_cast<std::int32_t>(id));
+  for (const SurfaceData::Cell& c : data.surface) {
+    const std::int32_t* ids = data.ids.data() + c.begin;
+    const std::size_t n = c.end - c.begin;
+    if (!c.strip) {
+      add_cell(c.index, std::vector<std::int32_t>(ids, ids + n));
+      continue;
     }
-    return out;
-  };
-  std::size_t cell = static_cast<std::size_t>(n_verts + n_lines);
-  vtkCellArray* polys = data->GetPolys();
-  for (vtkIdType c = 0; c < n_polys; ++c, ++cell) {
-    polys->GetCellAtId(c, ids);
-    if (static_cast<std::size_t>(ids->GetNumberOfIds()) > kMaxPolygonCorners)
-      throw InputError(locate(path, 0, face, "polygon of " + std::to_string(ids->GetNumberOfIds()) + " corners, more than " +
-                                                 std::to_string(kMaxPolygonCorners)));
-    add_cell(cell, point_ids_of(ids));
-  }
-  vtkCellArray* strips = data->GetStrips();
-  for (vtkIdType c = 0; c < n_strips; ++c, ++cell) {
-    strips->GetCellAtId(c, ids);
-    const std::vector<std::int32_t> strip = point_ids_of(ids);
-    for (std::size_t t = 0; t + 2 < strip.size(); ++t) {
+    for (std::size_t t = 0; t + 2 < n; ++t) {
       if (t % 2 == 0)
-        add_cell(cell, {strip[t], strip[t + 1], strip[t + 2]});
+        add_cell(c.index, {ids[t], ids[t + 1], ids[t + 2]});
       else
-        add_cell(cell, {strip[t + 1], strip[t], strip[t + 2]});
+        add_cell(c.index, {ids[t + 1], ids[t], ids[t + 2]});
     }
   }
   return mesh;

@@ -1,7 +1,8 @@
 #pragma once
-// VTK polygonal surfaces: XML PolyData (.vtp) and legacy POLYDATA (.vtk), parsed by VTK's own readers
-// (vtkXMLPolyDataReader, vtkPolyDataReader) from the bytes radwalk read once (read_input_file, so the run id
-// covers them), so ParaView users can bring back what they edited, and a .vtp radwalk wrote reads back.
+// VTK polygonal surfaces: XML PolyData (.vtp) by radwalk's own reader (mesh/vtp_xml.h: the document;
+// mesh/vtk_data_array.h: the arrays' values, every bound checked where it is read), and legacy POLYDATA (.vtk) by
+// VTK's vtkPolyDataReader, both from the bytes radwalk read once (read_input_file, so the run id covers them), so
+// ParaView users can bring back what they edited, and a .vtp radwalk wrote reads back.
 //
 // Geometry: every polygon (3 or more corners; more than 4 go through polygon_faces.h) and every triangle strip
 // (into triangles, all facing one way); vertices and lines are ignored with a warning. A corner that lies on the
@@ -17,14 +18,15 @@
 // gives it). Groups from `object_id` / `group_id` and the tables `object_names` / `group_names`. A `side` field
 // (radwalk's two-sided scenes: 0 front, 1 back) drops the back cells and makes the materials of the front cells
 // two-sided, so the scene reads back as it was written.
-// Bounded: before VTK parses anything, every count the file declares (NumberOf... attributes of a .vtp; the counts
-// after POINTS, POLYGONS, TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays of a .vtk) times
-// the largest component count must fit the file's bytes (times 1032, zlib's largest ratio, for a compressed .vtp).
-// Checked too before VTK reads the file, since VTK 9.1's readers crash on them (each found by the vtk fuzz harness,
-// tests/fuzz/fuzz_vtk.cpp): in an ASCII .vtk, the numbers of the POINTS and cell sections (keywords matched by
-// prefix, as VTK matches them); in a .vtp, every array's type (one VTK knows), the numbers of every ascii array,
-// and the header of every inline binary array (block count, block sizes > 0, sizes within the file).
-// A VTK error is one InputError naming the file and VTK's own message; face f is the f-th surface cell.
+// A .vtp: the subset of docs/units-and-formats.md; offsets rise to the end of the connectivity and every point id is
+// below its piece's points, else one InputError naming the file, the XML line and the array. Several pieces are
+// one mesh (their points and cells in piece order). A value of rho or E that is not finite is refused.
+// A .vtk, bounded: before VTK parses anything, every count the file declares (the counts after POINTS, POLYGONS,
+// TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays) times the largest component count must
+// fit the file's bytes; and, since VTK 9.1's legacy reader crashes on them (found by the vtk fuzz harness,
+// tests/fuzz/fuzz_vtk.cpp), the numbers of the POINTS and cell sections of an ASCII file (keywords matched by
+// prefix, as VTK matches them) and the type of POINTS (one of VTK's numeric type names, exactly). A VTK error is one InputError naming the file and VTK's own message; face f is the
+// f-th surface cell.
 #include <string>
 #include <string_view>
 

@@ -3,9 +3,10 @@
 //
 // Input: the bytes of one VTK file: "fuzz/scene.vtp" (the XML reader) when the first byte that is not white space
 // is '<', else "fuzz/scene.vtk" (the legacy reader).
-// Contract: read_vtk_polydata_bytes returns a Mesh or throws InputError; every count the file declares is checked
-// against its bytes before VTK parses it (libFuzzer's -malloc_limit_mb turns a larger allocation into a finding,
-// ASan an out-of-bounds read in radwalk's code around VTK's readers).
+// Contract: read_vtk_polydata_bytes returns a Mesh or throws InputError. A .vtp is read by radwalk's own reader
+// (mesh/vtp_xml.h, mesh/vtk_data_array.h), every bound checked where it reads; a legacy .vtk by VTK's reader after
+// radwalk checked its declared counts against its bytes (libFuzzer's -malloc_limit_mb turns a larger allocation
+// into a finding, ASan an out-of-bounds read or write).
 // Oracles:
 //   (a) a refusal is one line of printable UTF-8 that starts with the file's path; so is every warning;
 //   (reader) an accepted Mesh is what read_vtk.h promises: faces of 3 or 4 corners, each a vertex; materials -1

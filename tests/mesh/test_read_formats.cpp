@@ -248,13 +248,25 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
   const std::string head = "# vtk DataFile Version 3.0\nsquare\nASCII\nDATASET POLYDATA\nPOINTS 4 double\n";
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("word.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\nfloat 0 1 2 3\n", false); },
-      "word.vtk:11:", "POLYGONS (line 10): 'float' is not a whole number >= 0");
+      "word.vtk:11:", "POLYGONS (line 10): 'float' is not a whole number from 0 to 2147483647");
+  // Found by the vtk fuzz harness: VTK 9.1 reads legacy cell sections as 32-bit ints; 2^31 made it crash.
+  require_one_line_refusal(
+      [&] { read_vtk_polydata_bytes("wide.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 2147483648\n", false); },
+      "wide.vtk:11:", "POLYGONS (line 10): '2147483648' is not a whole number from 0 to 2147483647");
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("short.vtk", head + "0 0 0\n1 0 0\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2\n", false); },
       "short.vtk:10:", "POLYGONS ends before its 5 indices");
   require_one_line_refusal(
       [&] { read_vtk_polydata_bytes("point.vtk", head + "0 0 0\n1 0 x\n1 1 0\n0 1 0\nPOLYGONS 1 5\n4 0 1 2 3\n", false); },
       "point.vtk:7:", "POINTS (line 5): 'x' is not a number");
+  // Found by the vtk fuzz harness: VTK matches the POINTS type by its prefix, and "stringdouble" made its legacy
+  // reader read string points and dereference a null pointer; only VTK's numeric type names are taken.
+  require_one_line_refusal(
+      [&] {
+        read_vtk_polydata_bytes("string.vtk", "# vtk DataFile Version 3.0\nx\nASCII\nDATASET POLYDATA\n"
+                                              "POINTS 3 stringdouble\n0 0 0 1 0 0 0 1 0\nPOLYGONS 1 4\n3 0 1 2\n", false);
+      },
+      "string.vtk:5:", "POINTS of type 'stringdouble': not one of VTK's numeric types");
   // Found by the vtk fuzz harness: an array type VTK does not know (a radwalk .vtp with "Int64" mutated to "Int28")
   // crashed VTK 9.1's XML reader; now refused naming the type.
   require_one_line_refusal(
@@ -274,7 +286,7 @@ TEST_CASE("VTK legacy and XML polydata: polygons, strips, rho and E fields, and 
       false);
   REQUIRE(v51.face_count() == 1);
   require_one_line_refusal([&] { read_vtk_polydata_bytes("bad.vtp", "<VTKFile type=\"PolyData\"><Poly", true); },
-                           "bad.vtp", "VTK cannot read it");
+                           "bad.vtp", "not well-formed XML");
   require_one_line_refusal(
       [&] {
         read_vtk_polydata_bytes("big.vtp",
