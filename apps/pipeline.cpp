@@ -428,24 +428,38 @@ void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint
 
 }  // namespace
 
+namespace {
+
+// The cosine-ray and analytic options of the command line.
+FormFactorOptions ray_options(const SceneOptions& scene, const FormFactorCliOptions& options) {
+  FormFactorOptions o;
+  o.rays_per_patch = options.rays;
+  o.rays_per_area = options.rays_per_area;
+  o.min_rays = options.min_rays;
+  o.seed = scene.seed;
+  o.sobol = options.sobol_rays;
+  return o;
+}
+
+AnalyticFormFactorOptions analytic_options(const SceneOptions& scene, const FormFactorCliOptions& options) {
+  AnalyticFormFactorOptions a;
+  a.seed = scene.seed;
+  a.max_visibility_samples = options.visibility_samples;
+  a.cutoff = options.analytic_cutoff;
+  a.cutoff_rays = options.analytic_cutoff_rays;
+  return a;
+}
+
+}  // namespace
+
 FormFactors trace_form_factors(const SceneOptions& scene, const FormFactorCliOptions& options, const PatchSet& patches) {
   ThreadLimit limit(scene.threads);
   const EmbreeVisibility visibility(patches);
   FormFactors ff;
   if (options.analytic) {
-    AnalyticFormFactorOptions a;
-    a.seed = scene.seed;
-    a.max_visibility_samples = options.visibility_samples;
-    a.cutoff = options.analytic_cutoff;
-    a.cutoff_rays = options.analytic_cutoff_rays;
-    ff = analytic_form_factors(patches, visibility, a).form_factors;
+    ff = analytic_form_factors(patches, visibility, analytic_options(scene, options)).form_factors;
   } else {
-    FormFactorOptions o;
-    o.rays_per_patch = options.rays;
-    o.rays_per_area = options.rays_per_area;
-    o.min_rays = options.min_rays;
-    o.seed = scene.seed;
-    o.sobol = options.sobol_rays;
+    const FormFactorOptions o = ray_options(scene, options);
     const long emitter_samples = choose_emitter_samples(patches, o, options.emitter_samples).samples;
     ff = estimate_form_factors(patches, visibility, o);
     if (emitter_samples > 0)
@@ -488,12 +502,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
     const EmbreeVisibility visibility(patches);
     summary.add_timing("embree_scene", timer.seconds());
     timer.reset();
-    AnalyticFormFactorOptions o;
-    o.seed = scene.seed;
-    o.max_visibility_samples = options.visibility_samples;
-    o.cutoff = options.analytic_cutoff;
-    o.cutoff_rays = options.analytic_cutoff_rays;
-    AnalyticFormFactors a = analytic_form_factors(patches, visibility, o);
+    AnalyticFormFactors a = analytic_form_factors(patches, visibility, analytic_options(scene, options));
     const double seconds = timer.seconds();
     summary.add_timing("form_factors", seconds);
     double worst_se = 0;
@@ -542,12 +551,7 @@ FormFactors obtain_form_factors(const SceneOptions& scene, const FormFactorCliOp
                         ") from visibility estimates and were scaled down to 1, keeping reciprocity");
     ff = std::move(a.form_factors);
   } else {
-    FormFactorOptions o;
-    o.rays_per_patch = options.rays;
-    o.rays_per_area = options.rays_per_area;
-    o.min_rays = options.min_rays;
-    o.seed = scene.seed;
-    o.sobol = options.sobol_rays;
+    const FormFactorOptions o = ray_options(scene, options);
     ThreadLimit limit(scene.threads);
     const EmbreeVisibility visibility(patches);
     summary.add_timing("embree_scene", timer.seconds());

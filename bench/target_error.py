@@ -11,7 +11,8 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
   cpu            - user + system CPU seconds of the solve (all its steps).
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
-scaled: --scene-options go to the solves only). Example:
+scaled: --scene-options go to the solves only), one-sided (the .vtp holds the back patches the solve made
+already: --open-shells one-sided keeps them as they are); the script checks that the patches agree. Example:
   python3 bench/target_error.py --targets 0.03,0.01 --seeds 3 --spp 2048 \\
       --hand "--max-edge 100 --rays 1000" --hand "--max-edge 50 --rays 1000"
 """
@@ -39,11 +40,26 @@ def cpu_of(cmd):
 def table(path):
     rows = list(csv.DictReader(open(path)))
     get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows])
-    return {k: get(k) for k in ("B", "B_se", "E", "rho")} | {"area": np.array([float(r["area"]) for r in rows])}
+    return {k: get(k) for k in ("B", "B_se", "E", "rho")} | {
+        "area": np.array([float(r["area"]) for r in rows]),
+        "key": np.array([[float(r[k]) for k in ("cx", "cy", "cz", "nx", "ny", "nz")] for r in rows])}
+
+
+def matched(r, pt):
+    """The path tracer's rows in the run's patch order: the .vtp read back may list the patches in another order
+    (back patches, repaired faces), so rows are matched by centroid and normal (rounded); every patch must match."""
+    scale = np.abs(r["key"][:, :3]).max()
+    round_key = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
+    where = {k: i for i, k in enumerate(round_key(pt["key"]))}
+    order = [where.get(k, -1) for k in round_key(r["key"])]
+    if len(where) != len(order) or min(order) < 0 or len(set(order)) != len(order):
+        raise SystemExit("the path tracer's patches are not the run's (%d against %d)" % (len(pt["area"]), len(r["area"])))
+    return {k: v[order] for k, v in pt.items()}
 
 
 def measured_error(run_csv, pt_csv):
-    r, pt = table(run_csv), table(pt_csv)
+    r = table(run_csv)
+    pt = matched(r, table(pt_csv))
     keep = (pt["E"].max(1) == 0)[:, None] & (pt["rho"] > 0) & (pt["B"] > 0)
     W = np.repeat(pt["area"][:, None], 3, 1)[keep]
     err2 = float((W * (r["B"] - pt["B"])[keep] ** 2).sum())
@@ -83,7 +99,7 @@ def main():
                 rays = summary.get("rays_per_patch", 0)
                 e_est = summary["error_estimate"]["total"]["relative"]
                 subprocess.run([a.radwalk, "pathtrace", vtp, "--spp", str(a.spp), "--seed", str(1000 + seed), "--csv",
-                                pt_csv, "-q"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                                pt_csv, "-q", "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 e, noise = measured_error(run_csv, pt_csv)
                 print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.2f%s" %
                       (options, seed, summary["patches"], rays, steps, e_est, e, noise, cpu,

@@ -78,7 +78,29 @@ class BlockSplitting {
 
 }  // namespace
 
+namespace {
+
+BlockSolution solve_scaled(const RadiosityProblem& p, const RowBlock& Z, double tolerance, const char* what);
+
+}  // namespace
+
 BlockSolution solve_block_gmres(const RadiosityProblem& p, const RowBlock& Z, double tolerance, const char* what) {
+  // Each column scaled to a largest magnitude of 1 (a power of 2: exact), so that neither the norms' squares
+  // overflow nor tiny columns (a channel that barely emits) lose their digits in denormals; the system is
+  // linear, so the solution scales back.
+  RowArray scale(Z.cols());
+  for (Eigen::Index k = 0; k < Z.cols(); ++k) {
+    const double largest = Z.col(k).abs().maxCoeff();
+    scale(k) = largest > 0 && std::isfinite(largest) ? std::ldexp(1.0, std::ilogb(largest)) : 1.0;
+  }
+  BlockSolution out = solve_scaled(p, Z.rowwise() / scale, tolerance, what);
+  out.X.rowwise() *= scale;
+  return out;
+}
+
+namespace {
+
+BlockSolution solve_scaled(const RadiosityProblem& p, const RowBlock& Z, double tolerance, const char* what) {
   const Eigen::Index N = static_cast<Eigen::Index>(p.size());
   const Eigen::Index K = Z.cols();
   RADWALK_CHECK_EQ(Z.rows(), N);
@@ -169,5 +191,7 @@ BlockSolution solve_block_gmres(const RadiosityProblem& p, const RowBlock& Z, do
   out.sweeps = iterations;
   return out;
 }
+
+}  // namespace
 
 }  // namespace radwalk

@@ -1,5 +1,6 @@
 #include "solve/discretisation_error.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/check.h"
@@ -12,9 +13,38 @@
 
 namespace radwalk {
 
+namespace {
+
+// The largest emission or radiosity, for moment_scale: the estimate is linear in (E, B) together.
+double largest_value(const PatchSet& patches, const PatchRgb& B) {
+  double largest = B.size() > 0 ? B.abs().maxCoeff() : 0.0;
+  for (const Rgb& e : patches.E) largest = std::max(largest, e.abs().maxCoeff());
+  return largest;
+}
+
+// A copy of the patches with E / s (only made when s != 1: emission near the largest double, whose squares in
+// the estimate's variances would overflow).
+PatchSet scaled_emission(const PatchSet& patches, double s) {
+  PatchSet out = patches;
+  for (Rgb& e : out.E) e /= s;
+  return out;
+}
+
+}  // namespace
+
 DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
                                          const RadiosityProblem& p, const PatchRgb& B, int directions,
                                          std::uint64_t seed) {
+  // d and e are linear in (E, B) together: for values whose squares overflow, estimate for (E, B) / s and scale
+  // the results back (moment_scale: s = 1 for ordinary values).
+  const double scale = moment_scale(largest_value(patches, B));
+  if (scale != 1.0) {
+    DiscretisationError out =
+        discretisation_error(scaled_emission(patches, scale), visibility, p, B / scale, directions, seed);
+    out.estimate *= scale;
+    out.standard_error *= scale;
+    return out;
+  }
   Timer timer;
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   RADWALK_CHECK_EQ(B.rows(), N);
@@ -70,6 +100,14 @@ MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& 
                                                                 const RadiosityProblem& p, const PatchRgb& B,
                                                                 const Eigen::VectorXd& W, int directions,
                                                                 std::uint64_t seed) {
+  const double scale = moment_scale(largest_value(patches, B));
+  if (scale != 1.0) {
+    MeasurementDiscretisationError out = measurement_discretisation_error(
+        scaled_emission(patches, scale), visibility, p, B / scale, W, directions, seed);
+    out.estimate *= scale;
+    out.standard_error *= scale;
+    return out;
+  }
   Timer timer;
   RADWALK_CHECK_EQ(B.rows(), static_cast<Eigen::Index>(patches.size()));
   MeasurementDiscretisationError out;

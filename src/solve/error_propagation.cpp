@@ -35,7 +35,11 @@ PropagatedVariance propagate_gather_variance(const RadiosityProblem& p, const Pa
   for (int k = 0; k < probes; ++k) {
     Rng rng = stream(seed, StreamDomain::error_estimate, 1 + std::uint64_t(k), 0);
     for (Eigen::Index i = 0; i < N; ++i)
-      for (int c = 0; c < 3; ++c) Z(i, 3 * k + c) = std::sqrt(q(i, c)) * standard_normal(rng);
+      for (int c = 0; c < 3; ++c) {
+        // A variance that rounding left at or below 0 (or undefined) contributes nothing.
+        const double z = standard_normal(rng);
+        Z(i, 3 * k + c) = q(i, c) > 0 ? std::sqrt(q(i, c)) * z : 0.0;
+      }
   }
   // x = G z for every probe and channel at once (solve/block_jacobi.h; collective over MPI).
   PropagatedVariance out;

@@ -80,7 +80,7 @@ TEST_CASE("radwalk: an unknown value of a choice option gets the nearest choice,
         "radwalk: error: --integrator: unknown value 'ne' (did you mean 'nee'?); see 'radwalk pathtrace --help'\n");
   CHECK(one_error("solve " + cube + " --solver xyz") ==
         "radwalk: error: --solver: unknown value 'xyz' (expected one of auto, direct, jacobi, gauss-seidel, "
-        "southwell or random-walk); see 'radwalk solve --help'\n");
+        "southwell, gmres or random-walk); see 'radwalk solve --help'\n");
 }
 
 TEST_CASE("radwalk: an output whose extension does not match what is written is refused before reading the scene",
