@@ -46,26 +46,28 @@ def table(path):
 
 
 def matched(r, pt):
-    """The path tracer's rows in the run's patch order: the .vtp read back may list the patches in another order
-    (back patches, repaired faces), so rows are matched by centroid and normal (rounded); every patch must match."""
+    """The path tracer's rows matched to the run's patches by centroid and normal (rounded): the .vtp read back may
+    list the patches in another order (back patches, repaired faces) and drop a few (faces the reader repairs away,
+    e.g. slivers). Returns the run's rows that matched, the path tracer's rows in the same order, and how many of
+    the run's patches had no match."""
     scale = np.abs(r["key"][:, :3]).max()
     round_key = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
     where = {k: i for i, k in enumerate(round_key(pt["key"]))}
-    order = [where.get(k, -1) for k in round_key(r["key"])]
-    if len(where) != len(order) or min(order) < 0 or len(set(order)) != len(order):
-        raise SystemExit("the path tracer's patches are not the run's (%d against %d)" % (len(pt["area"]), len(r["area"])))
-    return {k: v[order] for k, v in pt.items()}
+    order = np.array([where.get(k, -1) for k in round_key(r["key"])])
+    found = order >= 0
+    if len(set(order[found])) != int(found.sum()):
+        raise SystemExit("two of the run's patches match one of the path tracer's")
+    return ({k: v[found] for k, v in r.items()}, {k: v[order[found]] for k, v in pt.items()}, int((~found).sum()))
 
 
 def measured_error(run_csv, pt_csv):
-    r = table(run_csv)
-    pt = matched(r, table(pt_csv))
+    r, pt, unmatched = matched(table(run_csv), table(pt_csv))
     keep = (pt["E"].max(1) == 0)[:, None] & (pt["rho"] > 0) & (pt["B"] > 0)
     W = np.repeat(pt["area"][:, None], 3, 1)[keep]
     err2 = float((W * (r["B"] - pt["B"])[keep] ** 2).sum())
     noise2 = float((W * pt["B_se"][keep] ** 2).sum())
     size2 = float((W * pt["B"][keep] ** 2).sum())
-    return np.sqrt(max(err2 - noise2, 0.0) / size2), np.sqrt(noise2 / size2)
+    return np.sqrt(max(err2 - noise2, 0.0) / size2), np.sqrt(noise2 / size2), unmatched
 
 
 def main():
@@ -100,10 +102,11 @@ def main():
                 e_est = summary["error_estimate"]["total"]["relative"]
                 subprocess.run([a.radwalk, "pathtrace", vtp, "--spp", str(a.spp), "--seed", str(1000 + seed), "--csv",
                                 pt_csv, "-q", "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                e, noise = measured_error(run_csv, pt_csv)
+                e, noise, unmatched = measured_error(run_csv, pt_csv)
                 print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.2f%s" %
                       (options, seed, summary["patches"], rays, steps, e_est, e, noise, cpu,
-                       "" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")"))
+                       ("" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")") +
+                       ("" if unmatched == 0 else "  (%d patches not in the path tracer's reading, left out)" % unmatched)))
                 sys.stdout.flush()
 
 
