@@ -15,9 +15,6 @@ namespace radwalk {
 namespace {
 
 constexpr long kMaxRaysPerPatch = 1L << 24;
-// At most this share of the discretisation error's contributions is split in one step: the patches that carry
-// little of it (small faces of furniture, far from shadows) are left for a later step, if any.
-constexpr double kMaxSplitFraction = 0.8;
 
 bool counted(const PatchSet& patches, std::size_t i) {
   return patches.E[i].maxCoeff() <= 0 && patches.rho[i].maxCoeff() > 0;
@@ -111,8 +108,7 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       }
       std::size_t marked = 0;
       if (refine) {
-        const double fraction =
-            std::min(kMaxSplitFraction, 2 * (1 - t_d * t_d / (s.discretisation * s.discretisation)));
+        const double fraction = std::min(1.0, 2 * (1 - t_d * t_d / (s.discretisation * s.discretisation)));
         split = patches_to_split(patches, solution.B_disc, fraction, (options.max_patches - patches.size()) / 3);
         marked = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
       }

@@ -69,22 +69,20 @@ TEST_CASE("target error: a statistical excess raises the rays by (e_s / t_s)^2 x
   CHECK(r.patches.size() == 6);
 }
 
-TEST_CASE("target error: a discretisation excess splits the largest shares, keeps the rays, and ends at the target") {
+TEST_CASE("target error: a discretisation excess splits the patches, keeps the rays, and halves the error per split") {
   TargetErrorOptions o;
   o.target = 0.03;
   const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.0, 0.1), o);
-  REQUIRE(r.steps.size() >= 2);
+  // 0.1 -> every counted patch split (the fraction 2 (1 - 0.021^2 / 0.1^2) exceeds 1) -> 0.05 -> again -> 0.025.
+  REQUIRE(r.steps.size() == 3);
   CHECK(r.reached);
   CHECK(r.steps[0].patches == 6);
-  // Five equal shares (the emitting ceiling is not counted); 2 (1 - 0.021^2 / 0.1^2) > 1, capped at 80 %: four
-  // faces split (lowest index first among equals), one left.
-  CHECK(r.steps[0].split == 4);
-  CHECK(r.steps[1].patches == 18);
-  for (std::size_t k = 0; k < r.steps.size(); ++k) {
-    CHECK(r.steps[k].rays_per_patch == 1000);
-    if (k > 0) CHECK(r.steps[k].discretisation < r.steps[k - 1].discretisation);  // each split halves a share's error
-  }
-  CHECK(r.steps.back().discretisation <= 0.03);
+  CHECK(r.steps[0].split == 5);  // the emitting ceiling is not counted
+  CHECK(r.steps[1].patches == 21);
+  CHECK(r.steps[1].split == 20);
+  CHECK(r.steps[2].patches == 81);
+  for (const TargetErrorStep& s : r.steps) CHECK(s.rays_per_patch == 1000);
+  CHECK(r.steps[2].discretisation == Approx(0.025).epsilon(1e-9));
 }
 
 TEST_CASE("target error: the patch budget stops the run, not reached, with the largest contributions split first") {
