@@ -459,11 +459,7 @@ FormFactors trace_form_factors(const SceneOptions& scene, const FormFactorCliOpt
   if (options.analytic) {
     ff = analytic_form_factors(patches, visibility, analytic_options(scene, options)).form_factors;
   } else {
-    const FormFactorOptions o = ray_options(scene, options);
-    const long emitter_samples = choose_emitter_samples(patches, o, options.emitter_samples).samples;
-    ff = estimate_form_factors(patches, visibility, o);
-    if (emitter_samples > 0)
-      ff = replace_emitter_columns(std::move(ff), patches, visibility, emitter_samples).form_factors;
+    ff = estimate_form_factors_with_emitters(patches, visibility, ray_options(scene, options), options.emitter_samples);
   }
   if (options.reciprocity) enforce_reciprocity(ff.F, patches.area);
   return ff;

@@ -107,6 +107,17 @@ nlohmann::json camera_json(const SceneCamera& fitted, const PatchSet& patches, i
           {"source", fitted.source}};
 }
 
+nlohmann::json target_error_step_json(const TargetErrorStep& s) {
+  return {{"patches", s.patches},
+          {"rays_per_patch", s.rays_per_patch},
+          {"statistical", s.statistical},
+          {"discretisation", s.discretisation},
+          {"total", s.total},
+          {"seconds", s.seconds},
+          {"split", s.split},
+          {"next_rays_per_patch", s.next_rays_per_patch}};
+}
+
 nlohmann::json refine_step_json(const RefineStep& s) {
   return {{"step", s.step},
           {"patches", s.patches},

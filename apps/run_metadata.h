@@ -17,6 +17,7 @@
 #include "io/vtp_metadata.h"
 #include "patch/patch_set.h"
 #include "solve/adaptive_refinement.h"
+#include "solve/target_error.h"
 
 namespace radwalk::app {
 
@@ -47,5 +48,8 @@ nlohmann::json camera_json(const SceneCamera& camera, const PatchSet& patches, i
 // radwalk.solve_adaptive alike: step, patches, marked, split, max_jump, method, iterations and the seconds of its
 // form factors, solve, refinement and in all.
 nlohmann::json refine_step_json(const RefineStep& step);
+
+// One step of --target-error (solve/target_error.h) as the JSON's target_error.steps holds it.
+nlohmann::json target_error_step_json(const TargetErrorStep& step);
 
 }  // namespace radwalk::app

@@ -4,27 +4,13 @@
 
 #include "apps/discretisation_error.h"
 #include "apps/pipeline.h"
+#include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
 #include "core/error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
 
 namespace radwalk::app {
-namespace {
-
-nlohmann::json step_json(const TargetErrorStep& s) {
-  return {{"patches", s.patches},
-          {"rays_per_patch", s.rays_per_patch},
-          {"statistical", s.statistical},
-          {"discretisation", s.discretisation},
-          {"total", s.total},
-          {"seconds", s.seconds},
-          {"split", s.split},
-          {"next_rays_per_patch", s.next_rays_per_patch}};
-}
-
-}  // namespace
-
 TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary) {
   if (command.discretisation_directions <= 0)
     throw InputError("--target-error needs the discretisation estimate: --discretisation-directions must be > 0");
@@ -73,7 +59,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   j["stop_reason"] = r.stop_reason;
   j["seconds"] = r.seconds;
   j["steps"] = nlohmann::json::array();
-  for (const TargetErrorStep& s : r.steps) j["steps"].push_back(step_json(s));
+  for (const TargetErrorStep& s : r.steps) j["steps"].push_back(target_error_step_json(s));
   summary.json()["patches"] = r.patches.size();
   summary.json()["rays_per_patch"] = r.steps.back().rays_per_patch;
   summary.add_timing("target_error", r.seconds);

@@ -34,16 +34,13 @@ py::object csr_view(const SparseF& F, py::handle base) {
 FormFactors estimate(const Scene& scene, const FormFactorOptions& options, long emitter_request, int threads,
                      std::map<std::string, double>& timings) {
   check_thread_count(threads, "threads");
-  const long emitter_samples = choose_emitter_samples(scene.patches, options, emitter_request).samples;
   return interruptible([&] {
     ThreadLimit limit(threads);
     Timer timer;
     const EmbreeVisibility visibility(scene.patches);
     timings["embree_scene"] = timer.seconds();
     timer.reset();
-    FormFactors ff = estimate_form_factors(scene.patches, visibility, options);
-    if (emitter_samples > 0)
-      ff = replace_emitter_columns(std::move(ff), scene.patches, visibility, emitter_samples).form_factors;
+    FormFactors ff = estimate_form_factors_with_emitters(scene.patches, visibility, options, emitter_request);
     timings["form_factors"] = timer.seconds();
     return ff;
   });

@@ -52,9 +52,7 @@ AdaptiveResult solve_adaptive_py(const Scene& scene, double refine_tol, int step
   f.sobol = true;  // the CLI's defaults: the recommended route
   const FormFactorStage stage = [&](const PatchSet& p) {
     const EmbreeVisibility visibility(p);
-    FormFactors ff = estimate_form_factors(p, visibility, f);
-    const long emitter_samples = choose_emitter_samples(p, f, kAutoEmitterSamples).samples;
-    if (emitter_samples > 0) ff = replace_emitter_columns(std::move(ff), p, visibility, emitter_samples).form_factors;
+    FormFactors ff = estimate_form_factors_with_emitters(p, visibility, f, kAutoEmitterSamples);
     if (reciprocity) enforce_reciprocity(ff.F, p.area);
     return ff;
   };

@@ -4,6 +4,7 @@
 // gives the CLI's patches and B.
 #include <nlohmann/json.hpp>
 
+#include "apps/run_metadata.h"
 #include "bindings.h"
 #include "core/parallel.h"
 #include "formfactor/emitter_form_factors.h"
@@ -26,12 +27,6 @@ struct TargetErrorPyResult {
   std::string stop_reason;
 };
 
-nlohmann::json step_json(const TargetErrorStep& s) {
-  return {{"patches", s.patches},       {"rays_per_patch", s.rays_per_patch}, {"statistical", s.statistical},
-          {"discretisation", s.discretisation}, {"total", s.total},        {"seconds", s.seconds},
-          {"split", s.split},           {"next_rays_per_patch", s.next_rays_per_patch}};
-}
-
 TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_error, long rays, long max_patches,
                                              double max_seconds, double tol, std::uint64_t seed,
                                              long long threads_arg, int discretisation_directions) {
@@ -52,10 +47,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_e
     o.rays_per_patch = step_rays;
     o.seed = seed;
     o.sobol = true;
-    const long emitter_samples = choose_emitter_samples(p, o, kAutoEmitterSamples).samples;
-    stage.form_factors = estimate_form_factors(p, visibility, o);
-    if (emitter_samples > 0)
-      stage.form_factors = replace_emitter_columns(std::move(stage.form_factors), p, visibility, emitter_samples).form_factors;
+    stage.form_factors = estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples);
     const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
     SolveOptions s;
     s.tol = tol;
@@ -86,7 +78,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_e
   nlohmann::json target = {{"target", target_error},    {"max_patches", max_patches}, {"max_seconds", max_seconds},
                            {"reached", out.reached},    {"stop_reason", out.stop_reason}, {"seconds", r.seconds},
                            {"steps", nlohmann::json::array()}};
-  for (const TargetErrorStep& s : out.steps) target["steps"].push_back(step_json(s));
+  for (const TargetErrorStep& s : out.steps) target["steps"].push_back(app::target_error_step_json(s));
   nlohmann::json run = {{"solver", "auto"}, {"tol", tol}, {"seed", seed}, {"threads", threads},
                         {"rays_per_patch", out.steps.back().rays_per_patch}, {"target_error", target}};
   out.result.metadata = result_metadata(out.result, out.scene, run);
@@ -111,7 +103,7 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
           "steps",
           [](const TargetErrorPyResult& a) {
             py::list l;
-            for (const TargetErrorStep& s : a.steps) l.append(json_to_python(step_json(s).dump()));
+            for (const TargetErrorStep& s : a.steps) l.append(json_to_python(app::target_error_step_json(s).dump()));
             return l;
           },
           "One dict per step (a list): patches, rays_per_patch, statistical, discretisation, total (relative "

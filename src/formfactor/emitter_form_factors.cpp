@@ -69,6 +69,14 @@ EmitterSampleChoice choose_emitter_samples(const PatchSet& patches, const FormFa
   return {M, "auto: a third of the mean cosine rays per patch"};
 }
 
+FormFactors estimate_form_factors_with_emitters(const PatchSet& patches, const Visibility& visibility,
+                                                const FormFactorOptions& options, long emitter_request) {
+  const long samples = choose_emitter_samples(patches, options, emitter_request).samples;
+  FormFactors ff = estimate_form_factors(patches, visibility, options);
+  if (samples > 0) ff = replace_emitter_columns(std::move(ff), patches, visibility, samples).form_factors;
+  return ff;
+}
+
 EmitterFormFactors estimate_emitter_form_factors(const PatchSet& patches, const Visibility& visibility,
                                                  const FormFactorOptions& options, long shadow_samples_per_patch) {
   return replace_emitter_columns(estimate_form_factors(patches, visibility, options), patches, visibility,

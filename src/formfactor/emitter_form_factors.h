@@ -59,6 +59,11 @@ struct EmitterSampleChoice {
 EmitterSampleChoice choose_emitter_samples(const PatchSet& patches, const FormFactorOptions& options,
                                            long requested);
 
+// F by cosine rays with `options` (every row), then the emitter columns of choose_emitter_samples(emitter_request)
+// when it chooses any: the route of the CLI's form-factor stage without its reports.
+FormFactors estimate_form_factors_with_emitters(const PatchSet& patches, const Visibility& visibility,
+                                                const FormFactorOptions& options, long emitter_request);
+
 // The emitters: the patches with E > 0 in some channel, increasing.
 std::vector<std::size_t> emitter_patches(const PatchSet& patches);
 
