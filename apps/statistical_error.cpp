@@ -59,6 +59,7 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
   stat["sampling_factor_rays_measured"] = calibration.rays_measured;
   stat["sampling_factor_emitter"] = calibration.factors.emitter;
   stat["sampling_factor_emitter_measured"] = calibration.emitter_measured;
+  stat["coverage_factor"] = calibration.factors.coverage;
   stat["calibration_rows"] = calibration.rows;
   stat["calibration_replicates"] = calibration.replicates;
   stat["calibration_rays"] = calibration.rays;

@@ -47,6 +47,7 @@ Result solve(const Scene& scene, const py::object& F, const std::string& solver,
       r.solution.B_se = error.standard_error;
       r.solution.info["sampling_factor_rays"] = error.calibration.factors.rays;
       r.solution.info["sampling_factor_emitter"] = error.calibration.factors.emitter;
+      r.solution.info["coverage_factor"] = error.calibration.factors.coverage;
       r.timings["error_estimate"] = timer.seconds();
     }
     // As the CLI's solve with --seed: the seed F was traced with, when radwalk traced it.

@@ -1,6 +1,7 @@
 #include "formfactor/sampling_factor.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 #include "core/check.h"
@@ -17,7 +18,11 @@ namespace {
 // At least 2 replicates per row, more where there are few rows, so that the factor rests on at least 64 rows traced
 // again.
 constexpr int kMinReplicates = 2;
-constexpr std::size_t kMinTracedRows = 64;
+constexpr std::size_t kMinRows = 128;
+constexpr std::size_t kMinTracedRows = 256;
+// The coverage the factor is matched to: 95 % of the deviations within 1.96 standard errors.
+constexpr double kCoverage = 0.95;
+constexpr double kCoverageQuantile = 1.959963984540054;
 
 // The seed of replicate r (r >= 1) of a run with seed `seed`: any value other than the run's own gives independent
 // streams; mixed so that the replicates of seed s and the run with seed s + 1 do not share streams.
@@ -58,6 +63,34 @@ RowGather gather_of_traced_row(const PatchSet& patches, const Visibility& visibi
   return g;
 }
 
+// The coverage factor kappa (form_factor_noise.h): with the factors c, each version r of a chosen row deviates from
+// the mean of the row's other R versions by e = g_r - mean_{r' != r} g_r', whose variance is
+// (1 + 1/R) (c_rays v_rays + c_emitter v_emitter) if the row's own reduction were c. kappa is the 95 % quantile of
+// e^2 / that variance over the rows, versions and channels, divided by 1.96^2: the scale at which 95 % of the rows'
+// deviations lie within 1.96 standard errors. 1 when there is nothing to measure.
+double coverage_factor(const std::vector<double>& terms, std::size_t stride, std::size_t versions,
+                       const SamplingFactors& c) {
+  std::vector<double> t2;
+  const double R = double(versions) - 1;
+  for (std::size_t k = 0; k + stride <= terms.size(); k += stride) {
+    const double* t = &terms[k];
+    for (std::size_t ch = 0; ch < 3; ++ch) {
+      const double v = (c.rays * t[5 + 3 * versions + ch] + c.emitter * t[8 + 3 * versions + ch]) * (1 + 1 / R);
+      if (!(v > 0)) continue;
+      double sum = 0;
+      for (std::size_t r = 0; r < versions; ++r) sum += t[5 + 3 * r + ch];
+      for (std::size_t r = 0; r < versions; ++r) {
+        const double g = t[5 + 3 * r + ch], others = (sum - g) / R;
+        t2.push_back((g - others) * (g - others) / v);
+      }
+    }
+  }
+  if (t2.empty()) return 1;
+  const std::size_t q = std::min(t2.size() - 1, std::size_t(std::ceil(kCoverage * double(t2.size()))) - 1);
+  std::nth_element(t2.begin(), t2.begin() + std::ptrdiff_t(q), t2.end());
+  return t2[q] / (kCoverageQuantile * kCoverageQuantile);
+}
+
 }  // namespace
 
 SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Visibility& visibility,
@@ -87,7 +120,7 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
   std::vector<std::size_t> eligible;
   for (std::size_t i = 0; i < N; ++i)
     if (is_eligible[i]) eligible.push_back(i);
-  const std::size_t S = std::min(eligible.size(), std::max<std::size_t>(32, N / 50));
+  const std::size_t S = std::min(eligible.size(), std::max<std::size_t>(kMinRows, N / 50));
   Rng pick = stream(ff.options.seed, StreamDomain::error_estimate, 0, 0);
   for (std::size_t k = 0; k < S; ++k)
     std::swap(eligible[k], eligible[k + pick.uniform_index(std::uint32_t(eligible.size() - k))]);
@@ -98,10 +131,13 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
   const int kReplicates = std::max<int>(kMinReplicates, int((kMinTracedRows + S - 1) / S));
   // Per chosen row (those this process holds; over MPI the rows are shared afterwards): the spread of its R + 1
   // versions' gathers (version 0: F's own) and the formula's mean variance, channels pooled by relative variance,
-  // for each part, and the rays traced: {spread_rays, formula_rays, spread_emitter, formula_emitter, rays}.
+  // for each part, and the rays traced: {spread_rays, formula_rays, spread_emitter, formula_emitter, rays}; then the
+  // versions' gathers (R + 1 x 3, both parts) and the formula's mean variance of each part (3 + 3), for the
+  // coverage factor.
   const std::vector<std::size_t> emitters = emitter_patches(patches);
   const VisibleFormFactor visible(patches, visibility);
-  constexpr std::size_t kTerms = 5;
+  const std::size_t versions_count = std::size_t(kReplicates) + 1;
+  const std::size_t kTerms = 5 + 3 * versions_count + 6;
   std::vector<double> terms(S * kTerms, 0.0);
   const auto first = std::size_t(std::lower_bound(eligible.begin(), eligible.end(), mine.begin) - eligible.begin());
   const auto last = std::size_t(std::lower_bound(eligible.begin(), eligible.end(), mine.end) - eligible.begin());
@@ -138,6 +174,12 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
       t[0] += s_ray[c] / g2, t[1] += v_ray[c] / g2, t[2] += s_emitter[c] / g2, t[3] += v_emitter[c] / g2;
     }
     t[4] = double(rays);
+    for (std::size_t r = 0; r < versions_count; ++r)
+      for (int c = 0; c < 3; ++c) t[5 + 3 * r + std::size_t(c)] = g[r].gather()[c];
+    for (int c = 0; c < 3; ++c) {
+      t[5 + 3 * versions_count + std::size_t(c)] = v_ray[c];
+      t[8 + 3 * versions_count + std::size_t(c)] = v_emitter[c];
+    }
   }, 1);
   if (!blocks.empty()) {
     std::vector<distributed::Range> chosen(blocks.size());
@@ -163,6 +205,7 @@ SamplingCalibration calibrate_sampling_factors(const PatchSet& patches, const Vi
     out.factors.emitter = spread_emitter / formula_emitter;
     out.emitter_measured = true;
   }
+  out.factors.coverage = coverage_factor(terms, kTerms, versions_count, out.factors);
   out.rows = S;
   out.replicates = kReplicates;
   out.seconds = timer.seconds();

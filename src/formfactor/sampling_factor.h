@@ -9,9 +9,13 @@
 // s^2 the sample variance of the R + 1 gathers g^(r) = (F^(r) B)_i (F's own row among them), v the mean of the
 // formula's variance over the same R + 1 rows, g the mean gather (channels pooled by relative variance; rows with
 // equal weights, so that no few bright rows decide). Its own relative error is about sqrt((2/R + var c_i) / S).
+// Then the coverage factor kappa (form_factor_noise.h): the 95 % quantile over the chosen rows, their versions and
+// channels of e^2 / ((1 + 1/R) (c_rays v_rays + c_emitter v_emitter)), e a version's deviation from the mean of the
+// row's other versions, divided by 1.96^2.
 // For independent rays (FormFactorOptions::stratified = false, no Sobol) c_rays = 1 exactly and no row is traced
-// for it. Cost: S R rows' rays; S = min(eligible rows, max(32, N / 50)), R = max(2, ceil(64 / S)) (about 20 % of
-// the rays of a 300-patch F, 4 % at 2500 patches and above; at least 64 rows, for the smallest scenes). Reproducible: rows and seeds from the run's seed only.
+// for it. Cost: S R rows' rays; S = min(eligible rows, max(128, N / 50)), R = max(2, ceil(256 / S)) (about 80 % of
+// the rays of a 300-patch F, 25 % at 1000 patches, 4 % at 6400 patches and above; the smallest scenes need the
+// rows for kappa's quantile). Reproducible: rows and seeds from the run's seed only.
 #include <cstddef>
 
 #include "core/types.h"

@@ -61,7 +61,9 @@ MeasurementError measurement_form_factor_error(const PatchSet& patches, const Vi
   const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
   const PatchRgb b = B / s;
   out.calibration = calibrate_sampling_factors(patches, visibility, p.F, ff, b);
-  const PatchRgb V = gather_variance(p.F, ff, b).scaled(out.calibration.factors);
+  SamplingFactors mean_variance = out.calibration.factors;  // M sums many rows: their mean variance, kappa = 1
+  mean_variance.coverage = 1;
+  const PatchRgb V = gather_variance(p.F, ff, b).scaled(mean_variance);
   const PatchRgb psi = adjoint_weights(p, W / r, out.sweeps);
   out.standard_error = ((psi * p.rho).square() * V).colwise().sum().transpose().sqrt() * s * r;
   return out;
