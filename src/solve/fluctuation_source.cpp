@@ -18,6 +18,7 @@ namespace radwalk {
 namespace {
 
 constexpr int kReplicates = 2;
+constexpr int kMaxSide = 8;
 
 // The emitters, chosen in proportion to their power A_e sum_c E_ec.
 struct Emitters {
@@ -53,14 +54,15 @@ struct PatchShots {
 class Shooter {
  public:
   // B: the solution divided by `scale`; E is divided alike where it is used.
-  Shooter(const PatchSet& ps, const Visibility& vis, const PatchRgb& B, double scale, std::uint64_t seed, int side,
-          int directions)
-      : ps_(ps), vis_(vis), B_(B), scale_(scale), seed_(seed), side_(side), L_(directions), eps_(ray_epsilon(ps)),
+  Shooter(const PatchSet& ps, const Visibility& vis, const PatchRgb& B, double scale, std::uint64_t seed,
+          std::vector<int> side, int directions)
+      : ps_(ps), vis_(vis), B_(B), scale_(scale), seed_(seed), side_(std::move(side)), L_(directions),
+        eps_(ray_epsilon(ps)),
         emitters_(find_emitters(ps)) {}
 
   // Patch j's contributions to d (both replicates).
   void shoot(std::size_t j, PatchShots& out) const {
-    const int M = side_ * side_;
+    const int side = side_[j], M = side * side;
     const PatchPointSampler on_j(ps_, j);
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
@@ -70,10 +72,10 @@ class Shooter {
     std::vector<Rgb> g(M);
     for (int r = 0; r < kReplicates; ++r) {
       Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r));
-      for (int a = 0; a < side_; ++a)
-        for (int b = 0; b < side_; ++b)
-          y[a * side_ + b] = on_j.point(std::min((a + rng.uniform()) / side_, kBelowOne),
-                                        std::min((b + rng.uniform()) / side_, kBelowOne));
+      for (int a = 0; a < side; ++a)
+        for (int b = 0; b < side; ++b)
+          y[a * side + b] = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
+                                       std::min((b + rng.uniform()) / side, kBelowOne));
       // The gather g_m: L shared cosine directions (the reflected part) ...
       for (int l = 0; l < L_; ++l) {
         const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
@@ -156,7 +158,8 @@ class Shooter {
   const PatchRgb& B_;
   double scale_;
   std::uint64_t seed_;
-  int side_, L_;
+  std::vector<int> side_;
+  int L_;
   double eps_;
   Emitters emitters_;
 };
@@ -170,17 +173,23 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   RADWALK_CHECK_EQ(B.rows(), n);
   RADWALK_CHECK(directions >= 1 && points >= 2);
   const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
+  std::vector<double> sorted_area(patches.area.begin(), patches.area.end());
+  std::nth_element(sorted_area.begin(), sorted_area.begin() + std::ptrdiff_t(N / 2), sorted_area.end());
+  const double median_area = N ? sorted_area[N / 2] : 0.0;
+  std::vector<int> sides(N, side);
+  for (std::size_t j = 0; j < N; ++j)
+    if (median_area > 0 && patches.area[j] > median_area)
+      sides[j] = std::min(kMaxSide, int(std::lround(side * std::sqrt(patches.area[j] / median_area))));
   // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
   const PatchRgb scaled = B / scale;
-  const Shooter shooter(patches, visibility, scaled, scale, seed, side, directions);
+  const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions);
 
   FluctuationSource out;
   out.points = side * side;
   out.directions = directions;
   PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
   std::vector<Eigen::Triplet<float, std::int32_t>> entries;
-  const double per_row = double(kReplicates) * out.points * directions;
   // Chunks of patches shoot in parallel; their contributions are added in patch order (deterministic sums).
   constexpr std::size_t kChunk = 64;
   const std::size_t chunks = (N + kChunk - 1) / kChunk;
@@ -203,6 +212,8 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
             while (b < h.size() && h[b] == h[a]) ++b;
+            const int side_q = sides[next_row + q];
+            const double per_row = double(kReplicates) * side_q * side_q * directions;
             entries.emplace_back(std::int32_t(next_row + q), h[a], float(double(b - a) / per_row));
             a = b;
           }

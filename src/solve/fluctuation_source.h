@@ -12,7 +12,10 @@
 //
 // The fluctuation is modelled by one gather of the discrete solution (E is constant per patch):
 //   B(y) - Bbar_j ~ rho_j (g(y) - gbar_j),    g(y) = int B_h(hit(y, w)) cos / pi dw,
-// and estimated per patch j (rho_j > 0) and replicate r = 0, 1 from M stratified points y_m of j:
+// and estimated per patch j (rho_j > 0) and replicate r = 0, 1 from M_j stratified points y_m of j (s_j x s_j strata;
+// one density of points over the scene: s_j = s on a patch of the median area, round(s sqrt(A_j / A_median)) on a
+// larger one, at most 8, so that the small regions where a large patch's radiosity departs from its mean, under an
+// object or inside a shelf, are found as often as on small patches):
 //   g_m = (1/L) sum_l (B_h - E)(hit(y_m, w_l))
 //       + (1/L) sum_l E_e / p(e_l) [F(y_m -> e_l) - A_e G(y_m, z_l) (1 - V(y_m, z_l))],
 // with L cosine directions w_l and L emitter points z_l (emitter e_l chosen by power, z_l uniform on it) shared by
@@ -24,7 +27,7 @@
 // Where all the points see the same patch the contributions cancel exactly (sum_m delta_m = 0), so only the near
 // geometry adds noise. d is the mean of the two replicates; Var(d_k) ~ (d_k^(0) - d_k^(1))^2 / 4.
 //
-// Rays per patch: 2 replicates x M points x (2 L cosine rays + L shadow rays when the scene has emitters).
+// Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
@@ -40,12 +43,13 @@ struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
   PatchRgb variance;  // N x 3: the variance of that estimate
   SparseF F;          // N x N: the shot rays' form factors (2 M L rays per row), for scenes solved without a stored F
-  int points = 0;     // M per patch and replicate
+  int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
   int directions = 0; // L
   long rays = 0;      // traced in all
 };
 
-// B: the discrete solution (N x 3, finite, >= 0). directions L >= 1; points M >= 2 (rounded up to a square).
+// B: the discrete solution (N x 3, finite, >= 0). directions L >= 1; points M >= 2 on a patch of the median area
+// (rounded up to a square; larger patches get more, above).
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
                                      int directions, std::uint64_t seed, int points = 4);
 
