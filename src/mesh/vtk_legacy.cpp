@@ -34,7 +34,8 @@ std::string upper(std::string_view s) {
 
 // "KEY (line L)" while the file is text, else "KEY": how a section is named in messages about its values.
 std::string section_label(const LegacyScanner& scan, const std::string& key, const Token& header) {
-  return scan.text_only() ? key + " (line " + std::to_string(header.line) + ")" : key;
+  (void)scan;
+  return header.before_raw ? key + " (line " + std::to_string(header.line) + ")" : key;
 }
 
 // The major version of "# vtk DataFile Version M.m" as VTK reads it (sscanf "%d.%d" after the prefix: both numbers
@@ -124,10 +125,10 @@ class Reader {
 
   // A section that may come once.
   void once(const std::string& key, const Token& t) {
-    const auto [it, added] = seen_.emplace(key, t.line);
+    const auto [it, added] = seen_.emplace(key, t.before_raw ? t.line : 0);
     if (!added)
       scan_.refuse(t, key + " given twice" +
-                          (scan_.text_only() ? " (first on line " + std::to_string(it->second) + ")" : std::string()));
+                          (it->second > 0 ? " (first on line " + std::to_string(it->second) + ")" : std::string()));
   }
 
   void points(const Token& header) {
@@ -401,7 +402,7 @@ class Reader {
           const std::int32_t id = c->ids[static_cast<std::size_t>(k)];
           if (static_cast<std::size_t>(id) >= n) {
             const auto line = seen_.find(key)->second;
-            throw InputError(locate(scan_.path(), scan_.text_only() ? line : 0, -1,
+            throw InputError(locate(scan_.path(), line, -1,
                                     std::string(key) + ": cell " + std::to_string(cell) + ": point id " +
                                         std::to_string(id) + " is out of range (" + std::to_string(n) + " points)"));
           }
@@ -414,7 +415,7 @@ class Reader {
   LegacyPolyData out_;
   int major_ = 0;
   bool binary_ = false;
-  std::map<std::string, long> seen_;  // sections given once, with their lines
+  std::map<std::string, long> seen_;  // sections given once, with their lines (0: after binary data)
 };
 
 }  // namespace

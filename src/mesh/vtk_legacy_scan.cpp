@@ -23,7 +23,7 @@ std::optional<LegacyScanner::Token> LegacyScanner::peek() {
   if (at_ >= bytes_.size()) return std::nullopt;
   std::size_t end = at_;
   while (end < bytes_.size() && !is_space(bytes_[end])) ++end;
-  return Token{bytes_.substr(at_, end - at_), line_, at_};
+  return Token{bytes_.substr(at_, end - at_), line_, at_, !raw_seen_};
 }
 
 std::optional<LegacyScanner::Token> LegacyScanner::next() {
@@ -74,13 +74,15 @@ bool LegacyScanner::looking_at(std::string_view word) const {
   return true;
 }
 
-std::string LegacyScanner::place_at(long line, std::size_t byte) const {
-  if (!raw_seen_) return locate(path_, line, -1, "");
+std::string LegacyScanner::place_at(long line, std::size_t byte, bool before_raw) const {
+  if (before_raw) return locate(path_, line, -1, "");
   return path_ + ": at byte " + std::to_string(byte) + ": ";
 }
 
-std::string LegacyScanner::place(const Token& token) const { return place_at(token.line, token.byte); }
-std::string LegacyScanner::place() const { return place_at(line_, at_); }
+std::string LegacyScanner::place(const Token& token) const {
+  return place_at(token.line, token.byte, token.before_raw);
+}
+std::string LegacyScanner::place() const { return place_at(line_, at_, !raw_seen_); }
 
 void LegacyScanner::refuse(const Token& token, const std::string& what) const {
   throw InputError(printable(place(token) + what));

@@ -4,9 +4,9 @@
 // line of their section header). Every read is bounded by the bytes left: a block longer than what is left, or a
 // token asked for at the end of the file, is one InputError naming the file, the place and what was expected.
 //
-// Places: "FILE:LINE:" while the scan has seen only text (an ASCII file, and a BINARY file up to its first block
-// of raw bytes); after raw bytes, line numbers would count newline bytes inside binary numbers, so a place is
-// "FILE: at byte N:" instead (N from 0).
+// Places: "FILE:LINE:" for what lies before the first block of raw bytes (all of an ASCII file, a BINARY file's
+// header and first section); after raw bytes, line numbers would count newline bytes inside binary numbers, so a
+// place is "FILE: at byte N:" instead (N from 0).
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -18,8 +18,9 @@ class LegacyScanner {
  public:
   struct Token {
     std::string_view text;
-    long line = 0;         // the line the token is on (meaningful while text_only())
+    long line = 0;         // the line the token is on (meaningful when before_raw)
     std::size_t byte = 0;  // its first byte's offset in the file
+    bool before_raw = true;  // read before any raw bytes: its line is meaningful
   };
 
   LegacyScanner(std::string path, std::string_view bytes) : path_(std::move(path)), bytes_(bytes) {}
@@ -57,7 +58,7 @@ class LegacyScanner {
   bool text_only() const { return !raw_seen_; }
 
  private:
-  std::string place_at(long line, std::size_t byte) const;
+  std::string place_at(long line, std::size_t byte, bool before_raw) const;
   void skip_space();
 
   std::string path_;

@@ -378,7 +378,7 @@ TEST_CASE("vtk .vtk reader: truncated files, oversized counts and bad cells are 
        "POINTS (line 5) ends before its 12 values"},
       {"a cell count above the file", head + points + "POLYGONS 5 2000000000\n", "c.vtk:7:", "more than its remaining"},
       {"a binary cell size above the file", bhead + bpoints + "POLYGONS 1 50\n" + be_all<std::int32_t>({4, 0, 1, 2, 3}),
-       "c.vtk:7:", "POLYGONS declares 50 indices, more than its remaining 21 bytes"},
+       "c.vtk: at byte 117:", "POLYGONS declares 50 indices, more than its remaining 21 bytes"},
       {"a cell past its section", head + points + "POLYGONS 1 5\n7 0 1 2 3\n", "c.vtk:7:",
        "cell 0 of 7 points runs past the section's 5 indices"},
       {"a declared cell count that is not the cells", head + points + "POLYGONS 2 5\n4 0 1 2 3\n", "c.vtk:7:",
