@@ -404,6 +404,9 @@ TEST_CASE("vtk .vtk reader: truncated files, oversized counts and bad cells are 
        "declares 299999997 values of type double"},
       {"an unknown array type", head + points + "POLYGONS 1 5\n4 0 1 2 3\nCELL_DATA 1\nSCALARS rho float28 3\nLOOKUP_TABLE default\n1 1 1\n",
        "c.vtk:10:", "of type 'float28': not one of VTK's legacy types"},
+      // VTK 9.1's reader only warned about a short ASCII array and kept it, its last values undefined.
+      {"a short rho array", head + points + "POLYGONS 1 5\n4 0 1 2 3\nCELL_DATA 1\nSCALARS rho float 3\nLOOKUP_TABLE default\n"
+       "0.5 0.5\n", "c.vtk:10:", "SCALARS 'rho' (line 10) ends before its 3 values"},
       {"rho given twice", head + points + "POLYGONS 1 5\n4 0 1 2 3\nCELL_DATA 1\nSCALARS rho float 3\nLOOKUP_TABLE default\n"
        "1 1 1\nVECTORS rho float\n0 0 0\n", "c.vtk:13:", "cell data 'rho' given twice"},
       {"POINTS given twice", head + points + points, "c.vtk:7:", "POINTS given twice (first on line 5)"},
