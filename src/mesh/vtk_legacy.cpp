@@ -32,9 +32,9 @@ std::string upper(std::string_view s) {
   return out;
 }
 
-// "KEY (line L)" while the file is text, else "KEY": how a section is named in messages about its values.
-std::string section_label(const LegacyScanner& scan, const std::string& key, const Token& header) {
-  (void)scan;
+// "KEY (line L)" for a header read before any binary data, else "KEY": how a section is named in messages about
+// its values.
+std::string section_label(const std::string& key, const Token& header) {
   return header.before_raw ? key + " (line " + std::to_string(header.line) + ")" : key;
 }
 
@@ -133,7 +133,7 @@ class Reader {
 
   void points(const Token& header) {
     once("POINTS", header);
-    const std::string label = section_label(scan_, "POINTS", header);
+    const std::string label = section_label("POINTS", header);
     const std::int64_t n = count(header, "POINTS", "points", 3);
     const Token type = scan_.require("the POINTS type");
     if (!is_legacy_type(type.text) || lower(type.text) == "string" || lower(type.text) == "utf8_string" ||
@@ -151,8 +151,9 @@ class Reader {
     }
   }
 
-  // A count after a header: a whole number, at most kMostPoints and at most what the bytes left can hold (each
-  // item at least `least_bytes`... counted loosely as 1 byte an item; the readers of the values check exactly).
+  // The count after a section's header: a whole number >= 0 whose items, at `per_item` bytes each at least, fit
+  // the bytes left (a loose bound before anything is sized by it; the readers of the values check exactly), and
+  // for POINTS at most kMostPoints.
   std::int64_t count(const Token& header, const std::string& key, const std::string& items, int per_item) {
     const Token t = scan_.require("the count after " + key);
     const std::optional<long> n = parse_long(t.text);
@@ -167,7 +168,7 @@ class Reader {
   }
 
   void cells(const Token& header, const std::string& key, LegacyCells& c) {
-    const std::string label = section_label(scan_, key, header);
+    const std::string label = section_label(key, header);
     if (major_ >= 5) {
       const std::int64_t offsets = count(header, key, "offsets", 1);
       const std::int64_t size = count(header, key, "point ids", 1);
@@ -256,7 +257,7 @@ class Reader {
       scan_.refuse(word, key + ": '" + excerpt(word.text) + "' where " + which +
                              " belongs (a version 5 file's cells are OFFSETS and CONNECTIVITY arrays)");
     const Token type = scan_.require(key + "'s " + which + " type");
-    LegacyArray a = read_legacy_array(scan_, type, n, 1, binary_, true, section_label(scan_, key, header) + " " + which);
+    LegacyArray a = read_legacy_array(scan_, type, n, 1, binary_, true, section_label(key, header) + " " + which);
     if (!a.integer)
       scan_.refuse(type, key + " " + which + " of type " + a.type + ": cell arrays hold whole numbers");
     return a;
@@ -300,7 +301,7 @@ class Reader {
                                (cell ? "" : "EDGE_FLAGS, ") + "FIELD)");
     const Token name_token = scan_.require(key + "'s name");
     const std::string name = decode_legacy_string(name_token.text);
-    const std::string label = section_label(scan_, key + " '" + excerpt(name) + "'", header);
+    const std::string label = section_label(key + " '" + excerpt(name) + "'", header);
     if (key == "LOOKUP_TABLE") {  // NAME n, then n RGBA colours (ASCII: numbers; BINARY: bytes)
       const Token size_token = scan_.peek().value_or(header);
       const std::int64_t size = read_legacy_count(scan_, label + " size", 0, kMostId);
@@ -365,9 +366,8 @@ class Reader {
   // FIELD NAME n: n arrays, each NAME k tuples TYPE and its values, or NULL_ARRAY. In a CELL_DATA section (cell)
   // its arrays of `tuples` tuples are cell data; at the data set's level its string arrays are tables.
   void field(const Token& header, bool cell, std::int64_t tuples, bool data_set_level) {
-    const Token name = scan_.require("FIELD's name");
-    (void)name;
-    const std::string label = section_label(scan_, "FIELD", header);
+    scan_.require("FIELD's name");
+    const std::string label = section_label("FIELD", header);
     const std::int64_t arrays = read_legacy_count(scan_, label + " array count", 0, kMostId);
     if (static_cast<double>(arrays) > static_cast<double>(scan_.left()))
       scan_.refuse(header, label + " declares " + std::to_string(arrays) + " arrays, more than its remaining " +
@@ -376,7 +376,7 @@ class Reader {
       const Token array_name = scan_.require(label + "'s array " + std::to_string(i));
       if (array_name.text == "NULL_ARRAY") continue;
       const std::string decoded = decode_legacy_string(array_name.text);
-      const std::string what = section_label(scan_, "FIELD array '" + excerpt(decoded) + "'", array_name);
+      const std::string what = section_label("FIELD array '" + excerpt(decoded) + "'", array_name);
       const std::int64_t components = read_legacy_count(scan_, what + " components", 0, kMostId);
       const std::int64_t n = read_legacy_count(scan_, what + " tuples", 0, std::numeric_limits<long>::max());
       const Token type = scan_.require(what + "'s type");
