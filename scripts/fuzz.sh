@@ -78,8 +78,6 @@ fuzz_one() {
   command -v llvm-symbolizer >/dev/null 2>&1 && symbolizer=$(command -v llvm-symbolizer)
   [ -x "$symbolizer" ] && export ASAN_SYMBOLIZER_PATH=$symbolizer
   export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
-  # VTK's own leaks on malformed files are VTK's (tests/fuzz/vtk.lsan.supp says which and why).
-  if [ "$h" = vtk ]; then export LSAN_OPTIONS=suppressions=$root/tests/fuzz/vtk.lsan.supp:print_suppressions=0; fi
   echo "fuzz: $h for $seconds s (corpus $corpus, seeds $seeds, findings in $crashes/)"
   local status=0
   # -error_exitcode=1: libFuzzer's default, 77, is CTest's skip code. One input must not run 25 s, allocate 512 MB

@@ -13,22 +13,6 @@
 #include <tuple>
 #include <vector>
 
-#include <vtkAbstractArray.h>
-#include <vtkCellArray.h>
-#include <vtkCellData.h>
-#include <vtkDataArray.h>
-#include <vtkFieldData.h>
-#include <vtkIdList.h>
-#include <vtkLogger.h>
-#include <vtkNew.h>
-#include <vtkObjectFactory.h>
-#include <vtkOutputWindow.h>
-#include <vtkPoints.h>
-#include <vtkPolyData.h>
-#include <vtkPolyDataReader.h>
-#include <vtkSmartPointer.h>
-#include <vtkStringArray.h>
-
 #include "core/error.h"
 #include "core/excerpt.h"
 #include "mesh/exact_vertices.h"
@@ -36,275 +20,11 @@
 #include "mesh/text_scan.h"
 #include "mesh/triangulate.h"
 #include "mesh/vtk_data_array.h"
+#include "mesh/vtk_legacy.h"
 #include "mesh/vtp_xml.h"
 
 namespace radwalk {
 namespace {
-
-// Collects what VTK prints while radwalk reads, instead of printing it: the first error becomes the refusal.
-class CapturingOutputWindow : public vtkOutputWindow {
- public:
-  static CapturingOutputWindow* New();
-  vtkTypeMacro(CapturingOutputWindow, vtkOutputWindow)
-  void DisplayText(const char* text) override { keep(text, false); }
-  void DisplayErrorText(const char* text) override { keep(text, true); }
-  void DisplayWarningText(const char*) override {}
-  void DisplayGenericWarningText(const char*) override {}
-  void DisplayDebugText(const char*) override {}
-  const std::string& error() const { return error_; }
-
- private:
-  // VTK's message is "ERROR: In FILE, line N\nCLASS (0x...): WHAT\n\n": WHAT is kept.
-  void keep(const char* text, bool is_error) {
-    if (!text || !error_.empty()) return;
-    std::string t(text);
-    if (!is_error && t.find("ERROR") == std::string::npos) return;
-    std::string last;
-    std::size_t start = 0;
-    while (start <= t.size()) {
-      const std::size_t end = t.find('\n', start);
-      const std::string line = t.substr(start, end == std::string::npos ? std::string::npos : end - start);
-      if (line.find_first_not_of(" \t\r") != std::string::npos) last = line;
-      if (end == std::string::npos) break;
-      start = end + 1;
-    }
-    const std::size_t colon = last.find("): ");
-    if (colon != std::string::npos) last = last.substr(colon + 3);
-    error_ = last.empty() ? "unreadable" : last;
-  }
-  std::string error_;
-};
-vtkStandardNewMacro(CapturingOutputWindow);
-
-// Installs a CapturingOutputWindow for its lifetime, and keeps VTK's logger (which writes errors to stderr on its
-// own) quiet meanwhile.
-class CaptureScope {
- public:
-  CaptureScope() : previous_(vtkOutputWindow::GetInstance()), verbosity_(vtkLogger::GetCurrentVerbosityCutoff()) {
-    window_ = vtkSmartPointer<CapturingOutputWindow>::New();
-    vtkOutputWindow::SetInstance(window_);
-    vtkLogger::SetStderrVerbosity(vtkLogger::VERBOSITY_OFF);
-  }
-  ~CaptureScope() {
-    vtkLogger::SetStderrVerbosity(verbosity_);
-    vtkOutputWindow::SetInstance(previous_);
-  }
-  const std::string& error() const { return window_->error(); }
-
- private:
-  vtkSmartPointer<vtkOutputWindow> previous_;
-  vtkLogger::Verbosity verbosity_;
-  vtkSmartPointer<CapturingOutputWindow> window_;
-};
-
-// The legacy keyword a token stands for, as VTK's legacy reader matches it: the token lowercased starts with the
-// keyword (VTK compares the keyword's length only: "POLYGONS`1" is POLYGONS); "" for none.
-std::string legacy_keyword(std::string_view token) {
-  static const char* const kKeywords[] = {"POINTS",   "POLYGONS", "TRIANGLE_STRIPS", "VERTICES",  "LINES",
-                                          "OFFSETS",  "CONNECTIVITY", "CELL_DATA", "POINT_DATA", "FIELD",
-                                          "SCALARS", "COLOR_SCALARS"};
-  for (const char* k : kKeywords) {
-    const std::string_view key(k);
-    if (token.size() < key.size()) continue;
-    bool same = true;
-    for (std::size_t i = 0; i < key.size() && same; ++i)
-      same = std::toupper(static_cast<unsigned char>(token[i])) == key[i];
-    if (same) return k;
-  }
-  return "";
-}
-
-// Whether `type` (after POINTS n) names a numeric type of VTK's legacy format, in any case as VTK lowercases it.
-// VTK 9.1 matches the type by its prefix, so "stringdouble" was a string array of points, on which its legacy
-// reader dereferenced a null pointer (found by the vtk fuzz harness): only the exact names are taken.
-bool legacy_numeric_type(std::string_view type) {
-  static const char* const kNumeric[] = {"unsigned_char", "char",          "signed_char", "unsigned_short",
-                                         "short",         "unsigned_int",  "int",         "unsigned_long",
-                                         "long",          "float",         "double",      "vtkidtype",
-                                         "vtktypeint64",  "vtktypeuint64"};
-  std::string lower(type);
-  for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  for (const char* t : kNumeric)
-    if (lower == t) return true;
-  return false;
-}
-
-[[noreturn]] void refuse_points_type(const std::string& path, long line, std::string_view type) {
-  throw InputError(locate(path, line, -1, "POINTS of type '" + excerpt(type) +
-                                              "': not one of VTK's numeric types (float, double, int, ...)"));
-}
-
-// The bound of read_vtk.h on the counts a legacy file declares, before VTK allocates anything.
-void check_declared_counts(const std::string& path, std::string_view bytes) {
-  const double size = static_cast<double>(bytes.size());
-  double largest_count = 0, largest_components = 1;
-  const std::string_view text = bytes;
-  // The numbers after the keywords that size VTK's arrays.
-  long line_number = 0;
-  bool field_arrays = false;
-  for_each_line(text, [&](long line, std::string_view content) {
-    line_number = line;
-    const auto tokens = split_tokens(content);
-    if (tokens.empty()) return;
-    const std::string key = legacy_keyword(tokens[0]);
-    std::vector<double> counts;
-    auto number = [&](std::size_t k) {
-      if (k >= tokens.size()) return;
-      const auto n = parse_double(tokens[k]);
-      if (n && *n >= 0) counts.push_back(*n);
-    };
-    if (key == "POINTS" || key == "CELL_DATA" || key == "POINT_DATA") {
-      number(1);
-      if (key == "POINTS" && tokens.size() >= 3 && !legacy_numeric_type(tokens[2]))
-        refuse_points_type(path, line, tokens[2]);
-      field_arrays = false;
-    } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES" ||
-               key == "OFFSETS" || key == "CONNECTIVITY") {
-      number(1);
-      number(2);
-      field_arrays = false;
-    } else if (key == "FIELD") {
-      number(2);
-      field_arrays = true;
-    } else if (field_arrays && tokens.size() == 4 && !parse_double(tokens[0])) {  // NAME COMPONENTS TUPLES TYPE
-      const auto c = parse_double(tokens[1]), t = parse_double(tokens[2]);
-      if (c && t && *c >= 0 && *t >= 0) counts.push_back(*c * *t);
-    } else if ((key == "SCALARS" || key == "COLOR_SCALARS") && tokens.size() >= 3) {
-      const auto c = parse_double(tokens[tokens.size() - 1]);
-      if (c && *c >= 0) largest_components = std::max(largest_components, *c);
-    }
-    for (double n : counts)
-      if (n > size)
-        throw InputError(locate(path, line, -1, "declares " + number_text(n) + " items, more than its " +
-                                                    std::to_string(bytes.size()) +
-                                                    " bytes can hold (truncated file or wrong count)"));
-    for (double n : counts) largest_count = std::max(largest_count, n);
-  });
-  if (largest_count * largest_components > 4 * size)
-    throw InputError(locate(path, 0, -1, "declares " + number_text(largest_count) + " items of " +
-                                             number_text(largest_components) + " components, more than its " +
-                                             std::to_string(bytes.size()) + " bytes can hold"));
-}
-
-// An ASCII legacy file's geometry sections hold what their headers say, before VTK reads them: POINTS n TYPE is
-// followed by 3 n numbers; POLYGONS, TRIANGLE_STRIPS, VERTICES and LINES n size by `size` whole numbers >= 0 (the
-// format of version 5.1 instead by OFFSETS TYPE and CONNECTIVITY TYPE sections of whole numbers >= 0, of n and
-// size). VTK 9.1's legacy reader, given a section whose numbers do not parse (a word among a polygon's indices),
-// goes on reading the stream it closed and crashes (found by the vtk fuzz harness); the first section that is
-// short or holds something else is refused here in one line naming its line. The header's first three lines (the
-// version, the title, ASCII) are not sections.
-void check_ascii_legacy_sections(const std::string& path, std::string_view bytes) {
-  // The tokens as VTK's reader sees them: separated by white space, lines by '\n' (views into bytes).
-  struct Token {
-    std::string_view text;
-    long line;
-  };
-  std::vector<Token> tokens;
-  std::vector<std::string_view> third_line;
-  long line_at = 1;
-  for (std::size_t i = 0; i < bytes.size();) {
-    const char c = bytes[i];
-    if (c == '\n') {
-      ++line_at;
-      ++i;
-      continue;
-    }
-    if (std::isspace(static_cast<unsigned char>(c))) {
-      ++i;
-      continue;
-    }
-    std::size_t j = i;
-    while (j < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[j]))) ++j;
-    if (line_at == 3) third_line.push_back(bytes.substr(i, j - i));
-    if (line_at > 3) tokens.push_back({bytes.substr(i, j - i), line_at});
-    i = j;
-  }
-  // VTK takes the file as ASCII when the third line starts with "ascii" in any case ("ASCII\\0" is ASCII).
-  const auto ascii_word = [](std::string_view w) {
-    if (w.size() < 5) return false;
-    for (std::size_t i = 0; i < 5; ++i)
-      if (std::tolower(static_cast<unsigned char>(w[i])) != "ascii"[i]) return false;
-    return true;
-  };
-  if (third_line.empty() || !ascii_word(third_line[0])) return;
-  std::size_t k = 0;
-  // Requires `count` tokens after k of the kind `whole` (else numbers), naming `what` and the line of its header.
-  auto require = [&](double count, bool whole, const std::string& what, long header_line) {
-    for (double i = 0; i < count; ++i, ++k) {
-      if (k >= tokens.size())
-        throw InputError(locate(path, header_line, -1, what + " ends before its " + number_text(count) +
-                                                           (whole ? " indices" : " numbers")));
-      // VTK 9.1's legacy reader reads cell sections as 32-bit ints: a larger whole number made it fail, then
-      // dereference a null pointer (found by the vtk fuzz harness).
-      const long whole_value = whole ? parse_long(tokens[k].text).value_or(-1) : 0;
-      const bool ok = whole ? whole_value >= 0 && whole_value <= std::numeric_limits<std::int32_t>::max()
-                            : parse_double(tokens[k].text).has_value();
-      if (!ok)
-        throw InputError(locate(path, tokens[k].line, -1,
-                                what + " (line " + std::to_string(header_line) + "): '" + excerpt(tokens[k].text) +
-                                    "' is not " + (whole ? "a whole number from 0 to 2147483647" : "a number")));
-    }
-  };
-  auto count_at = [&](std::size_t at) -> double {
-    if (at >= tokens.size()) return -1;
-    const auto n = parse_double(tokens[at].text);
-    return n && *n >= 0 && *n == std::floor(*n) ? *n : -1;
-  };
-  while (k < tokens.size()) {
-    const std::string key = legacy_keyword(tokens[k].text);
-    const long line = tokens[k].line;
-    if (key == "POINTS") {
-      const double n = count_at(k + 1);
-      if (n < 0) throw InputError(locate(path, line, -1, "POINTS needs a count"));
-      if (k + 2 >= tokens.size() || !legacy_numeric_type(tokens[k + 2].text))
-        refuse_points_type(path, line, k + 2 < tokens.size() ? tokens[k + 2].text : std::string_view());
-      k += 3;  // POINTS n TYPE
-      require(3 * n, false, "POINTS", line);
-    } else if (key == "POLYGONS" || key == "TRIANGLE_STRIPS" || key == "VERTICES" || key == "LINES") {
-      const double n = count_at(k + 1), size = count_at(k + 2);
-      if (n < 0 || size < 0) throw InputError(locate(path, line, -1, std::string(key) + " needs two counts"));
-      k += 3;
-      if (k < tokens.size() && legacy_keyword(tokens[k].text) == "OFFSETS") {  // version 5.1: n offsets, size connectivity
-        k += 2;
-        require(n, true, std::string(key) + " OFFSETS", line);
-        if (k >= tokens.size() || legacy_keyword(tokens[k].text) != "CONNECTIVITY")
-          throw InputError(locate(path, line, -1, std::string(key) + ": OFFSETS is not followed by CONNECTIVITY"));
-        k += 2;
-        require(size, true, std::string(key) + " CONNECTIVITY", line);
-      } else {
-        require(size, true, std::string(key), line);
-      }
-    } else if (key == "FIELD") {
-      // FIELD NAME n, then n arrays NAME components tuples TYPE of components x tuples values (a bad array
-      // header crashed VTK 9.1's legacy reader too; found by the vtk fuzz harness).
-      const double arrays = count_at(k + 2);
-      if (arrays < 0) throw InputError(locate(path, line, -1, "FIELD needs a name and a count of arrays"));
-      k += 3;
-      static const char* const kLegacyTypes[] = {"bit",  "unsigned_char", "char",   "unsigned_short", "short",
-                                                 "unsigned_int", "int", "unsigned_long", "long", "float",
-                                                 "double", "vtkIdType", "vtktypeint64", "vtktypeuint64"};
-      for (double a = 0; a < arrays; ++a) {
-        if (k + 3 >= tokens.size())
-          throw InputError(locate(path, line, -1, "FIELD ends before its " + number_text(arrays) + " arrays"));
-        const long at_line = tokens[k].line;
-        const double components = count_at(k + 1), tuples = count_at(k + 2);
-        const std::string_view type = tokens[k + 3].text;
-        bool known = false;
-        for (const char* t : kLegacyTypes) known = known || type == t;
-        if (components < 0 || tuples < 0 || !known)
-          throw InputError(locate(path, at_line, -1, "FIELD (line " + std::to_string(line) + "): the array '" +
-                                                         excerpt(tokens[k].text) +
-                                                         "' needs NAME COMPONENTS TUPLES TYPE with a numeric type"));
-        k += 4;
-        require(components * tuples, false, "FIELD array", at_line);
-      }
-    } else if (key == "CELL_DATA" || key == "POINT_DATA") {
-      return;  // the attributes after the geometry: VTK's own checks (no crash found there)
-    } else {
-      ++k;
-    }
-  }
-}
 
 // What radwalk takes from a polygonal data set, whichever reader read it: the points, the surface cells (polygons
 // and triangle strips, each a run of point ids) in cell-data order, and the cell and field data it uses.
@@ -329,78 +49,35 @@ const std::pair<const char*, int> kCellFields[] = {{"rho", 3},         {"E", 3},
                                                    {"material_id", 1}, {"group_id", 1}, {"object_id", 1}};
 const char* const kTables[] = {"material_names", "group_names", "object_names"};
 
-// --- legacy .vtk: VTK's reader ---------------------------------------------------------------------------------
-
-vtkSmartPointer<vtkPolyData> parse_legacy(const std::string& path, std::string_view bytes) {
-  CaptureScope capture;
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
-    throw InputError(locate(path, 0, -1, "a legacy .vtk file above 2 GiB is not read (write it as .vtp)"));
-  vtkNew<vtkPolyDataReader> reader;
-  reader->ReadFromInputStringOn();
-  reader->SetBinaryInputString(bytes.data(), static_cast<int>(bytes.size()));
-  reader->Update();
-  vtkSmartPointer<vtkPolyData> out = reader->GetOutput();
-  if (!capture.error().empty())
-    throw InputError(locate(path, 0, -1, "VTK cannot read it: " + excerpt(capture.error())));
-  if (!out) throw InputError(locate(path, 0, -1, "VTK read no polygonal data"));
-  return out;
-}
+// --- legacy .vtk: radwalk's own reader (vtk_legacy.h) ----------------------------------------------------------
 
 SurfaceData legacy_surface(const std::string& path, std::string_view bytes) {
-  check_declared_counts(path, bytes);
-  check_ascii_legacy_sections(path, bytes);
-  const vtkSmartPointer<vtkPolyData> data = parse_legacy(path, bytes);
+  LegacyWanted wanted;
+  for (const auto& [name, components] : kCellFields) wanted.cell_arrays.emplace(name, components);
+  for (const char* name : kTables) wanted.field_strings.emplace_back(name);
+  LegacyPolyData data = parse_vtk_legacy(path, bytes, wanted);
   SurfaceData s;
-  const vtkIdType n_points = data->GetNumberOfPoints();
-  if (n_points > std::numeric_limits<std::int32_t>::max() / 2)
-    throw InputError(locate(path, 0, -1, "too many points"));
-  s.points.resize(static_cast<std::size_t>(n_points));
-  for (vtkIdType k = 0; k < n_points; ++k) {
-    double p[3];
-    data->GetPoint(k, p);
-    s.points[static_cast<std::size_t>(k)] = Vec3(p[0], p[1], p[2]);
-  }
-  const vtkIdType n_verts = data->GetNumberOfVerts(), n_lines = data->GetNumberOfLines();
-  const vtkIdType n_polys = data->GetNumberOfPolys(), n_strips = data->GetNumberOfStrips();
-  s.cells = static_cast<std::size_t>(n_verts + n_lines + n_polys + n_strips);
-  s.ignored = static_cast<std::size_t>(n_verts + n_lines);
-  vtkNew<vtkIdList> ids;
-  std::size_t cell = s.ignored;
+  s.points = std::move(data.points);
+  s.cells = data.verts.count() + data.lines.count() + data.polys.count() + data.strips.count();
+  s.ignored = data.verts.count() + data.lines.count();
+  std::size_t cell = s.ignored;  // cell data order: vertices, lines, polygons, strips
   long face = 0;
   for (const bool strip : {false, true}) {
-    vtkCellArray* cells = strip ? data->GetStrips() : data->GetPolys();
-    const vtkIdType n = strip ? n_strips : n_polys;
-    for (vtkIdType c = 0; c < n; ++c, ++cell) {
-      cells->GetCellAtId(c, ids);
-      if (!strip && static_cast<std::size_t>(ids->GetNumberOfIds()) > kMaxPolygonCorners)
-        throw InputError(locate(path, 0, face, "polygon of " + std::to_string(ids->GetNumberOfIds()) +
-                                                   " corners, more than " + std::to_string(kMaxPolygonCorners)));
-      const std::size_t begin = s.ids.size();
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds(); ++k) {
-        const vtkIdType id = ids->GetId(k);
-        if (id < 0 || id >= n_points)
-          throw InputError(locate(path, 0, face, "point id " + std::to_string(id) + " is out of range (" +
-                                                     std::to_string(n_points) + " points)"));
-        s.ids.push_back(static_cast<std::int32_t>(id));
-      }
-      face += strip ? std::max<long>(0, static_cast<long>(s.ids.size() - begin) - 2) : 1;
-      s.surface.push_back({cell, strip, begin, s.ids.size()});
+    const LegacyCells& cells = strip ? data.strips : data.polys;
+    for (std::size_t c = 0; c < cells.count(); ++c, ++cell) {
+      const auto begin = static_cast<std::size_t>(cells.offsets[c]), end = static_cast<std::size_t>(cells.offsets[c + 1]);
+      if (!strip && end - begin > kMaxPolygonCorners)
+        throw InputError(locate(path, 0, face, "polygon of " + std::to_string(end - begin) + " corners, more than " +
+                                                   std::to_string(kMaxPolygonCorners)));
+      const std::size_t first = s.ids.size();
+      s.ids.insert(s.ids.end(), cells.ids.begin() + static_cast<std::ptrdiff_t>(begin),
+                   cells.ids.begin() + static_cast<std::ptrdiff_t>(end));
+      face += strip ? std::max<long>(0, static_cast<long>(end - begin) - 2) : 1;
+      s.surface.push_back({cell, strip, first, s.ids.size()});
     }
   }
-  for (const auto& [name, components] : kCellFields) {
-    vtkDataArray* a = data->GetCellData()->GetArray(name);
-    if (!a || a->GetNumberOfComponents() != components || static_cast<std::size_t>(a->GetNumberOfTuples()) != s.cells)
-      continue;
-    std::vector<double>& values = s.cell_data[name];
-    for (vtkIdType t = 0; t < a->GetNumberOfTuples(); ++t)
-      for (int c = 0; c < components; ++c) values.push_back(a->GetComponent(t, c));
-  }
-  for (const char* name : kTables) {
-    auto* a = vtkStringArray::SafeDownCast(data->GetFieldData()->GetAbstractArray(name));
-    if (!a) continue;
-    std::vector<std::string>& table = s.tables[name];
-    for (vtkIdType k = 0; k < a->GetNumberOfValues(); ++k) table.push_back(a->GetValue(k));
-  }
+  s.cell_data = std::move(data.cell_data);
+  s.tables = std::move(data.field_strings);
   return s;
 }
 

@@ -1,8 +1,9 @@
 #pragma once
 // VTK polygonal surfaces: XML PolyData (.vtp) by radwalk's own reader (mesh/vtp_xml.h: the document;
 // mesh/vtk_data_array.h: the arrays' values, every bound checked where it is read), and legacy POLYDATA (.vtk) by
-// VTK's vtkPolyDataReader, both from the bytes radwalk read once (read_input_file, so the run id covers them), so
-// ParaView users can bring back what they edited, and a .vtp radwalk wrote reads back.
+// radwalk's own reader too (mesh/vtk_legacy.h: ASCII and BINARY, the classic and the version 5 cell layouts), both
+// from the bytes radwalk read once (read_input_file, so the run id covers them), so ParaView users can bring back
+// what they edited, and a .vtp radwalk wrote reads back. Neither uses VTK.
 //
 // Geometry: every polygon (3 or more corners; more than 4 go through polygon_faces.h) and every triangle strip
 // (into triangles, all facing one way); vertices and lines are ignored with a warning. A corner that lies on the
@@ -21,12 +22,10 @@
 // A .vtp: the subset of docs/units-and-formats.md; offsets rise to the end of the connectivity and every point id is
 // below its piece's points, else one InputError naming the file, the XML line and the array. Several pieces are
 // one mesh (their points and cells in piece order). A value of rho or E that is not finite is refused.
-// A .vtk, bounded: before VTK parses anything, every count the file declares (the counts after POINTS, POLYGONS,
-// TRIANGLE_STRIPS, VERTICES, LINES, CELL_DATA, POINT_DATA and FIELD arrays) times the largest component count must
-// fit the file's bytes; and, since VTK 9.1's legacy reader crashes on them (found by the vtk fuzz harness,
-// tests/fuzz/fuzz_vtk.cpp), the numbers of the POINTS and cell sections of an ASCII file (keywords matched by
-// prefix, as VTK matches them) and the type of POINTS (one of VTK's numeric type names, exactly). A VTK error is one InputError naming the file and VTK's own message; face f is the
-// f-th surface cell.
+// A .vtk: the subset and the bounds of mesh/vtk_legacy.h (every count against the bytes left where it is read,
+// point ids below the points, CELL_DATA counting the cells); the cell data arrays above from any section of the
+// cell data (SCALARS, VECTORS, FIELD, ...), the name tables from the data set's FIELD. Face f is the f-th surface
+// cell.
 #include <string>
 #include <string_view>
 

@@ -3,10 +3,10 @@
 //
 // Input: the bytes of one VTK file: "fuzz/scene.vtp" (the XML reader) when the first byte that is not white space
 // is '<', else "fuzz/scene.vtk" (the legacy reader).
-// Contract: read_vtk_polydata_bytes returns a Mesh or throws InputError. A .vtp is read by radwalk's own reader
-// (mesh/vtp_xml.h, mesh/vtk_data_array.h), every bound checked where it reads; a legacy .vtk by VTK's reader after
-// radwalk checked its declared counts against its bytes (libFuzzer's -malloc_limit_mb turns a larger allocation
-// into a finding, ASan an out-of-bounds read or write).
+// Contract: read_vtk_polydata_bytes returns a Mesh or throws InputError. Both formats are read by radwalk's own
+// readers, every bound checked where it is read: a .vtp by mesh/vtp_xml.h and mesh/vtk_data_array.h, a legacy .vtk
+// by mesh/vtk_legacy.h (ASCII and BINARY, classic and version 5 cells); libFuzzer's -malloc_limit_mb turns an
+// allocation beyond the bounds into a finding, ASan an out-of-bounds read or write.
 // Oracles:
 //   (a) a refusal is one line of printable UTF-8 that starts with the file's path; so is every warning;
 //   (reader) an accepted Mesh is what read_vtk.h promises: faces of 3 or 4 corners, each a vertex; materials -1

@@ -1,8 +1,11 @@
 // A .vtp radwalk wrote (io/vtp_writer.h) read back by radwalk's own .vtp reader (mesh/read_vtk.h): the same faces
-// (the display mesh's T-junction points dropped again), reflectances, emissions and material names.
+// (the display mesh's T-junction points dropped again), reflectances, emissions and material names; and the same
+// .vtp converted to legacy .vtk by VTK's writer, read back by radwalk's own legacy reader.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+
+#include <vtkPolyDataWriter.h>
 
 #include "io/cell_field.h"
 #include "io/vtp_writer.h"
@@ -44,4 +47,52 @@ TEST_CASE("vtk .vtp reader: a .vtp radwalk wrote reads back as the same mesh", "
   }
   REQUIRE(back.materials.size() == 2);
   REQUIRE(back.findings.empty());
+}
+
+TEST_CASE("vtk .vtk reader: a radwalk .vtp that VTK's legacy writer converts reads back as the .vtp does", "[io][vtk]") {
+  // radwalk writes no legacy .vtk; a user gets one by converting radwalk's .vtp (ParaView's "Save Data" as .vtk is
+  // vtkPolyDataWriter): the .vtp read by VTK's XML reader, written by vtkPolyDataWriter in every encoding and cell
+  // layout, then read by radwalk's legacy reader, is the mesh radwalk's .vtp reader reads. BINARY keeps every double,
+  // so it is the same bit for bit; ASCII writes 11 significant digits, so the values agree to 1e-10 relative.
+  PatchBuilder b;
+  const int floor = b.add_material("floor tiles", Rgb(0.73, 0.5, 0.25));
+  const int lamp = b.add_material("lamp", Rgb(0.1, 0.2, 0.3), Rgb(1, 2, 3));
+  b.add_quad({0, 0, 0}, {2, 0, 0}, {2, 1, 0}, {0, 1, 0}, floor);
+  b.add_quad({0, 1, 0}, {1, 1, 0}, {1, 2, 0}, {0, 2, 0}, floor);
+  b.add_quad({1, 1, 0}, {2, 1, 0}, {2, 2, 0}, {1, 2, 0}, lamp);
+  b.add_triangle({0, 0, 1}, {0, 1, 1}, {1, 0, 1}, lamp);
+  const PatchSet patches = b.build();
+  const auto path = temp_file("radwalk_legacy_round_trip.vtp");
+  write_vtp(path, patches, patch_fields(patches));
+  const Mesh from_vtp = read_vtk_polydata(path);
+  const vtkSmartPointer<vtkPolyData> poly = read_vtp(path);
+  std::filesystem::remove(path);
+  for (const int version : {42, 51})
+    for (const bool binary : {false, true}) {
+      INFO("version " << version << (binary ? " BINARY" : " ASCII"));
+      vtkNew<vtkPolyDataWriter> writer;
+      writer->SetInputData(poly);
+      writer->WriteToOutputStringOn();
+      writer->SetFileVersion(version);
+      if (binary) writer->SetFileTypeToBinary();
+      REQUIRE(writer->Write() == 1);
+      const Mesh m = read_vtk_polydata_bytes("converted.vtk", writer->GetOutputStdString(), false);
+      REQUIRE(m.vertices == from_vtp.vertices);
+      REQUIRE(m.faces == from_vtp.faces);
+      REQUIRE(m.face_material == from_vtp.face_material);
+      REQUIRE(m.materials.size() == from_vtp.materials.size());
+      for (std::size_t k = 0; k < m.materials.size(); ++k) {
+        REQUIRE(m.materials[k].name == from_vtp.materials[k].name);
+        for (int c = 0; c < 3; ++c) {
+          if (binary) {
+            REQUIRE(m.materials[k].Kd[c] == from_vtp.materials[k].Kd[c]);
+            REQUIRE(m.materials[k].Ke[c] == from_vtp.materials[k].Ke[c]);
+          } else {
+            REQUIRE(m.materials[k].Kd[c] == Approx(from_vtp.materials[k].Kd[c]).epsilon(1e-10).margin(0));
+            REQUIRE(m.materials[k].Ke[c] == Approx(from_vtp.materials[k].Ke[c]).epsilon(1e-10).margin(0));
+          }
+        }
+      }
+      REQUIRE(m.findings.empty());
+    }
 }
