@@ -18,7 +18,9 @@
 
 #include "formfactor/analytic_form_factors.h"
 #include "solve/direct_solver.h"
+#include "patch/patch_builder.h"
 #include "solve/discretisation_error.h"
+#include "solve/fluctuation_source.h"
 #include "support/box_scenes.h"
 #include "support/statistics.h"
 #include "visibility/embree_visibility.h"
@@ -141,4 +143,28 @@ TEST_CASE("discretisation error: a measurement's M_disc is the sum of its patche
             << m.standard_error(0));
   CHECK(std::abs(truth - precise.estimate(0)) < std::abs(truth));
   CHECK(std::abs(truth) <= 2.5 * m.standard_error(0));
+}
+
+// The points of the fluctuation source have one density over the scene (solve/fluctuation_source.h): M = 4 on a
+// patch of the median area and s^2 with s = round(2 sqrt(A / A_median)), at most 8, on a larger one. A unit-cube
+// room (six faces of area 1, the ceiling emitting) with a box of side 0.2 on its floor cut into 3 x 3 patches per
+// face (54 patches of area 0.0044, the median): the room's faces get s = 8 (64 points), the box's 4, so the rays
+// are 2 replicates x M x 3 L (cosine gather, shadow rays to the emitter, shot) summed over the patches. With 4
+// points everywhere (the large faces' dark spots under the box would then be hit by a point in about one run in
+// six) they would be 60 x 24 L.
+TEST_CASE("discretisation error: the fluctuation's points have one density over the scene") {
+  PatchBuilder b;
+  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
+  test::add_box(b, Vec3(0.4, 0, 0.4), Vec3(0.6, 0.2, 0.6), 3, false, m);
+  PatchSet patches = b.build();
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    patches.E[i] = patches.centroid[i].y() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  REQUIRE(patches.size() == 60);
+  const EmbreeVisibility visibility(patches);
+  const PatchRgb B = PatchRgb::Constant(60, 3, 0.5);
+  const int L = 4;
+  const FluctuationSource source = fluctuation_source(patches, visibility, B, L, 7);
+  CHECK(source.points == 4);
+  CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
 }
