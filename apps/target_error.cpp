@@ -19,6 +19,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   options.rays = command.ff.rays;
   options.max_patches = static_cast<std::size_t>(command.max_patches);
   options.max_seconds = command.max_seconds;
+  if (command.scene.max_edge == 0 && command.scene.max_area == 0) options.start_patches = kDefaultStartPatches;
   TargetErrorRun run;
   const TargetErrorWork work = [&](const PatchSet& p, long rays, int step) {
     FormFactorCliOptions ff_options = command.ff;

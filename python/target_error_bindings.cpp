@@ -40,6 +40,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_e
   options.rays = rays;
   options.max_patches = static_cast<std::size_t>(max_patches);
   options.max_seconds = max_seconds;
+  if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
   const TargetErrorWork work = [&](const PatchSet& p, long step_rays, int) {
     TargetErrorStage stage;
     const EmbreeVisibility visibility(p);

@@ -58,6 +58,24 @@ double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb
   return size > 0 ? std::sqrt(error / size) : 0.0;
 }
 
+namespace {
+
+// The starting patches of TargetErrorOptions::start_patches: rounds of splitting every patch above twice the mean
+// area, each round only if the result stays within max_patches (its 3 new patches per split counted).
+PatchSet split_to_start(PatchSet patches, const TargetErrorOptions& options) {
+  const double largest = 2 * patches.total_area() / double(options.start_patches);
+  for (;;) {
+    std::vector<bool> split(patches.size(), false);
+    std::size_t marked = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i)
+      if (patches.area[i] > largest) split[i] = true, ++marked;
+    if (marked == 0 || patches.size() + 3 * marked > options.max_patches) return patches;
+    patches = split_patches(patches, split);
+  }
+}
+
+}  // namespace
+
 TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
                                         const std::function<void(const TargetErrorStep&, int step)>& on_step) {
   const double E = options.target;
@@ -70,6 +88,7 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
   Timer run;
   TargetErrorResult out;
   long rays = options.rays;
+  if (options.start_patches > 0) patches = split_to_start(std::move(patches), options);
   for (int step = 0;; ++step) {
     Timer timer;
     TargetErrorStage stage = work(patches, rays, step);

@@ -35,12 +35,21 @@ namespace radwalk {
 // per-patch error d. Scaled before squaring (B near the largest double).
 double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d);
 
+// The starting patch count of a run given no patching (no --max-edge or --max-area; Python: a Scene loaded
+// without max_edge or max_area): about 500 patches, where the Cornell box's estimated error is near 2 %.
+inline constexpr std::size_t kDefaultStartPatches = 500;
+
 struct TargetErrorOptions {
   double target = 0.01;           // E, in (0, 1)
   long rays = 1000;               // R of the first step
   std::size_t max_patches = 20000;
   double max_seconds = 0;         // 0: no limit
   int max_steps = 12;
+  // > 0: before the first step, every patch larger than 2 A / start_patches (A the total area) is split in 4
+  // (patch/refine.h), again until none is (the pieces end between half and twice the mean area of start_patches
+  // patches), within max_patches: the first estimate is then not one of the input faces, whose discretisation
+  // error is far above any target, and the coarse steps are not paid for. 0: start from the given patches.
+  std::size_t start_patches = 0;
 };
 
 // What a step's stage returns: F (with its record of how it was traced) and the solution with B_se and B_disc

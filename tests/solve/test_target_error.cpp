@@ -121,3 +121,20 @@ TEST_CASE("target error: a failed solve stops the run") {
   CHECK(r.stop_reason == "solver");
   CHECK_THROWS_AS(solve_to_target_error(lit_cube(), failing, TargetErrorOptions{1.5}), InputError);
 }
+
+// start_patches = 100 on the cube (total area 6): every patch above 2 x 6 / 100 = 0.12 is split, so each unit face
+// becomes 4 (0.25) and then 16 (0.0625): 96 patches before the first step. Within max_patches = 50 only the first
+// round fits (24 patches; the second would make 96).
+TEST_CASE("target error: a run given no patching starts from about start_patches patches, within max_patches") {
+  TargetErrorOptions o;
+  o.target = 0.05;
+  o.start_patches = 100;
+  const TargetErrorResult r = solve_to_target_error(lit_cube(), lawful(0.02, 0.02), o);
+  REQUIRE(r.steps.size() == 1);
+  CHECK(r.steps[0].patches == 96);
+  CHECK(r.patches.total_area() == Approx(6.0).epsilon(1e-12));
+  o.max_patches = 50;
+  CHECK(solve_to_target_error(lit_cube(), lawful(0.02, 0.02), o).steps[0].patches == 24);
+  o.start_patches = 0;
+  CHECK(solve_to_target_error(lit_cube(), lawful(0.02, 0.02), o).steps[0].patches == 6);
+}
