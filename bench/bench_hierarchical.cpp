@@ -14,6 +14,9 @@
 //
 // Usage: bench_hierarchical [SCENE] [--ref-max-edge L] [--ref-spp N] [--max-edges 0,100,50] [--ff-rays N]
 //                           [--tols 0.01,0.003] [--rays N] [--levels L] [--seed S]
+//                           [--ref-cache FILE] [--budgets 300,1000] [--share 0.5] [--rays-per-leaf N] [--oracles]
+// --budgets: refinement by the estimate (hierarchy/estimate_refinement.h) up to each budget of leaves, from the
+// input faces, with the a-priori oracles off (--oracles: on, at the first of --tols).
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -22,6 +25,7 @@
 
 #include "bench_scene.h"
 #include "formfactor/emitter_form_factors.h"
+#include "hierarchy/estimate_refinement.h"
 #include "hierarchy/hierarchical_jacobi.h"
 #include "hierarchy/leaf_patches.h"
 #include "pathtrace/patch_average.h"
@@ -80,7 +84,11 @@ int main(int argc, char** argv) {
   long ref_spp = 256, ff_rays = 4000, rays = 2'000'000;
   int levels = 8;
   std::uint64_t seed = 1;
-  std::vector<double> edges = {0, 100, 50, 35, 25}, tols = {0.01, 0.003, 0.001, 0.0003};
+  std::vector<double> edges = {0, 100, 50, 35, 25}, tols = {0.01, 0.003, 0.001, 0.0003}, budgets;
+  double share = 0.5;
+  long rays_per_leaf = 2000;
+  bool oracles = false;
+  std::string ref_cache;
   for (int a = 1; a < argc; ++a) {
     const std::string k = argv[a];
     const auto next = [&] { return std::string(a + 1 < argc ? argv[++a] : ""); };
@@ -91,6 +99,11 @@ int main(int argc, char** argv) {
     else if (k == "--tols") tols = numbers(next());
     else if (k == "--rays") rays = std::atol(next().c_str());
     else if (k == "--levels") levels = std::atoi(next().c_str());
+    else if (k == "--ref-cache") ref_cache = next();
+    else if (k == "--budgets") budgets = numbers(next());
+    else if (k == "--share") share = std::atof(next().c_str());
+    else if (k == "--rays-per-leaf") rays_per_leaf = std::atol(next().c_str());
+    else if (k == "--oracles") oracles = true;
     else if (k == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (!k.empty() && k[0] != '-') scene = k;
     else {
@@ -107,7 +120,32 @@ int main(int argc, char** argv) {
     o.spp = ref_spp;
     o.seed = seed + 1000;
     o.progress = false;
-    const Solution s = estimate_patch_averages(ref.cells, vis, o);
+    // --ref-cache FILE: the reference's B and B_se kept between runs (read when the file holds as many cells).
+    Solution s;
+    bool cached = false;
+    if (!ref_cache.empty()) {
+      if (std::FILE* f = std::fopen(ref_cache.c_str(), "rb")) {
+        long n = 0;
+        if (std::fread(&n, sizeof n, 1, f) == 1 && n == static_cast<long>(ref.cells.size())) {
+          s.B.resize(n, 3);
+          s.B_se.resize(n, 3);
+          cached = std::fread(s.B.data(), sizeof(double), static_cast<std::size_t>(3 * n), f) == static_cast<std::size_t>(3 * n) &&
+                   std::fread(s.B_se.data(), sizeof(double), static_cast<std::size_t>(3 * n), f) == static_cast<std::size_t>(3 * n);
+        }
+        std::fclose(f);
+      }
+    }
+    if (!cached) {
+      s = estimate_patch_averages(ref.cells, vis, o);
+      if (!ref_cache.empty())
+        if (std::FILE* f = std::fopen(ref_cache.c_str(), "wb")) {
+          const long n = static_cast<long>(ref.cells.size());
+          std::fwrite(&n, sizeof n, 1, f);
+          std::fwrite(s.B.data(), sizeof(double), static_cast<std::size_t>(3 * n), f);
+          std::fwrite(s.B_se.data(), sizeof(double), static_cast<std::size_t>(3 * n), f);
+          std::fclose(f);
+        }
+    }
     ref.B = s.B;
     ref.keep.resize(ref.cells.size());
     for (std::size_t i = 0; i < ref.cells.size(); ++i) {
@@ -169,7 +207,47 @@ int main(int argc, char** argv) {
     if (root_of_face.size() <= f) root_of_face.resize(f + 1);
     root_of_face[f] = i;
   }
-  for (const double tol : tols) {
+  const auto error_of_leaves = [&](const HierarchicalResult& h, double* raw) {
+    std::vector<Eigen::Index> row(h.tree.size(), -1);
+    for (std::size_t k = 0; k < h.leaves.size(); ++k) row[static_cast<std::size_t>(h.leaves[k])] = static_cast<Eigen::Index>(k);
+    return error_of(
+        ref,
+        [&](std::size_t f, const Vec3& x) {
+          std::size_t e = root_of_face[f];
+          const Vec3& n = roots.normal[e];
+          while (!h.tree.is_leaf(e)) e = static_cast<std::size_t>(h.tree.child_containing(e, x, n));
+          return Rgb(h.B.row(row[e]).transpose());
+        },
+        raw);
+  };
+  for (const double budget : budgets) {
+    const double t0 = bench::cpu_seconds();
+    const EmbreeVisibility vis(roots);
+    HierarchicalOptions o;
+    o.tol = tols.empty() ? 1e-3 : tols.front();
+    o.max_level = levels;
+    o.particles = rays;
+    o.seed = seed;
+    o.direct_oracle = o.transport_oracle = oracles;
+    EstimateRefinementOptions e;
+    e.steps = 40;
+    e.max_leaves = static_cast<long>(budget);
+    e.split_share = share;
+    e.rays_per_leaf = rays_per_leaf;
+    const EstimateRefinementResult r = refine_by_estimate(roots, vis, o, e);
+    const double cpu = bench::cpu_seconds() - t0;
+    double raw = 0;
+    const double err = error_of_leaves(r.solution, &raw);
+    for (const EstimateRefinementStep& st : r.steps)
+      std::printf("    step: %ld leaves, eta %.4f, split %ld, %.2f s (estimate %.2f s)\n", st.leaves, st.eta, st.split,
+                  st.seconds, st.estimate_seconds);
+    std::printf("%-14s %10g %10zu %10.2f %10.4f %10.4f   (%zu steps; estimated eta at the last: %.4f, B_disc share "
+                "%.2f)\n",
+                "h-estimate", budget, r.solution.leaves.size(), cpu, err, raw, r.steps.size(), r.steps.back().eta,
+                r.steps.back().disc_share);
+    std::fflush(stdout);
+  }
+  for (const double tol : budgets.empty() ? tols : std::vector<double>{}) {
     const double t0 = bench::cpu_seconds();
     const EmbreeVisibility vis(roots);
     HierarchicalOptions o;
