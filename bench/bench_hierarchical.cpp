@@ -15,6 +15,8 @@
 // Usage: bench_hierarchical [SCENE] [--ref-max-edge L] [--ref-spp N] [--max-edges 0,100,50] [--ff-rays N]
 //                           [--tols 0.01,0.003] [--rays N] [--levels L] [--seed S]
 //                           [--ref-cache FILE] [--budgets 300,1000] [--share 0.5] [--rays-per-leaf N] [--oracles]
+//                           [--final-rays-per-leaf N]
+// (--final-rays-per-leaf: the final solve of a budget gets N x the budget rays instead of --rays.)
 // --budgets: refinement by the estimate (hierarchy/estimate_refinement.h) up to each budget of leaves, from the
 // input faces, with the a-priori oracles off (--oracles: on, at the first of --tols).
 #include <cstdio>
@@ -86,7 +88,7 @@ int main(int argc, char** argv) {
   std::uint64_t seed = 1;
   std::vector<double> edges = {0, 100, 50, 35, 25}, tols = {0.01, 0.003, 0.001, 0.0003}, budgets;
   double share = 0.5;
-  long rays_per_leaf = 2000;
+  long rays_per_leaf = 2000, final_rays_per_leaf = 0;
   bool oracles = false;
   std::string ref_cache;
   for (int a = 1; a < argc; ++a) {
@@ -104,6 +106,7 @@ int main(int argc, char** argv) {
     else if (k == "--share") share = std::atof(next().c_str());
     else if (k == "--rays-per-leaf") rays_per_leaf = std::atol(next().c_str());
     else if (k == "--oracles") oracles = true;
+    else if (k == "--final-rays-per-leaf") final_rays_per_leaf = std::atol(next().c_str());
     else if (k == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (!k.empty() && k[0] != '-') scene = k;
     else {
@@ -226,7 +229,7 @@ int main(int argc, char** argv) {
     HierarchicalOptions o;
     o.tol = tols.empty() ? 1e-3 : tols.front();
     o.max_level = levels;
-    o.particles = rays;
+    o.particles = final_rays_per_leaf > 0 ? static_cast<long>(final_rays_per_leaf * budget) : rays;
     o.seed = seed;
     o.direct_oracle = o.transport_oracle = oracles;
     EstimateRefinementOptions e;
