@@ -15,7 +15,7 @@
 // Usage: bench_hierarchical [SCENE] [--ref-max-edge L] [--ref-spp N] [--max-edges 0,100,50] [--ff-rays N]
 //                           [--tols 0.01,0.003] [--rays N] [--levels L] [--seed S]
 //                           [--ref-cache FILE] [--budgets 300,1000] [--share 0.5] [--rays-per-leaf N] [--oracles]
-//                           [--final-rays-per-leaf N]
+//                           [--final-rays-per-leaf N] [--per-material]
 // (--final-rays-per-leaf: the final solve of a budget gets N x the budget rays instead of --rays.)
 // --budgets: refinement by the estimate (hierarchy/estimate_refinement.h) up to each budget of leaves, from the
 // input faces, with the a-priori oracles off (--oracles: on, at the first of --tols).
@@ -59,10 +59,12 @@ double inside(const std::array<Vec3, 4>& c, int k, const Vec3& p, const Vec3& n)
 
 struct Reference {
   PatchSet cells;
-  PatchRgb B;
+  PatchRgb B, B_se;
   std::vector<char> keep;
   double norm = 0, noise2 = 0;
 };
+
+bool per_material = false;
 
 // The error of a piecewise-constant solution whose value at a point p of input face f is value(f, p).
 template <class Value>
@@ -75,6 +77,27 @@ double error_of(const Reference& ref, Value&& value, double* raw = nullptr) {
   }
   r2 /= ref.norm;
   if (raw) *raw = std::sqrt(r2);
+  if (per_material) {
+    // Per material: the relative difference of the area-weighted means over the kept cells (all channels
+    // together), with the reference's own relative standard error.
+    std::vector<double> a(ref.cells.materials.size(), 0), m(a.size(), 0), mr(a.size(), 0), v(a.size(), 0);
+    for (std::size_t i = 0; i < ref.cells.size(); ++i) {
+      if (!ref.keep[i]) continue;
+      const auto k = static_cast<std::size_t>(ref.cells.material[i]);
+      const Rgb b = value(static_cast<std::size_t>(ref.cells.face[i]), ref.cells.centroid[i]);
+      const double A = ref.cells.area[i];
+      a[k] += A;
+      m[k] += A * b.sum();
+      mr[k] += A * ref.B.row(static_cast<Eigen::Index>(i)).sum();
+      v[k] += A * A * ref.B_se.row(static_cast<Eigen::Index>(i)).square().sum();
+    }
+    std::printf("    per material (mean - reference) / reference, +- the reference's se:");
+    for (std::size_t k = 0; k < a.size(); ++k)
+      if (mr[k] > 0)
+        std::printf(" %s %+.1f%% (+-%.1f)", ref.cells.materials[k].name.c_str(), 100 * (m[k] - mr[k]) / mr[k],
+                    100 * std::sqrt(v[k]) / mr[k]);
+    std::printf("\n");
+  }
   return std::sqrt(std::max(r2 - ref.noise2, 0.0));
 }
 
@@ -106,6 +129,7 @@ int main(int argc, char** argv) {
     else if (k == "--share") share = std::atof(next().c_str());
     else if (k == "--rays-per-leaf") rays_per_leaf = std::atol(next().c_str());
     else if (k == "--oracles") oracles = true;
+    else if (k == "--per-material") per_material = true;
     else if (k == "--final-rays-per-leaf") final_rays_per_leaf = std::atol(next().c_str());
     else if (k == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (!k.empty() && k[0] != '-') scene = k;
@@ -150,6 +174,7 @@ int main(int argc, char** argv) {
         }
     }
     ref.B = s.B;
+    ref.B_se = s.B_se;
     ref.keep.resize(ref.cells.size());
     for (std::size_t i = 0; i < ref.cells.size(); ++i) {
       const auto r = static_cast<Eigen::Index>(i);

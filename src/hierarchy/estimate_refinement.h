@@ -29,11 +29,11 @@
 namespace radwalk {
 
 struct EstimateRefinementOptions {
-  int steps = 8;              // splitting steps at most
+  int steps = 12;             // splitting steps at most
   double target = 0;          // stop once the estimated relative error eta <= target (0: steps and budget only)
   long max_leaves = 0;        // budget of leaves (0: none)
-  double split_share = 0.5;   // the share of sum eta_l^2 the leaves split in one step hold, in (0, 1]
-  long rays_per_leaf = 2000;  // the rays of a step's solve per leaf (capped by the solve's particles)
+  double split_share = 0.8;   // the share of sum eta_l^2 the leaves split in one step hold, in (0, 1]
+  long rays_per_leaf = 300;   // the rays of a step's solve per leaf (capped by the solve's particles)
   int directions = 16;        // of B_disc and of the variation
   int points_side = 2;        // of the variation: m^2 points per leaf
 };
