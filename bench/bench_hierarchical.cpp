@@ -229,19 +229,35 @@ int main(int argc, char** argv) {
   }
 
   const PatchSet roots = make_patches(mesh, 0);
-  std::vector<std::size_t> root_of_face;
+  // The roots of each input face (a polygon triangulated into several patches has several), and the one whose
+  // polygon holds a point best (as for the uniform patches above).
+  std::vector<std::vector<std::size_t>> roots_of_face;
   for (std::size_t i = 0; i < roots.size(); ++i) {
     const auto f = static_cast<std::size_t>(roots.face[i]);
-    if (root_of_face.size() <= f) root_of_face.resize(f + 1);
-    root_of_face[f] = i;
+    if (roots_of_face.size() <= f) roots_of_face.resize(f + 1);
+    roots_of_face[f].push_back(i);
   }
+  const auto root_at = [&](std::size_t f, const Vec3& x) {
+    std::size_t best = roots_of_face[f].front();
+    double best_in = -1e300;
+    for (const std::size_t i : roots_of_face[f]) {
+      std::array<Vec3, 4> c;
+      for (int k = 0; k < roots.corner_count(i); ++k) c[static_cast<std::size_t>(k)] = roots.corner(i, k);
+      const double d = inside(c, roots.corner_count(i), x, roots.normal[i]);
+      if (d > best_in) {
+        best_in = d;
+        best = i;
+      }
+    }
+    return best;
+  };
   const auto error_of_leaves = [&](const HierarchicalResult& h, double* raw) {
     std::vector<Eigen::Index> row(h.tree.size(), -1);
     for (std::size_t k = 0; k < h.leaves.size(); ++k) row[static_cast<std::size_t>(h.leaves[k])] = static_cast<Eigen::Index>(k);
     return error_of(
         ref,
         [&](std::size_t f, const Vec3& x) {
-          std::size_t e = root_of_face[f];
+          std::size_t e = root_at(f, x);
           const Vec3& n = roots.normal[e];
           while (!h.tree.is_leaf(e)) e = static_cast<std::size_t>(h.tree.child_containing(e, x, n));
           return Rgb(h.B.row(row[e]).transpose());
@@ -291,7 +307,7 @@ int main(int argc, char** argv) {
     const double err = error_of(
         ref,
         [&](std::size_t f, const Vec3& x) {
-          std::size_t e = root_of_face[f];
+          std::size_t e = root_at(f, x);
           const Vec3& n = roots.normal[e];
           while (!h.tree.is_leaf(e)) e = static_cast<std::size_t>(h.tree.child_containing(e, x, n));
           return Rgb(h.B.row(row[e]).transpose());
