@@ -15,7 +15,8 @@
 // Usage: bench_hierarchical [SCENE] [--ref-max-edge L] [--ref-spp N] [--max-edges 0,100,50] [--ff-rays N]
 //                           [--tols 0.01,0.003] [--rays N] [--levels L] [--seed S]
 //                           [--ref-cache FILE] [--budgets 300,1000] [--share 0.5] [--rays-per-leaf N] [--oracles]
-//                           [--final-rays-per-leaf N] [--per-material]
+//                           [--final-rays-per-leaf N] [--per-material] [--target E]
+// (--target: the budget rows also stop once the estimated relative error is at most E.)
 // (--final-rays-per-leaf: the final solve of a budget gets N x the budget rays instead of --rays.)
 // --budgets: refinement by the estimate (hierarchy/estimate_refinement.h) up to each budget of leaves, from the
 // input faces, with the a-priori oracles off (--oracles: on, at the first of --tols).
@@ -114,6 +115,7 @@ int main(int argc, char** argv) {
   long rays_per_leaf = 2000, final_rays_per_leaf = 0;
   bool oracles = false;
   std::string ref_cache;
+  double target = 0;
   for (int a = 1; a < argc; ++a) {
     const std::string k = argv[a];
     const auto next = [&] { return std::string(a + 1 < argc ? argv[++a] : ""); };
@@ -130,6 +132,7 @@ int main(int argc, char** argv) {
     else if (k == "--rays-per-leaf") rays_per_leaf = std::atol(next().c_str());
     else if (k == "--oracles") oracles = true;
     else if (k == "--per-material") per_material = true;
+    else if (k == "--target") target = std::atof(next().c_str());
     else if (k == "--final-rays-per-leaf") final_rays_per_leaf = std::atol(next().c_str());
     else if (k == "--seed") seed = std::strtoull(next().c_str(), nullptr, 10);
     else if (!k.empty() && k[0] != '-') scene = k;
@@ -276,6 +279,7 @@ int main(int argc, char** argv) {
     EstimateRefinementOptions e;
     e.steps = 40;
     e.max_leaves = static_cast<long>(budget);
+    e.target = target;
     e.split_share = share;
     e.rays_per_leaf = rays_per_leaf;
     const EstimateRefinementResult r = refine_by_estimate(roots, vis, o, e);
