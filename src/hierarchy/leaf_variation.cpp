@@ -76,12 +76,7 @@ LeafVariation leaf_variation(const PatchSet& roots, const Visibility& visibility
               for (int b = 0; b < count; ++b) c[b] = roots.corner(em, b);
               const double F = point_polygon_form_factor(x, n, c, count, roots.normal[em]);
               if (!(F > 0)) continue;
-              const Vec3 d = z[a] - x;
-              const double dist = d.norm();
-              if (!(dist > 0)) continue;
-              const Hit hit = visibility.intersect(spawn_ray(offset, x, d / dist));
-              ++rays[k];
-              if (hit.missed() || hit.t >= dist * (1 - 1e-5) - 4 * eps) f += roots.E[em] * F;
+              f += roots.E[em] * visible_point_form_factor(roots, visibility, offset, x, n, em, z[a], F, eps, rays[k]);
             }
             Rgb reflected = Rgb::Zero();
             for (const Vec3& v : w) {

@@ -5,9 +5,9 @@
 //
 // With the one-gather model of the discretisation estimate (docs/theory/discretisation_error.md, (4)),
 //   B(y) - Bbar_l ~ rho_l (g(y) - gbar_l),
-//   g(y) = sum_k E_k F(y -> k) V(y, z_k) + int (B_h - E)(hit(y, w)) cos / pi dw,
-// F(y -> k) Lambert's exact unoccluded point-to-polygon factor of emitter k, z_k a uniform point of k, B_h the
-// leaves' solution. At M = m^2 stratified jittered points y_s of leaf l (the same points for both replicates), two
+//   g(y) = sum_k E_k [F(y -> k) - A_k G(y, z_k) (1 - V(y, z_k))] + int (B_h - E)(hit(y, w)) cos / pi dw,
+// F(y -> k) Lambert's exact unoccluded point-to-polygon factor of emitter k, z_k a uniform point of k (the
+// unbiased visible factor of direct_refinement.h, visible_point_form_factor), B_h the leaves' solution. At M = m^2 stratified jittered points y_s of leaf l (the same points for both replicates), two
 // independent replicates q = 0, 1 of g, each with L cosine directions and one point z_k per emitter shared by the M
 // points (common random numbers: where the points see the same thing their g agree exactly), give
 //   W2_lc = rho_c^2 sum_s (g0_sc - mean_s g0_c)(g1_sc - mean_s g1_c) / (M - 1),
