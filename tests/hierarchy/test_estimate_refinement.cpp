@@ -18,6 +18,7 @@
 #include <cmath>
 #include <string>
 
+#include "hierarchy_test_scenes.h"
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/leaf_patches.h"
 #include "hierarchy/leaf_variation.h"
@@ -33,13 +34,6 @@
 using namespace radwalk;
 
 namespace {
-
-// Student's t two-sided critical value at the level of the normal critical value z (Cornish-Fisher, nu >= 20).
-double t_critical(double z, double nu) {
-  const double z2 = z * z;
-  return z + (z2 * z + z) / (4 * nu) + (5 * z2 * z2 * z + 16 * z2 * z + 3 * z) / (96 * nu * nu) +
-         (3 * z2 * z2 * z2 * z + 19 * z2 * z2 * z + 17 * z2 * z - 15 * z) / (384 * nu * nu * nu);
-}
 
 // The room [0, 2]^3 (inward, one face per wall, rho 0.6), a light [0.75, 1.25]^2 facing down at z = 1.99, and a
 // block [0.6, 1.4]^2 x [0, 0.5] standing on the floor (outward, rho 0.5).
@@ -74,10 +68,7 @@ HierarchicalOptions leaves_only(long particles, int replicates, std::uint64_t se
 
 TEST_CASE("estimate refinement: furnace, every leaf unbiased for B = E / (1 - rho) and no variation", "[hierarchy]") {
   const double rho = 0.5, Le = 1 / kPi;  // E = 1, B = 2
-  PatchBuilder b;
-  const int m = b.add_material("glow", Rgb::Constant(rho), Rgb::Constant(Le));
-  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
-  const PatchSet roots = b.build();
+  const PatchSet roots = test::furnace(rho, Le);
   const EmbreeVisibility visibility(roots);
   EstimateRefinementOptions e;
   e.max_leaves = 60;
@@ -87,7 +78,7 @@ TEST_CASE("estimate refinement: furnace, every leaf unbiased for B = E / (1 - rh
   INFO("leaves " << h.leaves.size() << ", steps " << r.steps.size());
   REQUIRE(h.leaves.size() > roots.size());
   const auto L = static_cast<std::size_t>(h.B.rows());
-  const double t_crit = t_critical(z_critical(sidak(1e-3, 3 * L)), 23);
+  const double t_crit = test::t_critical(z_critical(sidak(1e-3, 3 * L)), 23);
   test::ZTable table("furnace leaves", t_crit);
   const double B = Le * kPi / (1 - rho);
   for (std::size_t k = 0; k < L; ++k)

@@ -18,6 +18,7 @@
 
 #include "core/parallel.h"
 #include "formfactor/point_polygon_form_factor.h"
+#include "hierarchy_test_scenes.h"
 #include "hierarchy/direct_refinement.h"
 #include "hierarchy/hierarchical_jacobi.h"
 #include "patch/patch_builder.h"
@@ -29,20 +30,6 @@
 using namespace radwalk;
 
 namespace {
-
-// Student's t two-sided critical value at the level of the normal critical value z (Cornish-Fisher, nu >= 20).
-double t_critical(double z, double nu) {
-  const double z2 = z * z;
-  return z + (z2 * z + z) / (4 * nu) + (5 * z2 * z2 * z + 16 * z2 * z + 3 * z) / (96 * nu * nu) +
-         (3 * z2 * z2 * z2 * z + 19 * z2 * z2 * z + 17 * z2 * z - 15 * z) / (384 * nu * nu * nu);
-}
-
-PatchSet furnace(double rho, double Le) {
-  PatchBuilder b;
-  const int m = b.add_material("glow", Rgb::Constant(rho), Rgb::Constant(Le));
-  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
-  return b.build();
-}
 
 // Floor [-2, 2]^2 at z = 0 (up), a light [-0.25, 0.25]^2 at z = 2 (down), a black plate x in [-3, 0] at z = 1
 // (down). The plate's edge x = 0 casts a penumbra on the floor over x in [-0.25, 0.25], umbra below, lit above.
@@ -67,7 +54,7 @@ Vec3 centre(const ElementTree& t, std::size_t e) {
 
 TEST_CASE("hierarchical jacobi: furnace, every refined leaf unbiased for B = E / (1 - rho)", "[hierarchy]") {
   const double rho = 0.5, Le = 1 / kPi;  // E = 1, B = 2
-  const PatchSet roots = furnace(rho, Le);
+  const PatchSet roots = test::furnace(rho, Le);
   const EmbreeVisibility visibility(roots);
   HierarchicalOptions o;
   o.tol = 2e-3;
@@ -81,7 +68,7 @@ TEST_CASE("hierarchical jacobi: furnace, every refined leaf unbiased for B = E /
   REQUIRE(r.transport_splits > 0);
   REQUIRE(r.tree.depth() >= 2);
   const auto L = static_cast<std::size_t>(r.B.rows());
-  const double t_crit = t_critical(z_critical(sidak(1e-3, 3 * L)), o.replicates - 1);
+  const double t_crit = test::t_critical(z_critical(sidak(1e-3, 3 * L)), o.replicates - 1);
   test::ZTable table("furnace leaves", t_crit);
   test::ZTable wrong("furnace leaves against 1.05 B", t_crit);
   const double B = Le * kPi / (1 - rho);
