@@ -20,6 +20,7 @@
 // (--final-rays-per-leaf: the final solve of a budget gets N x the budget rays instead of --rays.)
 // --budgets: refinement by the estimate (hierarchy/estimate_refinement.h) up to each budget of leaves, from the
 // input faces, with the a-priori oracles off (--oracles: on, at the first of --tols).
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
@@ -286,13 +287,16 @@ int main(int argc, char** argv) {
     const double cpu = bench::cpu_seconds() - t0;
     double raw = 0;
     const double err = error_of_leaves(r.solution, &raw);
+    EstimateRefinementStep last_estimate = r.steps.back();  // the last step with an estimate
+    for (const EstimateRefinementStep& st : r.steps)
+      if (std::isfinite(st.eta)) last_estimate = st;
     for (const EstimateRefinementStep& st : r.steps)
       std::printf("    step: %ld leaves, eta %.4f, split %ld, %.2f s (estimate %.2f s)\n", st.leaves, st.eta, st.split,
                   st.seconds, st.estimate_seconds);
     std::printf("%-14s %10g %10zu %10.2f %10.4f %10.4f   (%zu steps; estimated eta at the last: %.4f, B_disc share "
                 "%.2f)\n",
-                "h-estimate", budget, r.solution.leaves.size(), cpu, err, raw, r.steps.size(), r.steps.back().eta,
-                r.steps.back().disc_share);
+                "h-estimate", budget, r.solution.leaves.size(), cpu, err, raw, r.steps.size(), last_estimate.eta,
+                last_estimate.disc_share);
     std::fflush(stdout);
   }
   for (const double tol : budgets.empty() ? tols : std::vector<double>{}) {

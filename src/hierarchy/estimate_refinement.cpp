@@ -98,8 +98,15 @@ EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibil
       step.seconds = timer.seconds();
       result.steps.push_back(step);
       if (so.particles < solve.particles) {
+        const Timer final_timer;
         so.particles = solve.particles;
         result.solution = solve_hierarchical(roots, visibility, std::move(h.tree), so);
+        EstimateRefinementStep again;  // the final tree solved again with every ray, as a step of its own
+        again.leaves = static_cast<long>(result.solution.leaves.size());
+        again.eta = std::numeric_limits<double>::quiet_NaN();
+        again.rays = result.solution.rays + result.solution.shadow_rays;
+        again.seconds = final_timer.seconds();
+        result.steps.push_back(again);
       } else {
         result.solution = std::move(h);
         result.B_disc = ind.B_disc;
@@ -128,8 +135,15 @@ EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibil
     step.seconds = timer.seconds();
     result.steps.push_back(step);
     if (step.split == 0) {  // nothing can be split: solve the tree as it is with all the rays
+      const Timer final_timer;
       so.particles = solve.particles;
       result.solution = solve_hierarchical(roots, visibility, std::move(tree), so);
+      EstimateRefinementStep again;
+      again.leaves = static_cast<long>(result.solution.leaves.size());
+      again.eta = std::numeric_limits<double>::quiet_NaN();
+      again.rays = result.solution.rays + result.solution.shadow_rays;
+      again.seconds = final_timer.seconds();
+      result.steps.push_back(again);
       return result;
     }
   }

@@ -20,7 +20,8 @@
 // `steps` splitting steps; else split the leaves in decreasing eta_l^2 until they hold `split_share` of sum eta_l^2
 // (at least one; never past max_leaves, max_level or min_area), and repeat. A step known to be the last before it is
 // solved (the budget or the steps used up) gets all `particles` and no estimate (its eta is NaN); when the last solve had fewer (the target was
-// reached, or nothing could be split), the final tree is solved once more with all of them. The estimate's rays are counted in the steps.
+// reached, or nothing could be split), the final tree is solved once more with all of them, recorded as a last step
+// without an estimate. The estimate's rays are counted in the steps.
 #include <cstdint>
 #include <vector>
 
