@@ -16,6 +16,7 @@
 #include "apps/target_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
+#include "hierarchy/estimate_refinement.h"
 #include "hierarchy/hierarchical_jacobi.h"
 #include "hierarchy/leaf_patches.h"
 #include "solve/adaptive_refinement.h"
@@ -60,6 +61,9 @@ void check_combinations(const SolveCommand& c) {
     if (c.refine > 0)
       throw InputError("--hierarchical refines its element trees itself; it cannot be combined with --refine");
     if (!c.progressive.empty()) throw InputError("--hierarchical and --progressive cannot be combined");
+    if (c.hierarchical_refine == "estimate" && !(c.hierarchical_target > 0) && c.hierarchical_max_leaves <= 0)
+      throw InputError("--hierarchical-refine estimate needs a stopping rule: --hierarchical-target E (the estimated "
+                       "relative error) or --hierarchical-max-leaves N");
     const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(c.hierarchical_points))));
     if (side * side != c.hierarchical_points)
       throw InputError("--hierarchical-points must be a square (1, 4, 9, 16, ...: a stratified grid); got " +
@@ -161,7 +165,25 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
   h.replicates = command.hierarchical_replicates;
   h.seed = command.scene.seed;
   const EmbreeVisibility visibility(roots);
-  const HierarchicalResult r = solve_hierarchical(roots, visibility, h);
+  const bool by_estimate = command.hierarchical_refine == "estimate";
+  std::vector<EstimateRefinementStep> steps;
+  bool reached = false;
+  HierarchicalResult r;
+  if (by_estimate) {
+    h.direct_oracle = h.transport_oracle = false;
+    EstimateRefinementOptions e;
+    e.steps = command.hierarchical_steps;
+    e.target = command.hierarchical_target;
+    e.max_leaves = command.hierarchical_max_leaves;
+    e.split_share = 0.8;
+    e.rays_per_leaf = 300;
+    EstimateRefinementResult er = refine_by_estimate(roots, visibility, h, e);
+    r = std::move(er.solution);
+    steps = std::move(er.steps);
+    reached = er.reached;
+  } else {
+    r = solve_hierarchical(roots, visibility, h);
+  }
   solution.method = "hierarchical-jacobi";
   solution.status = SolveStatus::converged;
   solution.message = "unshot power below 1e-6 of the first shot's, or 200 iterations per replicate";
@@ -191,6 +213,23 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
   j["shadow_rays"] = r.shadow_rays;
   j["replicates"] = h.replicates;
   j["iterations"] = r.iterations;
+  j["refine"] = command.hierarchical_refine;
+  if (by_estimate) {
+    nlohmann::json js = nlohmann::json::array();
+    for (const EstimateRefinementStep& st : steps) {
+      nlohmann::json x = {{"leaves", st.leaves}, {"split", st.split}, {"rays", st.rays}, {"seconds", st.seconds}};
+      x["eta"] = std::isfinite(st.eta) ? nlohmann::json(st.eta) : nlohmann::json(nullptr);
+      js.push_back(x);
+    }
+    j["estimate_steps"] = js;
+    j["target"] = command.hierarchical_target;
+    j["max_leaves"] = command.hierarchical_max_leaves;
+    j["target_reached"] = reached;
+    for (const EstimateRefinementStep& st : steps)
+      note("hierarchical, refined by the estimate: " + std::to_string(st.leaves) + " leaves" +
+           (std::isfinite(st.eta) ? ", estimated relative error " + std::to_string(st.eta) : std::string()) +
+           (st.split > 0 ? ", " + std::to_string(st.split) + " split" : std::string()));
+  }
   note("hierarchical: " + std::to_string(roots.size()) + " patches -> " + std::to_string(r.tree.size()) +
        " elements, " + std::to_string(r.leaves.size()) + " leaves, " + std::to_string(r.tree.depth() + 1) +
        " levels (" + std::to_string(r.direct_splits) + " splits by the direct light, " +

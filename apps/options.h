@@ -101,6 +101,12 @@ struct SolveCommand {
   int hierarchical_points = 16;          // points per element for the direct light and its oracle (a square)
   long hierarchical_rays = 1'000'000;    // rays of the indirect shooting in all
   int hierarchical_replicates = 4;       // independent replicates for the error bars
+  // "oracle": the a-priori oracles refine (--hierarchical-tol); "estimate": solve, estimate each leaf's error, split
+  // the largest, repeat (hierarchy/estimate_refinement.h) until --hierarchical-target or --hierarchical-max-leaves
+  std::string hierarchical_refine = "oracle";
+  double hierarchical_target = 0;        // estimate: stop once the estimated relative L2 error is at most this
+  long hierarchical_max_leaves = 0;      // estimate: the budget of leaves (0: none)
+  int hierarchical_steps = 12;           // estimate: splitting steps at most
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)
   std::string progressive;

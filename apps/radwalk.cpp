@@ -633,6 +633,25 @@ int run_main(int argc, char** argv) {
                         "Hierarchical: independent replicates for the standard errors (>= 2)")
       ->check(CLI::Range(2, 1 << 16))
       ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-refine", solve.hierarchical_refine,
+                        "Hierarchical: what refines the elements: oracle (a-priori oracles, --hierarchical-tol) or "
+                        "estimate (solve, estimate each leaf's error, split the largest, repeat; needs "
+                        "--hierarchical-target or --hierarchical-max-leaves)")
+      ->check(CLI::IsMember({"oracle", "estimate"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-target", solve.hierarchical_target,
+                        "Hierarchical, refined by the estimate: stop once the estimated relative L2 error is at most "
+                        "this (0: the budget alone)")
+      ->transform(kNonNegative)
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-max-leaves", solve.hierarchical_max_leaves,
+                        "Hierarchical, refined by the estimate: at most this many leaves (0: no budget)")
+      ->check(CLI::Range(0L, 1L << 40))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-steps", solve.hierarchical_steps,
+                        "Hierarchical, refined by the estimate: at most this many splitting steps")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
   solve_cmd
       ->add_option("--discretisation-directions", solve.discretisation_directions,
                    "Directions per point of the discretisation error estimate B_disc (24 L rays per patch; 0: not "

@@ -51,6 +51,8 @@ enum class StreamDomain : std::uint64_t {
   hierarchical_direct = 20,   // the direct light of an element (hierarchy/direct_refinement.h): a = element e, b = 0
   hierarchical_jacobi = 21,   // hierarchical stochastic Jacobi (hierarchy/hierarchical_jacobi.h): the stratified
                               // emission of iteration k of replicate r, b = r << 32 | k (a as jacobi_shift's)
+  hierarchical_variation = 22,  // the within-leaf variation of the radiosity (hierarchy/leaf_variation.h): a = leaf
+                                // element e, b = 0 its points, 1 + q replicate q's directions and emitter points
 };
 
 // The largest first index a stream address may have (exclusive): a < 2^48.

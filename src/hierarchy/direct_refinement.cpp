@@ -26,6 +26,26 @@ struct ElementDirect {
   long rays = 0;
 };
 
+}  // namespace
+
+double visible_point_form_factor(const PatchSet& roots, const Visibility& visibility, const PatchRayOffset& offset,
+                                 const Vec3& x, const Vec3& n, std::size_t k, const Vec3& y, double F, double eps,
+                                 long& rays) {
+  const Vec3 d = y - x;
+  const double r2 = d.squaredNorm();
+  if (!(r2 > 0)) return F;
+  const double dist = std::sqrt(r2);
+  const Vec3 w = d / dist;
+  const double cos_x = w.dot(n), cos_y = -w.dot(roots.normal[k]);
+  if (!(cos_x > 0 && cos_y > 0)) return F;  // y outside x's hemisphere or behind k's front: G = 0 there
+  const Hit hit = visibility.intersect(spawn_ray(offset, x, w));
+  ++rays;
+  if (hit.missed() || hit.t >= dist * (1 - 1e-5) - 4 * eps) return F;
+  return F - roots.area[k] * cos_x * cos_y / (kPi * r2);
+}
+
+namespace {
+
 // The M points of element e (the top of direct_refinement.h).
 ElementDirect estimate_element(const PatchSet& roots, const Visibility& visibility, const ElementTree& tree,
                                std::size_t e, const std::vector<std::size_t>& emitters, double eps, int m,
@@ -38,37 +58,43 @@ ElementDirect estimate_element(const PatchSet& roots, const Visibility& visibili
   const PatchRayOffset offset = patch_ray_offset(roots, r, eps);
   Rng rng = stream(seed, StreamDomain::hierarchical_direct, e, 0);
   const int M = m * m;
-  Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+  // The oracle's points of the emitters, one per emitter shared by the element's M points (common random numbers).
+  std::vector<Vec3> shared(emitters.size());
+  for (std::size_t a = 0; a < emitters.size(); ++a) {
+    const double v1 = rng.uniform(), v2 = rng.uniform();
+    shared[a] = sample_patch_point(roots, emitters[a], v1, v2);
+  }
+  Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero(), hsum = Rgb::Zero(), hsum2 = Rgb::Zero();
   for (int s = 0; s < M; ++s) {
     const double u1 = ((s % m) + rng.uniform()) / m, u2 = ((s / m) + rng.uniform()) / m;
     const Vec3 x = element_point(tree, e, u1, u2);
-    Rgb f = Rgb::Zero();
-    for (const std::size_t k : emitters) {
+    Rgb f = Rgb::Zero(), h = Rgb::Zero();
+    for (std::size_t a = 0; a < emitters.size(); ++a) {
+      const std::size_t k = emitters[a];
       if (k == r) continue;
       const int count = roots.corner_count(k);
       Vec3 c[4];
-      for (int a = 0; a < count; ++a) c[a] = roots.corner(k, a);
+      for (int b = 0; b < count; ++b) c[b] = roots.corner(k, b);
       const double F = point_polygon_form_factor(x, n, c, count, roots.normal[k]);
       const double v1 = rng.uniform(), v2 = rng.uniform();
       if (!(F > 0)) continue;
       const Vec3 y = sample_patch_point(roots, k, v1, v2);
-      const Vec3 d = y - x;
-      const double dist = d.norm();
-      if (!(dist > 0)) continue;
-      const Ray ray = spawn_ray(offset, x, d / dist);
-      const Hit hit = visibility.intersect(ray);
-      ++out.rays;
-      if (hit.missed() || hit.t >= dist * (1 - 1e-5) - 4 * eps) f += roots.E[k] * F;
+      f += roots.E[k] * visible_point_form_factor(roots, visibility, offset, x, n, k, y, F, eps, out.rays);
+      h += roots.E[k] * visible_point_form_factor(roots, visibility, offset, x, n, k, shared[a], F, eps, out.rays);
     }
     sum += f;
     sum2 += f * f;
+    hsum += h;
+    hsum2 += h * h;
   }
   const double Md = M;
-  const Rgb mean = sum / Md;
-  const Rgb s2 = M > 1 ? Rgb(((sum2 - Md * mean * mean) / (Md - 1)).max(0.0)) : Rgb(Rgb::Zero());
-  out.D = rho * mean;
-  out.variance = rho * rho * s2 / Md;
-  out.indicator = tree.area[e] * (rho * s2.sqrt()).maxCoeff();
+  const auto sample_variance = [&](const Rgb& s1, const Rgb& s2) {
+    const Rgb mean = s1 / Md;
+    return M > 1 ? Rgb(((s2 - Md * mean * mean) / (Md - 1)).max(0.0)) : Rgb(Rgb::Zero());
+  };
+  out.D = rho * sum / Md;
+  out.variance = rho * rho * sample_variance(sum, sum2) / Md;
+  out.indicator = tree.area[e] * (rho * sample_variance(hsum, hsum2).sqrt()).maxCoeff();
   return out;
 }
 

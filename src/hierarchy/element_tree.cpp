@@ -67,6 +67,19 @@ ElementIndex ElementTree::split(std::size_t e) {
 
 ElementIndex ElementTree::child_containing(std::size_t e, const Vec3& p, const Vec3& normal) const {
   RADWALK_CHECK(first_child[e] >= 0);
+  // Fast path: a child that holds p strictly inside (every signed distance > 0; the sign needs no edge length) is
+  // the answer, since the children's interiors are disjoint and every other child then has a distance <= 0.
+  for (ElementIndex q = first_child[e]; q < first_child[e] + 4; ++q) {
+    const auto& c = corner[static_cast<std::size_t>(q)];
+    const int k = corner_count[static_cast<std::size_t>(q)];
+    bool strictly_inside = true;
+    for (int a = 0; a < k && strictly_inside; ++a) {
+      const Vec3& p0 = c[static_cast<std::size_t>(a)];
+      const Vec3 edge = c[static_cast<std::size_t>((a + 1) % k)] - p0;
+      strictly_inside = edge.squaredNorm() > 0 && edge.cross(p - p0).dot(normal) > 0;
+    }
+    if (strictly_inside) return q;
+  }
   ElementIndex best = first_child[e];
   double best_inside = -std::numeric_limits<double>::infinity();
   for (ElementIndex q = first_child[e]; q < first_child[e] + 4; ++q) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "core/check.h"
@@ -66,11 +67,17 @@ void check_options(const HierarchicalOptions& o) {
 
 HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility,
                                       const HierarchicalOptions& options) {
+  return solve_hierarchical(roots, visibility, make_element_tree(roots), options);
+}
+
+HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility, ElementTree start,
+                                      const HierarchicalOptions& options) {
   check_options(options);
+  RADWALK_CHECK(start.size() >= roots.size());
   const Timer timer;
   HierarchicalResult result;
   ElementTree& tree = result.tree;
-  tree = make_element_tree(roots);
+  tree = std::move(start);
   const std::size_t N = roots.size();
   Rgb emitted = Rgb::Zero();
   double rho_bar = 0, total_area = 0;
@@ -84,7 +91,7 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
 
   // 1. The direct light and its refinement.
   DirectRefinementOptions d;
-  d.epsilon = result.epsilon;
+  d.epsilon = options.direct_oracle ? result.epsilon : std::numeric_limits<double>::infinity();
   d.min_area = options.min_area;
   d.max_level = options.max_level;
   d.points_side = options.points_side;
@@ -211,7 +218,9 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
           const Vec3& normal = roots.normal[e];
           const auto l = static_cast<std::size_t>(dep.shooter);
           const Vec3& n_l = roots.normal[static_cast<std::size_t>(tree.root[l])];
-          while (true) {
+          while (!options.transport_oracle && !tree.is_leaf(e))
+            e = static_cast<std::size_t>(tree.child_containing(e, dep.point, normal));
+          while (options.transport_oracle) {
             const double T = transfer(tree, centre, l, e, n_l, normal, dep.cap);
             if (!(T > result.epsilon) || tree.level[e] >= options.max_level || tree.area[e] / 4 < options.min_area)
               break;

@@ -52,6 +52,12 @@ struct HierarchicalOptions {
   int replicates = 4;      // R >= 2
   std::uint64_t seed = 1;
   bool progress = false;
+  // The a-priori oracles. direct_oracle false: the direct light is estimated on the starting leaves and nothing is
+  // split for it. transport_oracle false: every ray's power is gathered at the leaf containing its end point (the
+  // leaves act as patches, as the ordinary stochastic Jacobi's: unbiased for the leaves' discrete system) and no
+  // element is split during the shooting. Both off: the tree is the one given (estimate_refinement.h splits it).
+  bool direct_oracle = true;
+  bool transport_oracle = true;
 };
 
 struct HierarchicalResult {
@@ -68,6 +74,11 @@ struct HierarchicalResult {
 // roots: the input patches (their tree is made here); visibility over roots. Throws InputError on options out of
 // range (tol <= 0 or not finite, replicates < 2, particles < 1, max_level < 0, points_side < 1).
 HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility,
+                                      const HierarchicalOptions& options);
+
+// The same from a given starting tree over `roots` (its leaves are where the direct light is first estimated and
+// the shooting starts; the oracles may split it further).
+HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility, ElementTree start,
                                       const HierarchicalOptions& options);
 
 }  // namespace radwalk

@@ -118,6 +118,41 @@ TEST_CASE("radwalk solve --hierarchical: one CSV row and one .vtp cell per leaf,
   CHECK(static_cast<std::size_t>(reader->GetOutput()->GetNumberOfCells()) == leaves);
 }
 
+TEST_CASE("radwalk solve --hierarchical-refine estimate: the budget of leaves, the steps in the JSON, refusals",
+          "[cli]") {
+  const fs::path dir = scratch("hierarchical_estimate");
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --hierarchical-refine estimate " +
+                    "--hierarchical-max-leaves 120 --hierarchical-rays 40000 --discretisation-directions 2 --json " +
+                    (dir / "h.json").string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const auto j = read_json(dir / "h.json");
+  const auto& h = j["hierarchy"];
+  CHECK(h["refine"] == "estimate");
+  const std::size_t leaves = h["leaves"];
+  CHECK(leaves > 37);
+  CHECK(leaves <= 120);
+  CHECK(h["refinement_steps"]["direct"] == 0);  // the a-priori oracles are off in this mode
+  CHECK(h["refinement_steps"]["transport"] == 0);
+  const auto& steps = h["estimate_steps"];
+  REQUIRE(steps.size() >= 2);
+  CHECK(steps[0]["leaves"] == 37);
+  CHECK(steps[0]["eta"].get<double>() > 0);
+  CHECK(steps.back()["leaves"] == leaves);
+  CHECK(h["target_reached"] == false);
+  // No stopping rule: refused with one line. --hierarchical-tol has no oracle to drive here: refused.
+  const Run none = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --hierarchical-refine estimate");
+  CHECK(none.exit_code != 0);
+  CHECK(none.out.find("--hierarchical-max-leaves") != std::string::npos);
+  const Run tol = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --hierarchical-refine estimate " +
+                      "--hierarchical-max-leaves 100 --hierarchical-tol 0.01");
+  CHECK(tol.exit_code != 0);
+  CHECK(tol.out.find("--hierarchical-tol") != std::string::npos);
+  const Run budget = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --hierarchical-max-leaves 100");
+  CHECK(budget.exit_code != 0);  // an option of the estimate's mode without it
+  CHECK(budget.out.find("--hierarchical-max-leaves") != std::string::npos);
+}
+
 TEST_CASE("radwalk solve --refine: --max-patches caps the patch count", "[cli]") {
   const fs::path dir = scratch("refine_cap");
   const Run r = run("solve " + source("meshes/cornell_box.obj") + " --refine 0.01 --max-patches 200 --rays 2000 " +

@@ -20,7 +20,8 @@ const std::vector<StreamDomain> kDomains = {
     StreamDomain::measure_walk,   StreamDomain::importance_walk, StreamDomain::visible_direct_light,
     StreamDomain::emitter_form_factor, StreamDomain::jacobi_shift, StreamDomain::analytic_visibility,
     StreamDomain::error_estimate, StreamDomain::discretisation_estimate,
-    StreamDomain::hierarchical_direct, StreamDomain::hierarchical_jacobi};
+    StreamDomain::hierarchical_direct, StreamDomain::hierarchical_jacobi,
+    StreamDomain::hierarchical_variation};
 
 // The first 64 draws of a stream.
 std::vector<std::uint32_t> first_draws(Rng rng) {
