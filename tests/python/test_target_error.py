@@ -1,0 +1,41 @@
+"""radwalk.solve_to_target_error against `radwalk solve --target-error`: the same start (about 500 patches for a
+scene loaded without max_edge or max_area), the same steps, patches and B on the same seed."""
+import json
+
+import numpy as np
+import pytest
+
+import radwalk
+from conftest import mesh, run_cli
+
+SCENE = mesh("cornell_box.obj")
+
+
+def test_solve_to_target_error_equals_the_cli(tmp_path):
+    run_cli("solve", SCENE, "--target-error", 0.03, "--seed", 2, "--csv", tmp_path / "cli.csv",
+            "--json", tmp_path / "cli.json")
+    scene = radwalk.load(SCENE)
+    r = radwalk.solve_to_target_error(scene, 0.03, seed=2)
+    assert len(scene) == 37  # the scene passed in is not changed
+    cli = json.load(open(tmp_path / "cli.json"))
+    assert r.reached and cli["target_error"]["reached"]
+    assert cli["patches"] == len(r.scene) > 37  # started from about 500 patches, not the input faces
+    assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
+    rows = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True)
+    B = np.asarray(r.result.B)
+    # the CSV keeps 12 significant digits
+    np.testing.assert_allclose(np.column_stack([rows["B_r"], rows["B_g"], rows["B_b"]]), B, rtol=1e-11, atol=0)
+
+
+def test_a_scene_with_its_own_patching_starts_there():
+    scene = radwalk.load(SCENE, max_edge=200)
+    r = radwalk.solve_to_target_error(scene, 0.2, seed=1)
+    assert r.steps[0]["patches"] == len(scene)
+
+
+def test_options_out_of_range_raise():
+    scene = radwalk.load(SCENE)
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 1.5)
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.03, discretisation_directions=0)
