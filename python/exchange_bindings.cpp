@@ -97,52 +97,75 @@ group_factors ((G, G) array F_GH, the CLI's --group-factors); balance: a dict of
 sum_Q_se, to_ambient, to_ambient_se, from_ambient, lost_to_back_faces, lost_to_back_faces_se, balance_residual,
 balance_residual_se, sky_area, contact_patches, contact_area, contact_radiated, contact_Q: the CLI's JSON keys);
 method, status, message, iterations, residual: the solve; error_method; timings.)doc")
-      .def_property_readonly("J", [](const ExchangeResult& r) { return copy_of(r.x.result.J); })
-      .def_property_readonly("G", [](const ExchangeResult& r) { return copy_of(r.x.result.G); })
-      .def_property_readonly("q", [](const ExchangeResult& r) { return copy_of(r.x.result.q); })
-      .def_property_readonly("Q", [](const ExchangeResult& r) { return copy_of(r.x.result.Q); })
-      .def_property_readonly("T", [](const ExchangeResult& r) { return copy_of(r.x.result.T); })
-      .def_property_readonly("J_se", [](const ExchangeResult& r) { return copy_of(r.x.J_se); })
-      .def_property_readonly("q_se", [](const ExchangeResult& r) { return copy_of(r.x.q_se); })
-      .def_property_readonly("Q_se", [](const ExchangeResult& r) { return copy_of(r.x.Q_se); })
-      .def_property_readonly("T_se", [](const ExchangeResult& r) { return copy_of(r.x.T_se); })
+      .def_property_readonly("J", [](const ExchangeResult& r) { return copy_of(r.x.result.J); },
+          "Radiosity J (N,) float64 per patch, W/m^2 (a copy).")
+      .def_property_readonly("G", [](const ExchangeResult& r) { return copy_of(r.x.result.G); },
+          "Irradiance G (N,) float64 per patch, W/m^2 (a copy).")
+      .def_property_readonly("q", [](const ExchangeResult& r) { return copy_of(r.x.result.q); },
+          "Net heat flux q (N,) float64 per patch, W/m^2, leaving the surface (a copy).")
+      .def_property_readonly("Q", [](const ExchangeResult& r) { return copy_of(r.x.result.Q); },
+          "Net heat Q = A q (N,) float64 per patch, W, leaving the surface (a copy).")
+      .def_property_readonly("T", [](const ExchangeResult& r) { return copy_of(r.x.result.T); },
+          "Temperature T (N,) float64 per patch, K: given, or solved where a heat flux was given (a copy).")
+      .def_property_readonly("J_se", [](const ExchangeResult& r) { return copy_of(r.x.J_se); },
+          "Statistical standard error of J (N,) float64, W/m^2, from the traced form factors' noise (zeros when F was not traced by radwalk).")
+      .def_property_readonly("q_se", [](const ExchangeResult& r) { return copy_of(r.x.q_se); },
+          "Statistical standard error of q (N,) float64, W/m^2 (zeros when F was not traced by radwalk).")
+      .def_property_readonly("Q_se", [](const ExchangeResult& r) { return copy_of(r.x.Q_se); },
+          "Statistical standard error of Q (N,) float64, W (zeros when F was not traced by radwalk).")
+      .def_property_readonly("T_se", [](const ExchangeResult& r) { return copy_of(r.x.T_se); },
+          "Statistical standard error of T (N,) float64, K, where T is solved (zeros elsewhere).")
       .def_property_readonly("J_disc", [](const ExchangeResult& r) -> py::object {
         return r.x.discretisation.J.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.J));
-      })
+      },
+          "Discretisation error of J (N,) float64, W/m^2 (1 standard deviation equivalent); None when not estimated.")
       .def_property_readonly("q_disc", [](const ExchangeResult& r) -> py::object {
         return r.x.discretisation.q.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.q));
-      })
+      },
+          "Discretisation error of q (N,) float64, W/m^2; None when not estimated.")
       .def_property_readonly("Q_disc", [](const ExchangeResult& r) -> py::object {
         return r.x.discretisation.Q.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.Q));
-      })
+      },
+          "Discretisation error of Q (N,) float64, W; None when not estimated.")
       .def_property_readonly("T_disc", [](const ExchangeResult& r) -> py::object {
         return r.x.discretisation.T.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.T));
-      })
-      .def_property_readonly("J_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.J_se, r.x.discretisation.J)); })
-      .def_property_readonly("q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.q_se, r.x.discretisation.q)); })
-      .def_property_readonly("Q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.Q_se, r.x.discretisation.Q)); })
-      .def_property_readonly("T_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.T_se, r.x.discretisation.T)); })
+      },
+          "Discretisation error of T (N,) float64, K; None when not estimated.")
+      .def_property_readonly("J_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.J_se, r.x.discretisation.J)); },
+          "Total error sqrt(J_se^2 + J_disc^2) (N,) float64, W/m^2 (J_se when J_disc is not estimated).")
+      .def_property_readonly("q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.q_se, r.x.discretisation.q)); },
+          "Total error sqrt(q_se^2 + q_disc^2) (N,) float64, W/m^2 (q_se when q_disc is not estimated).")
+      .def_property_readonly("Q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.Q_se, r.x.discretisation.Q)); },
+          "Total error sqrt(Q_se^2 + Q_disc^2) (N,) float64, W (Q_se when Q_disc is not estimated).")
+      .def_property_readonly("T_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.T_se, r.x.discretisation.T)); },
+          "Total error sqrt(T_se^2 + T_disc^2) (N,) float64, K (T_se when T_disc is not estimated).")
       .def_property_readonly("emissivity",
                              [](const ExchangeResult& r) {
                                std::vector<double> e;
                                for (const SurfaceCondition& c : r.x.given) e.push_back(c.emissivity);
                                return copy_of(e);
-                             })
+                             },
+          "Emissivity (N,) float64 per patch, as its material gives it.")
       .def_property_readonly("temperature_given",
                              [](const ExchangeResult& r) {
                                std::vector<double> e;
                                for (const SurfaceCondition& c : r.x.given) e.push_back(c.temperature_given ? 1 : 0);
                                return copy_of(e);
-                             })
-      .def_property_readonly("sky", [](const ExchangeResult& r) { return copy_of(r.x.input.sky); })
-      .def_property_readonly("back", [](const ExchangeResult& r) { return copy_of(r.x.back); })
+                             },
+          "(N,) float64 per patch: 1 where the temperature is given (q solved), 0 where the heat flux is.")
+      .def_property_readonly("sky", [](const ExchangeResult& r) { return copy_of(r.x.input.sky); },
+          "Sky view factor (N,) float64 per patch: the fraction of its rays reaching the ambient (1 - row sum for a caller's F).")
+      .def_property_readonly("back", [](const ExchangeResult& r) { return copy_of(r.x.back); },
+          "(N,) float64 per patch: the fraction of its rays reaching the backs of one-sided faces (and excluded contact patches).")
       .def_property_readonly("contact",
                              [](const ExchangeResult& r) {
                                std::vector<double> c;
                                for (bool b : r.x.in_contact) c.push_back(b ? 1 : 0);
                                return copy_of(c);
-                             })
-      .def_property_readonly("group_names", [](const ExchangeResult& r) { return r.x.groups.names; })
+                             },
+          "(N,) float64 per patch: 1 for a patch in contact with another surface (patch/contact_patches.h), else 0.")
+      .def_property_readonly("group_names", [](const ExchangeResult& r) { return r.x.groups.names; },
+          "The names of the groups (objects, groups or materials under group_by), in the order of groups and group_factors.")
       .def_property_readonly("group_factors",
                              [](const ExchangeResult& r) {
                                const Eigen::MatrixXd& F = r.x.groups.view_factors.F;
@@ -151,7 +174,8 @@ method, status, message, iterations, residual: the solve; error_method; timings.
                                for (Eigen::Index i = 0; i < F.rows(); ++i)
                                  for (Eigen::Index j = 0; j < F.cols(); ++j) v(i, j) = F(i, j);
                                return a;
-                             })
+                             },
+          "View factors between groups F_GH, a (G, G) float64 array (rows: from, columns: to), as the CLI's --group-factors.")
       .def_property_readonly("groups",
                              [](const ExchangeResult& r) {
                                py::list out;
@@ -168,7 +192,8 @@ method, status, message, iterations, residual: the solve; error_method; timings.
                                  out.append(d);
                                }
                                return out;
-                             })
+                             },
+          "The table per group: a list of dicts {name, area, Q, Q_se, T_radiant, sky, back}, as the CLI's --groups CSV.")
       .def_property_readonly("balance",
                              [](const ExchangeResult& r) {
                                const HeatBalance& b = r.x.balance;
@@ -188,14 +213,21 @@ method, status, message, iterations, residual: the solve; error_method; timings.
                                d["contact_radiated"] = r.x.contact_radiated;
                                d["contact_Q"] = r.x.contact_Q;
                                return d;
-                             })
-      .def_property_readonly("method", [](const ExchangeResult& r) { return r.x.solution.method; })
-      .def_property_readonly("status", [](const ExchangeResult& r) { return std::string(to_string(r.x.solution.status)); })
-      .def_property_readonly("message", [](const ExchangeResult& r) { return r.x.solution.message; })
-      .def_property_readonly("iterations", [](const ExchangeResult& r) { return r.x.solution.iterations; })
-      .def_property_readonly("residual", [](const ExchangeResult& r) { return r.x.solution.residual; })
-      .def_property_readonly("error_method", [](const ExchangeResult& r) { return r.x.error_method; })
-      .def_readonly("timings", &ExchangeResult::timings);
+                             },
+          "The energy balance in W as a dict with the CLI's JSON keys (sum_Q, ..., balance_residual, balance_residual_se, contact_*).")
+      .def_property_readonly("method", [](const ExchangeResult& r) { return r.x.solution.method; },
+          "The solver that ran (the CLI's JSON solution.method).")
+      .def_property_readonly("status", [](const ExchangeResult& r) { return std::string(to_string(r.x.solution.status)); },
+          "The solve's status: 'converged' or 'max-iterations'.")
+      .def_property_readonly("message", [](const ExchangeResult& r) { return r.x.solution.message; },
+          "The solver's own message (what it did, why it stopped).")
+      .def_property_readonly("iterations", [](const ExchangeResult& r) { return r.x.solution.iterations; },
+          "Iterations (sweeps) of the solver; 0 for the direct solve.")
+      .def_property_readonly("residual", [](const ExchangeResult& r) { return r.x.solution.residual; },
+          "Relative residual of the solve (NaN when not computed).")
+      .def_property_readonly("error_method", [](const ExchangeResult& r) { return r.x.error_method; },
+          "How the statistical errors were obtained, or 'not included: ...' and why.")
+      .def_readonly("timings", &ExchangeResult::timings, "Stage name -> seconds (form factors, solve, error estimates).");
 
   m.def("exchange", &exchange, py::arg("scene"), py::arg("F") = py::none(), py::arg("solver") = "auto",
         py::arg("tol") = 1e-12, py::arg("max_iterations") = 0, py::arg("rays") = 1000, py::arg("seed") = 1,

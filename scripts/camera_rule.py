@@ -332,6 +332,34 @@ def _direct_irradiance(scene, i, x, emitters, eps):
     return total
 
 
+def _inside_camera(scene, p, hits):
+    vfov = math.radians(60.0)
+    emitters = [j for j in range(scene.n) if scene.emits[j]]
+    eps = 1e-6 * _norm(_sub(scene.hi, scene.lo))
+    score, total, longest = [0.0] * PROBES, 0.0, 0
+    for k in range(PROBES):
+        t, i, _ = hits[k]
+        if t > hits[longest][0]:
+            longest = k
+        if scene.emits[i]:
+            continue
+        score[k] = _direct_irradiance(scene, i, _add(p, _mul(t, probe_direction(k))), emitters, eps)
+        total += score[k]
+    best = probe_direction(longest)
+    if total > 0:
+        cos_half = math.cos(0.5 * vfov)
+        dirs = [probe_direction(k) for k in range(PROBES)]
+        best_sum = -1.0
+        for a in range(PROBES):
+            d = dirs[a]
+            if abs(d[1]) > 0.9:
+                continue
+            s = sum(score[b] for b in range(PROBES) if _dot(d, dirs[b]) >= cos_half)
+            if s > best_sum:
+                best_sum, best = s, d
+    return p, best, up_for(best), vfov
+
+
 def _object_cells(scene):
     tol = 1e-6 * _norm(_sub(scene.hi, scene.lo))
     out = []
