@@ -90,7 +90,7 @@ def scene_name(poly):
     return str(a.GetVariantValue(0).ToString())
 
 
-CLUSTER = 32           # fan triangles per bounding box of the ray culling (consecutive in Morton order)
+CLUSTER = 32           # fan triangles per box of the ray culling (consecutive in Morton order), boxes per top box
 
 
 def _fan_triangles(poly):
@@ -111,6 +111,20 @@ def _fan_triangles(poly):
     k = np.arange(owner.size) - first + 1
     start = offsets[:-1][owner]
     return points, conn[start], conn[start + k], conn[start + k + 1], owner
+
+
+def _crosses(o, d, lo, hi, L):
+    """Whether rays o + t d, 0 <= t <= L, cross the boxes [lo, hi] (slab test, broadcast over leading axes; a zero
+    direction component crosses iff its origin lies within the slab)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        inv = 1.0 / d
+        t0 = (lo - o) * inv
+        t1 = (hi - o) * inv
+    flat = d == 0
+    inside = (lo <= o) & (o <= hi)
+    near = np.where(flat, np.where(inside, -np.inf, np.inf), np.minimum(t0, t1))
+    far = np.where(flat, np.where(inside, np.inf, -np.inf), np.maximum(t0, t1))
+    return np.maximum(near.max(axis=-1), 0.0) <= np.minimum(far.min(axis=-1), L)
 
 
 class _Scene:
@@ -214,6 +228,14 @@ class _Scene:
         widen = 1e-9 * self.far
         self.box_lo = corners.min(axis=1) - widen
         self.box_hi = corners.max(axis=1) + widen
+        # A second level: CLUSTER consecutive boxes under one box.
+        kt = (k + CLUSTER - 1) // CLUSTER
+        lo_, hi_ = self.box_lo, self.box_hi
+        if kt * CLUSTER > k:
+            lo_ = np.concatenate([lo_, np.repeat(lo_[-1:], kt * CLUSTER - k, axis=0)])
+            hi_ = np.concatenate([hi_, np.repeat(hi_[-1:], kt * CLUSTER - k, axis=0)])
+        self.top_lo = lo_.reshape(kt, CLUSTER, 3).min(axis=1)
+        self.top_hi = hi_.reshape(kt, CLUSTER, 3).max(axis=1)
 
     def _cell_normal(self, i):
         nn = [0.0, 0.0, 0.0]
@@ -235,21 +257,21 @@ class _Scene:
             return best_t, np.full(R, -1, dtype=int), np.zeros(R, dtype=bool)
         eps = 1e-12 * self.far
         K = len(self.box_lo)
-        chunk = max(1, int(4e6 // max(K, 1)))
+        chunk = max(1, min(2048, int(4e6 // max(len(self.top_lo), 1))))
         for r0 in range(0, R, chunk):
             o, d, L = O[r0:r0 + chunk], D[r0:r0 + chunk], length[r0:r0 + chunk]
-            # Slab test of each ray against each cluster's box, on [0, L].
-            with np.errstate(divide="ignore", invalid="ignore"):
-                inv = 1.0 / d
-                t0 = (self.box_lo[None, :, :] - o[:, None, :]) * inv[:, None, :]
-                t1 = (self.box_hi[None, :, :] - o[:, None, :]) * inv[:, None, :]
-            flat = (d == 0)[:, None, :]
-            inside = (self.box_lo[None] <= o[:, None, :]) & (o[:, None, :] <= self.box_hi[None])
-            near = np.where(flat, np.where(inside, -np.inf, np.inf), np.minimum(t0, t1))
-            far_ = np.where(flat, np.where(inside, np.inf, -np.inf), np.maximum(t0, t1))
-            enter = np.maximum(near.max(axis=2), 0.0)
-            leave = np.minimum(far_.min(axis=2), L[:, None])
-            ray, box = np.nonzero(enter <= leave)
+            # The rays against the top boxes, then against the boxes under each top box they cross.
+            ray, top = np.nonzero(_crosses(o[:, None, :], d[:, None, :], self.top_lo[None], self.top_hi[None],
+                                           L[:, None]))
+            if ray.size == 0:
+                continue
+            box = top[:, None] * CLUSTER + np.arange(CLUSTER)[None, :]
+            valid = box < K
+            box = np.minimum(box, K - 1)
+            hit_box = valid & _crosses(o[ray][:, None, :], d[ray][:, None, :], self.box_lo[box], self.box_hi[box],
+                                       L[ray][:, None])
+            sel = np.nonzero(hit_box)
+            ray, box = ray[sel[0]], box[sel]
             if ray.size == 0:
                 continue
             tri = (box[:, None] * CLUSTER + np.arange(CLUSTER)[None, :]).ravel()
