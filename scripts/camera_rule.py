@@ -411,7 +411,7 @@ def _frame_objects(scene, p, hits, objects):
         up = up_for(f)
         r = _unit(_cross(f, up))
         u = _cross(r, f)
-        cells, dirs, reach = [], [], []
+        cells, dirs = [], []
         for n in range(0, len(objects), stride):
             i = objects[n]
             d = _sub(scene.centroid[i], q)
@@ -420,11 +420,9 @@ def _frame_objects(scene, p, hits, objects):
                 continue
             cells.append(i)
             dirs.append(_unit(d))
-            reach.append(_norm(d) * (1 + 1e-6))
         score = 0
         if cells:
-            # Only a hit on cell i, at the distance of its centroid, counts: the ray ends just past it.
-            _, hit, front = scene.intersect_many(np.repeat([q], len(cells), axis=0), dirs, reach)
+            _, hit, front = scene.intersect_many(np.repeat([q], len(cells), axis=0), dirs)
             score = int(np.count_nonzero(front & (hit == np.asarray(cells))))
         if score > best_score:
             best_score, best = score, (q, f, up, vfov)
