@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "apps/options.h"
-#include "apps/exchange_discretisation.h"
 #include "apps/exchange_sensitivities.h"
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
@@ -19,10 +18,12 @@
 #include "formfactor/form_factor_noise.h"
 #include "io/csv_writer.h"
 #include "mesh/length_unit.h"
-#include "patch/contact.h"
+#include "patch/contact_patches.h"
 #include "solve/form_factor_error.h"
 #include "solve/group_view_factors.h"
+#include "solve/heat_exchange.h"
 #include "solve/net_radiation.h"
+#include "solve/surface_conditions.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
 
@@ -35,99 +36,6 @@ std::string fmt(double x, const char* format = "%.6g") {
   return text;
 }
 
-// "file:line: material 'm'" or "material 'm'" when it comes from no file.
-std::string material_where(const Material& m) {
-  return (m.file.empty() ? std::string() : m.file + ":" + std::to_string(m.line) + ": ") + "material '" + m.name + "'";
-}
-
-// The thermal condition of every patch from its material (Material::emissivity, temperature, heat_flux). Every
-// material some patch uses must give an emissivity and exactly one of temperature and heat flux: otherwise one
-// InputError naming the first such material (file, line) and the MTL statement or --set that fixes it, and the
-// count of the others.
-std::vector<SurfaceCondition> surface_conditions(const PatchSet& patches) {
-  std::vector<bool> used(patches.materials.size(), false);
-  for (std::int32_t m : patches.material)
-    if (m >= 0) used[std::size_t(m)] = true;
-  std::vector<std::string> problems;
-  for (std::size_t k = 0; k < patches.materials.size(); ++k) {
-    if (!used[k]) continue;
-    const Material& m = patches.materials[k];
-    if (!m.emissivity)
-      problems.push_back(material_where(m) + " has no emissivity: add 'radwalk_emissivity E' (0 < E <= 1) to its "
-                         "block or --set '" + m.name + ".emissivity=E'");
-    if (!m.temperature && !m.heat_flux)
-      problems.push_back(material_where(m) + " has neither a temperature nor a heat flux: add 'radwalk_temperature "
-                         "T' (kelvin) or 'radwalk_heat_flux q' (W/m^2, net leaving; 0 for a re-radiating wall), or "
-                         "--set '" + m.name + ".temperature=T'");
-    if (m.temperature && m.heat_flux)
-      problems.push_back(material_where(m) + " has both radwalk_temperature and radwalk_heat_flux: a surface has one "
-                         "known and one solved; remove one (or --set one, which drops the other)");
-  }
-  if (!problems.empty())
-    throw InputError(problems.front() + (problems.size() > 1 ? " (and " + std::to_string(problems.size() - 1) +
-                                                                     " more such problem(s) in other materials)"
-                                                               : std::string()));
-  std::vector<SurfaceCondition> s(patches.size());
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    const Material& m = patches.materials[std::size_t(patches.material[i])];
-    s[i].emissivity = *m.emissivity;
-    s[i].temperature_given = m.temperature.has_value();
-    s[i].temperature = m.temperature.value_or(0.0);
-    s[i].heat_flux = m.heat_flux.value_or(0.0);
-  }
-  return s;
-}
-
-// The name of patch i's group under --group-by.
-std::string group_name(const PatchSet& patches, std::size_t i, const std::string& by) {
-  const std::string& name = by == "object" ? patches.object_of(i) : by == "group" ? patches.group_of(i)
-                                                                                  : patches.material_of(i);
-  return name.empty() ? "(none)" : name;
-}
-
-// The patches in contact with another surface (patch/contact.h): the faces lying back to back on a support (a
-// furniture bottom on the floor) and the patches of the support faces whose centroid lies under a footprint (the
-// floor under it, a patch of its own with --contact-cut). Both radiate only into the backs of faces (the floor
-// under a bottom, the bottom's own inside): in reality they exchange heat by conduction, not radiation.
-std::vector<bool> contact_patches(const Mesh& mesh, const PatchSet& patches) {
-  std::vector<bool> in_contact(patches.size(), false);
-  const std::vector<Contact> contacts = find_contacts(mesh);
-  const double tol = kContactTolerance * std::max(patches.scene_extent(), 1e-300);
-  for (const Contact& c : contacts) {
-    const std::size_t m = c.footprint.size();
-    if (m < 3) continue;
-    // The support's normal: the footprint runs counter-clockwise about it (Newell).
-    Vec3 n = Vec3::Zero();
-    for (std::size_t k = 0; k < m; ++k) n += c.footprint[k].cross(c.footprint[(k + 1) % m]);
-    if (!(n.norm() > 0)) continue;
-    n.normalize();
-    std::vector<long> lying, supports;
-    if (c.lying)
-      for (std::int32_t f : c.standing) lying.push_back(mesh.source_face(std::size_t(f)));
-    for (std::int32_t f : c.supports) supports.push_back(mesh.source_face(std::size_t(f)));
-    for (std::size_t i = 0; i < patches.size(); ++i) {
-      const long face = patches.face[i];
-      if (std::find(lying.begin(), lying.end(), face) != lying.end()) {
-        in_contact[i] = true;
-        continue;
-      }
-      // A patch in the support's plane whose centroid is inside the footprint: a face lying back to back on the
-      // support (normal opposite: a bottom) or the support's own part under it (normal along, a support face).
-      const Vec3& x = patches.centroid[i];
-      if (std::abs((x - c.footprint[0]).dot(n)) > tol) continue;
-      const double along = patches.normal[i].dot(n);
-      const bool bottom = along < -0.999;
-      const bool under = along > 0.999 && std::find(supports.begin(), supports.end(), face) != supports.end();
-      if (!bottom && !under) continue;
-      bool inside = true;
-      for (std::size_t k = 0; k < m && inside; ++k)
-        inside = (c.footprint[(k + 1) % m] - c.footprint[k]).cross(x - c.footprint[k]).dot(n) > tol * tol;
-      if (inside) in_contact[i] = true;
-    }
-  }
-  return in_contact;
-}
-
 SolveOptions solve_options(const ExchangeCommand& c, std::size_t patches) {
   SolveOptions o;
   o.solver = c.solver;
@@ -135,12 +43,6 @@ SolveOptions solve_options(const ExchangeCommand& c, std::size_t patches) {
   o.tol = c.tol;
   o.max_iterations = c.max_iterations > 0 ? c.max_iterations : default_max_iterations(c.solver, patches);
   return o;
-}
-
-double sum_of_squares(const std::vector<double>& v) {
-  double s = 0;
-  for (double x : v) s += x * x;
-  return s;
 }
 
 }  // namespace
@@ -154,8 +56,13 @@ int run_exchange(const ExchangeCommand& command) {
     throw InputError("radwalk exchange works in metres (sigma T^4 is W/m^2) but the lengths are in " + unit +
                      ": use --unit " + command.scene.unit + " --scale " + fmt(metres_per(command.scene.unit)) +
                      " (lengths times the scale become metres)");
+  // Contact patches left out are whole patches (patch/contact_patches.h): the supports are cut along the
+  // footprints first, so that no patch of the floor reaches under a block, where its rays would start inside it.
+  SceneOptions scene_options = command.scene;
+  if (command.contact_faces == "exclude") scene_options.contact_cut = true;
   Mesh mesh;
-  PatchSet patches = load_patches(command.scene, summary, mesh);
+  std::vector<ContactRegion> regions;
+  PatchSet patches = load_patches(scene_options, summary, mesh, &regions);
   const std::vector<SurfaceCondition> conditions = surface_conditions(patches);
   for (const Material& m : patches.materials)
     if (m.Ke.maxCoeff() > 0)
@@ -169,74 +76,35 @@ int run_exchange(const ExchangeCommand& command) {
   // Form factors (every row on every process: the flux and balance stages read whole rows).
   FormFactors ff = obtain_form_factors(command.scene, command.ff, patches, summary, RowsHeld::every_row);
   std::vector<CellField> fields = form_factor_fields(ff, patches);
-  const bool traced = ff.rays.size() == n;
 
-  // Where the rays not caught by F go: with traced rays the escaped fraction reaches the ambient and the back hits
-  // the backs of one-sided faces; with analytic or read F only 1 - row sum is known, all of it taken as sky.
-  NetRadiationInput input;
-  input.area = patches.area;
-  input.surface = conditions;
-  input.ambient_temperature = command.ambient_temperature;
-  input.sky.assign(n, 0.0);
-  std::vector<double> back(n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    if (traced) {
-      const double rays = std::max<double>(ff.rays[i], 1);
-      input.sky[i] = ff.escaped[i] / rays;
-      back[i] = ff.back_hits[i] / rays;
-    } else {
-      const double row = double(ff.F.row(Eigen::Index(i)).sum());
-      input.sky[i] = std::clamp(1.0 - row, 0.0, 1.0);
-    }
-  }
-  // Patches in contact with other surfaces: reported, and with --contact-faces exclude left out of the exchange
-  // (their rows and columns of F removed, what other patches sent to them counted with the backs; J = q = Q = 0).
-  const std::vector<bool> in_contact = contact_patches(mesh, patches);
-  const bool exclude = command.contact_faces == "exclude";
-  std::size_t contact_count = 0;
-  double contact_area = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (in_contact[i]) ++contact_count, contact_area += patches.area[i];
-  if (exclude && contact_count > 0) {
-    std::vector<Eigen::Triplet<float, std::int32_t>> kept;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (in_contact[i]) continue;
-      for (SparseF::InnerIterator it(ff.F, Eigen::Index(i)); it; ++it) {
-        if (in_contact[std::size_t(it.col())])
-          back[i] += double(it.value());
-        else
-          kept.emplace_back(std::int32_t(i), std::int32_t(it.col()), it.value());
-      }
-    }
-    SparseF reduced(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    reduced.setFromTriplets(kept.begin(), kept.end());
-    ff.F = std::move(reduced);
-    for (std::size_t i = 0; i < n; ++i)
-      if (in_contact[i]) {
-        input.sky[i] = back[i] = 0;
-        input.surface[i] = SurfaceCondition{1.0, true, 0.0, 0.0};  // rho = 0, S = 0: J = 0
-      }
-  }
-  double sky_area = 0;
-  for (std::size_t i = 0; i < n; ++i) sky_area += patches.area[i] * input.sky[i];
-  if (!traced && sky_area > 1e-6 * patches.total_area())
+  HeatExchangeOptions options;
+  options.solve = solve_options(command, n);
+  options.ambient_temperature = command.ambient_temperature;
+  options.exclude_contacts = command.contact_faces == "exclude";
+  options.group_by = command.group_by;
+  options.discretisation_directions = command.discretisation_directions;
+  options.seed = command.scene.seed;
+  HeatExchange x = exchange_heat(patches, conditions, regions, std::move(ff), options);
+  const bool traced = x.traced;
+  const bool exclude = options.exclude_contacts;
+  const NetRadiationInput& input = x.input;
+  const RadiosityProblem& problem = x.problem;
+  const Solution& solution = x.solution;
+  const HeatBalance& bal = x.balance;
+  if (!traced && bal.sky_area > 1e-6 * patches.total_area())
     note("form factors not traced here (analytic or read from a file): 1 - the row sum of F is taken as the sky "
          "view factor; backs of one-sided faces cannot be told from the sky");
-  if (sky_area > 1e-6 * patches.total_area() && command.ambient_temperature == 0 && !command.ambient_given)
-    warn(summary, "part of the scene sees out (sky view factor x area = " + fmt(sky_area) +
+  if (bal.sky_area > 1e-6 * patches.total_area() && command.ambient_temperature == 0 && !command.ambient_given)
+    warn(summary, "part of the scene sees out (sky view factor x area = " + fmt(bal.sky_area) +
                       " m^2): escaping radiation reaches an ambient at 0 K; give --ambient-temperature T");
-
-  // The net-radiation system in radiosity form, solved by the chosen solver.
-  const RadiosityProblem problem = net_radiation_problem(input, std::move(ff.F));
   // Patch description columns: the system's rho and source (E) of every patch.
   {
-    const NetRadiationCoefficients c = net_radiation_coefficients(input);
+    const NetRadiationCoefficients& c = x.coefficients;
     for (std::size_t i = 0; i < n; ++i) {
       patches.rho[i] = Rgb::Constant(c.rho[i]);
       patches.E[i] = Rgb::Constant(c.source[i]);
     }
   }
-  Solution solution = solve_radiosity(problem, solve_options(command, n));
   summary.add_timing("solve", solution.seconds);
   std::fprintf(report_stream(), "%s: %s (%s)", solution.method.c_str(), to_string(solution.status),
                solution.message.c_str());
@@ -245,57 +113,20 @@ int run_exchange(const ExchangeCommand& command) {
     std::fprintf(report_stream(), ", relative residual %.3g", solution.residual);
   std::fprintf(report_stream(), ", %.3f s\n", solution.seconds);
   summary.json()["solution"] = solution_json(solution);
-  if (solution.B.rows() != Eigen::Index(n)) {
+  if (!x.solved) {
     if (!command.scene.json.empty()) summary.write(command.scene.json);
     std::fprintf(stderr, "radwalk: %s did not converge: %s\n", solution.method.c_str(), solution.message.c_str());
     return solution.status == SolveStatus::max_iterations ? 1 : 3;
   }
-  const NetRadiationResult r = net_radiation_result(input, problem.F, radiosity_of(solution));
+  const NetRadiationResult& r = x.result;
+  const std::vector<double>& back = x.back;
+  const std::vector<double>&J_se = x.J_se, &q_se = x.q_se, &Q_se = x.Q_se, &T_se = x.T_se;
+  const std::string& error_note = x.error_note;
+  summary.json()["exchange"]["error_method"] = x.error_method;
 
-  // Statistical errors from the traced F's noise (apps/statistical_error.h's machinery, first order): J_se by the
-  // propagation of each row's gather variance through (I - diag(rho) F)^-1; then linearly
-  //   known T, eps < 1: q = eps/(1 - eps) (sigma T^4 - J)      -> se(q) = eps/(1 - eps) se(J)
-  //   known T, eps = 1: q = sigma T^4 - G                      -> se(q) = sqrt(V_G + (F se(J))^2) (a bound)
-  //   known q:          sigma T^4 = J + q (1 - eps)/eps         -> se(T) = se(J) / (4 sigma T^3)
-  std::vector<double> J_se(n, 0.0), q_se(n, 0.0), Q_se(n, 0.0), T_se(n, 0.0);
-  std::string error_note;
-  if (has_noise_model(ff)) {
-    PatchRgb B3(Eigen::Index(n), 3);
-    for (std::size_t i = 0; i < n; ++i) B3.row(Eigen::Index(i)) = Rgb::Constant(r.J[i]).transpose();
-    const EmbreeVisibility visibility(patches);
-    const FormFactorError error = form_factor_error(patches, visibility, ff, problem, B3);
-    const PatchRgb V = gather_variance(problem.F, ff, B3).scaled(error.calibration.factors);
-    for (std::size_t i = 0; i < n; ++i) J_se[i] = error.standard_error(Eigen::Index(i), 0);
-    for (std::size_t i = 0; i < n; ++i) {
-      const SurfaceCondition& s = input.surface[i];
-      if (s.temperature_given) {
-        if (s.emissivity < 1) {
-          q_se[i] = s.emissivity / (1 - s.emissivity) * J_se[i];
-        } else {
-          double through = 0;
-          for (SparseF::InnerIterator it(problem.F, Eigen::Index(i)); it; ++it)
-            through += double(it.value()) * J_se[std::size_t(it.col())];
-          q_se[i] = std::sqrt(V(Eigen::Index(i), 0) + through * through);
-        }
-      } else if (r.T[i] > 0) {
-        T_se[i] = J_se[i] / (4 * kStefanBoltzmann * r.T[i] * r.T[i] * r.T[i]);
-      }
-      Q_se[i] = patches.area[i] * q_se[i];
-    }
-    summary.json()["exchange"]["error_method"] =
-        "first-order propagation of the traced rows' gather variance (docs/theory/error_estimate.md), sampling "
-        "factors measured; q, Q and T linearly from J (docs/theory/net_radiation.md)";
-  } else {
-    error_note = ff.row_std_error.empty() ? "the noise of form factors read from a file is not included"
-                                          : "the analytic form factors' visibility noise is not propagated";
-    summary.json()["exchange"]["error_method"] = "not included: " + error_note;
-  }
-
-  // The discretisation error of J, q, Q, T and the totals sqrt(se^2 + disc^2) (apps/exchange_discretisation.h).
-  ExchangeDiscretisation disc;
-  if (command.discretisation_directions > 0) {
-    disc = exchange_discretisation(patches, problem, solution.B, input, r, command.discretisation_directions,
-                                   command.scene.seed, summary);
+  // The discretisation error of J, q, Q, T and the totals sqrt(se^2 + disc^2).
+  const ExchangeDiscretisation& disc = x.discretisation;
+  if (!disc.J.empty()) {
     summary.add_timing("discretisation_error", disc.seconds);
     double J_disc_max = 0, J_rel = 0, J_power = 0, Q_disc_sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
@@ -306,6 +137,13 @@ int run_exchange(const ExchangeCommand& command) {
     }
     const double relative = J_power > 0 ? std::sqrt(J_rel / J_power) : 0.0;
     auto& jd = summary.json()["exchange"]["discretisation"];
+    jd["points_per_patch"] = disc.points;
+    jd["directions_per_point"] = disc.directions;
+    jd["rays"] = disc.rays;
+    jd["sweeps"] = disc.sweeps;
+    jd["method"] = "the radiosity system's discretisation error e = (I - H)^-1 d (docs/theory/discretisation_error.md) "
+                   "on the net-radiation problem, J_disc = sqrt((e_0 - e_1)^2 + (sd_0 + sd_1)^2); q, Q, T linearly "
+                   "from J (docs/heat-exchange.md); black known-temperature patches: only J's part";
     jd["J_disc_max"] = J_disc_max;
     jd["J_disc_relative"] = relative;
     jd["Q_disc_sum"] = Q_disc_sum;
@@ -316,35 +154,9 @@ int run_exchange(const ExchangeCommand& command) {
                  J_disc_max, 100 * relative, Q_disc_sum);
   }
 
-  // The energy balance, W: sum_i Q_i = (to the ambient) - (from the ambient) + (into the backs of one-sided faces)
-  // + R, R = sum_i A_i sum_j F_ij (J_i - J_j) - sum_i A_i J_i (1 - r_i - s_i - b_i): the reciprocity defect of F,
-  // zero for a reciprocal F. Its standard error from each row's rays (J held fixed, first order):
-  //   Var(R) = sum_i A_i^2 (sum_j F_ij (J_i - J_j)^2 - (sum_j F_ij (J_i - J_j))^2) / n_i.
-  const double ambient = kStefanBoltzmann * std::pow(command.ambient_temperature, 4);
-  double total = 0, to_ambient = 0, from_ambient = 0, into_backs = 0, var_backs = 0, var_to_ambient = 0,
-         var_residual = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double A = patches.area[i];
-    total += r.Q[i];
-    to_ambient += A * r.J[i] * input.sky[i];
-    from_ambient += A * input.sky[i] * ambient;
-    into_backs += A * r.J[i] * back[i];
-    if (traced) {
-      const double rays = std::max<double>(ff.rays[i], 1);
-      const double P = A * r.J[i];
-      var_backs += P * P * back[i] * (1 - back[i]) / rays;
-      var_to_ambient += P * P * input.sky[i] * (1 - input.sky[i]) / rays;
-      double m1 = 0, m2 = 0;
-      for (SparseF::InnerIterator it(problem.F, Eigen::Index(i)); it; ++it) {
-        const double d = r.J[i] - r.J[std::size_t(it.col())];
-        m1 += double(it.value()) * d;
-        m2 += double(it.value()) * d * d;
-      }
-      var_residual += A * A * std::max(0.0, m2 - m1 * m1) / rays;
-    }
-  }
-  const double residual = total - (to_ambient - from_ambient) - into_backs;
-  const double total_se = std::sqrt(sum_of_squares(Q_se));
+  // The energy balance (solve/heat_exchange.h, step 6).
+  const double total = bal.sum_Q, total_se = bal.sum_Q_se, to_ambient = bal.to_ambient,
+               from_ambient = bal.from_ambient, into_backs = bal.into_backs, residual = bal.residual;
   auto& jx = summary.json()["exchange"];
   jx["stefan_boltzmann"] = kStefanBoltzmann;
   jx["ambient_temperature"] = command.ambient_temperature;
@@ -352,20 +164,20 @@ int run_exchange(const ExchangeCommand& command) {
   jx["sum_Q"] = total;
   jx["sum_Q_se"] = total_se;
   jx["to_ambient"] = to_ambient;
-  jx["to_ambient_se"] = std::sqrt(var_to_ambient);
+  jx["to_ambient_se"] = bal.to_ambient_se;
   jx["from_ambient"] = from_ambient;
   jx["lost_to_back_faces"] = into_backs;
-  jx["lost_to_back_faces_se"] = std::sqrt(var_backs);
+  jx["lost_to_back_faces_se"] = bal.into_backs_se;
   jx["balance_residual"] = residual;
-  jx["balance_residual_se"] = std::sqrt(var_residual);
-  jx["sky_area"] = sky_area;
+  jx["balance_residual_se"] = bal.residual_se;
+  jx["sky_area"] = bal.sky_area;
   if (traced && error_note.empty()) {
     std::fprintf(report_stream(),
                  "energy balance: sum of Q = %.6g W (+- %.2g); to the ambient %.6g W (+- %.2g), from it %.6g W; lost "
                  "into the backs of one-sided faces %.6g W (+- %.2g); residual %.3g W (+- %.2g, the form factors' "
                  "reciprocity defect)\n",
-                 total, total_se, to_ambient, std::sqrt(var_to_ambient), from_ambient, into_backs,
-                 std::sqrt(var_backs), residual, std::sqrt(var_residual));
+                 total, total_se, to_ambient, bal.to_ambient_se, from_ambient, into_backs, bal.into_backs_se, residual,
+                 bal.residual_se);
   } else {
     // F not traced here: no statistical error (exact F: the residual is its rounding; a read F: unknown).
     std::fprintf(report_stream(),
@@ -377,59 +189,45 @@ int run_exchange(const ExchangeCommand& command) {
   double largest = 0;
   for (double Q : r.Q) largest += std::abs(Q);
   if (into_backs > 0.01 * std::max(largest, 1e-300))
-    warn(summary, fmt(into_backs) + " W (+- " + fmt(std::sqrt(var_backs), "%.2g") +
+    warn(summary, fmt(into_backs) + " W (+- " + fmt(bal.into_backs_se, "%.2g") +
                       ") is radiated into the backs of one-sided faces, where it is lost (absorbed at 0 K): faces "
                       "oriented the wrong way (--orient outward), or open and thin parts that should be two-sided "
                       "(--open-shells two-sided, 'radwalk_two_sided 1', --two-sided); the back_hits field says where");
 
   // The contact patches' share, W.
   {
-    double radiated = 0, net = 0;
-    for (std::size_t i = 0; i < n; ++i)
-      if (in_contact[i]) radiated += patches.area[i] * r.J[i], net += r.Q[i];
-    jx["contact_patches"] = contact_count;
-    jx["contact_area"] = contact_area;
+    jx["contact_patches"] = x.contact_count;
+    jx["contact_area"] = x.contact_area;
     jx["contact_faces"] = command.contact_faces;
-    jx["contact_radiated"] = radiated;
-    jx["contact_Q"] = net;
-    if (contact_count > 0 && !exclude)
-      warn(summary, std::to_string(contact_count) + " patches (" + fmt(contact_area) + " m^2) touch another surface "
-                    "(faces lying on a support, e.g. furniture bottoms on the floor, and the support under them): "
-                    "they radiate " + fmt(radiated) + " W into the backs of faces or out through the support, and their net heat is " + fmt(net) +
-                    " W, which in reality is conduction through the contact; --contact-faces exclude leaves them out "
-                    "of the exchange");
-    else if (contact_count > 0)
-      note(std::to_string(contact_count) + " contact patches (" + fmt(contact_area) + " m^2) left out of the exchange");
+    jx["contact_radiated"] = x.contact_radiated;
+    jx["contact_Q"] = x.contact_Q;
+    if (x.contact_count > 0 && !exclude)
+      warn(summary, std::to_string(x.contact_count) + " patches (" + fmt(x.contact_area) + " m^2) touch another "
+                    "surface (faces lying on a support, e.g. furniture bottoms on the floor, and the support under "
+                    "them): they radiate " + fmt(x.contact_radiated) + " W into the backs of faces or out through the "
+                    "support, and their net heat is " + fmt(x.contact_Q) + " W, which in reality is conduction "
+                    "through the contact; --contact-faces exclude leaves them out of the exchange");
+    else if (x.contact_count > 0)
+      note(std::to_string(x.contact_count) + " contact patches (" + fmt(x.contact_area) +
+           " m^2) left out of the exchange");
   }
 
   // Per-group tables.
-  std::map<std::string, std::int32_t> index;
-  std::vector<std::string> names;
-  std::vector<std::int32_t> group(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string name = group_name(patches, i, command.group_by);
-    auto [it, fresh] = index.emplace(name, std::int32_t(names.size()));
-    if (fresh) names.push_back(name);
-    group[i] = it->second;
-  }
+  const std::vector<std::string>& names = x.groups.names;
+  const std::vector<std::int32_t>& group = x.groups.group;
   const int groups = int(names.size());
-  const GroupViewFactors gv = group_view_factors(problem.F, patches.area, group, groups, input.sky, back);
-  std::vector<double> group_Q(std::size_t(groups), 0.0), group_Q_var(std::size_t(groups), 0.0),
-      group_T4(std::size_t(groups), 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto G = std::size_t(group[i]);
-    group_Q[G] += r.Q[i];
-    group_Q_var[G] += Q_se[i] * Q_se[i];
-    group_T4[G] += patches.area[i] * std::pow(r.T[i], 4);
-  }
+  const GroupViewFactors& gv = x.groups.view_factors;
+  const std::vector<double>& group_Q = x.groups.Q;
+  const std::vector<double>& group_Q_se = x.groups.Q_se;
+  const std::vector<double>& group_T = x.groups.T_radiant;
   nlohmann::json table = nlohmann::json::array();
   for (int G = 0; G < groups; ++G) {
     const auto g = std::size_t(G);
     table.push_back({{"name", names[g]},
                      {"area", gv.area[g]},
                      {"Q", group_Q[g]},
-                     {"Q_se", std::sqrt(group_Q_var[g])},
-                     {"T_radiant", std::pow(group_T4[g] / gv.area[g], 0.25)},
+                     {"Q_se", group_Q_se[g]},
+                     {"T_radiant", group_T[g]},
                      {"sky", gv.sky[g]},
                      {"back", gv.back[g]}});
   }
@@ -440,9 +238,8 @@ int run_exchange(const ExchangeCommand& command) {
     std::vector<std::vector<std::string>> rows;
     for (int G = 0; G < groups; ++G) {
       const auto g = std::size_t(G);
-      rows.push_back({csv_text(names[g]), csv_number(gv.area[g]), csv_number(group_Q[g]),
-                      csv_number(std::sqrt(group_Q_var[g])), csv_number(std::pow(group_T4[g] / gv.area[g], 0.25)),
-                      csv_number(gv.sky[g]), csv_number(gv.back[g])});
+      rows.push_back({csv_text(names[g]), csv_number(gv.area[g]), csv_number(group_Q[g]), csv_number(group_Q_se[g]),
+                      csv_number(group_T[g]), csv_number(gv.sky[g]), csv_number(gv.back[g])});
     }
     write_csv_table(command.groups_csv, {command.group_by, "area", "Q", "Q_se", "T_radiant", "sky", "back"}, rows,
                     run_id_of(summary));
@@ -470,10 +267,9 @@ int run_exchange(const ExchangeCommand& command) {
                    [&](int a, int b) { return std::abs(group_Q[std::size_t(a)]) > std::abs(group_Q[std::size_t(b)]); });
   for (std::size_t k = 0; k < order.size() && k < 10; ++k) {
     const auto g = std::size_t(order[k]);
-    const std::string se = error_note.empty() ? " (+- " + fmt(std::sqrt(group_Q_var[g]), "%.2g") + ")" : "";
+    const std::string se = error_note.empty() ? " (+- " + fmt(group_Q_se[g], "%.2g") + ")" : "";
     std::fprintf(report_stream(), "  %s %s: Q = %.6g W%s, area %.4g m^2, radiant temperature %.2f K\n",
-                 command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g],
-                 std::pow(group_T4[g] / gv.area[g], 0.25));
+                 command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g], group_T[g]);
   }
   if (order.size() > 10) std::fprintf(report_stream(), "  ... %zu more (--groups FILE.csv)\n", order.size() - 10);
 
@@ -515,7 +311,7 @@ int run_exchange(const ExchangeCommand& command) {
   }
   fields.push_back(scalar_field("sky", input.sky));
   std::vector<double> contact(n);
-  for (std::size_t i = 0; i < n; ++i) contact[i] = in_contact[i] ? 1 : 0;
+  for (std::size_t i = 0; i < n; ++i) contact[i] = x.in_contact[i] ? 1 : 0;
   fields.push_back(scalar_field("contact", contact, FieldKind::count));
   if (traced) fields.push_back(scalar_field("back", back));
   VtpMetadata metadata = solution_metadata(solution, patches);

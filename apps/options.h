@@ -163,7 +163,7 @@ struct ExchangeCommand {
   std::string contact_faces = "include";  // --contact-faces include|exclude: patches touching other surfaces
   std::string sensitivities;         // --sensitivities all|G1,G2: response groups of dQ/deps, dQ/dT (adjoint)
   std::string sensitivities_csv;     // --sensitivities-csv FILE.csv: group_from,group_to,dQ_deps_W,dQ_dT_W_per_K
-  int discretisation_directions = 16;  // --discretisation-directions L: J_disc (apps/exchange_discretisation.h); 0 off
+  int discretisation_directions = 16;  // --discretisation-directions L: J_disc (solve/exchange_discretisation.h); 0 off
 };
 
 int run_check(const SceneOptions& options);

@@ -321,7 +321,8 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {
   return load_patches(options, summary, mesh);
 }
 
-PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh) {
+PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh,
+                      std::vector<ContactRegion>* regions) {
   ScenePatchingOptions patching;
   patching.split.max_edge = options.max_edge;
   patching.split.max_area = options.max_area;
@@ -347,6 +348,7 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& me
   const std::string unit = length_unit(options).length();
   note(std::string(line) + " (" + (unit.find(' ') != std::string::npos ? "(" + unit + ")" : unit) + "^2)");
   mesh = std::move(scene.mesh);
+  if (regions) *regions = std::move(scene.contact_regions);
   return std::move(scene.patches);
 }
 

@@ -12,6 +12,7 @@
 #include "io/run_summary.h"
 #include "mesh/length_unit.h"
 #include "mesh/mesh.h"
+#include "patch/contact_patches.h"
 #include "patch/patch_set.h"
 
 namespace radwalk::app {
@@ -38,7 +39,9 @@ LengthUnit length_unit(const SceneOptions& options);
 // JSON `patch_area`).
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary);
 // The same, keeping the validated mesh (its groups and source lines) in `mesh`.
-PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh);
+// regions, if given, gets the contact regions (patch/contact_patches.h, on the mesh before any cut).
+PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& mesh,
+                      std::vector<ContactRegion>* regions = nullptr);
 
 // Which rows of F each rank holds over MPI: every row (what every consumer of F can use), or only its own block
 // (formfactor/form_factor_rows.h: for Jacobi, Gauss-Seidel and writing F; ff.row_blocks says which). The same

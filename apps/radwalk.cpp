@@ -702,7 +702,8 @@ int run_main(int argc, char** argv) {
       ->add_option("--contact-faces", exchange.contact_faces,
                    "Patches touching another surface (faces lying on a support, e.g. furniture bottoms on the floor, "
                    "and the support under them; patch/contact.h): include them in the exchange (reported in W) or "
-                   "exclude them (their rows and columns of F removed; heat through a contact is conduction)")
+                   "exclude them (their rows and columns of F removed; heat through a contact is conduction; the supports are "
+                   "then cut along the footprints, as --contact-cut, when faces are split)")
       ->check(one_of({"include", "exclude"}))
       ->capture_default_str();
   exchange_cmd->add_option("--groups", exchange.groups_csv, "Write Q (W), area, radiant temperature per group as CSV")

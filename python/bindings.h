@@ -8,6 +8,7 @@
 //   refine_bindings.cpp       radwalk.solve_adaptive -> AdaptiveResult (adaptive patching)
 //   target_error_bindings.cpp radwalk.solve_to_target_error -> TargetErrorResult (accuracy on request)
 //   measure_bindings.cpp      radwalk.measure -> Measurement (M = <R, B>_A by any method of `radwalk measure`)
+//   exchange_bindings.cpp     radwalk.exchange -> Exchange (radiative heat exchange, solve/heat_exchange.h)
 //   pathtrace_bindings.cpp    radwalk.pathtrace -> PathtraceResult (patch averages and images)
 //   writer_bindings.cpp       radwalk.write_csv, write_vtp, write_matrix_market, read_form_factors
 //   meshio_bindings.cpp       Scene.from_meshio, Result.to_meshio (Debian's python3-meshio, imported when called)
@@ -33,6 +34,7 @@
 #include "core/solution.h"
 #include "core/types.h"
 #include "formfactor/form_factors.h"
+#include "patch/contact_patches.h"
 #include "patch/patch_set.h"
 #include "solve/problem.h"
 
@@ -58,6 +60,7 @@ struct Scene {
   std::vector<std::string> groups;       // "object 'chair', group 'seat'" (what --response group:NAME matches)
   std::vector<std::string> group_names;  // the same groups as the user named them: "chair/seat", "chair", "seat"
   std::vector<std::string> warnings;  // validation's repairs and notices (the CLI's "radwalk: warning:" lines)
+  std::vector<ContactRegion> contact_regions;  // of the objects standing on faces (patch/contact_patches.h)
 };
 
 // Form factors of one scene, as estimated (rays, escaped, back_hits filled) or read from Matrix Market (empty).
@@ -128,6 +131,7 @@ void bind_refinement(py::module_& m);
 void bind_target_error(py::module_& m);
 void bind_measure(py::module_& m);
 void bind_pathtrace(py::module_& m);
+void bind_exchange(py::module_& m);
 void bind_writers(py::module_& m);
 void bind_meshio(py::module_& m);  // after bind_scene and bind_solvers: adds to Scene and Result
 

@@ -92,6 +92,7 @@ Ctrl-C interrupts a computation with KeyboardInterrupt within about 50 ms plus o
   bind_target_error(m);
   bind_measure(m);
   bind_pathtrace(m);
+  bind_exchange(m);
   bind_writers(m);
   bind_meshio(m);
 }

@@ -61,6 +61,7 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
     patching.two_sided = two_sided;
     PatchedScene patched = patch_scene(std::move(mesh), patching);
     scene.patches = std::move(patched.patches);
+    scene.contact_regions = std::move(patched.contact_regions);
     scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
     keep_used_groups(patched.mesh, scene);
     scene.warnings = patched.mesh.warnings;

@@ -321,6 +321,21 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
     out.face_group.push_back(mesh.face_group[f]);
     out.face_source.push_back(mesh.face_source[f]);
   };
+  // A triangle of a split: kept unless it has no area (at most min_area: a split of a face two of whose corners
+  // nearly coincide), which is dropped as a degenerate face is, with its own repair finding.
+  auto keep_piece = [&](std::size_t f, const std::array<std::int32_t, 4>& corners, const std::string& split) {
+    const Vec3& a = mesh.vertices[static_cast<std::size_t>(corners[0])];
+    const double piece = 0.5 * (mesh.vertices[static_cast<std::size_t>(corners[1])] - a)
+                                   .cross(mesh.vertices[static_cast<std::size_t>(corners[2])] - a)
+                                   .norm();
+    if (piece > min_area) {
+      keep(f, corners);
+      return;
+    }
+    log.add("zero-area face dropped", Severity::repair, f,
+            "degenerate piece dropped: " + split + " left a triangle of area " + fmt(piece) + ", zero or below " +
+                fmt(tol.degenerate_area) + " x (scene diagonal " + fmt(diagonal) + ")^2; it carries no power");
+  };
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
     if (!(area > min_area)) {
@@ -355,8 +370,9 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
           mesh.vertices.push_back(x);
         }
         for (const auto& t : *triangles)
-          keep(f, {index[static_cast<std::size_t>(t[0])], index[static_cast<std::size_t>(t[1])],
-                   index[static_cast<std::size_t>(t[2])], -1});
+          keep_piece(f, {index[static_cast<std::size_t>(t[0])], index[static_cast<std::size_t>(t[1])],
+                         index[static_cast<std::size_t>(t[2])], -1},
+                     "splitting the self-intersecting quad at its crossing");
         changed = true;
         log.add("self-intersecting polygon split", Severity::repair, f,
                 split_message("quad", pieces, triangles->size()) +
@@ -389,15 +405,29 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
         continue;
       }
     }
-    if (!split) {
+    // A concave quad that neither diagonal splits into two triangles turning its way (a sliver whose corners lie
+    // on a line to rounding): the diagonal whose two triangles' areas add up closest to its area.
+    auto pieces = split;
+    if (!pieces && concave && !folded) {
+      const std::array<std::array<std::int32_t, 3>, 2> d02{{{0, 1, 2}, {0, 2, 3}}}, d13{{{1, 2, 3}, {1, 3, 0}}};
+      auto drawn = [&](const std::array<std::array<std::int32_t, 3>, 2>& d) {
+        double a = 0;
+        for (const auto& t : d)
+          a += 0.5 * (p[std::size_t(t[1])] - p[std::size_t(t[0])]).cross(p[std::size_t(t[2])] - p[std::size_t(t[0])]).norm();
+        return std::abs(a - area);
+      };
+      pieces = drawn(d02) <= drawn(d13) ? d02 : d13;
+    }
+    if (!pieces) {
       keep(f, mesh.faces[f]);
       continue;
     }
-    for (const auto& t : *split)
-      keep(f, {mesh.faces[f][static_cast<std::size_t>(t[0])], mesh.faces[f][static_cast<std::size_t>(t[1])],
-               mesh.faces[f][static_cast<std::size_t>(t[2])], -1});
+    const std::string diag = (*pieces)[0][0] == 0 ? "0-2" : "1-3";
+    for (const auto& t : *pieces)
+      keep_piece(f, {mesh.faces[f][static_cast<std::size_t>(t[0])], mesh.faces[f][static_cast<std::size_t>(t[1])],
+                     mesh.faces[f][static_cast<std::size_t>(t[2])], -1},
+                 "splitting the quad along its diagonal " + diag);
     changed = true;
-    const std::string diag = (*split)[0][0] == 0 ? "0-2" : "1-3";
     if (bent)
       log.add("non-planar quad split", Severity::repair, f,
               "non-planar quad split into two triangles along its diagonal " + diag + " (a corner is " +
@@ -424,12 +454,18 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
 void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   const double diagonal = scene_diagonal(mesh);
   const double min_area = tol.degenerate_area * diagonal * diagonal;
+  // What the message says would happen otherwise: with --strict the repair was not tried; without, this face is
+  // what repair_face_geometry could not repair.
+  const auto otherwise = [&](const char* repair) {
+    return tol.strict ? std::string(" (refused with --strict; otherwise ") + repair + ")"
+                      : std::string(" (refused: the repair could not have it ") + repair + ")";
+  };
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
     if (!(area > min_area)) {
       log.error("degenerate face", f,
                 "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
-                    " x (scene diagonal " + fmt(diagonal) + ")^2 (refused with --strict; otherwise dropped)");
+                    " x (scene diagonal " + fmt(diagonal) + ")^2" + otherwise("dropped"));
       continue;
     }
     if (!mesh.is_quad(f)) continue;
@@ -447,14 +483,14 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Find
       log.error("non-planar quad", f,
                 "non-planar quad: a corner is " + fmt(100 * bend) + "% of the quad's width off its plane (limit " +
                     fmt(100 * tol.planar_error) +
-                    "%); split it into two triangles (refused with --strict; otherwise split)");
+                    "%); split it into two triangles" + otherwise("split"));
       continue;
     }
     const double turn = quad_min_turn_sine(mesh, f);
     if (turn < -tol.convex_sine) {
       log.error("non-convex quad", f,
                 "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
-                    "), the quad is concave; split it into two triangles (refused with --strict; otherwise split)");
+                    "), the quad is concave; split it into two triangles" + otherwise("split"));
       continue;
     }
     const double ambiguity = quad_area_ambiguity(mesh, f);
@@ -462,7 +498,7 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Find
       log.error("area-ambiguous quad", f,
                 "bent quad: its triangulations and its surface differ in area by " + fmt(100 * ambiguity) +
                     "% (limit " + fmt(100 * tol.area_ambiguity) +
-                    "%); split it into two triangles (refused with --strict; otherwise split)");
+                    "%); split it into two triangles" + otherwise("split"));
       continue;
     }
     if (bend > tol.planar_clean)

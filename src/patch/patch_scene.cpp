@@ -11,6 +11,7 @@ PatchedScene patch_scene(Mesh mesh, const ScenePatchingOptions& options) {
   Timer timer;
   scene.contacts = find_contacts(mesh);
   for (const Contact& c : scene.contacts) scene.contact_lines.push_back(describe_contact(mesh, c));
+  scene.contact_regions = contact_regions(mesh, scene.contacts);
   scene.cut = options.contact_cut && (options.split.max_edge > 0 || options.split.max_area > 0);
   if (scene.cut && !scene.contacts.empty())
     scene.mesh = cut_along_contacts(mesh, scene.contacts, &scene.contact_faces_cut);

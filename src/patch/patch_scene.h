@@ -15,6 +15,7 @@
 
 #include "mesh/mesh.h"
 #include "patch/contact.h"
+#include "patch/contact_patches.h"
 #include "patch/patch_set.h"
 #include "patch/patching.h"
 
@@ -31,6 +32,7 @@ struct PatchedScene {
   PatchSet patches;                     // front patches (face order), then the back patches
   std::vector<Contact> contacts;        // every contact found, cut or not (face indices of the mesh before the cut)
   std::vector<std::string> contact_lines;  // describe_contact of each, on the mesh before the cut
+  std::vector<ContactRegion> contact_regions;  // contact_regions of them, on the mesh before the cut
   bool cut = false;                     // contact_cut and the faces are split
   std::size_t contact_faces_cut = 0;    // faces replaced by their pieces
   std::size_t back_patches = 0;         // patches add_back_sides appended

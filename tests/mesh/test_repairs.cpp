@@ -178,3 +178,32 @@ TEST_CASE("back-to-back duplicate faces become one two-sided face, same-way dupl
   REQUIRE_FALSE(strict.refusal.empty());
   CHECK(contains(strict.refusal, "duplicate face"));
 }
+
+TEST_CASE("a quad whose split leaves a triangle without area is repaired, not refused: the piece is dropped with a "
+          "warning", "[mesh][repairs]") {
+  // Two faces of Debian's sweethome3d laptop model (blendswap-cc-by/laptop.obj lines 14960 and 17090), moved and
+  // scaled by 1/20 into this scene: a concave sliver quad whose corners lie on a line to 5e-8 (neither diagonal
+  // splits it into two triangles turning its way) and a quad whose corners 2 and 3 are 2.5e-9 apart (its split
+  // leaves a triangle of area 2.7e-17, below 1e-10 x the squared scene diagonal). Validation used to refuse both
+  // while its message said "otherwise dropped" / "otherwise split".
+  const std::string faces =
+      "v 0.060561750 0.040111000 0.503866400\nv 0.060561800 0.040111000 0.503866400\n"
+      "v 0.060561750 0.040111000 0.606483350\nv 0.060561750 0.040111000 0.623586150\n"
+      "v -0.003133000 0.000884950 0.041335550\nv -0.004722200 0.001189150 0.040156500\n"
+      "v 0.006097050 0.000783500 0.040026200\nv 0.006097000 0.000783500 0.040026200\n"
+      "f 10 11 12 13\nf 14 15 16 17\n";
+  const Loaded before = load("");
+  const Loaded r = load(faces);
+  INFO(r.refusal);
+  REQUIRE(r.refusal.empty());
+  const Finding* dropped = first_of(r.findings, "zero-area face dropped");
+  REQUIRE(dropped != nullptr);
+  CHECK(contains(dropped->message, "degenerate piece dropped"));
+  // The area as drawn is kept to the dropped pieces' area (below 1e-10 x the squared scene diagonal, about 6e-10).
+  const double drawn = total_area(r.mesh) - total_area(before.mesh);
+  CHECK(drawn > 0);
+  CHECK(drawn < 1e-5);
+  // With --strict both are refused, and the message says so.
+  const Loaded strict = load(faces, true);
+  CHECK(!strict.refusal.empty());
+}

@@ -2,6 +2,7 @@
 // supporting face is cut along it into pieces that tile it, each either under the object or beside it.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "mesh/read_scene.h"
 #include "mesh/validate.h"
 #include "patch/contact.h"
+#include "patch/contact_patches.h"
 #include "patch/patching.h"
 
 using namespace radwalk;
@@ -207,4 +209,39 @@ TEST_CASE("contacts: the Cornell box's blocks stand on the floor, cut along thei
     }
     CHECK(under == Approx(c.area).epsilon(1e-9));
   }
+}
+
+namespace {
+
+double contact_area(const std::vector<ContactRegion>& regions, const PatchSet& patches) {
+  const std::vector<bool> in = contact_patches(regions, patches);
+  double a = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (in[i]) a += patches.area[i];
+  return a;
+}
+
+}  // namespace
+
+TEST_CASE("contact patches: the floor under a block and the block's bottom, cut or not, also from contacts found "
+          "on the cut mesh", "[patch][contact]") {
+  // The unit block with its bottom on the 4 x 4 floor, 0.5 m patches: the floor's four patches under it and the
+  // bottom's four, 2 m^2; the same after the cut along the footprint (regions taken before the cut).
+  const Mesh m = block_on_floor(true, false);
+  const auto contacts = find_contacts(m);
+  const auto regions = contact_regions(m, contacts);
+  CHECK(contact_area(regions, make_patches(m, 0.5)) == Approx(2.0).epsilon(1e-12));
+  CHECK(contact_area(regions, make_patches(cut_along_contacts(m, contacts), 0.5)) == Approx(2.0).epsilon(1e-12));
+  // Contacts found again on the cut mesh (what `radwalk exchange` did): the floor's piece under the block is itself a
+  // face lying back to back on the bottom, and its input face is the whole floor, which marking a lying face whole
+  // by its input face made contact (16 m^2). By the regions' rule only the piece and the bottom touch.
+  const Mesh cut = cut_along_contacts(m, contacts);
+  const auto again = find_contacts(cut);
+  std::string found;
+  for (const Contact& c : again) found += describe_contact(cut, c) + (c.lying ? " (lying); " : "; ");
+  INFO(found);
+  CHECK(std::any_of(again.begin(), again.end(), [&](const Contact& c) {
+    return c.lying && c.standing.size() == 1 && cut.source_face(std::size_t(c.standing[0])) == 0;
+  }));
+  CHECK(contact_area(contact_regions(cut, again), make_patches(cut, 0.5)) == Approx(2.0).epsilon(1e-12));
 }

@@ -1,4 +1,4 @@
-#include "apps/exchange_discretisation.h"
+#include "solve/exchange_discretisation.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,12 +6,11 @@
 #include "solve/discretisation_error.h"
 #include "visibility/embree_visibility.h"
 
-namespace radwalk::app {
+namespace radwalk {
 
 ExchangeDiscretisation exchange_discretisation(const PatchSet& patches, const RadiosityProblem& problem,
                                                const PatchRgb& B, const NetRadiationInput& input,
-                                               const NetRadiationResult& r, int directions, std::uint64_t seed,
-                                               RunSummary& summary) {
+                                               const NetRadiationResult& r, int directions, std::uint64_t seed) {
   const std::size_t n = patches.size();
   const EmbreeVisibility visibility(patches);
   const DiscretisationError error = discretisation_error(patches, visibility, problem, B, directions, seed);
@@ -46,15 +45,11 @@ ExchangeDiscretisation exchange_discretisation(const PatchSet& patches, const Ra
     out.Q[i] = patches.area[i] * out.q[i];
   }
   out.seconds = error.seconds;
-  auto& j = summary.json()["exchange"]["discretisation"];
-  j["points_per_patch"] = error.points;
-  j["directions_per_point"] = error.directions;
-  j["rays"] = error.rays;
-  j["sweeps"] = error.sweeps;
-  j["method"] = "the radiosity system's discretisation error e = (I - H)^-1 d (docs/theory/discretisation_error.md) "
-                "on the net-radiation problem, J_disc = sqrt((e_0 - e_1)^2 + (sd_0 + sd_1)^2); q, Q, T linearly "
-                "from J (docs/heat-exchange.md); black known-temperature patches: only J's part";
+  out.points = error.points;
+  out.directions = error.directions;
+  out.rays = error.rays;
+  out.sweeps = error.sweeps;
   return out;
 }
 
-}  // namespace radwalk::app
+}  // namespace radwalk

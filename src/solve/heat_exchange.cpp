@@ -1,0 +1,227 @@
+#include "solve/heat_exchange.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.h"
+#include "formfactor/form_factor_noise.h"
+#include "solve/form_factor_error.h"
+#include "solve/solve_radiosity.h"
+#include "visibility/embree_visibility.h"
+
+namespace radwalk {
+namespace {
+
+double sum_of_squares(const std::vector<double>& v) {
+  double s = 0;
+  for (double x : v) s += x * x;
+  return s;
+}
+
+// The name of patch i's group under group_by.
+std::string group_name(const PatchSet& patches, std::size_t i, const std::string& by) {
+  const std::string& name = by == "object" ? patches.object_of(i) : by == "group" ? patches.group_of(i)
+                                                                                  : patches.material_of(i);
+  return name.empty() ? "(none)" : name;
+}
+
+// Step 4: the statistical errors of J, q, Q, T from the traced F's noise.
+void statistical_errors(const PatchSet& patches, const FormFactors& ff, HeatExchange& x) {
+  const std::size_t n = patches.size();
+  const NetRadiationResult& r = x.result;
+  PatchRgb B3(Eigen::Index(n), 3);
+  for (std::size_t i = 0; i < n; ++i) B3.row(Eigen::Index(i)) = Rgb::Constant(r.J[i]).transpose();
+  const EmbreeVisibility visibility(patches);
+  const FormFactorError error = form_factor_error(patches, visibility, ff, x.problem, B3);
+  const PatchRgb V = gather_variance(x.problem.F, ff, B3).scaled(error.calibration.factors);
+  for (std::size_t i = 0; i < n; ++i) x.J_se[i] = error.standard_error(Eigen::Index(i), 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SurfaceCondition& s = x.input.surface[i];
+    if (s.temperature_given) {
+      if (s.emissivity < 1) {
+        x.q_se[i] = s.emissivity / (1 - s.emissivity) * x.J_se[i];
+      } else {
+        double through = 0;
+        for (SparseF::InnerIterator it(x.problem.F, Eigen::Index(i)); it; ++it)
+          through += double(it.value()) * x.J_se[std::size_t(it.col())];
+        x.q_se[i] = std::sqrt(V(Eigen::Index(i), 0) + through * through);
+      }
+    } else if (r.T[i] > 0) {
+      x.T_se[i] = x.J_se[i] / (4 * kStefanBoltzmann * r.T[i] * r.T[i] * r.T[i]);
+    }
+    x.Q_se[i] = patches.area[i] * x.q_se[i];
+  }
+}
+
+// Step 6: the energy balance.
+HeatBalance energy_balance(const PatchSet& patches, const FormFactors& ff, const HeatExchange& x) {
+  const std::size_t n = patches.size();
+  const NetRadiationResult& r = x.result;
+  const double ambient = kStefanBoltzmann * std::pow(x.input.ambient_temperature, 4);
+  HeatBalance b;
+  double var_backs = 0, var_to_ambient = 0, var_residual = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double A = patches.area[i], s = x.input.sky[i];
+    b.sum_Q += r.Q[i];
+    b.to_ambient += A * r.J[i] * s;
+    b.from_ambient += A * s * ambient;
+    b.into_backs += A * r.J[i] * x.back[i];
+    b.sky_area += A * s;
+    if (x.traced) {
+      const double rays = std::max<double>(ff.rays[i], 1);
+      const double P = A * r.J[i];
+      var_backs += P * P * x.back[i] * (1 - x.back[i]) / rays;
+      var_to_ambient += P * P * s * (1 - s) / rays;
+      double m1 = 0, m2 = 0;
+      for (SparseF::InnerIterator it(x.problem.F, Eigen::Index(i)); it; ++it) {
+        const double d = r.J[i] - r.J[std::size_t(it.col())];
+        m1 += double(it.value()) * d;
+        m2 += double(it.value()) * d * d;
+      }
+      var_residual += A * A * std::max(0.0, m2 - m1 * m1) / rays;
+    }
+  }
+  b.residual = b.sum_Q - (b.to_ambient - b.from_ambient) - b.into_backs;
+  b.sum_Q_se = std::sqrt(sum_of_squares(x.Q_se));
+  b.to_ambient_se = std::sqrt(var_to_ambient);
+  b.into_backs_se = std::sqrt(var_backs);
+  b.residual_se = std::sqrt(var_residual);
+  return b;
+}
+
+// Step 7: the per-group tables.
+HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, const std::string& by) {
+  if (by != "object" && by != "group" && by != "material")
+    throw InputError("group_by '" + by + "' is not one of object, group, material");
+  const std::size_t n = patches.size();
+  HeatExchangeGroups g;
+  std::map<std::string, std::int32_t> index;
+  g.group.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string name = group_name(patches, i, by);
+    auto [it, fresh] = index.emplace(name, std::int32_t(g.names.size()));
+    if (fresh) g.names.push_back(name);
+    g.group[i] = it->second;
+  }
+  const int groups = int(g.names.size());
+  g.view_factors = group_view_factors(x.problem.F, patches.area, g.group, groups, x.input.sky, x.back);
+  g.Q.assign(std::size_t(groups), 0.0);
+  g.Q_se.assign(std::size_t(groups), 0.0);
+  g.T_radiant.assign(std::size_t(groups), 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto G = std::size_t(g.group[i]);
+    g.Q[G] += x.result.Q[i];
+    g.Q_se[G] += x.Q_se[i] * x.Q_se[i];
+    g.T_radiant[G] += patches.area[i] * std::pow(x.result.T[i], 4);
+  }
+  for (std::size_t G = 0; G < std::size_t(groups); ++G) {
+    g.Q_se[G] = std::sqrt(g.Q_se[G]);
+    g.T_radiant[G] = std::pow(g.T_radiant[G] / g.view_factors.area[G], 0.25);
+  }
+  return g;
+}
+
+}  // namespace
+
+HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCondition>& conditions,
+                           const std::vector<ContactRegion>& regions, FormFactors ff,
+                           const HeatExchangeOptions& options) {
+  const std::size_t n = patches.size();
+  if (conditions.size() != n)
+    throw InputError("exchange: " + std::to_string(conditions.size()) + " surface conditions for " +
+                     std::to_string(n) + " patches");
+  if (options.group_by != "object" && options.group_by != "group" && options.group_by != "material")
+    throw InputError("group_by '" + options.group_by + "' is not one of object, group, material");
+  HeatExchange x;
+  x.given = conditions;
+  x.traced = ff.rays.size() == n;
+
+  // Step 1.
+  x.input.area = patches.area;
+  x.input.surface = conditions;
+  x.input.ambient_temperature = options.ambient_temperature;
+  x.input.sky.assign(n, 0.0);
+  x.back.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (x.traced) {
+      const double rays = std::max<double>(ff.rays[i], 1);
+      x.input.sky[i] = ff.escaped[i] / rays;
+      x.back[i] = ff.back_hits[i] / rays;
+    } else {
+      const double row = double(ff.F.row(Eigen::Index(i)).sum());
+      x.input.sky[i] = std::clamp(1.0 - row, 0.0, 1.0);
+    }
+  }
+
+  // Step 2.
+  x.in_contact = contact_patches(regions, patches);
+  for (std::size_t i = 0; i < n; ++i)
+    if (x.in_contact[i]) ++x.contact_count, x.contact_area += patches.area[i];
+  if (options.exclude_contacts && x.contact_count > 0) {
+    std::vector<Eigen::Triplet<float, std::int32_t>> kept;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (x.in_contact[i]) continue;
+      for (SparseF::InnerIterator it(ff.F, Eigen::Index(i)); it; ++it) {
+        if (x.in_contact[std::size_t(it.col())])
+          x.back[i] += double(it.value());
+        else
+          kept.emplace_back(std::int32_t(i), std::int32_t(it.col()), it.value());
+      }
+    }
+    SparseF reduced(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+    reduced.setFromTriplets(kept.begin(), kept.end());
+    ff.F = std::move(reduced);
+    for (std::size_t i = 0; i < n; ++i)
+      if (x.in_contact[i]) {
+        x.input.sky[i] = x.back[i] = 0;
+        x.input.surface[i] = SurfaceCondition{1.0, true, 0.0, 0.0};  // rho = 0, S = 0: J = 0
+      }
+  }
+
+  // Step 3. The error estimates below read the patches' rho and E: those of the net-radiation system (its rho
+  // and source S), not the materials' reflectance and emission.
+  x.coefficients = net_radiation_coefficients(x.input);
+  PatchSet thermal = patches;
+  for (std::size_t i = 0; i < n; ++i) {
+    thermal.rho[i] = Rgb::Constant(x.coefficients.rho[i]);
+    thermal.E[i] = Rgb::Constant(x.coefficients.source[i]);
+  }
+  x.problem = net_radiation_problem(x.input, std::move(ff.F));
+  x.solution = solve_radiosity(x.problem, options.solve);
+  x.solved = x.solution.B.rows() == Eigen::Index(n);
+  if (!x.solved) return x;
+  x.result = net_radiation_result(x.input, x.problem.F, radiosity_of(x.solution));
+
+  // Step 4.
+  x.J_se.assign(n, 0.0);
+  x.q_se.assign(n, 0.0);
+  x.Q_se.assign(n, 0.0);
+  x.T_se.assign(n, 0.0);
+  if (has_noise_model(ff)) {
+    statistical_errors(thermal, ff, x);
+    x.error_method =
+        "first-order propagation of the traced rows' gather variance (docs/theory/error_estimate.md), sampling "
+        "factors measured; q, Q and T linearly from J (docs/theory/net_radiation.md)";
+  } else {
+    x.error_note = ff.row_std_error.empty() ? "the noise of form factors read from a file is not included"
+                                            : "the analytic form factors' visibility noise is not propagated";
+    x.error_method = "not included: " + x.error_note;
+  }
+
+  // Step 5.
+  if (options.discretisation_directions > 0)
+    x.discretisation = exchange_discretisation(thermal, x.problem, x.solution.B, x.input, x.result,
+                                               options.discretisation_directions, options.seed);
+
+  // Step 6.
+  x.balance = energy_balance(patches, ff, x);
+  for (std::size_t i = 0; i < n; ++i)
+    if (x.in_contact[i]) x.contact_radiated += patches.area[i] * x.result.J[i], x.contact_Q += x.result.Q[i];
+
+  // Step 7.
+  x.groups = group_tables(patches, x, options.group_by);
+  return x;
+}
+
+}  // namespace radwalk
