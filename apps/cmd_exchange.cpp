@@ -27,6 +27,9 @@
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
 
+#include "walk/random_walk_solver.h"
+#include "walk/walk_options.h"
+
 namespace radwalk::app {
 namespace {
 
@@ -84,6 +87,13 @@ int run_exchange(const ExchangeCommand& command) {
   options.group_by = command.group_by;
   options.discretisation_directions = command.discretisation_directions;
   options.seed = command.scene.seed;
+  WalkOptions walk = command.walk;
+  if (command.solver == "random-walk") {
+    walk.seed = command.scene.seed;
+    walk.progress = true;
+    check_walk_options(walk, n);
+    options.solver = [&walk](const RadiosityProblem& p) { return solve_random_walk(p, nullptr, nullptr, walk); };
+  }
   HeatExchange x = exchange_heat(patches, conditions, regions, std::move(ff), options);
   const bool traced = x.traced;
   const bool exclude = options.exclude_contacts;

@@ -60,7 +60,12 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
 };
 
 const std::vector<Rule<ExchangeCommand>> kExchangeRules = {
-    {{"--tol", "--max-iterations"}, [](const ExchangeCommand& c) { return c.solver != "direct"; },
+    {{"--walk", "--estimator", "--walks-per-patch", "--particles", "--survival", "--survival-constant"},
+     [](const ExchangeCommand& c) { return c.solver == "random-walk"; }, "with --solver random-walk"},
+    {{"--survival-constant"}, [](const ExchangeCommand& c) { return c.walk.survival.rule == SurvivalRule::constant; },
+     "with --survival constant"},
+    {{"--tol", "--max-iterations"},
+     [](const ExchangeCommand& c) { return c.solver != "direct" && c.solver != "random-walk"; },
      "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
     {{"--min-rays"}, [](const ExchangeCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
 };

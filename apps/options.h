@@ -152,7 +152,8 @@ struct MeasureCommand {
 struct ExchangeCommand {
   SceneOptions scene;
   FormFactorCliOptions ff;
-  std::string solver = "auto";       // auto | direct | jacobi | gauss-seidel | southwell
+  std::string solver = "auto";       // auto | direct | jacobi | gauss-seidel | southwell | gmres | random-walk
+  WalkOptions walk;                  // --solver random-walk: the walks on the matrix kernel
   double tol = 1e-12;
   long max_iterations = 0;           // 0: the solver's default
   double ambient_temperature = 0;    // --ambient-temperature T (K): what escaping rays reach (emissivity 1)

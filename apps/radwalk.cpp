@@ -432,6 +432,49 @@ std::vector<OptionSetting> option_settings(const CLI::App* cmd) {
 
 }  // namespace
 
+// The walk method's options of the commands that solve by random walks (solve, exchange): --walk and --estimator
+// (their names kept in `cli` until finish_walk_method), the walk counts and the survival rule.
+struct WalkMethodCli {
+  std::string direction, estimator;
+  CLI::Option* walks_per_patch = nullptr;
+  CLI::Option* particles = nullptr;
+};
+void add_walk_method_options(CLI::App* cmd, WalkOptions& walk, WalkMethodCli& cli) {
+  cli.direction = direction_name(direction_of(walk.method));
+  cli.estimator = method_row(walk.method).estimator;
+  cmd->add_option("--walk", cli.direction, "Random walk direction: " + walk_choices_help(kWalkDirections))
+      ->capture_default_str();
+  cmd->add_option("--estimator", cli.estimator,
+                  "Random-walk estimator: gather: " + join_names(estimator_names(WalkDirection::gather)) +
+                      "; shoot: " + join_names(estimator_names(WalkDirection::shoot)))
+      ->capture_default_str();
+  cli.walks_per_patch = cmd->add_option("--walks-per-patch", walk.walks_per_patch,
+                                        "Gathering (--walk gather): walks from each estimated patch")
+                            ->capture_default_str();
+  cli.particles = cmd->add_option("--particles", walk.particles,
+                                  "Shooting (--walk shoot): particles in total, for all patches at once")
+                      ->capture_default_str();
+  add_walk_choice(cmd, "--survival", walk.survival.rule, parse_survival_rule, survival_name(walk.survival.rule),
+                  "Random-walk survival probability p_k: " + walk_choices_help(kSurvivalRules));
+  cmd->add_option("--survival-constant", walk.survival.constant, "p for --survival constant, in (0, 1)")
+      ->transform(kReal)
+      ->capture_default_str();
+}
+// After parsing: the method from --walk and --estimator; when the command solves by walks (`walks`), the walk
+// count that the method does not read is refused.
+void finish_walk_method(const WalkMethodCli& cli, WalkOptions& walk, bool walks) {
+  WalkDirection direction = WalkDirection::gather;
+  walk_choice("--walk", [&] { direction = parse_walk_direction(cli.direction); });
+  walk_choice("--estimator", [&] { walk.method = walk_method(direction, cli.estimator); });
+  if (!walks) return;
+  if (is_gathering(walk.method) && cli.particles->count() > 0)
+    throw CLI::ValidationError("--particles", "counts shooting particles; gathering walks (--walk gather) take "
+                                              "--walks-per-patch");
+  if (!is_gathering(walk.method) && cli.walks_per_patch->count() > 0)
+    throw CLI::ValidationError("--walks-per-patch", "counts gathering walks; shooting walks (--walk shoot) take "
+                                                    "--particles");
+}
+
 // The shooting sampler's options (walk_options.h WalkSampler), the same for solve and compare.
 void add_sampler_options(CLI::App* cmd, WalkOptions& walk) {
   add_walk_choice(cmd, "--sampler", walk.sampler, parse_walk_sampler, sampler_name(walk.sampler),
@@ -519,54 +562,20 @@ int run_main(int argc, char** argv) {
       ->check(kPositive);
   // Random walks: the choices and their help come from the walk layer's tables and go through its parsers; counts
   // and ranges are checked by check_walk_options once the scene is loaded.
-  std::string walk_direction(direction_name(direction_of(solve.walk.method)));
-  std::string walk_estimator(method_row(solve.walk.method).estimator);
-  solve_cmd->add_option("--walk", walk_direction, "Random walk direction: " + walk_choices_help(kWalkDirections))
-      ->capture_default_str();
-  solve_cmd
-      ->add_option("--estimator", walk_estimator,
-                   "Random-walk estimator: gather: " + join_names(estimator_names(WalkDirection::gather)) +
-                       "; shoot: " + join_names(estimator_names(WalkDirection::shoot)))
-      ->capture_default_str();
+  WalkMethodCli solve_walk;
+  add_walk_method_options(solve_cmd, solve.walk, solve_walk);
   add_walk_choice(solve_cmd, "--kernel", solve.walk.kernel, parse_walk_kernel, kernel_name(solve.walk.kernel),
                   "Transition kernel: " + walk_choices_help(kWalkKernels));
-  auto* walks_per_patch = solve_cmd
-                              ->add_option("--walks-per-patch", solve.walk.walks_per_patch,
-                                           "Gathering (--walk gather): walks from each estimated patch")
-                              ->capture_default_str();
-  auto* particles = solve_cmd
-                        ->add_option("--particles", solve.walk.particles,
-                                     "Shooting (--walk shoot): particles in total, for all patches at once")
-                        ->capture_default_str();
   add_replaced_option(solve_cmd, "--walks",
                       "use --walks-per-patch for gathering walks or --particles for shooting walks");
   solve_cmd->add_option("--patches", solve.walk.patches, "Gathering: estimate only these patches (0-based)");
-  add_walk_choice(solve_cmd, "--survival", solve.walk.survival.rule, parse_survival_rule,
-                  survival_name(solve.walk.survival.rule),
-                  "Random-walk survival probability p_k: " + walk_choices_help(kSurvivalRules));
-  solve_cmd
-      ->add_option("--survival-constant", solve.walk.survival.constant, "p for --survival constant, in (0, 1)")
-      ->transform(kReal)
-      ->capture_default_str();
   solve_cmd->add_flag("--theory", solve.walk.theory,
                       "Also compute the exact per-walk variance (dense; small scenes)");
   solve_cmd->add_flag("--control-variate", solve.walk.control_variate,
                       "Gathering, matrix kernel: walk B - c from the shifted source E - c (1 - rho F 1), c = the "
                       "ambient radiosity sum A E / sum A (1 - rho F 1), and add c back (docs/theory/control_variate.md)");
   add_sampler_options(solve_cmd, solve.walk);
-  // The method from --walk and --estimator; the walk count that the method does not read is refused.
-  solve_cmd->callback([&solve, &walk_direction, &walk_estimator, walks_per_patch, particles] {
-    WalkDirection direction = WalkDirection::gather;
-    walk_choice("--walk", [&] { direction = parse_walk_direction(walk_direction); });
-    walk_choice("--estimator", [&] { solve.walk.method = walk_method(direction, walk_estimator); });
-    if (solve.solver != "random-walk") return;
-    if (is_gathering(solve.walk.method) && particles->count() > 0)
-      throw CLI::ValidationError("--particles", "counts shooting particles; gathering walks (--walk gather) take "
-                                                "--walks-per-patch");
-    if (!is_gathering(solve.walk.method) && walks_per_patch->count() > 0)
-      throw CLI::ValidationError("--walks-per-patch", "counts gathering walks; shooting walks (--walk shoot) take "
-                                                      "--particles");
-  });
+  solve_cmd->callback([&solve, &solve_walk] { finish_walk_method(solve_walk, solve.walk, solve.solver == "random-walk"); });
   solve_cmd
       ->add_option(
           "--refine", solve.refine,
@@ -675,9 +684,15 @@ int run_main(int argc, char** argv) {
       ->check(output_file(OutputFile::vtp));
   exchange_cmd
       ->add_option("--solver", exchange.solver,
-                   "auto (direct where it fits, else gmres), direct, jacobi, gauss-seidel, southwell, gmres")
-      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "gmres"}))
+                   "auto (direct where it fits, else gmres), direct, jacobi, gauss-seidel, southwell, gmres, "
+                   "random-walk (on the matrix kernel; refused where a re-radiating face makes the walks diverge)")
+      ->check(one_of({"auto", "direct", "jacobi", "gauss-seidel", "southwell", "gmres", "random-walk"}))
       ->capture_default_str();
+  WalkMethodCli exchange_walk;
+  add_walk_method_options(exchange_cmd, exchange.walk, exchange_walk);
+  exchange_cmd->callback([&exchange, &exchange_walk] {
+    finish_walk_method(exchange_walk, exchange.walk, exchange.solver == "random-walk");
+  });
   exchange_cmd
       ->add_option("--tol", exchange.tol, "Iterative solvers stop at this relative residual of the radiosity form")
       ->transform(kPositive)

@@ -37,6 +37,9 @@ ExchangeResult exchange(const Scene& scene, const py::object& F, const std::stri
                         double ambient_temperature, const std::string& contact_faces, const std::string& group_by,
                         int discretisation_directions) {
   // Every option checked before any form factor is traced.
+  if (solver == "random-walk")
+    throw InputError("solver='random-walk' is not in radwalk.exchange yet: use `radwalk exchange --solver "
+                     "random-walk` (the walks' method and counts are its options), or a deterministic solver here");
   if (contact_faces != "include" && contact_faces != "exclude")
     throw InputError("contact_faces must be 'include' or 'exclude', got '" + contact_faces + "'");
   if (group_by != "object" && group_by != "group" && group_by != "material")

@@ -27,15 +27,22 @@ std::string group_name(const PatchSet& patches, std::size_t i, const std::string
 }
 
 // Step 4: the statistical errors of J, q, Q, T from the traced F's noise.
-void statistical_errors(const PatchSet& patches, const FormFactors& ff, HeatExchange& x) {
+// `own`: the solver's own standard error of J per patch (random walks; empty for a deterministic solver), added to
+// the form factors' noise (when F was traced) as an independent error.
+void statistical_errors(const PatchSet& patches, const FormFactors& ff, const std::vector<double>& own,
+                        HeatExchange& x) {
   const std::size_t n = patches.size();
   const NetRadiationResult& r = x.result;
-  PatchRgb B3(Eigen::Index(n), 3);
-  for (std::size_t i = 0; i < n; ++i) B3.row(Eigen::Index(i)) = Rgb::Constant(r.J[i]).transpose();
-  const EmbreeVisibility visibility(patches);
-  const FormFactorError error = form_factor_error(patches, visibility, ff, x.problem, B3);
-  const PatchRgb V = gather_variance(x.problem.F, ff, B3).scaled(error.calibration.factors);
-  for (std::size_t i = 0; i < n; ++i) x.J_se[i] = error.standard_error(Eigen::Index(i), 0);
+  PatchRgb V = PatchRgb::Zero(Eigen::Index(n), 3);
+  if (has_noise_model(ff)) {
+    PatchRgb B3(Eigen::Index(n), 3);
+    for (std::size_t i = 0; i < n; ++i) B3.row(Eigen::Index(i)) = Rgb::Constant(r.J[i]).transpose();
+    const EmbreeVisibility visibility(patches);
+    const FormFactorError error = form_factor_error(patches, visibility, ff, x.problem, B3);
+    V = gather_variance(x.problem.F, ff, B3).scaled(error.calibration.factors);
+    for (std::size_t i = 0; i < n; ++i) x.J_se[i] = error.standard_error(Eigen::Index(i), 0);
+  }
+  for (std::size_t i = 0; i < own.size(); ++i) x.J_se[i] = std::hypot(x.J_se[i], own[i]);
   for (std::size_t i = 0; i < n; ++i) {
     const SurfaceCondition& s = x.input.surface[i];
     if (s.temperature_given) {
@@ -188,7 +195,7 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
     thermal.E[i] = Rgb::Constant(x.coefficients.source[i]);
   }
   x.problem = net_radiation_problem(x.input, std::move(ff.F));
-  x.solution = solve_radiosity(x.problem, options.solve);
+  x.solution = options.solver ? options.solver(x.problem) : solve_radiosity(x.problem, options.solve);
   x.solved = x.solution.B.rows() == Eigen::Index(n);
   if (!x.solved) return x;
   x.result = net_radiation_result(x.input, x.problem.F, radiosity_of(x.solution));
@@ -198,15 +205,25 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
   x.q_se.assign(n, 0.0);
   x.Q_se.assign(n, 0.0);
   x.T_se.assign(n, 0.0);
+  // A Monte Carlo solver's own error of J = B_0 - B_1: sqrt(se_0^2 + se_1^2), an upper bound when the two channels
+  // share walks (their covariance is then >= 0).
+  std::vector<double> own;
+  if (options.solver && x.solution.B_se.rows() == Eigen::Index(n))
+    for (std::size_t i = 0; i < n; ++i)
+      own.push_back(std::hypot(x.solution.B_se(Eigen::Index(i), 0), x.solution.B_se(Eigen::Index(i), 1)));
+  const std::string walks_part = own.empty() ? "" : ", plus the solver's own (random walks') standard error";
   if (has_noise_model(ff)) {
-    statistical_errors(thermal, ff, x);
+    statistical_errors(thermal, ff, own, x);
     x.error_method =
         "first-order propagation of the traced rows' gather variance (docs/theory/error_estimate.md), sampling "
-        "factors measured; q, Q and T linearly from J (docs/theory/net_radiation.md)";
+        "factors measured" + walks_part + "; q, Q and T linearly from J (docs/theory/net_radiation.md)";
   } else {
     x.error_note = ff.row_std_error.empty() ? "the noise of form factors read from a file is not included"
                                             : "the analytic form factors' visibility noise is not propagated";
-    x.error_method = "not included: " + x.error_note;
+    if (!own.empty()) statistical_errors(thermal, ff, own, x);
+    x.error_method = (own.empty() ? "" : "the solver's own (random walks') standard error; ") +
+                     std::string("not included: ") +
+                     x.error_note;
   }
 
   // Step 5.

@@ -22,6 +22,7 @@
 //   7. per group (object, group or material): Q, its standard error, the radiant temperature
 //      (sum A T^4 / sum A)^(1/4), and the view factors between groups (solve/group_view_factors.h).
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -37,7 +38,10 @@
 namespace radwalk {
 
 struct HeatExchangeOptions {
-  SolveOptions solve;                    // the net-radiation system's solver
+  SolveOptions solve;                    // the net-radiation system's solver (solve_radiosity) ...
+  // ... or, when set, this one (the CLI's and Python's random walks on the matrix kernel, a layer above): a
+  // Monte Carlo solver's own standard errors (Solution::B_se, N x 3) are added to J's.
+  std::function<Solution(const RadiosityProblem&)> solver;
   double ambient_temperature = 0;        // K, of what the escaping rays reach (emissivity 1)
   bool exclude_contacts = false;         // step 2
   std::string group_by = "object";       // "object" | "group" | "material"

@@ -278,3 +278,42 @@ TEST_CASE("exchange: a block's bottom lying on the floor is a contact patch, rep
   CHECK(x[1].at("contact_radiated").get<double>() == 0);
   CHECK(x[1].at("sum_Q").get<double>() < x[0].at("sum_Q").get<double>() - 100);
 }
+
+// Random walks solve the net-radiation system where they converge (every rho < 1): on the same traced F (the same
+// seed) the walks' J differs from the direct solve's by the walks' own noise only, which the reported J_se covers
+// (it adds the form factors' noise, so the test is conservative): |J_walk - J_direct| <= z J_se_walk per patch,
+// Sidak over the patches at family-wise alpha = 0.01. A re-radiating face (rho = 1) makes the walks endless: one
+// line, exit 2.
+TEST_CASE("exchange: random walks agree with the direct solve of the same F, and are refused for re-radiating faces",
+          "[cli][exchange]") {
+  const fs::path dir = scratch_dir("exchange_walks");
+  const fs::path direct = dir / "direct.csv", walks = dir / "walks.csv";
+  const std::string common = "exchange " + source("meshes/cube.obj") +
+                             " --max-edge 0.5 --rays 4000 --seed 3 --set light.emissivity=0.9"
+                             " --set light.temperature=600 --set white.emissivity=0.8 --set white.temperature=300";
+  Run r = run(common + " --solver direct --csv " + direct.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  r = run(common + " --solver random-walk --walks-per-patch 20000 --csv " + walks.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  auto d = read_columns(direct), w = read_columns(walks);
+  const std::size_t n = d["J"].size();
+  REQUIRE(n == 24);
+  REQUIRE(w["J"].size() == n);
+  const double z_crit = radwalk::z_critical(radwalk::sidak(0.01, n));
+  for (std::size_t i = 0; i < n; ++i) {
+    const double z = (w["J"][i] - d["J"][i]) / w["J_se"][i];
+    INFO("patch " << i << ": J " << w["J"][i] << " against " << d["J"][i] << ", z = " << z);
+    CHECK(std::abs(z) <= z_crit);
+    CHECK(w["J_se"][i] > d["J_se"][i]);  // the walks add their own error
+  }
+  // The test can fail: J moved by 10 % at the first patch is rejected.
+  CHECK(0.1 * d["J"][0] / w["J_se"][0] > z_crit);
+
+  const fs::path thermal = write_cube(dir);
+  r = run("exchange " + thermal.string() + " --max-edge 0.5 --rays 1000 --solver random-walk");
+  INFO(r.out);
+  CHECK(r.exit_code == 2);
+  CHECK(r.out.find("walks might never end") != std::string::npos);
+}

@@ -89,6 +89,8 @@ def test_refusals(tmp_path):
         radwalk.exchange(scene, rays=16, contact_faces="leave-out")
     with pytest.raises(radwalk.InputError, match="group_by must be"):
         radwalk.exchange(scene, rays=16, group_by="colour")
+    with pytest.raises(radwalk.InputError, match="radwalk exchange --solver random-walk"):
+        radwalk.exchange(scene, rays=16, solver="random-walk")
     # With the cut it runs, and agrees with the CLI's --contact-faces exclude.
     cut = radwalk.load(str(obj), max_edge=0.5, contact_cut=True)
     r = radwalk.exchange(cut, rays=200, seed=2, contact_faces="exclude", solver="direct")
