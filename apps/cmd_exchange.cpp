@@ -26,7 +26,6 @@
 #include "solve/surface_conditions.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
-
 #include "walk/random_walk_solver.h"
 #include "walk/walk_options.h"
 

@@ -15,8 +15,8 @@
 namespace radwalk {
 namespace {
 
-// At least 2 replicates per row, more where there are few rows, so that the factor rests on at least 64 rows traced
-// again.
+// At least 128 rows (all eligible ones if fewer) and 2 replicates per row, more where there are few rows, so that
+// the factors rest on at least 256 rows traced again (the coverage factor is a quantile).
 constexpr int kMinReplicates = 2;
 constexpr std::size_t kMinRows = 128;
 constexpr std::size_t kMinTracedRows = 256;

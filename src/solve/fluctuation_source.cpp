@@ -209,11 +209,11 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           // Row next_row + q of F: run lengths of the sorted hits.
           std::vector<std::int32_t>& h = part[q].hits;
           std::sort(h.begin(), h.end());
+          const int side_q = sides[next_row + q];
+          const double per_row = double(kReplicates) * side_q * side_q * directions;
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
             while (b < h.size() && h[b] == h[a]) ++b;
-            const int side_q = sides[next_row + q];
-            const double per_row = double(kReplicates) * side_q * side_q * directions;
             entries.emplace_back(std::int32_t(next_row + q), h[a], float(double(b - a) / per_row));
             a = b;
           }

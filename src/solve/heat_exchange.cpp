@@ -205,8 +205,8 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
   x.q_se.assign(n, 0.0);
   x.Q_se.assign(n, 0.0);
   x.T_se.assign(n, 0.0);
-  // A Monte Carlo solver's own error of J = B_0 - B_1: sqrt(se_0^2 + se_1^2), an upper bound when the two channels
-  // share walks (their covariance is then >= 0).
+  // A Monte Carlo solver's own error of J = B_0 - B_1: sqrt(se_0^2 + se_1^2), the channels taken as independent
+  // (the walks carry both signed parts of the source, so their covariance, of either sign, is left out).
   std::vector<double> own;
   if (options.solver && x.solution.B_se.rows() == Eigen::Index(n))
     for (std::size_t i = 0; i < n; ++i)
@@ -221,9 +221,9 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
     x.error_note = ff.row_std_error.empty() ? "the noise of form factors read from a file is not included"
                                             : "the analytic form factors' visibility noise is not propagated";
     if (!own.empty()) statistical_errors(thermal, ff, own, x);
-    x.error_method = (own.empty() ? "" : "the solver's own (random walks') standard error; ") +
-                     std::string("not included: ") +
-                     x.error_note;
+    x.error_method =
+        (own.empty() ? std::string() : "the solver's own (random walks') standard error; ") + "not included: " +
+        x.error_note;
   }
 
   // Step 5.

@@ -44,22 +44,6 @@ std::vector<bool> patches_to_split(const PatchSet& patches, const PatchRgb& B_di
   return split;
 }
 
-}  // namespace
-
-double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
-  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
-  double error = 0, size = 0;
-  for (std::size_t i = 0; i < patches.size(); ++i) {
-    if (!counted(patches, i)) continue;
-    const auto row = static_cast<Eigen::Index>(i);
-    error += patches.area[i] * (d.row(row) / s).square().sum();
-    size += patches.area[i] * (B.row(row) / s).square().sum();
-  }
-  return size > 0 ? std::sqrt(error / size) : 0.0;
-}
-
-namespace {
-
 // The starting patches of TargetErrorOptions::start_patches: rounds of splitting every patch above twice the mean
 // area, each round only if the result stays within max_patches (its 3 new patches per split counted).
 PatchSet split_to_start(PatchSet patches, const TargetErrorOptions& options) {
@@ -74,7 +58,20 @@ PatchSet split_to_start(PatchSet patches, const TargetErrorOptions& options) {
   }
 }
 
+
 }  // namespace
+
+double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb& d) {
+  const double s = moment_scale(B.size() > 0 ? B.abs().maxCoeff() : 0.0);
+  double error = 0, size = 0;
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    if (!counted(patches, i)) continue;
+    const auto row = static_cast<Eigen::Index>(i);
+    error += patches.area[i] * (d.row(row) / s).square().sum();
+    size += patches.area[i] * (B.row(row) / s).square().sum();
+  }
+  return size > 0 ? std::sqrt(error / size) : 0.0;
+}
 
 TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
                                         const std::function<void(const TargetErrorStep&, int step)>& on_step) {
