@@ -7,8 +7,12 @@ namespace radwalk {
 
 double point_polygon_form_factor(const Vec3& x, const Vec3& n, const Vec3* corners, int count,
                                  const Vec3& normal_P) {
-  // The emitting side: x strictly in front of P's plane.
-  if (!(normal_P.dot(x - corners[0]) > 0)) return 0.0;
+  // The emitting side: x strictly in front of P's plane, by more than rounding (kPlaneTolerance of x's distance to
+  // P's corners). A point in P's plane (a point of P itself, or of a coplanar neighbour) sees P edge-on: 0, where
+  // the sum below, whose terms are then all +-gamma_k, would give 1 inside P's outline.
+  double reach = 0;
+  for (int k = 0; k < count; ++k) reach = std::max(reach, (corners[k] - x).norm());
+  if (!(normal_P.dot(x - corners[0]) > kPlaneTolerance * reach)) return 0.0;
   // Clip P to the half space n . (y - x) >= 0 (a convex polygon stays convex; at most count + 1 corners).
   Vec3 R[8];
   int m = 0;

@@ -7,7 +7,8 @@
 // This holds for a polygon entirely on the front side of x's plane (n . (y - x) >= 0 on P); P is first clipped to
 // that half space (Sutherland-Hodgman against the plane through x with normal n), which is the cos(t_x) > 0
 // factor of the integrand. The emitting side: only the front of P (its normal n_P, corners counter-clockwise
-// about it) radiates, so the result is 0 when x is not strictly in front of P's plane (n_P . (x - p_0) <= 0).
+// about it) radiates, so the result is 0 when x is not strictly in front of P's plane: n_P . (x - p_0) <=
+// kPlaneTolerance max_k |p_k - x| (a point in P's plane, up to rounding, sees P edge-on).
 // Absolute value: the signed sum is +- the projected solid angle according to the corners' order seen from x.
 #include <cstddef>
 
@@ -15,6 +16,8 @@
 #include "patch/patch_set.h"
 
 namespace radwalk {
+
+inline constexpr double kPlaneTolerance = 1e-9;  // relative: a point this close to P's plane lies in it
 
 // F(x -> P) for the convex polygon corners[0 .. count-1] (count 3 or 4, counter-clockwise about normal_P) from
 // the point x with unit normal n (the cos(t_x) > 0 side). 0 when P is behind x's plane or x behind P's.

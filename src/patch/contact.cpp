@@ -104,6 +104,28 @@ Polygon intersection(const Polygon& S, const Polygon& K, const Vec3& n, double t
   return current.size() >= 3 ? current : Polygon{};
 }
 
+// Whether segment a-b crosses the interior of convex polygon P (counter-clockwise about n): the part of the segment
+// inside P is longer than tol and P has area more than min_area on both sides of the segment's line.
+bool crosses(const Polygon& P, const Vec3& n, const Vec3& a, const Vec3& b, double tol, double min_area) {
+  double t0 = 0, t1 = 1;
+  const Vec3 d = b - a;
+  for (std::size_t k = 0; k < P.size() && t0 <= t1; ++k) {
+    const Vec3 m = inward(n, P[k], P[(k + 1) % P.size()]);
+    const double s0 = (a - P[k]).dot(m), ds = d.dot(m);  // (a + t d - P_k) . m >= 0
+    if (std::abs(ds) < 1e-300) {
+      if (s0 < -tol) return false;
+    } else if (ds > 0) {
+      t0 = std::max(t0, -s0 / ds);
+    } else {
+      t1 = std::min(t1, -s0 / ds);
+    }
+  }
+  if ((t1 - t0) * d.norm() <= tol) return false;
+  Polygon in, out;
+  clip(P, a, n.cross(d).normalized(), tol, in, out);
+  return vector_area(in).norm() > min_area && vector_area(out).norm() > min_area;
+}
+
 bool is_convex(const Polygon& K, const Vec3& n) {
   for (std::size_t k = 0; k < K.size(); ++k) {
     const Vec3& a = K[k];
@@ -276,6 +298,7 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
     }
     // Closed loops of contact edges.
     std::map<std::int32_t, bool> visited;
+    std::vector<std::int32_t> loop_edges;  // edges of every closed loop, kept as a footprint or not
     std::vector<std::vector<std::int32_t>> loop_vertices;
     for (const auto& entry : at) {
       const std::int32_t start = entry.first;
@@ -301,6 +324,7 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
         v = w;
       }
       if (!loop || order.size() < 3) continue;
+      loop_edges.insert(loop_edges.end(), edges.begin(), edges.end());
       Contact c;
       for (const std::int32_t w : order) c.footprint.push_back(position(w));
       // Counter-clockwise about the support's normal.
@@ -355,8 +379,40 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
       c.lying = true;
       contacts.push_back(c);
     }
+    // Contact lines: contact edges in no closed loop (a board's edge touching a shelf's side, a thin sheet
+    // standing on the floor). Each is cut along, through the faces whose interior it crosses.
+    std::sort(loop_edges.begin(), loop_edges.end());
+    const std::size_t first_line = contacts.size();
+    std::map<std::int32_t, std::int32_t> line_rising;  // edge -> its rising face, in edge order
+    for (const auto& [v, list] : at)
+      for (const auto& [edge, rising] : list)
+        if (!std::binary_search(loop_edges.begin(), loop_edges.end(), edge)) line_rising.emplace(edge, rising);
+    for (const auto& [edge, rising] : line_rising) {
+      const auto& ends = table.edges[static_cast<std::size_t>(edge)];
+      Contact c;
+      c.footprint = {position(ends[0]), position(ends[1])};
+      c.standing = {rising};
+      c.line = true;
+      const Vec3 seg_lo = c.footprint[0].cwiseMin(c.footprint[1]).array() - tol;
+      const Vec3 seg_hi = c.footprint[0].cwiseMax(c.footprint[1]).array() + tol;
+      for (const std::int32_t f : faces) {
+        const Polygon S = face_polygon(mesh, static_cast<std::size_t>(f));
+        Vec3 face_lo = S[0], face_hi = S[0];
+        for (const Vec3& q : S) face_lo = face_lo.cwiseMin(q), face_hi = face_hi.cwiseMax(q);
+        if ((face_hi.array() < seg_lo.array()).any() || (face_lo.array() > seg_hi.array()).any()) continue;
+        const Vec3 area = vector_area(S);
+        if (crosses(S, area.normalized(), c.footprint[0], c.footprint[1], tol, 1e-9 * area.norm()))
+          c.supports.push_back(f);
+      }
+      contacts.push_back(c);
+    }
+    // A face is cut along at most kMaxContactLinesPerFace lines: the others are reported, not cut.
+    std::map<std::int32_t, int> lines_on;
+    for (std::size_t c = first_line; c < contacts.size(); ++c)
+      for (const std::int32_t f : contacts[c].supports)
+        if (++lines_on[f] > kMaxContactLinesPerFace) contacts[c].convex = false;
     // The surface's faces each footprint overlaps.
-    for (std::size_t c = first_of_surface; c < contacts.size(); ++c)
+    for (std::size_t c = first_of_surface; c < first_line; ++c)
       for (const std::int32_t f : faces) {
         const Polygon S = face_polygon(mesh, static_cast<std::size_t>(f));
         const double a = vector_area(S).norm();
@@ -413,6 +469,21 @@ Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, 
     std::vector<std::pair<Polygon, bool>> pieces = {{S, false}};
     for (const Contact* c : it->second) {
       std::vector<std::pair<Polygon, bool>> next;
+      if (c->line) {  // each piece the segment crosses is cut in two along the segment's line
+        const Vec3 &a = c->footprint[0], &b = c->footprint[1];
+        for (auto& [piece, covered] : pieces) {
+          if (!crosses(piece, n, a, b, tol, min_area)) {
+            next.emplace_back(piece, covered);
+            continue;
+          }
+          Polygon in, out_part;
+          clip(piece, a, n.cross(b - a).normalized(), tol, in, out_part);
+          next.emplace_back(simplified(in, tol), covered);
+          next.emplace_back(simplified(out_part, tol), covered);
+        }
+        pieces = next;
+        continue;
+      }
       for (auto& [piece, covered] : pieces) {
         // A piece under another footprint, or beside this one, stays as it is.
         if (covered || vector_area(intersection(piece, c->footprint, n, tol)).norm() <= min_area) {
@@ -459,6 +530,10 @@ std::string describe_contact(const Mesh& mesh, const Contact& c) {
     if (faces.size() > 6) s += " and " + std::to_string(faces.size() - 6) + " more";
     return s + (faces.empty() ? "" : mesh.context(static_cast<std::size_t>(faces.front())));
   };
+  if (c.line)
+    return list(c.standing) + " touches " + list(c.supports) + " along a line of length " +
+           number_text((c.footprint[1] - c.footprint[0]).norm()) +
+           (c.convex ? "" : " (more than " + std::to_string(kMaxContactLinesPerFace) + " lines on a face: not cut)");
   return list(c.standing) + (c.lying ? " lies back to back on " : " stand on ") + list(c.supports) +
          ": footprint of " + std::to_string(c.footprint.size()) + " corners, area " + number_text(c.area) +
          (c.convex ? "" : " (not convex: not cut)");

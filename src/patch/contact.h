@@ -14,6 +14,10 @@
 //     convex (a non-convex footprint is reported, not cut);
 //   - a face G lying on the surface back to back (coplanar, normal opposite: a block's bottom) whose corners are not
 //     already a footprint loop's is a footprint too (K = G).
+//   - contact lines: the contact edges that belong to no closed loop (a board's edge touching a shelf's side
+//     panel, a thin sheet standing on the floor). Each lists the surface's faces whose interior it crosses (the
+//     segment's part inside the face is longer than tol and leaves area on both sides). A face is cut along at most
+//     kMaxContactLinesPerFace of them; the others are reported, not cut (convex = false).
 // Each footprint lists the surface's faces it overlaps (area of S n K above 1e-9 of S's area).
 //
 // Cutting (cut_along_contacts): every overlapped support face S (convex: a triangle or convex quad) is replaced in
@@ -23,8 +27,9 @@
 // in turn (a piece already under a footprint is not cut again). Pieces keep S's orientation, material, group,
 // line and input face (Mesh::face_source), so the `face` field still names the input face; they tile S (areas add
 // up to rounding). A cut point on an edge is computed from the edge's end points in a fixed order, so two faces
-// sharing the edge get the same point. Pieces are made before the --max-edge split, which then splits each piece
-// on its own.
+// sharing the edge get the same point. Then every piece a contact line crosses is cut in two along the line (the whole
+// chord of the piece, so pieces stay convex: a panel touched by a shelf board's edge is cut into the compartments on
+// either side). Pieces are made before the --max-edge split, which then splits each piece on its own.
 #include <string>
 #include <vector>
 
@@ -34,14 +39,17 @@
 namespace radwalk {
 
 inline constexpr double kContactTolerance = 1e-6;  // of the scene's extent
+inline constexpr int kMaxContactLinesPerFace = 16;
 
 struct Contact {
-  std::vector<Vec3> footprint;           // convex polygon K, counter-clockwise about the support's normal
-  double area = 0;                       // of K
+  std::vector<Vec3> footprint;           // convex polygon K, counter-clockwise about the support's normal; a
+                                         // contact line: its two end points
+  double area = 0;                       // of K (0 for a line)
   std::vector<std::int32_t> standing;    // faces whose sides are K's edges (or the face lying on the support)
   std::vector<std::int32_t> supports;    // faces of the support surface that K overlaps
-  bool convex = true;                    // false: reported, not cut
+  bool convex = true;                    // false: reported, not cut (a non-convex footprint, a line beyond the limit)
   bool lying = false;                    // K is a face lying on the support back to back
+  bool line = false;                     // an edge touching the support along a segment (no footprint)
 };
 
 std::vector<Contact> find_contacts(const Mesh& mesh);

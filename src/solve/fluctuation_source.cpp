@@ -47,6 +47,7 @@ struct Shot {
 
 struct PatchShots {
   std::vector<Shot> shots;
+  std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
   long rays = 0;
 };
@@ -109,6 +110,7 @@ class Shooter {
       vis_.intersect(rays.data(), hits.data(), rays.size());
       out.rays += long(rays.size());
       const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
+      std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m) {
         const Rgb delta = ps_.rho[j] * (g[m] - mean);
         for (int l = 0; l < L_; ++l) {
@@ -118,7 +120,19 @@ class Shooter {
           out.hits.push_back(h.patch);
           if (!(ps_.rho[k].maxCoeff() > 0)) continue;
           out.shots.push_back({h.patch, r, (share / ps_.area[k]) * ps_.rho[k] * delta});
+          unit.push_back({std::int64_t(l) * std::int64_t(ps_.size()) + h.patch, out.shots.back().value});
         }
+      }
+      // Given the points, the L shot directions are independent, and along one direction the points' shots that
+      // reach one target are summed (they cancel where the points see the same place): each (direction, target)
+      // sum is one independent term of d's variance.
+      std::sort(unit.begin(), unit.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+      for (std::size_t a = 0; a < unit.size();) {
+        Rgb sum = Rgb::Zero();
+        std::size_t b = a;
+        for (; b < unit.size() && unit[b].first == unit[a].first; ++b) sum += unit[b].second;
+        out.units.push_back({std::int32_t(unit[a].first % std::int64_t(ps_.size())), r, sum.square()});
+        a = b;
       }
     }
   }
@@ -189,6 +203,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   out.points = side * side;
   out.directions = directions;
   PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
+  PatchRgb units = PatchRgb::Zero(n, 3);  // sum over both replicates of the squared (direction, target) sums
   std::vector<Eigen::Triplet<float, std::int32_t>> entries;
   // Chunks of patches shoot in parallel; their contributions are added in patch order (deterministic sums).
   constexpr std::size_t kChunk = 64;
@@ -206,6 +221,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
         // Chunks arrive in order: part[q] is patch next_row + q.
         for (std::size_t q = 0; q < part.size(); ++q) {
           for (const Shot& s : part[q].shots) d[s.replicate].row(s.target) += (s.value * scale).transpose();
+          for (const Shot& s : part[q].units) units.row(s.target) += (s.value * (scale * scale)).transpose();
           // Row next_row + q of F: run lengths of the sorted hits.
           std::vector<std::int32_t>& h = part[q].hits;
           std::sort(h.begin(), h.end());
@@ -223,6 +239,9 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
       });
   out.d = (d[0] + d[1]) / 2;
   out.variance = (d[0] - d[1]).square() / 4;
+  // The replicates' difference has one degree of freedom: by chance it can be near 0 where d rests on a few large
+  // shots (a small patch hit from a large one). The (direction, target) units, many per patch, bound it below.
+  out.variance = out.variance.max(units / 4);
   out.F = SparseF(n, n);
   out.F.setFromTriplets(entries.begin(), entries.end());
   return out;

@@ -25,7 +25,14 @@
 // shot along L further cosine directions v_l shared by the points: the patch k hit from y_m (front) gets
 //   rho_k delta_m A_j / (A_k M L).
 // Where all the points see the same patch the contributions cancel exactly (sum_m delta_m = 0), so only the near
-// geometry adds noise. d is the mean of the two replicates; Var(d_k) ~ (d_k^(0) - d_k^(1))^2 / 4.
+// geometry adds noise. d is the mean of the two replicates, and its variance the larger of two estimates:
+//   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
+//   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
+//                                             (given the points, the L shot directions of a patch j are
+//                                             independent; along one direction the points' shots to k are summed,
+//                                             as they cancel where the points see the same place),
+// so that a small patch whose d rests on a few large shots from a large patch is not, by a chance agreement of
+// the two replicates, taken as known exactly.
 //
 // Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in

@@ -104,6 +104,29 @@ TEST_CASE("the point-to-polygon form factor matches Howell B-3 and the cube's cl
   }
 }
 
+TEST_CASE("a point in the polygon's own plane sees it edge-on whatever the rounding", "[formfactor][analytic]") {
+  // An emitter split into patches: a point of one patch, or of its coplanar neighbour, lies in the plane up to
+  // rounding (n_P . (x - p_0) of order 1e-17, of either sign); Lambert's sum, whose terms are then all +-gamma_k,
+  // gives 1 inside the outline. The factor is 0 there, and tends to its closed form continuously above the plane.
+  const Vec3 down(0, -1, 0);
+  const std::vector<Vec3> P = rect(Vec3(2.75, 2.8, 1.5), Vec3(0.25, 0, 0), Vec3(0, 0, 0.25));  // facing -y
+  REQUIRE((P[1] - P[0]).cross(P[2] - P[0]).normalized().dot(down) == Approx(1));
+  int inside = 0;
+  for (int a = 1; a < 40; ++a)
+    for (int b = 1; b < 40; ++b) {
+      // Points of P by bilinear interpolation (rounded as a point sampler's are), and of a neighbour beside it.
+      const double u = a / 40.0, v = b / 40.0;
+      const Vec3 x = (1 - u) * ((1 - v) * P[0] + v * P[1]) + u * ((1 - v) * P[3] + v * P[2]);
+      inside += ff(x, down, P) != 0;
+      CHECK(ff(x + Vec3(0.25, 0, 0), down, P) == 0);
+      CHECK(ff(x, -down, P) == 0);
+    }
+  CHECK(inside == 0);
+  // Just in front (facing it, 1e-6 of its size below its centre): B-3 with four quarter rectangles, nearly 1.
+  const Vec3 centre = 0.5 * (P[0] + P[2]);
+  CHECK(ff(centre + Vec3(0, -0.25e-6, 0), Vec3(0, 1, 0), P) == Approx(4 * b3(0.125, 0.125, 0.25e-6)).epsilon(1e-9));
+}
+
 TEST_CASE("the point-to-polygon form factor integrates to the rectangle view factors C-11 and C-14",
           "[formfactor][analytic]") {
   std::vector<double> gx, gw;

@@ -213,6 +213,94 @@ TEST_CASE("contacts: the Cornell box's blocks stand on the floor, cut along thei
 
 namespace {
 
+// A shelf's side panel: the plane z = 0 (facing +z), [0, 1] x [0, 2] as one quad, with `boards` thin boards (one
+// quad each, zero thickness) standing on it at y = 2 (k + 1) / (boards + 1), their edges x in [0, 1] lying on it.
+// With `along_edge`, one more board stands on the panel's edge y = 0, which is no contact line across it.
+Mesh panel_with_boards(int boards, bool along_edge = false) {
+  Mesh m;
+  m.path = "generated";
+  auto v = [&](double x, double y, double z) {
+    m.vertices.push_back({x, y, z});
+    return static_cast<std::int32_t>(m.vertices.size() - 1);
+  };
+  m.faces.push_back({v(0, 0, 0), v(1, 0, 0), v(1, 2, 0), v(0, 2, 0)});  // (x) x (y) = +z
+  auto board = [&](double y) { m.faces.push_back({v(0, y, 0), v(0, y, 1), v(1, y, 1), v(1, y, 0)}); };
+  for (int k = 0; k < boards; ++k) board(2.0 * (k + 1) / (boards + 1));
+  if (along_edge) board(0);
+  Material wood;
+  wood.name = "wood";
+  wood.Kd = Rgb(0.5, 0.5, 0.5);
+  m.materials = {wood};
+  m.face_material.assign(m.faces.size(), 0);
+  validate_mesh(m);
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("contacts: a board's edge touching a panel is a contact line, and the panel is cut along it",
+          "[patch][contact]") {
+  // Three boards: three lines, the panel cut into the four compartments, 0.5 x 1 each, in order of y.
+  const Mesh m = panel_with_boards(3, true);
+  const auto contacts = find_contacts(m);
+  REQUIRE(contacts.size() == 3);  // the board on the panel's edge crosses no interior: no line
+  for (std::size_t k = 0; k < 3; ++k) {
+    const Contact& c = contacts[k];
+    CHECK(c.line);
+    CHECK(c.convex);
+    CHECK(c.area == 0);
+    CHECK(c.supports == std::vector<std::int32_t>{0});
+    CHECK(c.standing == std::vector<std::int32_t>{static_cast<std::int32_t>(k + 1)});
+    REQUIRE(c.footprint.size() == 2);
+    CHECK(c.footprint[0].y() == Approx(0.5 * (k + 1)));
+    CHECK(c.footprint[1].y() == Approx(0.5 * (k + 1)));
+    CHECK_THAT(describe_contact(m, c), Catch::Contains("touches face 0") && Catch::Contains("along a line of length 1"));
+  }
+  std::size_t cut = 0;
+  const Mesh after = cut_along_contacts(m, contacts, &cut);
+  CHECK(cut == 1);
+  std::vector<std::pair<double, double>> compartments;  // (lowest y, highest y) of each piece of the panel
+  double total = 0;
+  for (std::size_t f = 0; f < after.face_count(); ++f) {
+    if (after.source_face(f) != 0) continue;
+    double lo = 1e300, hi = -1e300;
+    for (int k = 0; k < after.corner_count(f); ++k) {
+      lo = std::min(lo, corner(after, f, k).y());
+      hi = std::max(hi, corner(after, f, k).y());
+      CHECK(corner(after, f, k).z() == 0);
+    }
+    compartments.emplace_back(lo, hi);
+    total += face_area(after, f);
+    CHECK(face_vector_area(after, f).z() > 0);
+  }
+  std::sort(compartments.begin(), compartments.end());
+  REQUIRE(compartments.size() == 4);
+  for (std::size_t k = 0; k < 4; ++k) {
+    CHECK(compartments[k].first == Approx(0.5 * k).margin(1e-15));
+    CHECK(compartments[k].second == Approx(0.5 * (k + 1)));
+  }
+  CHECK(total == Approx(2.0).epsilon(1e-14));
+}
+
+TEST_CASE("contacts: a face is cut along at most kMaxContactLinesPerFace lines, the others reported",
+          "[patch][contact]") {
+  const int boards = kMaxContactLinesPerFace + 3;
+  const Mesh m = panel_with_boards(boards);
+  const auto contacts = find_contacts(m);
+  REQUIRE(contacts.size() == static_cast<std::size_t>(boards));
+  const auto cut_lines = std::count_if(contacts.begin(), contacts.end(), [](const Contact& c) { return c.convex; });
+  CHECK(cut_lines == kMaxContactLinesPerFace);
+  const auto reported = std::find_if(contacts.begin(), contacts.end(), [](const Contact& c) { return !c.convex; });
+  REQUIRE(reported != contacts.end());
+  CHECK_THAT(describe_contact(m, *reported), Catch::Contains("not cut"));
+  std::size_t pieces = 0;
+  const Mesh after = cut_along_contacts(m, contacts);
+  for (std::size_t f = 0; f < after.face_count(); ++f) pieces += after.source_face(f) == 0;
+  CHECK(pieces == static_cast<std::size_t>(kMaxContactLinesPerFace + 1));
+}
+
+namespace {
+
 double contact_area(const std::vector<ContactRegion>& regions, const PatchSet& patches) {
   const std::vector<bool> in = contact_patches(regions, patches);
   double a = 0;
