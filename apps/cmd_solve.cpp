@@ -242,7 +242,9 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
 int run_solve(const SolveCommand& command) {
   RunSummary summary("solve", command.scene.argv);
   check_combinations(command);
-  PatchSet patches = load_patches(command.scene, summary);
+  SceneOptions scene = command.scene;
+  scene.splits_later = command.target_error > 0;  // --target-error splits the patches itself
+  PatchSet patches = load_patches(scene, summary);
   // The walk options are checked here, once, before any form factor is traced.
   const bool walks = command.solver == "random-walk";
   WalkOptions walk = command.walk;

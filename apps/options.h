@@ -17,6 +17,7 @@ struct SceneOptions {
   double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
   double max_area = 0;     // --max-area: split faces until no patch area is above this; 0: no bound
   bool contact_cut = false;  // --contact-cut: cut faces that objects stand on along the footprints (patch/contact.h)
+  bool splits_later = false; // the command splits the patches itself (--target-error): --contact-cut cuts anyway
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;
   bool strict = false;     // --strict: refuse what the readers and validation would repair

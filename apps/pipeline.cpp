@@ -305,7 +305,7 @@ void note_contacts(const SceneOptions& options, const PatchedScene& scene, RunSu
   for (std::size_t c = 0; c < contacts.size() && c < 10; ++c)
     note("contact: " + scene.contact_lines[c]);
   if (contacts.size() > 10) note("contact: " + std::to_string(contacts.size() - 10) + " more");
-  const bool splitting = options.max_edge > 0 || options.max_area > 0;
+  const bool splitting = options.max_edge > 0 || options.max_area > 0 || options.splits_later;
   note(std::to_string(contacts.size()) + (contacts.size() == 1 ? " object stands" : " objects stand") +
        " on faces of the scene: " +
        (scene.cut ? "the supporting faces are cut along the footprints (" + std::to_string(scene.contact_faces_cut) +
@@ -327,6 +327,7 @@ PatchSet load_patches(const SceneOptions& options, RunSummary& summary, Mesh& me
   patching.split.max_edge = options.max_edge;
   patching.split.max_area = options.max_area;
   patching.contact_cut = options.contact_cut;
+  patching.splits_later = options.splits_later;
   patching.two_sided = options.two_sided;
   PatchedScene scene = patch_scene(load_validated_mesh(options, summary), patching);
   note_contacts(options, scene, summary);

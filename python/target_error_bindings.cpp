@@ -35,6 +35,10 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_e
     throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
                      ">= 1, got " + std::to_string(discretisation_directions));
   if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
+  if (scene.contact_cut && scene.max_edge == 0 && scene.max_area == 0)
+    throw InputError("solve_to_target_error: the scene was loaded with contact_cut=True but without max_edge or "
+                     "max_area, so its faces were not cut along the contacts (the cut is made when faces are "
+                     "split); load it with max_edge or max_area as well");
   TargetErrorOptions options;
   options.target = target_error;
   options.rays = rays;

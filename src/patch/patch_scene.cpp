@@ -12,7 +12,7 @@ PatchedScene patch_scene(Mesh mesh, const ScenePatchingOptions& options) {
   scene.contacts = find_contacts(mesh);
   for (const Contact& c : scene.contacts) scene.contact_lines.push_back(describe_contact(mesh, c));
   scene.contact_regions = contact_regions(mesh, scene.contacts);
-  scene.cut = options.contact_cut && (options.split.max_edge > 0 || options.split.max_area > 0);
+  scene.cut = options.contact_cut && (options.split.max_edge > 0 || options.split.max_area > 0 || options.splits_later);
   if (scene.cut && !scene.contacts.empty())
     scene.mesh = cut_along_contacts(mesh, scene.contacts, &scene.contact_faces_cut);
   else

@@ -3,8 +3,9 @@
 // apps/pipeline.cpp, the Python module's radwalk.load):
 //   1. contacts: the objects standing on faces are found (contact.h, find_contacts), always, so that a caller can
 //      report them; the supporting faces are cut along the footprints (cut_along_contacts) only when asked
-//      (contact_cut) AND the faces are split (split.max_edge > 0 or split.max_area > 0): kept input faces stay
-//      the patches, as the CLI's --contact-cut documents;
+//      (contact_cut) AND the faces are split (split.max_edge > 0 or split.max_area > 0, or splits_later: the
+//      caller splits the patches itself, as --target-error does): kept input faces stay the patches, as the
+//      CLI's --contact-cut documents;
 //   2. the per-face split (patching.h, make_patches) with split.max_edge and split.max_area;
 //   3. the back sides (patch_set.h, add_back_sides): a back patch for every face of a two-sided material, or of
 //      every material with two_sided, appended after all front patches.
@@ -24,6 +25,7 @@ namespace radwalk {
 struct ScenePatchingOptions {
   PatchingOptions split;     // --max-edge, --max-area (0, 0: the input faces are the patches)
   bool contact_cut = false;  // --contact-cut: cut the supporting faces along the footprints when faces are split
+  bool splits_later = false; // the caller splits the patches afterwards (--target-error): cut as when splitting
   bool two_sided = false;    // --two-sided: every (non-dielectric) material two-sided
 };
 
@@ -33,7 +35,7 @@ struct PatchedScene {
   std::vector<Contact> contacts;        // every contact found, cut or not (face indices of the mesh before the cut)
   std::vector<std::string> contact_lines;  // describe_contact of each, on the mesh before the cut
   std::vector<ContactRegion> contact_regions;  // contact_regions of them, on the mesh before the cut
-  bool cut = false;                     // contact_cut and the faces are split
+  bool cut = false;                     // contact_cut and the faces are split (now or later)
   std::size_t contact_faces_cut = 0;    // faces replaced by their pieces
   std::size_t back_patches = 0;         // patches add_back_sides appended
   double contacts_seconds = 0;          // time of step 1 (for a run summary)

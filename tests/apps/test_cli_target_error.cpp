@@ -32,6 +32,21 @@ TEST_CASE("solve --target-error reaches a reachable target and lists its steps",
   CHECK(fs::exists(csv));
 }
 
+TEST_CASE("solve --target-error with --contact-cut cuts along the contacts though no --max-edge is given",
+          "[cli][target_error]") {
+  // --target-error splits the input faces itself, so the cut that --contact-cut asks for is made first; before,
+  // without --max-edge the option was ignored (contact_cut false, no face cut).
+  const fs::path dir = scratch_dir("target_error_contacts");
+  const fs::path json = dir / "t.json";
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --rays 300 --target-error 0.2 --contact-cut --json " +
+                    json.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(file_text(json));
+  CHECK(j.at("contact_cut").get<bool>());
+  CHECK(j.at("contact_faces_cut").get<std::size_t>() == 7);  // the floor faces under the two blocks (test_contact)
+}
+
 TEST_CASE("solve --target-error stopped by its patch budget exits 1 with one line and writes the last solution",
           "[cli][target_error]") {
   const fs::path dir = scratch_dir("target_error_budget");

@@ -39,3 +39,12 @@ def test_options_out_of_range_raise():
         radwalk.solve_to_target_error(scene, 1.5)
     with pytest.raises(radwalk.InputError):
         radwalk.solve_to_target_error(scene, 0.03, discretisation_directions=0)
+
+
+def test_a_contact_cut_scene_without_its_split_is_refused_not_ignored():
+    # load cuts along the contacts only when it splits the faces; the target error splits them later, so a scene
+    # loaded with contact_cut=True alone was never cut: refused in one line (the CLI cuts first, as it loads).
+    with pytest.raises(radwalk.InputError, match="contact_cut=True but without max_edge"):
+        radwalk.solve_to_target_error(radwalk.load(SCENE, contact_cut=True), 0.2)
+    r = radwalk.solve_to_target_error(radwalk.load(SCENE, max_edge=200, contact_cut=True), 0.2, seed=1)
+    assert r.steps
