@@ -58,6 +58,12 @@ struct HierarchicalOptions {
   // element is split during the shooting. Both off: the tree is the one given (estimate_refinement.h splits it).
   bool direct_oracle = true;
   bool transport_oracle = true;
+  // Oriented clusters of patches above the element trees (cluster_tree.h): a ray's incident power is received by
+  // the coarsest cluster containing the hit patch that passes cluster_receives(ratio = cluster_ratio) from the
+  // shooter leaf's centre, and spread over its members by the cosine rule; else the element oracle above decides.
+  bool clusters = false;
+  double cluster_ratio = 0.25;  // a cluster receives only where its radius <= cluster_ratio x its distance
+  int cluster_leaf_size = 8;    // patches per leaf cluster at most (>= 2)
 };
 
 struct HierarchicalResult {
@@ -67,7 +73,9 @@ struct HierarchicalResult {
   double epsilon = 0;
   long rays = 0, shadow_rays = 0, iterations = 0;
   long direct_splits = 0, transport_splits = 0;
-  std::size_t memory_bytes = 0;  // the tree and the per-element arrays at their largest
+  std::size_t clusters = 0;   // cluster nodes (0 without clustering)
+  long cluster_deposits = 0;  // rays received by a cluster rather than an element
+  std::size_t memory_bytes = 0;  // the trees (elements and clusters) and their arrays at their largest
   double seconds = 0;
 };
 
