@@ -1,11 +1,11 @@
 // bench_clusters: the cost of the hierarchical stochastic Jacobi to a fixed error as the faces of a generated city
 // block (bench/city_block.h) grow tenfold, without and with oriented clusters (hierarchy/cluster_tree.h). Not a test.
 //
-//   bench_clusters [--cells 4.7,1.5,0.47] [--rays-per-face 20] [--ref-factor 16] [--ratio 0.25] [--targets 0.1,0.05]
+//   bench_clusters [--cells 4.2,1.34,0.42] [--rays-per-face 20] [--ref-factor 16] [--ratio 0.25] [--targets 0.1,0.05]
 //                  [--points 3] [--threads T]
 //
-// Per cell size (faces ~ 2.2e5 / cell^2): the faces are the leaves (no element refinement: both oracles off, so
-// only clustering differs), the direct light D from --points^2 points per face.
+// Per cell size (faces ~ 1.8e5 / cell^2): the faces are the leaves (no element refinement: both oracles off, so
+// only clustering differs), the direct light D from --points^2 points per face, the same D (one seed) in every run.
 // Reference: the solver without clusters at --ref-factor x 4 x --rays-per-face rays a face, another seed: it is
 // unbiased for the faces' discrete system, the answer both runs are after (the faces' own discretisation error
 // against the continuous solution is the same for both and not clustering's business).
@@ -79,7 +79,7 @@ Run measure(const PatchSet& ps, const HierarchicalResult& r, const PatchRgb& Ire
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::vector<double> cells = {4.7, 1.5, 0.47}, targets = {0.1, 0.05};
+  std::vector<double> cells = {4.2, 1.34, 0.42}, targets = {0.1, 0.05};
   double rays_per_face = 20, ref_factor = 16, ratio = 0.25;
   int points = 3, threads = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
@@ -116,6 +116,8 @@ int main(int argc, char** argv) {
     base.replicates = 4;
     base.particles = static_cast<long>(ref_factor * 4 * rays_per_face * N);
     base.seed = 1001;
+    base.direct_seed = 1001;  // one D for every run: the errors are those of the indirect light alone
+    base.replicates = 32;     // the reference's rays in 32 replicates: one iteration's ray records stay small
     const HierarchicalResult ref = solve_hierarchical(ps, visibility, base);
     const PatchRgb Iref = indirect(ps, ref);
     const PatchRgb ref_se2 = ref.var / static_cast<double>(base.particles);
@@ -124,6 +126,7 @@ int main(int argc, char** argv) {
       for (const double mult : {1.0, 4.0}) {
         HierarchicalOptions o = base;
         o.seed = 7;
+        o.replicates = 4;
         o.clusters = cl == 1;
         o.cluster_ratio = ratio;
         o.particles = static_cast<long>(mult * rays_per_face * N);

@@ -100,7 +100,7 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
   d.min_area = options.min_area;
   d.max_level = options.max_level;
   d.points_side = options.points_side;
-  d.seed = options.seed;
+  d.seed = options.direct_seed != 0 ? options.direct_seed : options.seed;
   DirectRefinement direct = refine_direct_light(roots, visibility, tree, d);
   result.shadow_rays = direct.shadow_rays;
   result.direct_splits = direct.splits;

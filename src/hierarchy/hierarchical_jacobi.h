@@ -51,6 +51,8 @@ struct HierarchicalOptions {
   long particles = 1'000'000;  // rays of the indirect shooting, all replicates and iterations together
   int replicates = 4;      // R >= 2
   std::uint64_t seed = 1;
+  std::uint64_t direct_seed = 0;  // the direct light's points and shadow rays from this seed (0: from seed); a bench
+                                  // gives runs of different seeds one D so that their indirect light compares alone
   bool progress = false;
   // The a-priori oracles. direct_oracle false: the direct light is estimated on the starting leaves and nothing is
   // split for it. transport_oracle false: every ray's power is gathered at the leaf containing its end point (the
