@@ -241,6 +241,10 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
        " elements, " + std::to_string(r.leaves.size()) + " leaves, " + std::to_string(r.tree.depth() + 1) +
        " levels (" + std::to_string(r.direct_splits) + " splits by the direct light, " +
        std::to_string(r.transport_splits) + " by the transport oracle)");
+  if (h.clusters)
+    note("hierarchical clusters: " + std::to_string(r.clusters) + " clusters received " +
+         std::to_string(r.cluster_deposits) + " of " + std::to_string(r.rays) +
+         " rays (their spreading error is in neither B_se nor B_disc: docs/hierarchy.md, Clusters)");
   return leaf_patches(roots, r.tree, r.leaves);
 }
 
