@@ -64,6 +64,9 @@ void check_combinations(const SolveCommand& c) {
     if (c.hierarchical_refine == "estimate" && !(c.hierarchical_target > 0) && c.hierarchical_max_leaves <= 0)
       throw InputError("--hierarchical-refine estimate needs a stopping rule: --hierarchical-target E (the estimated "
                        "relative error) or --hierarchical-max-leaves N");
+    if (c.hierarchical_clusters == "on" && c.hierarchical_refine == "estimate")
+      throw InputError("--hierarchical-clusters on cannot be combined with --hierarchical-refine estimate: the "
+                       "estimate that drives that refinement does not see the clusters' spreading error");
     const int side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(c.hierarchical_points))));
     if (side * side != c.hierarchical_points)
       throw InputError("--hierarchical-points must be a square (1, 4, 9, 16, ...: a stratified grid); got " +
@@ -164,6 +167,8 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
   h.particles = command.hierarchical_rays;
   h.replicates = command.hierarchical_replicates;
   h.seed = command.scene.seed;
+  h.clusters = command.hierarchical_clusters == "on";
+  h.cluster_ratio = command.hierarchical_cluster_ratio;
   const EmbreeVisibility visibility(roots);
   const bool by_estimate = command.hierarchical_refine == "estimate";
   std::vector<EstimateRefinementStep> steps;
@@ -200,7 +205,9 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
   j["elements"] = r.tree.size();
   j["leaves"] = r.leaves.size();
   j["links"] = 0;     // per-ray level choice: no links are stored
-  j["clusters"] = 0;  // clustering of small faces: not implemented
+  j["clusters"] = r.clusters;  // cluster nodes (hierarchy/cluster_tree.h); 0 with --hierarchical-clusters off
+  j["cluster_deposits"] = r.cluster_deposits;
+  if (h.clusters) j["cluster_ratio"] = h.cluster_ratio;
   j["memory_bytes"] = r.memory_bytes;
   j["levels"] = r.tree.depth() + 1;
   j["refinement_steps"] = {{"direct", r.direct_splits}, {"transport", r.transport_splits}};
@@ -234,6 +241,10 @@ PatchSet run_hierarchical(const SolveCommand& command, const PatchSet& roots, So
        " elements, " + std::to_string(r.leaves.size()) + " leaves, " + std::to_string(r.tree.depth() + 1) +
        " levels (" + std::to_string(r.direct_splits) + " splits by the direct light, " +
        std::to_string(r.transport_splits) + " by the transport oracle)");
+  if (h.clusters)
+    note("hierarchical clusters: " + std::to_string(r.clusters) + " clusters received " +
+         std::to_string(r.cluster_deposits) + " of " + std::to_string(r.rays) +
+         " rays (their spreading error is in neither B_se nor B_disc: docs/hierarchy.md, Clusters)");
   return leaf_patches(roots, r.tree, r.leaves);
 }
 

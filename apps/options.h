@@ -108,6 +108,9 @@ struct SolveCommand {
   double hierarchical_target = 0;        // estimate: stop once the estimated relative L2 error is at most this
   long hierarchical_max_leaves = 0;      // estimate: the budget of leaves (0: none)
   int hierarchical_steps = 12;           // estimate: splitting steps at most
+  // oriented clusters of patches above the element trees (hierarchy/cluster_tree.h): "on" or "off"
+  std::string hierarchical_clusters = "off";
+  double hierarchical_cluster_ratio = 0.25;  // a cluster receives only where its radius <= ratio x the distance
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)
   std::string progressive;

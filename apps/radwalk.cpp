@@ -648,6 +648,16 @@ int run_main(int argc, char** argv) {
                         "--hierarchical-target or --hierarchical-max-leaves)")
       ->check(CLI::IsMember({"oracle", "estimate"}))
       ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-clusters", solve.hierarchical_clusters,
+                        "Hierarchical: oriented clusters of patches that receive a distant shooter's rays as one and "
+                        "spread them over their members by the cosine rule (docs/hierarchy.md, Clusters)")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-cluster-ratio", solve.hierarchical_cluster_ratio,
+                        "Hierarchical clusters: a cluster receives as one only where its radius is at most this "
+                        "fraction of its distance to the shooter")
+      ->transform(kPositive)
+      ->capture_default_str();
   solve_cmd->add_option("--hierarchical-target", solve.hierarchical_target,
                         "Hierarchical, refined by the estimate: stop once the estimated relative L2 error is at most "
                         "this (0: the budget alone)")

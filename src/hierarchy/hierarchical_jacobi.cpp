@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "core/sampling.h"
 #include "core/timer.h"
+#include "hierarchy/cluster_tree.h"
 #include "hierarchy/direct_refinement.h"
 #include "hierarchy/push_pull.h"
 #include "visibility/ray_offset.h"
@@ -27,6 +28,7 @@ constexpr long kMinRays = 16;
 struct Deposit {
   Vec3 point;
   Rgb power;             // rho_h W_l / n_k (per channel)
+  Rgb incident;          // W_l / n_k: the power a cluster receives (its members reflect it by their own rho)
   double cap;            // max_c rho_hc P_l: T_e's value when the form factor estimate reaches 1
   std::int32_t patch;    // the patch hit
   ElementIndex shooter;  // the leaf the ray left
@@ -61,6 +63,9 @@ void check_options(const HierarchicalOptions& o) {
   if (o.points_side < 1 || o.points_side > 64) throw InputError("--hierarchical-points must be in [1, 4096] (a square)");
   if (!(o.min_area >= 0) || !std::isfinite(o.min_area))
     throw InputError("--hierarchical-min-area must be a finite number >= 0");
+  if (o.clusters && (!(o.cluster_ratio > 0) || !std::isfinite(o.cluster_ratio)))
+    throw InputError("--hierarchical-cluster-ratio must be a finite number > 0");
+  if (o.clusters && o.cluster_leaf_size < 2) throw InputError("--hierarchical: a leaf cluster needs at least 2 patches");
 }
 
 }  // namespace
@@ -95,7 +100,7 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
   d.min_area = options.min_area;
   d.max_level = options.max_level;
   d.points_side = options.points_side;
-  d.seed = options.seed;
+  d.seed = options.direct_seed != 0 ? options.direct_seed : options.seed;
   DirectRefinement direct = refine_direct_light(roots, visibility, tree, d);
   result.shadow_rays = direct.shadow_rays;
   result.direct_splits = direct.splits;
@@ -109,6 +114,9 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
   for (std::size_t i = 0; i < N; ++i) offset[i] = patch_ray_offset(roots, i, eps);
   std::vector<double> rho_max(N);
   for (std::size_t i = 0; i < N; ++i) rho_max[i] = roots.rho[i].maxCoeff();
+  const ClusterTree clusters = options.clusters ? make_cluster_tree(roots, options.cluster_leaf_size) : ClusterTree();
+  result.clusters = clusters.size();
+  std::vector<std::int32_t> chain;  // a patch's clusters, leaf cluster first
 
   // Splits leaf e during replicate r: the children take e's B in replicates 0 .. r and its D.
   const auto split = [&](std::size_t e, int r, std::vector<Rgb>& gathered) {
@@ -193,14 +201,15 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
                 const Hit& hit = hits[q];
                 if (hit.missed() || !hit.front) continue;
                 const auto h = static_cast<std::size_t>(hit.patch);
-                if (!(rho_max[h] > 0)) continue;
+                if (!(rho_max[h] > 0) && !options.clusters) continue;
                 const std::size_t j = from[q];
                 const auto e = static_cast<std::size_t>(leaves[j]);
                 const auto root = static_cast<std::size_t>(tree.root[e]);
                 Deposit dep;
                 dep.patch = hit.patch;
                 dep.point = rays[q].origin + hit.t * rays[q].direction;
-                dep.power = roots.rho[h] * emission.weight(j) / static_cast<double>(n);
+                dep.incident = emission.weight(j) / static_cast<double>(n);
+                dep.power = roots.rho[h] * dep.incident;
                 dep.cap = rho_max[h] * tree.area[root] * pulled[root].maxCoeff();
                 dep.shooter = static_cast<ElementIndex>(e);
                 parts[c].push_back(dep);
@@ -210,6 +219,7 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
           1);
       // The oracle's descents in ray order.
       std::vector<Rgb> gathered(tree.size(), Rgb::Zero());
+      std::vector<ClusterIrradiance> G(clusters.size(), ClusterIrradiance::Zero());
       std::vector<Vec3> centre(tree.size());
       for (std::size_t e = 0; e < tree.size(); ++e) centre[e] = centre_of(tree, e);
       for (const auto& part : parts)
@@ -218,6 +228,21 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
           const Vec3& normal = roots.normal[e];
           const auto l = static_cast<std::size_t>(dep.shooter);
           const Vec3& n_l = roots.normal[static_cast<std::size_t>(tree.root[l])];
+          if (options.clusters) {
+            // The coarsest cluster of the hit patch that may receive from this shooter takes the ray (cluster_tree.h).
+            chain.clear();
+            for (std::int32_t c = clusters.leaf_of[e]; c >= 0; c = clusters.parent[static_cast<std::size_t>(c)])
+              chain.push_back(c);
+            bool taken = false;
+            Vec3 w;
+            for (auto it = chain.rbegin(); it != chain.rend() && !taken; ++it)
+              if (cluster_receives(clusters, static_cast<std::size_t>(*it), centre[l], options.cluster_ratio, &w)) {
+                cluster_deposit(clusters, static_cast<std::size_t>(*it), dep.incident, w, G);
+                ++result.cluster_deposits;
+                taken = true;
+              }
+            if (taken || !(rho_max[e] > 0)) continue;
+          }
           while (!options.transport_oracle && !tree.is_leaf(e))
             e = static_cast<std::size_t>(tree.child_containing(e, dep.point, normal));
           while (options.transport_oracle) {
@@ -234,6 +259,11 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
         }
       result.rays += n;
       ++result.iterations;
+      if (options.clusters) {
+        // What the clusters received, to their members' root elements (radiosity rho_i H_i), then down the trees.
+        const std::vector<Rgb> H = cluster_push(clusters, roots, G);
+        for (std::size_t i = 0; i < N; ++i) gathered[i] += roots.rho[i] * H[i];
+      }
       push(tree, gathered);
       S.assign(tree.size(), Rgb::Zero());
       for (std::size_t e = 0; e < tree.size(); ++e)
@@ -243,7 +273,8 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
         }
       result.memory_bytes = std::max(result.memory_bytes,
                                      tree.memory_bytes() + tree.size() * sizeof(Rgb) * (static_cast<std::size_t>(r) + 5) +
-                                         static_cast<std::size_t>(n) * sizeof(Deposit));
+                                         static_cast<std::size_t>(n) * sizeof(Deposit) + clusters.memory_bytes() +
+                                         G.capacity() * sizeof(ClusterIrradiance));
     }
   }
 

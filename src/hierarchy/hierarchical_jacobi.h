@@ -51,6 +51,8 @@ struct HierarchicalOptions {
   long particles = 1'000'000;  // rays of the indirect shooting, all replicates and iterations together
   int replicates = 4;      // R >= 2
   std::uint64_t seed = 1;
+  std::uint64_t direct_seed = 0;  // the direct light's points and shadow rays from this seed (0: from seed); a bench
+                                  // gives runs of different seeds one D so that their indirect light compares alone
   bool progress = false;
   // The a-priori oracles. direct_oracle false: the direct light is estimated on the starting leaves and nothing is
   // split for it. transport_oracle false: every ray's power is gathered at the leaf containing its end point (the
@@ -58,6 +60,12 @@ struct HierarchicalOptions {
   // element is split during the shooting. Both off: the tree is the one given (estimate_refinement.h splits it).
   bool direct_oracle = true;
   bool transport_oracle = true;
+  // Oriented clusters of patches above the element trees (cluster_tree.h): a ray's incident power is received by
+  // the coarsest cluster containing the hit patch that passes cluster_receives(ratio = cluster_ratio) from the
+  // shooter leaf's centre, and spread over its members by the cosine rule; else the element oracle above decides.
+  bool clusters = false;
+  double cluster_ratio = 0.25;  // a cluster receives only where its radius <= cluster_ratio x its distance
+  int cluster_leaf_size = 8;    // patches per leaf cluster at most (>= 2)
 };
 
 struct HierarchicalResult {
@@ -67,7 +75,9 @@ struct HierarchicalResult {
   double epsilon = 0;
   long rays = 0, shadow_rays = 0, iterations = 0;
   long direct_splits = 0, transport_splits = 0;
-  std::size_t memory_bytes = 0;  // the tree and the per-element arrays at their largest
+  std::size_t clusters = 0;   // cluster nodes (0 without clustering)
+  long cluster_deposits = 0;  // rays received by a cluster rather than an element
+  std::size_t memory_bytes = 0;  // the trees (elements and clusters) and their arrays at their largest
   double seconds = 0;
 };
 
