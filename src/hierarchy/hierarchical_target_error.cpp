@@ -7,12 +7,15 @@
 
 #include "core/error.h"
 #include "core/timer.h"
+#include "hierarchy/direct_refinement.h"
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/leaf_patches.h"
 #include "solve/discretisation_error.h"
 
 namespace radwalk {
 namespace {
+
+constexpr int kMaxPointsSide = 64;  // 4096 direct-light points per leaf at most
 
 bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& solve) {
   return tree.is_leaf(e) && tree.level[e] < solve.max_level && tree.area[e] / 4 >= solve.min_area;
@@ -54,12 +57,17 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
   HierarchicalTargetResult out;
   ElementTree tree = split_to_start(roots, solve, o);
   long rays = o.rays_per_leaf;
+  const std::size_t emitters = std::max<std::size_t>(1, emitter_roots(roots).size());
   for (int s = 0;; ++s) {
     const Timer timer;
     HierarchicalOptions so = solve;
     so.direct_oracle = so.transport_oracle = false;
     const auto leaves_now = static_cast<long>(tree.leaves().size());
     so.particles = rays * leaves_now;
+    // The direct light's variance falls as 1 / M, not with the rays: M = m^2 >= R / (2 K), as many shadow rays
+    // (2 per point and emitter) as the shooting's rays a leaf.
+    so.points_side = std::clamp(static_cast<int>(std::ceil(std::sqrt(double(rays) / (2.0 * double(emitters))))),
+                                solve.points_side, std::max(solve.points_side, kMaxPointsSide));
     so.seed = solve.seed + 7919 * static_cast<std::uint64_t>(s);
     HierarchicalResult h = solve_hierarchical(roots, visibility, std::move(tree), so);
     const Timer estimate_timer;

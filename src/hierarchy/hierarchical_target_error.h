@@ -6,7 +6,12 @@
 // Step s on the current tree (leaves = the elements without children):
 //   1. solve (solve_hierarchical with both a-priori oracles off: the leaves act as patches, the ordinary stochastic
 //      Jacobi's unbiased estimate of their discrete system) with R_s rays per leaf, R_s x leaves in all, seed
-//      solve.seed + 7919 s;
+//      solve.seed + 7919 s, and m_s = max(m, ceil(sqrt(R_s / (2 K)))) direct-light points per leaf side (at most
+//      64, K the emitters): the direct light is one estimate shared by the replicates, its variance falls as
+//      1 / m_s^2 and not with the rays, so with m fixed the statistical part stops falling at the direct light's
+//      floor while the plan keeps adding rays (measured on the Cornell box, 300 leaves, 1000 rays a leaf: 3.9 %
+//      statistical with 16 points, 1.6 % with 256); with M_s = R_s / (2 K) its 2 shadow rays per point and emitter
+//      cost as much as the shooting;
 //   2. estimate per leaf B_se (the replicates' spread, with the direct light's variance), B_disc (the
 //      discretisation estimate of the leaves as patches, solve/discretisation_error.h) and the refinement
 //      indicator eta_l^2 = A_l sum_c (B_disc_lc^2 + max(W2_lc, 0)) (estimate_refinement.h: W2 the within-leaf
