@@ -46,7 +46,7 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !hierarchical(c); }, "for form factors, which --hierarchical does not use"},
     {{"--rays"}, [](const SolveCommand& c) { return !hierarchical(c) || c.target_error > 0; },
-     "for form factors, which --hierarchical does not use (with --target-error: the first step's rays per leaf)"},
+     "for form factors, which --hierarchical does not use"},  // with --target-error: the first step's rays per leaf
     {{"--hierarchical-tol", "--hierarchical-rays", "--hierarchical-refine", "--hierarchical-target",
       "--hierarchical-max-leaves", "--hierarchical-steps"},
      [](const SolveCommand& c) { return !(c.target_error > 0); },
