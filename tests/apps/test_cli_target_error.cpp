@@ -90,7 +90,8 @@ TEST_CASE("solve --hierarchical --target-error: the leaf budget exits 1, the opt
   INFO(b.out);
   CHECK(b.exit_code == 1);
   CHECK(b.out.find("radwalk: target error 0.5 % not reached (max-") != std::string::npos);
-  CHECK(b.out.find(" leaves and 100 rays a leaf") != std::string::npos);
+  CHECK(b.out.find(" leaves and ") != std::string::npos);  // the rays a leaf depend on when the time budget stops it
+  CHECK(b.out.find(" rays a leaf") != std::string::npos);
   for (const std::string extra : {"--hierarchical-tol 0.01", "--hierarchical-rays 1000", "--hierarchical-refine estimate",
                                   "--hierarchical-max-leaves 100", "--solver jacobi", "--rays-per-area 1e-3"}) {
     const Run r = run("solve " + scene + extra);
