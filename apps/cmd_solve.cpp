@@ -13,6 +13,7 @@
 #include "apps/discretisation_error.h"
 #include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
+#include "apps/hierarchical_target_error.h"
 #include "apps/target_error.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -55,13 +56,10 @@ void check_combinations(const SolveCommand& c) {
     if (c.solver != "auto")
       throw InputError("--hierarchical is a solver of its own (hierarchical stochastic Jacobi); it cannot take --solver " +
                        c.solver);
-    if (c.target_error > 0)
-      throw InputError("--hierarchical and --target-error cannot be combined yet: --target-error refines uniform "
-                       "patches by the form-factor route");
     if (c.refine > 0)
       throw InputError("--hierarchical refines its element trees itself; it cannot be combined with --refine");
     if (!c.progressive.empty()) throw InputError("--hierarchical and --progressive cannot be combined");
-    if (c.hierarchical_refine == "estimate" && !(c.hierarchical_target > 0) && c.hierarchical_max_leaves <= 0)
+    if (c.target_error <= 0 && c.hierarchical_refine == "estimate" && !(c.hierarchical_target > 0) && c.hierarchical_max_leaves <= 0)
       throw InputError("--hierarchical-refine estimate needs a stopping rule: --hierarchical-target E (the estimated "
                        "relative error) or --hierarchical-max-leaves N");
     if (c.hierarchical_clusters == "on" && c.hierarchical_refine == "estimate")
@@ -281,11 +279,16 @@ int run_solve(const SolveCommand& command) {
   };
   std::optional<TargetErrorRun> target;
   if (command.target_error > 0) {
-    target = run_target_error(command, std::move(patches), summary);
+    target = command.hierarchical ? run_hierarchical_target_error(command, patches, summary)
+                                  : run_target_error(command, std::move(patches), summary);
     TargetErrorResult& r = target->result;
     patches = std::move(r.patches);
-    fates = {r.form_factors.rays, r.form_factors.escaped, r.form_factors.back_hits};
-    if (per_patch_output) fields = form_factor_fields(r.form_factors, patches);
+    if (command.hierarchical) {
+      fates = trace_ray_fates(patches, command.scene.seed);  // no form factors: the fates' own rays
+    } else {
+      fates = {r.form_factors.rays, r.form_factors.escaped, r.form_factors.back_hits};
+      if (per_patch_output) fields = form_factor_fields(r.form_factors, patches);
+    }
     solution = std::move(r.solution);
     error_line = target->error_line;
   } else if (command.refine > 0) {
@@ -393,7 +396,9 @@ int run_solve(const SolveCommand& command) {
       fields.push_back(with_csv_name(rgb_field("B_var_theory", solution.var_theory), "var_theory"));
     VtpMetadata metadata = solution_metadata(solution, patches);
     metadata.set_text("solver", command.hierarchical ? "hierarchical" : command.solver);
-    if (command.hierarchical) {
+    if (command.hierarchical && target) {
+      metadata.set_integer("rays_per_leaf", target->result.steps.back().rays_per_patch);
+    } else if (command.hierarchical) {
       metadata.set_real("hierarchical_tol", command.hierarchical_tol);
       metadata.set_integer("rays", command.hierarchical_rays);
     } else if (command.solver == "random-walk") {
@@ -419,9 +424,10 @@ int run_solve(const SolveCommand& command) {
     const TargetErrorStep& last = target->result.steps.back();
     std::fprintf(stderr,
                  "radwalk: target error %s not reached (%s stopped it after %zu steps): the answer written has an "
-                 "estimated error of %s with %zu patches and %ld rays a patch\n",
+                 "estimated error of %s with %zu %s and %ld rays a %s\n",
                  percent(command.target_error).c_str(), target->result.stop_reason.c_str(), target->result.steps.size(),
-                 percent(last.total).c_str(), last.patches, last.rays_per_patch);
+                 percent(last.total).c_str(), last.patches, command.hierarchical ? "leaves" : "patches",
+                 last.rays_per_patch, command.hierarchical ? "leaf" : "patch");
     return 1;
   }
   if (solution.status == SolveStatus::converged) return 0;

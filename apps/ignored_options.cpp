@@ -45,9 +45,16 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !(random_walk(c) && c.walk.kernel == WalkKernel::ray); },
      "for form factors, which --kernel ray does not use"},
-    {{"--rays", "--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns",
+    {{"--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns",
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !hierarchical(c); }, "for form factors, which --hierarchical does not use"},
+    {{"--rays"}, [](const SolveCommand& c) { return !hierarchical(c) || c.target_error > 0; },
+     "for form factors, which --hierarchical does not use"},  // with --target-error: the first step's rays per leaf
+    {{"--hierarchical-tol", "--hierarchical-rays", "--hierarchical-refine", "--hierarchical-target",
+      "--hierarchical-max-leaves", "--hierarchical-steps"},
+     [](const SolveCommand& c) { return !(c.target_error > 0); },
+     "without --target-error (with --hierarchical it refines by the estimate and chooses the rays itself: --rays "
+     "sets the first step's rays per leaf, --max-patches the budget of leaves)"},
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
     {{"--refine-steps", "--refine-floor", "--refine-noise"}, [](const SolveCommand& c) { return c.refine > 0; },
      "with --refine"},

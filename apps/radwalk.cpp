@@ -590,10 +590,11 @@ int run_main(int argc, char** argv) {
                    "Accuracy on request: solve in steps, adding rays where the statistical error dominates and "
                    "splitting patches where the discretisation error does, until the estimated total error (area-"
                    "weighted RMS relative over the reflecting patches, docs/accuracy.md) is at most E (e.g. 0.01), "
-                   "or --max-patches / --max-seconds stop it (exit code 1)")
+                   "or --max-patches / --max-seconds stop it (exit code 1); with --hierarchical it splits leaf elements "
+                   "instead of patches (--rays: the first step's rays per leaf)")
       ->check(CLI::Range(1e-6, 0.999999));
   solve_cmd->add_option("--max-patches", solve.max_patches,
-                        "Adaptive patching and --target-error: never split beyond M patches")
+                        "Adaptive patching and --target-error: never split beyond M patches (with --hierarchical: leaves)")
       ->check(kPositive)
       ->capture_default_str();
   solve_cmd->add_option("--max-seconds", solve.max_seconds,

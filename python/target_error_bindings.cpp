@@ -8,6 +8,8 @@
 #include "bindings.h"
 #include "core/parallel.h"
 #include "formfactor/emitter_form_factors.h"
+#include "hierarchy/hierarchical_target_error.h"
+#include "hierarchy/leaf_patches.h"
 #include "interruptible.h"
 #include "solve/discretisation_error.h"
 #include "solve/form_factor_error.h"
@@ -27,9 +29,62 @@ struct TargetErrorPyResult {
   std::string stop_reason;
 };
 
+// hierarchical=True: `radwalk solve SCENE --hierarchical --target-error E` (hierarchy/hierarchical_target_error.h
+// with the CLI's defaults: 8 levels, 16 direct-light points a leaf to start, 4 replicates): rays is the first step's
+// rays per leaf, max_patches the budget of leaves; no form factors (form_factors holds an empty F).
+TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double target_error, long rays, long max_patches,
+                                                 double max_seconds, std::uint64_t seed, int threads,
+                                                 int discretisation_directions) {
+  HierarchicalOptions h;
+  h.seed = seed;
+  HierarchicalTargetOptions o;
+  o.target = target_error;
+  o.rays_per_leaf = rays;
+  o.max_leaves = max_patches;
+  o.max_seconds = max_seconds;
+  o.directions = discretisation_directions;
+  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  HierarchicalTargetResult r;
+  interruptible([&] {
+    ThreadLimit limit(threads);
+    const EmbreeVisibility visibility(scene.patches);
+    r = solve_hierarchical_to_target_error(scene.patches, visibility, h, o);
+  });
+  TargetErrorPyResult out;
+  out.scene = refined_scene(scene, leaf_patches(scene.patches, r.solution.tree, r.solution.leaves));
+  out.form_factors.area = out.scene.patches.area;
+  for (const HierarchicalTargetStep& s : r.steps) out.steps.push_back(s.step);
+  out.reached = r.reached;
+  out.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
+  Solution& solution = out.result.solution;
+  solution.method = "hierarchical-jacobi";
+  solution.status = SolveStatus::converged;
+  solution.B = r.solution.B;
+  solution.B_se = r.solution.B_se;
+  solution.B_disc = r.B_disc;
+  solution.var = r.solution.var;
+  solution.walks = r.solution.rays;
+  solution.iterations = r.solution.iterations;
+  solution.seconds = r.solution.seconds;
+  out.result.timings = {{"target_error", r.seconds}};
+  nlohmann::json target = {{"target", target_error},    {"route", "hierarchical"}, {"max_patches", max_patches},
+                           {"max_seconds", max_seconds}, {"reached", out.reached}, {"stop_reason", out.stop_reason},
+                           {"seconds", r.seconds},      {"steps", nlohmann::json::array()}};
+  for (const HierarchicalTargetStep& s : r.steps) {
+    nlohmann::json x = app::target_error_step_json(s.step);
+    x["leaves"] = s.step.patches;
+    x["rays"] = s.rays;
+    target["steps"].push_back(x);
+  }
+  nlohmann::json run = {{"solver", "hierarchical"}, {"seed", seed}, {"threads", threads},
+                        {"rays_per_leaf", out.steps.back().rays_per_patch}, {"target_error", target}};
+  out.result.metadata = result_metadata(out.result, out.scene, run);
+  return out;
+}
+
 TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_error, long rays, long max_patches,
                                              double max_seconds, double tol, std::uint64_t seed,
-                                             long long threads_arg, int discretisation_directions) {
+                                             long long threads_arg, int discretisation_directions, bool hierarchical) {
   const int threads = check_run(scene, threads_arg);
   if (discretisation_directions < 1)
     throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
@@ -39,6 +94,13 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_e
     throw InputError("solve_to_target_error: the scene was loaded with contact_cut=True but without max_edge or "
                      "max_area, so its faces were not cut along the contacts (the cut is made when faces are "
                      "split); load it with max_edge or max_area as well");
+  if (hierarchical) {
+    if (tol != 1e-10)
+      throw InputError("tol does not apply with hierarchical=True (the hierarchical solver shoots until the unshot "
+                       "power is below 1e-6 of the first shot's): remove it");
+    return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, seed, threads,
+                                        discretisation_directions);
+  }
   TargetErrorOptions options;
   options.target = target_error;
   options.rays = rays;
@@ -123,7 +185,7 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
   m.def("solve_to_target_error", &solve_to_target_error_py, py::arg("scene"), py::arg("target_error"),
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
-        py::arg("discretisation_directions") = 16,
+        py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
 As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
@@ -136,7 +198,13 @@ or max_area starts from about 500 patches (every patch above twice the mean area
 given no --max-edge or --max-area. max_patches bounds the patches,
 max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it first,
 reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is not
-changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.)doc");
+changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.
+
+hierarchical=True: as `radwalk solve SCENE --hierarchical --target-error TARGET_ERROR` (src/hierarchy/
+hierarchical_target_error.h, docs/hierarchy.md): the element trees of the patches are refined by the estimate,
+leaves split in 4 where the discretisation part dominates and rays added where the statistical part does; rays is
+the first step's rays per leaf, max_patches the budget of leaves; scene holds the leaves (each with its input
+face), form_factors an empty F (no form factors are stored), tol does not apply (InputError if given).)doc");
 }
 
 }  // namespace radwalk::python

@@ -15,24 +15,16 @@
 #include "visibility/embree_visibility.h"
 
 namespace radwalk {
-namespace {
 
-struct Indicator {
-  std::vector<double> eta2;  // per leaf
-  PatchRgb B_disc;
-  double eta = 0, disc_share = 0;
-  long rays = 0;
-};
-
-Indicator estimate(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
-                   const EstimateRefinementOptions& o, std::uint64_t seed) {
-  Indicator out;
+LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
+                                        int directions, int points_side, std::uint64_t seed) {
+  LeafErrorIndicator out;
   const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
   const EmbreeVisibility leaf_visibility(leaves);
   const auto n = static_cast<Eigen::Index>(leaves.size());
   const RadiosityProblem problem = make_problem(leaves, SparseF(n, n));  // no stored F: the estimate's own rays give H
-  const DiscretisationError disc = discretisation_error(leaves, leaf_visibility, problem, h.B, o.directions, seed);
-  const LeafVariation var = leaf_variation(roots, visibility, h.tree, h.leaves, h.B, o.points_side, o.directions, seed);
+  const DiscretisationError disc = discretisation_error(leaves, leaf_visibility, problem, h.B, directions, seed);
+  const LeafVariation var = leaf_variation(roots, visibility, h.tree, h.leaves, h.B, points_side, directions, seed);
   out.B_disc = disc.standard_error;
   out.rays = disc.rays + var.rays;
   out.eta2.assign(h.leaves.size(), 0.0);
@@ -52,8 +44,6 @@ Indicator estimate(const PatchSet& roots, const Visibility& visibility, const Hi
   out.disc_share = total > 0 ? disc_part / total : 0.0;
   return out;
 }
-
-}  // namespace
 
 EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibility& visibility,
                                             const HierarchicalOptions& solve, const EstimateRefinementOptions& o) {
@@ -84,7 +74,7 @@ EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibil
       return result;
     }
     const Timer estimate_timer;
-    const Indicator ind = estimate(roots, visibility, h, o, so.seed);
+    const LeafErrorIndicator ind = estimate_leaf_errors(roots, visibility, h, o.directions, o.points_side, so.seed);
     const double estimate_seconds = estimate_timer.seconds();
     EstimateRefinementStep step;
     step.leaves = static_cast<long>(h.leaves.size());

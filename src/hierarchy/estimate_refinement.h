@@ -56,6 +56,18 @@ struct EstimateRefinementResult {
   bool reached = false;         // eta <= target at the last estimate
 };
 
+// The indicator of one solution h on the tree over `roots` (the definitions above): per leaf eta_l^2 (row k =
+// h.leaves[k]), B_disc of the leaves as patches, eta and the B_disc share of sum eta_l^2 over the counted leaves,
+// and the rays of both estimates. directions L >= 1, points_side m >= 2.
+struct LeafErrorIndicator {
+  std::vector<double> eta2;
+  PatchRgb B_disc;
+  double eta = 0, disc_share = 0;
+  long rays = 0;
+};
+LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
+                                        int directions, int points_side, std::uint64_t seed);
+
 EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibility& visibility,
                                             const HierarchicalOptions& solve, const EstimateRefinementOptions& options);
 

@@ -73,6 +73,20 @@ double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb
   return size > 0 ? std::sqrt(error / size) : 0.0;
 }
 
+TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double E, long rays) {
+  TargetErrorPlan plan;
+  plan.refine = discretisation > 0.8 * E;
+  const double t_d = plan.refine ? 0.7 * E : discretisation;
+  const double t_s = plan.refine ? 0.7 * E : std::sqrt(E * E - discretisation * discretisation);
+  plan.next_rays = rays;
+  if (statistical > t_s) {
+    const double factor = std::max(1.25, 1.1 * (statistical / t_s) * (statistical / t_s));
+    plan.next_rays = static_cast<long>(std::ceil(std::min(double(kMaxRaysPerPatch), double(rays) * factor)));
+  }
+  if (plan.refine) plan.split_fraction = std::min(1.0, 2 * (1 - t_d * t_d / (discretisation * discretisation)));
+  return plan;
+}
+
 TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
                                         const std::function<void(const TargetErrorStep&, int step)>& on_step) {
   const double E = options.target;
@@ -115,17 +129,12 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
     } else if (step + 1 >= options.max_steps) {
       stop = "max-steps";
     } else {
-      const bool refine = s.discretisation > 0.8 * E;
-      const double t_d = refine ? 0.7 * E : s.discretisation;
-      const double t_s = refine ? 0.7 * E : std::sqrt(E * E - s.discretisation * s.discretisation);
-      if (s.statistical > t_s) {
-        const double factor = std::max(1.25, 1.1 * (s.statistical / t_s) * (s.statistical / t_s));
-        next_rays = static_cast<long>(std::ceil(std::min(double(kMaxRaysPerPatch), double(rays) * factor)));
-      }
+      const TargetErrorPlan plan = plan_target_error_step(s.statistical, s.discretisation, E, rays);
+      const bool refine = plan.refine;
+      next_rays = plan.next_rays;
       std::size_t marked = 0;
       if (refine) {
-        const double fraction = std::min(1.0, 2 * (1 - t_d * t_d / (s.discretisation * s.discretisation)));
-        split = patches_to_split(patches, solution.B_disc, fraction, (options.max_patches - patches.size()) / 3);
+        split = patches_to_split(patches, solution.B_disc, plan.split_fraction, (options.max_patches - patches.size()) / 3);
         marked = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
       }
       const bool more_rays = next_rays > rays;

@@ -79,6 +79,18 @@ struct TargetErrorResult {
   double seconds = 0;
 };
 
+// The plan of the step after one with relative errors (statistical, discretisation) at target E and `rays` rays
+// (the rules above): refine when the discretisation part is above 0.8 E; split_fraction the share of the summed
+// contributions the split patches (or leaves) must hold, 2 (1 - t_d^2 / e_d^2) capped at 1 (0 when not refining);
+// next_rays the next step's rays per patch (or leaf), rays when the statistical part is within its target. Shared
+// by the uniform steps here and the hierarchical ones (hierarchy/hierarchical_target_error.h).
+struct TargetErrorPlan {
+  bool refine = false;
+  double split_fraction = 0;
+  long next_rays = 0;
+};
+TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double target, long rays);
+
 // InputError for options out of range or max_patches below the scene's patches. on_step, if set, is called after
 // each step's record is complete.
 TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,

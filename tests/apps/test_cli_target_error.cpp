@@ -70,3 +70,48 @@ TEST_CASE("solve --target-error refuses the options it chooses itself", "[cli][t
   const Run r = run("solve " + source("meshes/cornell_box.obj") + " --max-seconds 10");
   CHECK(r.exit_code == 2);
 }
+
+// Through the hierarchy: the steps (leaves, rays a leaf, rays, the three errors, seconds) in the JSON, the last
+// estimate at most E, one CSV row per leaf, the summary line's estimate (the step lines are notes, silenced by the
+// runner's --quiet); a leaf budget too small exits 1 with one
+// line; the options the route chooses itself refused with exit 2 and one line.
+TEST_CASE("solve --hierarchical --target-error reaches a reachable target and lists its steps", "[cli][target_error]") {
+  const fs::path dir = scratch_dir("target_error_hierarchical");
+  const fs::path json = dir / "h.json", csv = dir / "h.csv";
+  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --hierarchical --target-error 0.06 --rays 200 " +
+                    "--discretisation-directions 4 --json " + json.string() + " --csv " + csv.string());
+  INFO(r.out);
+  REQUIRE(r.exit_code == 0);
+  const nlohmann::json j = nlohmann::json::parse(file_text(json));
+  const auto& t = j.at("target_error");
+  CHECK(t.at("route") == "hierarchical");
+  CHECK(t.at("reached").get<bool>());
+  REQUIRE(t.at("steps").size() >= 1);
+  const auto& last = t.at("steps").back();
+  CHECK(last.at("total").get<double>() <= 0.06);
+  CHECK(last.at("total").get<double>() == Approx(j.at("error_estimate").at("total").at("relative").get<double>()));
+  CHECK(last.at("rays").get<long>() > 0);
+  CHECK(j.at("patches").get<std::size_t>() == last.at("leaves").get<std::size_t>());
+  CHECK(j.at("hierarchy").at("leaves").get<std::size_t>() == last.at("leaves").get<std::size_t>());
+  const std::string rows = file_text(csv);
+  CHECK(static_cast<std::size_t>(std::count(rows.begin(), rows.end(), '\n')) == last.at("leaves").get<std::size_t>() + 1);
+  CHECK(r.out.find("estimated error e = ") != std::string::npos);
+}
+
+TEST_CASE("solve --hierarchical --target-error: the leaf budget exits 1, the options it chooses refused",
+          "[cli][target_error]") {
+  const std::string scene = source("meshes/cornell_box.obj") + " --hierarchical --target-error 0.005 --rays 100 ";
+  const Run b = run("solve " + scene + "--discretisation-directions 2 --max-patches 40 --max-seconds 3");
+  INFO(b.out);
+  CHECK(b.exit_code == 1);
+  CHECK(b.out.find("radwalk: target error 0.5 % not reached (max-") != std::string::npos);
+  CHECK(b.out.find(" leaves and ") != std::string::npos);  // the rays a leaf depend on when the time budget stops it
+  CHECK(b.out.find(" rays a leaf") != std::string::npos);
+  for (const std::string extra : {"--hierarchical-tol 0.01", "--hierarchical-rays 1000", "--hierarchical-refine estimate",
+                                  "--hierarchical-max-leaves 100", "--solver jacobi", "--rays-per-area 1e-3"}) {
+    const Run r = run("solve " + scene + extra);
+    INFO(extra << "\n" << r.out);
+    CHECK(r.exit_code == 2);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+  }
+}

@@ -138,3 +138,20 @@ TEST_CASE("target error: a run given no patching starts from about start_patches
   o.start_patches = 0;
   CHECK(solve_to_target_error(lit_cube(), lawful(0.02, 0.02), o).steps[0].patches == 6);
 }
+
+TEST_CASE("target error: the plan of a step, shared with the hierarchical route") {
+  // Statistical excess, discretisation within 0.8 E: t_s = sqrt(E^2 - e_d^2), rays x 1.1 (e_s / t_s)^2, no split.
+  TargetErrorPlan p = plan_target_error_step(0.02, 0.006, 0.01, 1000);
+  CHECK_FALSE(p.refine);
+  CHECK(p.split_fraction == 0);
+  CHECK(p.next_rays == static_cast<long>(std::ceil(1000 * 1.1 * 0.02 * 0.02 / (1e-4 - 0.006 * 0.006))));
+  // Discretisation above 0.8 E: both targets 0.7 E, the split share 2 (1 - 0.49 E^2 / e_d^2).
+  p = plan_target_error_step(0.001, 0.0085, 0.01, 1000);
+  CHECK(p.refine);
+  CHECK(p.split_fraction == Approx(2 * (1 - 0.49e-4 / (0.0085 * 0.0085))).epsilon(1e-12));
+  CHECK(p.next_rays == 1000);
+  // Far above: the share capped at 1; a small statistical excess still raises the rays at least x 1.25.
+  p = plan_target_error_step(0.0071, 0.05, 0.01, 1000);
+  CHECK(p.split_fraction == 1.0);
+  CHECK(p.next_rays == 1250);
+}

@@ -1,0 +1,125 @@
+#include "apps/hierarchical_target_error.h"
+
+#include <cmath>
+#include <utility>
+
+#include "apps/pipeline.h"
+#include "apps/run_metadata.h"
+#include "apps/statistical_error.h"
+#include "core/error.h"
+#include "hierarchy/hierarchical_target_error.h"
+#include "hierarchy/leaf_patches.h"
+#include "solve/discretisation_error.h"
+#include "visibility/embree_visibility.h"
+
+namespace radwalk::app {
+
+TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const PatchSet& roots, RunSummary& summary) {
+  if (command.discretisation_directions <= 0)
+    throw InputError("--target-error needs the discretisation estimate: --discretisation-directions must be > 0");
+  HierarchicalOptions h;
+  h.max_level = command.hierarchical_levels;
+  h.min_area = command.hierarchical_min_area;
+  h.points_side = static_cast<int>(std::lround(std::sqrt(static_cast<double>(command.hierarchical_points))));
+  h.replicates = command.hierarchical_replicates;
+  h.seed = command.scene.seed;
+  HierarchicalTargetOptions o;
+  o.target = command.target_error;
+  o.rays_per_leaf = command.ff.rays;
+  o.max_leaves = command.max_patches;
+  o.max_seconds = command.max_seconds;
+  o.directions = command.discretisation_directions;
+  if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  const EmbreeVisibility visibility(roots);
+  const auto report = [](const HierarchicalTargetStep& r, int step) {
+    const TargetErrorStep& s = r.step;
+    note("target error step " + std::to_string(step) + " (hierarchical): " + std::to_string(s.patches) + " leaves, " +
+         std::to_string(s.rays_per_patch) + " rays a leaf: estimated error " + percent(s.total) + " (statistical " +
+         percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " + std::to_string(s.seconds) +
+         " s" +
+         (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " leaves split, " +
+                                          std::to_string(s.next_rays_per_patch) + " rays a leaf"
+                                    : std::string()));
+  };
+  HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, report);
+
+  TargetErrorRun run;
+  TargetErrorResult& t = run.result;
+  t.patches = leaf_patches(roots, r.solution.tree, r.solution.leaves);
+  Solution& solution = t.solution;
+  solution.method = "hierarchical-jacobi";
+  solution.status = SolveStatus::converged;
+  solution.message = "unshot power below 1e-6 of the first shot's, or 200 iterations per replicate";
+  solution.B = r.solution.B;
+  solution.B_se = r.solution.B_se;
+  solution.B_disc = r.B_disc;
+  solution.var = r.solution.var;
+  solution.walks = r.solution.rays;
+  solution.iterations = r.solution.iterations;
+  solution.seconds = r.solution.seconds;
+  solution.info["shadow_rays"] = static_cast<double>(r.solution.shadow_rays);
+  solution.info["replicates"] = h.replicates;
+  for (const HierarchicalTargetStep& s : r.steps) t.steps.push_back(s.step);
+  t.reached = r.reached;
+  t.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
+  t.seconds = r.seconds;
+
+  const TargetErrorStep& last = t.steps.back();
+  auto& e = summary.json()["error_estimate"];
+  e["statistical"] = {{"relative", last.statistical},
+                      {"method", "the spread of " + std::to_string(h.replicates) +
+                                     " independent replicates of the shooting, with the direct light's variance"}};
+  e["discretisation"] = {
+      {"relative", last.discretisation},
+      {"directions_per_point", command.discretisation_directions},
+      {"form_factors", "the estimate's own rays"},
+      {"method", "the within-patch fluctuation of a one-bounce gather on the leaves as patches, shot with common "
+                 "random numbers: e = (I - H)^-1 d, B_disc = sqrt(e^2 + Var(e)) (docs/theory/discretisation_error.md)"}};
+  e["total"] = {{"relative", last.total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
+  run.error_line = "estimated error e = " + percent(last.total) + " (statistical " + percent(last.statistical) +
+                   ", discretisation " + percent(last.discretisation) +
+                   "; 1 standard deviation, relative to B over the reflecting leaves)";
+
+  auto& j = summary.json()["target_error"];
+  j["target"] = o.target;
+  j["route"] = "hierarchical";
+  j["max_patches"] = o.max_leaves;
+  j["max_seconds"] = o.max_seconds;
+  j["reached"] = t.reached;
+  j["stop_reason"] = t.stop_reason;
+  j["seconds"] = t.seconds;
+  j["steps"] = nlohmann::json::array();
+  for (const HierarchicalTargetStep& s : r.steps) {
+    nlohmann::json x = target_error_step_json(s.step);
+    x["leaves"] = s.step.patches;
+    x["rays"] = s.rays;
+    x["estimate_seconds"] = s.estimate_seconds;
+    j["steps"].push_back(x);
+  }
+  const HierarchicalResult& hr = r.solution;
+  auto& hj = summary.json()["hierarchy"];
+  hj["roots"] = roots.size();
+  hj["elements"] = hr.tree.size();
+  hj["leaves"] = hr.leaves.size();
+  hj["links"] = 0;     // per-ray level choice: no links are stored
+  hj["clusters"] = 0;  // clustering of small faces: not in this route
+  hj["memory_bytes"] = hr.memory_bytes;
+  hj["levels"] = hr.tree.depth() + 1;
+  hj["refine"] = "target-error";
+  hj["max_level"] = h.max_level;
+  hj["min_area"] = h.min_area;
+  hj["points"] = h.points_side * h.points_side;
+  hj["rays"] = hr.rays;
+  hj["shadow_rays"] = hr.shadow_rays;
+  hj["replicates"] = h.replicates;
+  hj["iterations"] = hr.iterations;
+  summary.json()["patches"] = t.patches.size();
+  summary.json()["rays_per_patch"] = last.rays_per_patch;
+  summary.add_timing("target_error", t.seconds);
+  note("hierarchical: " + std::to_string(roots.size()) + " patches -> " + std::to_string(hr.tree.size()) +
+       " elements, " + std::to_string(hr.leaves.size()) + " leaves, " + std::to_string(hr.tree.depth() + 1) +
+       " levels");
+  return run;
+}
+
+}  // namespace radwalk::app

@@ -1,0 +1,149 @@
+#include "hierarchy/hierarchical_target_error.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+#include "core/error.h"
+#include "core/timer.h"
+#include "hierarchy/direct_refinement.h"
+#include "hierarchy/estimate_refinement.h"
+#include "hierarchy/leaf_patches.h"
+#include "solve/discretisation_error.h"
+
+namespace radwalk {
+namespace {
+
+constexpr int kMaxPointsSide = 64;  // 4096 direct-light points per leaf at most
+
+bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& solve) {
+  return tree.is_leaf(e) && tree.level[e] < solve.max_level && tree.area[e] / 4 >= solve.min_area;
+}
+
+// The starting tree: rounds of splitting every leaf above 2 A / start_leaves, each round only if the leaves stay
+// within max_leaves (3 more per split).
+ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& solve, const HierarchicalTargetOptions& o) {
+  ElementTree tree = make_element_tree(roots);
+  if (o.start_leaves == 0) return tree;
+  const double largest = 2 * roots.total_area() / double(o.start_leaves);
+  for (;;) {
+    const std::vector<ElementIndex> leaves = tree.leaves();
+    std::vector<ElementIndex> marked;
+    for (const ElementIndex e : leaves)
+      if (tree.area[static_cast<std::size_t>(e)] > largest && splittable(tree, static_cast<std::size_t>(e), solve))
+        marked.push_back(e);
+    if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > o.max_leaves) return tree;
+    for (const ElementIndex e : marked) tree.split(static_cast<std::size_t>(e));
+  }
+}
+
+}  // namespace
+
+HierarchicalTargetResult solve_hierarchical_to_target_error(
+    const PatchSet& roots, const Visibility& visibility, const HierarchicalOptions& solve,
+    const HierarchicalTargetOptions& o, const std::function<void(const HierarchicalTargetStep&, int step)>& on_step) {
+  const double E = o.target;
+  if (!(E > 0 && E < 1)) throw InputError("the target error must be in (0, 1), got " + std::to_string(E));
+  if (o.rays_per_leaf < 1) throw InputError("the target error's rays per leaf must be >= 1");
+  if (!(o.max_seconds >= 0)) throw InputError("the target error's time budget must be >= 0 seconds");
+  if (o.max_steps < 1) throw InputError("the target error's steps must be >= 1");
+  if (o.directions < 1 || o.points_side < 2)
+    throw InputError("the hierarchical target error's estimate needs directions >= 1 and points per side >= 2");
+  if (o.max_leaves < static_cast<long>(roots.size()))
+    throw InputError("the leaf budget " + std::to_string(o.max_leaves) + " is below the scene's " +
+                     std::to_string(roots.size()) + " patches");
+  const Timer run;
+  HierarchicalTargetResult out;
+  ElementTree tree = split_to_start(roots, solve, o);
+  long rays = o.rays_per_leaf;
+  const std::size_t emitters = std::max<std::size_t>(1, emitter_roots(roots).size());
+  for (int s = 0;; ++s) {
+    const Timer timer;
+    HierarchicalOptions so = solve;
+    so.direct_oracle = so.transport_oracle = false;
+    const auto leaves_now = static_cast<long>(tree.leaves().size());
+    so.particles = rays * leaves_now;
+    // The direct light's variance falls as 1 / M, not with the rays: M = m^2 >= R / (2 K), as many shadow rays
+    // (2 per point and emitter) as the shooting's rays a leaf.
+    so.points_side = std::clamp(static_cast<int>(std::ceil(std::sqrt(double(rays) / (2.0 * double(emitters))))),
+                                solve.points_side, std::max(solve.points_side, kMaxPointsSide));
+    so.seed = solve.seed + 7919 * static_cast<std::uint64_t>(s);
+    HierarchicalResult h = solve_hierarchical(roots, visibility, std::move(tree), so);
+    const Timer estimate_timer;
+    const LeafErrorIndicator ind = estimate_leaf_errors(roots, visibility, h, o.directions, o.points_side, so.seed);
+    const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
+
+    HierarchicalTargetStep record;
+    TargetErrorStep& st = record.step;
+    st.patches = h.leaves.size();
+    st.rays_per_patch = rays;
+    st.statistical = relative_error(leaves, h.B, h.B_se);
+    st.discretisation = relative_error(leaves, h.B, ind.B_disc);
+    st.total = relative_error(leaves, h.B, total_error(h.B_se, ind.B_disc));
+    record.rays = h.rays + h.shadow_rays + ind.rays;
+    record.estimate_seconds = estimate_timer.seconds();
+    st.seconds = timer.seconds();
+
+    // Stop, or plan the next step.
+    std::string stop;
+    std::vector<std::size_t> split;  // leaf rows to split
+    long next_rays = rays;
+    if (st.total <= E) {
+      stop = "target reached";
+    } else if (s + 1 >= o.max_steps) {
+      stop = "max-steps";
+    } else {
+      const TargetErrorPlan plan = plan_target_error_step(st.statistical, st.discretisation, E, rays);
+      next_rays = plan.next_rays;
+      if (plan.refine) {
+        // The largest eta_l^2 first until they hold the plan's share of the counted leaves' sum.
+        std::vector<std::size_t> order(h.leaves.size());
+        std::iota(order.begin(), order.end(), std::size_t{0});
+        std::stable_sort(order.begin(), order.end(),
+                         [&](std::size_t a, std::size_t b) { return ind.eta2[a] > ind.eta2[b]; });
+        const double total = std::accumulate(ind.eta2.begin(), ind.eta2.end(), 0.0);
+        double held = 0;
+        long count = leaves_now;
+        for (const std::size_t k : order) {
+          if (held >= plan.split_fraction * total || !(ind.eta2[k] > 0)) break;
+          if (count + 3 > o.max_leaves) break;
+          if (!splittable(h.tree, static_cast<std::size_t>(h.leaves[k]), solve)) continue;
+          split.push_back(k);
+          held += ind.eta2[k];
+          count += 3;
+        }
+      }
+      const bool more_rays = next_rays > rays;
+      if (plan.refine && split.empty() && !more_rays) {
+        stop = "max-leaves";
+      } else if (!plan.refine && !more_rays) {
+        stop = "rays";
+      } else if (o.max_seconds > 0) {
+        const double next = double(leaves_now + 3 * static_cast<long>(split.size())) * double(next_rays);
+        const double predicted = st.seconds * next / (double(leaves_now) * double(rays));
+        if (run.seconds() + predicted > o.max_seconds) stop = "max-seconds";
+      }
+      if (stop.empty()) {
+        st.split = split.size();
+        st.next_rays_per_patch = next_rays;
+      }
+    }
+    out.steps.push_back(record);
+    if (on_step) on_step(record, s);
+    if (!stop.empty()) {
+      out.reached = stop == "target reached";
+      out.stop_reason = stop;
+      out.B_disc = ind.B_disc;
+      out.solution = std::move(h);
+      break;
+    }
+    tree = std::move(h.tree);
+    for (const std::size_t k : split) tree.split(static_cast<std::size_t>(h.leaves[k]));
+    rays = next_rays;
+  }
+  out.seconds = run.seconds();
+  return out;
+}
+
+}  // namespace radwalk
