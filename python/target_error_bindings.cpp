@@ -56,16 +56,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   for (const HierarchicalTargetStep& s : r.steps) out.steps.push_back(s.step);
   out.reached = r.reached;
   out.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
-  Solution& solution = out.result.solution;
-  solution.method = "hierarchical-jacobi";
-  solution.status = SolveStatus::converged;
-  solution.B = r.solution.B;
-  solution.B_se = r.solution.B_se;
-  solution.B_disc = r.B_disc;
-  solution.var = r.solution.var;
-  solution.walks = r.solution.rays;
-  solution.iterations = r.solution.iterations;
-  solution.seconds = r.solution.seconds;
+  out.result.solution = hierarchical_target_solution(r);
   out.result.timings = {{"target_error", r.seconds}};
   nlohmann::json target = {{"target", target_error},    {"route", "hierarchical"}, {"max_patches", max_patches},
                            {"max_seconds", max_seconds}, {"reached", out.reached}, {"stop_reason", out.stop_reason},

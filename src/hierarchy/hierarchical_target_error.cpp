@@ -146,4 +146,20 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
   return out;
 }
 
+Solution hierarchical_target_solution(const HierarchicalTargetResult& r) {
+  Solution solution;
+  solution.method = "hierarchical-jacobi";
+  solution.status = SolveStatus::converged;
+  solution.message = "unshot power below 1e-6 of the first shot's, or 200 iterations per replicate";
+  solution.B = r.solution.B;
+  solution.B_se = r.solution.B_se;
+  solution.B_disc = r.B_disc;
+  solution.var = r.solution.var;
+  solution.walks = r.solution.rays;
+  solution.iterations = r.solution.iterations;
+  solution.seconds = r.solution.seconds;
+  solution.info["shadow_rays"] = static_cast<double>(r.solution.shadow_rays);
+  return solution;
+}
+
 }  // namespace radwalk

@@ -70,6 +70,11 @@ struct HierarchicalTargetResult {
   double seconds = 0;
 };
 
+// The last step's solution on its leaves (row k = leaf k), as every solver reports one: B, B_se, B_disc and the
+// hierarchical solve's counts, method "hierarchical-jacobi", converged (its run ends when the unshot power is
+// below 1e-6 of the first shot's, or after 200 iterations per replicate).
+Solution hierarchical_target_solution(const HierarchicalTargetResult& result);
+
 // solve: the hierarchical solve's options (its particles and oracles are set per step here). InputError for
 // options out of range or max_leaves below the roots' count. on_step, if set, is called after each step.
 HierarchicalTargetResult solve_hierarchical_to_target_error(
