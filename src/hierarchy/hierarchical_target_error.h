@@ -1,7 +1,7 @@
 #pragma once
 // Accuracy on request through the element hierarchy: solve on the element trees in steps, refining the leaves by
 // the a-posteriori estimate, until the estimated total error is at most a target (docs/accuracy.md, "Accuracy on
-// request"; docs/hierarchy.md, "--target-error through the hierarchy").
+// request"; docs/hierarchy.md, "Accuracy on request through the hierarchy").
 //
 // Step s on the current tree (leaves = the elements without children):
 //   1. solve (solve_hierarchical with both a-priori oracles off: the leaves act as patches, the ordinary stochastic
