@@ -20,7 +20,9 @@
 //      the reciprocity defect of F, and its standard error from each row's rays, J held fixed, first order:
 //        Var(R) = sum_i A_i^2 (sum_j F_ij (J_i - J_j)^2 - (sum_j F_ij (J_i - J_j))^2) / n_i;
 //   7. per group (object, group or material): Q, its standard error, the radiant temperature
-//      (sum A T^4 / sum A)^(1/4), and the view factors between groups (solve/group_view_factors.h).
+//      (sum A T^4 / sum A)^(1/4) over the group's patches that radiate: not contact patches, and seeing a surface
+//      or the ambient (row sum of F plus sky view factor > 0); 0 when none does. Then the view factors between
+//      groups (solve/group_view_factors.h).
 #include <cstdint>
 #include <functional>
 #include <string>

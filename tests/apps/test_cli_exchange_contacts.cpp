@@ -102,3 +102,22 @@ TEST_CASE("exchange: with a hollow cabinet on the floor the energy balance close
     CHECK(std::abs(R / se) <= z_crit);
   }
 }
+
+TEST_CASE("exchange: a group's radiant temperature leaves out its patches that see nothing", "[cli][exchange][contact]") {
+  // The re-radiating cabinet (q = 0) between walls at 283 K and a floor at 293 K: each of its visible patches has
+  // J = sum_j F_ij J_j with rows summing to 1 in the closed room, so its T lies in [283, 293] K, and so does the
+  // group's (sum A T^4 / sum A)^(1/4) over them. Its bottom lies on the floor (a contact patch): its rays leave
+  // through the floor's back to the black ambient, T = 0; counted, it pulled the group down by (1.12 / 1.28)^(1/4),
+  // to 276 K.
+  const fs::path dir = scratch_dir("exchange_radiant_temperature");
+  const nlohmann::json x = exchange_of(write_room(dir, false, false), "--rays 200 --group-by object");
+  bool found = false;
+  for (const auto& g : x.at("groups"))
+    if (g.at("name") == "cabinet") {
+      found = true;
+      const double T = g.at("T_radiant").get<double>();
+      CHECK(T >= 283.0);
+      CHECK(T <= 293.0);
+    }
+  CHECK(found);
+}
