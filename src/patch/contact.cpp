@@ -105,8 +105,10 @@ Polygon intersection(const Polygon& S, const Polygon& K, const Vec3& n, double t
 }
 
 // Whether segment a-b crosses the interior of convex polygon P (counter-clockwise about n): the part of the segment
-// inside P is longer than tol and P has area more than min_area on both sides of the segment's line.
-bool crosses(const Polygon& P, const Vec3& n, const Vec3& a, const Vec3& b, double tol, double min_area) {
+// inside P is longer than tol and P has area more than min_area on both sides of the segment's line. The two sides
+// (clip's inside and outside of the line, normal n x (b - a)) are left in `in` and `out` when it does.
+bool crosses(const Polygon& P, const Vec3& n, const Vec3& a, const Vec3& b, double tol, double min_area, Polygon& in,
+             Polygon& out) {
   double t0 = 0, t1 = 1;
   const Vec3 d = b - a;
   for (std::size_t k = 0; k < P.size() && t0 <= t1; ++k) {
@@ -121,7 +123,6 @@ bool crosses(const Polygon& P, const Vec3& n, const Vec3& a, const Vec3& b, doub
     }
   }
   if ((t1 - t0) * d.norm() <= tol) return false;
-  Polygon in, out;
   clip(P, a, n.cross(d).normalized(), tol, in, out);
   return vector_area(in).norm() > min_area && vector_area(out).norm() > min_area;
 }
@@ -401,7 +402,8 @@ std::vector<Contact> find_contacts(const Mesh& mesh) {
         for (const Vec3& q : S) face_lo = face_lo.cwiseMin(q), face_hi = face_hi.cwiseMax(q);
         if ((face_hi.array() < seg_lo.array()).any() || (face_lo.array() > seg_hi.array()).any()) continue;
         const Vec3 area = vector_area(S);
-        if (crosses(S, area.normalized(), c.footprint[0], c.footprint[1], tol, 1e-9 * area.norm()))
+        Polygon in, out;
+        if (crosses(S, area.normalized(), c.footprint[0], c.footprint[1], tol, 1e-9 * area.norm(), in, out))
           c.supports.push_back(f);
       }
       contacts.push_back(c);
@@ -472,12 +474,11 @@ Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, 
       if (c->line) {  // each piece the segment crosses is cut in two along the segment's line
         const Vec3 &a = c->footprint[0], &b = c->footprint[1];
         for (auto& [piece, covered] : pieces) {
-          if (!crosses(piece, n, a, b, tol, min_area)) {
+          Polygon in, out_part;
+          if (!crosses(piece, n, a, b, tol, min_area, in, out_part)) {
             next.emplace_back(piece, covered);
             continue;
           }
-          Polygon in, out_part;
-          clip(piece, a, n.cross(b - a).normalized(), tol, in, out_part);
           next.emplace_back(simplified(in, tol), covered);
           next.emplace_back(simplified(out_part, tol), covered);
         }

@@ -117,9 +117,6 @@ HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, 
   g.Q_se.assign(std::size_t(groups), 0.0);
   g.T_radiant.assign(std::size_t(groups), 0.0);
   std::vector<double> radiating_area(std::size_t(groups), 0.0);
-  Eigen::VectorXd row_sum = Eigen::VectorXd::Zero(Eigen::Index(n));
-  for (Eigen::Index k = 0; k < x.problem.F.outerSize(); ++k)
-    for (SparseF::InnerIterator it(x.problem.F, k); it; ++it) row_sum[it.row()] += double(it.value());
   for (std::size_t i = 0; i < n; ++i) {
     const auto G = std::size_t(g.group[i]);
     g.Q[G] += x.result.Q[i];
@@ -128,9 +125,9 @@ HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, 
     // bottom on the floor, whose rays leave through the floor's back to the ambient), nor one hidden inside a
     // closed object (every ray into a back): they have no irradiation, and a re-radiating one a T of 0 that is no
     // temperature of the group.
-    const double sky = i < x.input.sky.size() ? x.input.sky[i] : 0.0;
-    const bool contact = i < x.in_contact.size() && x.in_contact[i];
-    if (contact || !(row_sum[Eigen::Index(i)] + sky > 0)) continue;
+    double seen = i < x.input.sky.size() ? x.input.sky[i] : 0.0;  // s_i + sum_j F_ij
+    for (SparseF::InnerIterator it(x.problem.F, Eigen::Index(i)); it; ++it) seen += double(it.value());
+    if ((i < x.in_contact.size() && x.in_contact[i]) || !(seen > 0)) continue;
     g.T_radiant[G] += patches.area[i] * std::pow(x.result.T[i], 4);
     radiating_area[G] += patches.area[i];
   }
