@@ -59,9 +59,12 @@ int run_exchange(const ExchangeCommand& command) {
                      ": use --unit " + command.scene.unit + " --scale " + fmt(metres_per(command.scene.unit)) +
                      " (lengths times the scale become metres)");
   // Contact patches left out are whole patches (patch/contact_patches.h): the supports are cut along the
-  // footprints first, so that no patch of the floor reaches under a block, where its rays would start inside it.
-  SceneOptions scene_options = command.scene;
-  if (command.contact_faces == "exclude") scene_options.contact_cut = true;
+  // footprints first (the default), so that no patch of the floor reaches under a block, where its rays would start
+  // inside it.
+  if (command.contact_faces == "exclude" && !command.scene.contact_cut)
+    throw InputError("--contact-faces exclude needs the supports cut along the contact footprints: remove "
+                     "--no-contact-cut");
+  const SceneOptions& scene_options = command.scene;
   Mesh mesh;
   std::vector<ContactRegion> regions;
   PatchSet patches = load_patches(scene_options, summary, mesh, &regions);

@@ -52,12 +52,11 @@ ExchangeResult exchange(const Scene& scene, const py::object& F, const std::stri
                      std::to_string(ambient_temperature));
   // Excluded contact patches must be whole patches of the footprint (the CLI cuts the supports along the
   // footprints for --contact-faces exclude): a scene patched without the cut cannot honour it.
-  if (contact_faces == "exclude" && !scene.contact_regions.empty() &&
-      !(scene.contact_cut && (scene.max_edge > 0 || scene.max_area > 0)))
+  if (contact_faces == "exclude" && !scene.contact_regions.empty() && !scene.cut)
     throw InputError("contact_faces='exclude' needs the supports cut along the contact footprints: load the scene "
-                     "with contact_cut=True and max_edge or max_area (as `radwalk exchange --contact-faces "
-                     "exclude` does), otherwise floor patches reaching under an object would shoot rays from "
-                     "inside it");
+                     "with max_edge or max_area and contact_cut=True (the default; as `radwalk exchange "
+                     "--contact-faces exclude` does), otherwise floor patches reaching under an object would shoot "
+                     "rays from inside it");
   const std::vector<SurfaceCondition> conditions = surface_conditions(scene.patches);
   const int threads = check_run(scene, threads_arg);
   ExchangeResult out;
@@ -247,8 +246,8 @@ F: a FormFactors (form_factors), a scipy.sparse (N, N) matrix or (N, N) array, o
 solver: "auto" (direct up to 2000 patches, else GMRES), "direct", "gmres", "gauss-seidel", "jacobi",
   "southwell"; tol, max_iterations (0: the solver's default): as --tol, --max-iterations.
 ambient_temperature: K, what escaping rays reach (--ambient-temperature).
-contact_faces: "include" or "exclude" (--contact-faces); "exclude" needs a scene loaded with contact_cut=True and
-  max_edge (the CLI cuts the supports itself) and is refused otherwise.
+contact_faces: "include" or "exclude" (--contact-faces); "exclude" needs a scene cut along its contacts (loaded with
+  max_edge or max_area, contact_cut=True being the default) and is refused otherwise.
 group_by: "object", "group" or "material"; discretisation_directions: 0 to skip the discretisation error.
 Raises radwalk.InputError for bad options or thermal statements (the CLI's message); radwalk.NumericalError when
 the solve diverged or was refused.)doc");

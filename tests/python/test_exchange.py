@@ -82,8 +82,8 @@ def test_refusals(tmp_path):
     obj = write_block_room(tmp_path)
     # Contact patches left out must be whole patches of the footprint: a scene loaded without the cut cannot
     # honour contact_faces="exclude" (the CLI cuts the supports itself).
-    scene = radwalk.load(str(obj), max_edge=0.5)
-    with pytest.raises(radwalk.InputError, match="contact_cut=True"):
+    scene = radwalk.load(str(obj), max_edge=0.5, contact_cut=False)
+    with pytest.raises(radwalk.InputError, match="cut along the contact footprints"):
         radwalk.exchange(scene, rays=16, contact_faces="exclude")
     with pytest.raises(radwalk.InputError, match="contact_faces must be"):
         radwalk.exchange(scene, rays=16, contact_faces="leave-out")
@@ -92,7 +92,7 @@ def test_refusals(tmp_path):
     with pytest.raises(radwalk.InputError, match="radwalk exchange --solver random-walk"):
         radwalk.exchange(scene, rays=16, solver="random-walk")
     # With the cut it runs, and agrees with the CLI's --contact-faces exclude.
-    cut = radwalk.load(str(obj), max_edge=0.5, contact_cut=True)
+    cut = radwalk.load(str(obj), max_edge=0.5)  # contact_cut=True, the default
     r = radwalk.exchange(cut, rays=200, seed=2, contact_faces="exclude", solver="direct")
     run_cli("exchange", obj, "--max-edge", "0.5", "--rays", "200", "--seed", "2", "--solver", "direct",
             "--contact-faces", "exclude", "--json", tmp_path / "c.json")
