@@ -13,6 +13,11 @@
 # there is no display, e.g.
 #   scripts/with_xvfb.sh scripts/pvpython.sh scripts/paraview_render.py cb.vtp cb.png
 #
+# MPI: Debian's pvpython is built with MPI and initialises it by default as a singleton, whose Open MPI session
+# folder (/tmp/ompi.HOST.UID/jf.N, or under $TMPDIR) is left behind whenever the script ends through sys.exit (as
+# every script with an exit status does) instead of returning. radwalk's scripts never use ParaView's MPI, so
+# pvpython is started with --no-mpi (a single process leaves nothing in /tmp), unless the arguments say --mpi.
+#
 # Cache: $RADWALK_PARAVIEW_CACHE, default ${XDG_CACHE_HOME:-$HOME/.cache}/radwalk/paraview (outside any build).
 # `scripts/pvpython.sh --fetch` only fetches and unpacks; `--print-env` prints the environment as shell exports.
 # Exit 77 (the test suite's "skipped") when the packages cannot be fetched (no apt, no network, unknown package).
@@ -75,4 +80,8 @@ case "${1:-}" in
       "$root/usr/bin/pvpython"
     exit 0 ;;
 esac
-exec "$root/usr/bin/pvpython" "$@"
+mpi=(--no-mpi)
+for arg in "$@"; do
+  case "$arg" in --mpi | --no-mpi) mpi=() ;; esac
+done
+exec "$root/usr/bin/pvpython" "${mpi[@]}" "$@"

@@ -1,6 +1,9 @@
 #include "io/cell_field.h"
 
+#include <algorithm>
 #include <cctype>
+
+#include "patch/contact_pairs.h"
 
 namespace radwalk {
 
@@ -19,10 +22,17 @@ std::vector<CellField> patch_fields(const PatchSet& patches) {
       E.values.push_back(patches.E[i][c]);
     }
   }
-  if (patches.side.empty()) return {patch, face, area, normal, rho, E};
-  CellField side{"side", 1, {}, FieldKind::count, {}};  // two-sided faces: 0 front, 1 back
-  for (std::size_t i = 0; i < n; ++i) side.values.push_back(patches.is_back(i) ? 1 : 0);
-  return {patch, face, side, area, normal, rho, E};
+  std::vector<CellField> fields = {patch, face};
+  if (!patches.side.empty()) {
+    CellField side{"side", 1, {}, FieldKind::count, {}};  // two-sided faces: 0 front, 1 back
+    for (std::size_t i = 0; i < n; ++i) side.values.push_back(patches.is_back(i) ? 1 : 0);
+    fields.push_back(std::move(side));
+  }
+  const std::vector<std::int32_t> pair = contact_pair_ids(patches);
+  if (std::any_of(pair.begin(), pair.end(), [](std::int32_t k) { return k >= 0; }))
+    fields.push_back(CellField{"contact_pair", 1, std::vector<double>(pair.begin(), pair.end()), FieldKind::count, {}});
+  for (CellField* f : {&area, &normal, &rho, &E}) fields.push_back(std::move(*f));
+  return fields;
 }
 
 CellField scalar_field(const std::string& name, const std::vector<double>& values, FieldKind kind) {

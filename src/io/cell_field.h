@@ -30,7 +30,10 @@ struct CellField {
 };
 
 // The fields every patch output carries: patch and face (counts), area and normal (geometry), rho and E (3); in a
-// scene with two-sided faces (PatchSet::side not empty) also side (count, after face: 0 front, 1 back).
+// scene with two-sided faces (PatchSet::side not empty) also side (count, after face: 0 front, 1 back); in a scene
+// with contact pairs (patch/contact_pairs.h: two front patches lying on each other back to back, as --contact-cut
+// makes under objects that have a bottom) also contact_pair (count, after side: the pair's id, the same for its
+// two patches, -1 for a patch in no pair), with which radwalk's reader keeps the pair as two one-sided faces.
 // (The centroid goes to CSV as cx, cy, cz; VTK has the geometry itself.)
 std::vector<CellField> patch_fields(const PatchSet& patches);
 

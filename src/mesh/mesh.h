@@ -35,12 +35,27 @@ struct Mesh {
   std::vector<std::string> warnings;             // one line per repair or notice, naming the face (after
                                                  // validate_mesh: the non-error findings, grouped by kind)
   std::vector<Finding> findings;                 // what the reader and validation found (finding.h)
+  // Contact pairs the file declares (radwalk's own .vtp: its cell field contact_pair, mesh/read_vtk.h): the pair
+  // id of input face s (Mesh::source_face), -1 for none; empty for other files. Two faces of one pair that lie
+  // back to back on the same corners stay two one-sided faces (a floor piece cut along a footprint and the bottom
+  // lying on it, patch/contact_pairs.h) instead of becoming one two-sided face (mesh/validate.h).
+  std::vector<std::int32_t> source_contact_pair;
+  // The faces are a run's patches as radwalk wrote them (its own .vtp, mesh/read_vtk.h): that run oriented them and
+  // gave them their sides (the file's side field), so validation keeps both (mesh/validate.h, orient_faces).
+  bool as_written = false;
 
   std::size_t face_count() const { return faces.size(); }
   bool is_quad(std::size_t f) const { return faces[f][3] >= 0; }
   int corner_count(std::size_t f) const { return is_quad(f) ? 4 : 3; }
   // The input face of face f (f when face_source is not filled).
   long source_face(std::size_t f) const { return f < face_source.size() ? face_source[f] : static_cast<long>(f); }
+  // The contact pair face f belongs to (source_contact_pair of its input face), -1 for none.
+  std::int32_t contact_pair(std::size_t f) const {
+    const long s = source_face(f);
+    return s >= 0 && static_cast<std::size_t>(s) < source_contact_pair.size()
+               ? source_contact_pair[static_cast<std::size_t>(s)]
+               : -1;
+  }
   // " (object 'chair', group 'seat', material 'red')": where face f is in the file, as far as known ("" if
   // nothing is).
   std::string context(std::size_t f) const;

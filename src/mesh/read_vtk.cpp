@@ -45,8 +45,9 @@ struct SurfaceData {
 };
 
 // The cell and field data radwalk uses (read_vtk.h), and their component counts.
-const std::pair<const char*, int> kCellFields[] = {{"rho", 3},         {"E", 3},        {"side", 1},
-                                                   {"material_id", 1}, {"group_id", 1}, {"object_id", 1}};
+const std::pair<const char*, int> kCellFields[] = {{"rho", 3},         {"E", 3},          {"side", 1},
+                                                   {"material_id", 1}, {"group_id", 1},   {"object_id", 1},
+                                                   {"patch", 1},       {"face", 1},       {"contact_pair", 1}};
 const char* const kTables[] = {"material_names", "group_names", "object_names"};
 
 // --- legacy .vtk: radwalk's own reader (vtk_legacy.h) ----------------------------------------------------------
@@ -247,6 +248,37 @@ std::vector<std::int32_t> without_straight_corners(const std::vector<std::int32_
   return kept;
 }
 
+// Whether the file is radwalk's own .vtp as written: its cell fields `patch` and `face` are there (the fields of
+// every radwalk patch output, io/cell_field.h) and `patch` numbers the cells 0, 1, ... in order (a file whose cells
+// were removed or reordered since, or another program's, is read as any other).
+bool written_by_radwalk(const SurfaceData& data, const std::vector<double>* patch, const std::vector<double>* face) {
+  if (!patch || !face || data.ignored > 0) return false;
+  for (std::size_t cell = 0; cell < data.cells; ++cell)
+    if ((*patch)[cell] != static_cast<double>(cell)) return false;
+  return true;
+}
+
+// The contact pairs a file declares, per cell (its pair id, -1 for none; empty when it declares none): only in
+// radwalk's own file as written (written_by_radwalk), and only ids held by exactly two polygon cells that are
+// fronts (not `side` 1), as patch/contact_pairs.h makes them; other ids are not used.
+std::vector<std::int32_t> declared_contact_pairs(const SurfaceData& data, bool own, const std::vector<double>* pair,
+                                                 const std::vector<double>* side) {
+  if (!own || !pair) return {};
+  std::vector<std::int32_t> pair_of(data.cells, -1);
+  std::map<std::int32_t, int> members;
+  for (const SurfaceData::Cell& c : data.surface) {
+    const double id = (*pair)[c.index];
+    if (c.strip || (side && (*side)[c.index] == 1) || !(id >= 0 && id <= std::numeric_limits<std::int32_t>::max()) ||
+        id != std::floor(id))
+      continue;
+    pair_of[c.index] = static_cast<std::int32_t>(id);
+    ++members[pair_of[c.index]];
+  }
+  for (std::int32_t& id : pair_of)
+    if (id >= 0 && members[id] != 2) id = -1;
+  return pair_of;
+}
+
 }  // namespace
 
 Mesh read_vtk_polydata(const std::string& path, const ReadOptions& options) {
@@ -347,6 +379,9 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
     return it->second;
   };
 
+  mesh.as_written = written_by_radwalk(data, field("patch"), field("face"));
+  const std::vector<std::int32_t> pair_of = declared_contact_pairs(data, mesh.as_written, field("contact_pair"), side);
+
   PolygonFaces faces(mesh, options.strict);
   std::int32_t face = 0;
   auto add_cell = [&](std::size_t cell, const std::vector<std::int32_t>& point_ids) {
@@ -354,6 +389,10 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
     if (side && (*side)[cell] == 1) {  // a back cell: its front stands for it
       mesh.materials[static_cast<std::size_t>(material_for(cell))].two_sided = true;
       return;
+    }
+    if (!pair_of.empty() && pair_of[cell] >= 0) {
+      mesh.source_contact_pair.resize(static_cast<std::size_t>(source) + 1, -1);
+      mesh.source_contact_pair[static_cast<std::size_t>(source)] = pair_of[cell];
     }
     const std::int32_t material = material_for(cell);  // two-sided only if a back cell has its material
     std::vector<std::int32_t> corners;

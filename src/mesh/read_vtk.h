@@ -19,6 +19,13 @@
 // gives it). Groups from `object_id` / `group_id` and the tables `object_names` / `group_names`. A `side` field
 // (radwalk's two-sided scenes: 0 front, 1 back) drops the back cells and makes the materials of the front cells
 // two-sided, so the scene reads back as it was written.
+// radwalk's own file as written (the cell fields `patch` and `face` present, `patch` numbering the cells 0, 1, ...
+// in order, no vertex or line cells) sets Mesh::as_written: its faces are a run's patches, which that run already
+// oriented and gave their sides, so validation keeps their orientation and sides (mesh/validate.h). In such a file
+// only, a `contact_pair` field (patch/contact_pairs.h: the pair id of two front cells lying on each other back to
+// back, -1 for none) fills Mesh::source_contact_pair for ids of exactly two front polygon cells, so that validation
+// keeps each pair as two one-sided faces instead of merging them into one two-sided face. So a .vtp radwalk wrote
+// reads back cell for cell: the same faces in the same order, facing the same way.
 // A .vtp: the subset of docs/units-and-formats.md; offsets rise to the end of the connectivity and every point id is
 // below its piece's points, else one InputError naming the file, the XML line and the array. Several pieces are
 // one mesh (their points and cells in piece order). A value of rho or E that is not finite is refused.

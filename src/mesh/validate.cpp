@@ -233,10 +233,20 @@ void repair_repeated_corners(Mesh& mesh, const ValidationTolerances& tol, Findin
   if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
 
+// Faces f and g are a contact pair the file declares (Mesh::source_contact_pair) lying back to back: two one-sided
+// faces on each other, kept as they are (not a duplicate to repair or refuse).
+bool declared_contact_pair(const Mesh& mesh, std::size_t f, std::size_t g) {
+  const std::int32_t pair = mesh.contact_pair(f);
+  return pair >= 0 && mesh.contact_pair(g) == pair && mesh.source_face(f) != mesh.source_face(g) &&
+         !(face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0);
+}
+
 // Step: faces with the same welded corners (duplicates). Back to back (facing away from each other: a thin part
 // modelled as two faces) they become one two-sided face: the first is kept and given a two-sided copy of its
 // material (same name and properties, Material::two_sided; docs/two-sided.md), the other is dropped. Facing the
-// same way, the later copy is dropped (the surface is counted once). Repairs, refused with strict.
+// same way, the later copy is dropped (the surface is counted once). Repairs, refused with strict. A contact pair
+// the file declares (declared_contact_pair: radwalk's .vtp of a scene cut along its contacts) is not a duplicate:
+// both faces stay, one-sided, without a finding.
 void merge_duplicate_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
   const EdgeTable t = build_edge_table(mesh);
   std::map<std::array<std::int32_t, 4>, std::size_t> seen;
@@ -251,6 +261,7 @@ void merge_duplicate_faces(Mesh& mesh, const ValidationTolerances& tol, FindingL
     const auto [it, added] = seen.emplace(key, f);
     if (added) continue;
     const std::size_t g = it->second;
+    if (declared_contact_pair(mesh, f, g)) continue;
     const std::string other =
         "face " + std::to_string(mesh.source_face(g)) + " (line " + std::to_string(log.line(g)) + ")";
     const bool back_to_back = !(face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0);
@@ -579,8 +590,16 @@ void check_materials(Mesh& mesh, FindingLog& log) {
 }
 
 // Step: orientation of the shells (orient_shells.h), reported as one warning for the flips (count, area, objects),
-// a note per open shell, a warning per non-orientable shell.
-void orient_faces(Mesh& mesh, const ValidationTolerances& tol, FindingLog& log) {
+// a note per open shell, a warning per non-orientable shell. A mesh as_written (radwalk's own .vtp) keeps its
+// orientation and sides under the defaults (outward as none, auto as one-sided: the back cells the file holds
+// already made their materials two-sided); --orient consistent and --open-shells two-sided still apply.
+void orient_faces(Mesh& mesh, const ValidationTolerances& given, FindingLog& log) {
+  // A run's patches as radwalk wrote them (Mesh::as_written) are oriented and sided as that run made them: the
+  // defaults (--orient outward, --open-shells auto) keep them (the cut pieces under a footprint would otherwise
+  // close the shells of the objects standing there and turn them).
+  ValidationTolerances tol = given;
+  if (mesh.as_written && tol.orient == OrientMode::outward) tol.orient = OrientMode::none;
+  if (mesh.as_written && tol.open_shells == OpenShellSides::automatic) tol.open_shells = OpenShellSides::one_sided;
   const OrientationResult r = orient_shells(mesh, tol.orient);
   auto where = [&](std::size_t f) {
     const std::int32_t g = mesh.face_group[f];
@@ -668,6 +687,7 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
     if (added) continue;
     const std::size_t g = it->second;
     duplicate[f] = true;
+    if (declared_contact_pair(mesh, f, g)) continue;  // two one-sided faces on each other, as the file declares
     const std::string other = "face " + std::to_string(mesh.source_face(g)) + " (line " + std::to_string(log.line(g)) + ")";
     if (face_vector_area(mesh, f).dot(face_vector_area(mesh, g)) > 0)
       log.error("duplicate face", f, "duplicate face: same corners as " + other + "; overlapping faces are refused");

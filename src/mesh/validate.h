@@ -32,8 +32,9 @@
 //   normal's way, so that they do not overlap seen along it (the two triangles are its area as drawn); refused
 //   when neither diagonal gives such triangles.
 // Orientation (orient_shells.h, tolerances.orient): faces flipped to agree with their shells and closed shells
-//   turned outward (the room inward): one warning with the count, area and objects; non-orientable shells a
-//   warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
+//   turned outward (the room inward), except in a run's patches as radwalk wrote them (Mesh::as_written), which
+//   keep their orientation and sides under the defaults (outward, open shells auto): one warning with the count,
+//   area and objects; non-orientable shells a warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
 //   Cornell box, is one: harmless where no light reaches the backs, which power_balance measures).
 // Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); coplanar faces that overlap
 //   with positive area facing the same way (coplanar_overlaps.h: both faces and the shared area named; back to back

@@ -4,6 +4,7 @@
 // files are one-line refusals (exit 2).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -177,5 +178,116 @@ TEST_CASE("radwalk: malformed and unsupported scene files are one-line refusals"
     const std::size_t start = r.out.rfind('\n', at) + 1;
     REQUIRE(r.out.substr(start, at - start).find((dir / c.file).string()) != std::string::npos);
   }
+  fs::remove_all(dir);
+}
+
+namespace {
+
+std::string text_of(const fs::path& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// A 2 m room facing in with a 0.4 m cabinet standing on its floor (one-sided, facing out, with its bottom lying on
+// the floor) and, with `panel`, a thin panel in the air modelled as two faces back to back (as exporters write
+// thin parts): "NAME.obj" and its MTL in dir.
+fs::path write_cabinet_room(const fs::path& dir, const std::string& name, bool panel) {
+  std::ofstream(dir / (name + ".mtl")) << "newmtl floor\nKd 0.7 0.6 0.5\nnewmtl wall\nKd 0.5 0.5 0.5\n"
+                                          "newmtl lamp\nKd 0 0 0\nKe 5 5 5\nnewmtl cab\nKd 0.3 0.2 0.1\n"
+                                          "newmtl board\nKd 0.6 0.6 0.6\n";
+  std::ofstream obj(dir / (name + ".obj"));
+  obj << "mtllib " << name << ".mtl\n";
+  int vertices = 0;
+  // A box's six faces (bottom, top, then the sides), counter-clockwise seen from outside, or from inside.
+  const auto box = [&](double x0, double x1, double y0, double y1, double z0, double z1, bool inward,
+                       const std::vector<std::string>& materials) {
+    const double c[8][3] = {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0},
+                            {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
+    for (const auto& p : c) obj << "v " << p[0] << " " << p[1] << " " << p[2] << "\n";
+    const int f[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {2, 3, 7, 6}, {1, 2, 6, 5}, {0, 4, 7, 3}};
+    for (int k = 0; k < 6; ++k) {
+      obj << "usemtl " << materials[std::min<std::size_t>(static_cast<std::size_t>(k), materials.size() - 1)]
+          << "\nf";
+      for (int j = 0; j < 4; ++j) obj << " " << vertices + 1 + f[k][inward ? 3 - j : j];
+      obj << "\n";
+    }
+    vertices += 8;
+  };
+  obj << "o room\n";
+  box(0, 2, 0, 2, 0, 2, true, {"floor", "lamp", "wall"});
+  obj << "o cabinet\n";
+  box(0.5, 0.9, 0.5, 0.9, 0, 0.6, false, {"cab"});
+  if (panel) {
+    obj << "o panel\nusemtl board\nv 1.2 0.3 0.5\nv 1.8 0.3 0.5\nv 1.8 0.3 1.1\nv 1.2 0.3 1.1\n";
+    const int v = vertices + 1;
+    obj << "f " << v << " " << v + 1 << " " << v + 2 << " " << v + 3 << "\nf " << v << " " << v + 3 << " "
+        << v + 2 << " " << v + 1 << "\n";
+  }
+  return dir / (name + ".obj");
+}
+
+}  // namespace
+
+TEST_CASE("radwalk: a scene cut along its contacts reads back from its .vtp cell for cell, the floor under a "
+          "cabinet and the cabinet's bottom two one-sided patches", "[cli][formats][contact]") {
+  // With --contact-cut the floor piece under the cabinet and the cabinet's bottom lie on each other back to back
+  // on the same corners (a contact pair). The .vtp names the pair (cell field contact_pair), so reading it back
+  // gives the run's patches in the run's order with their own materials, where the duplicate-face repair made the
+  // pair one two-sided face (the floor's material on both sides, its back patch moved to the end).
+  const fs::path dir = scratch_dir("contact_round_trip");
+  const std::vector<std::string> columns = {"area", "cx",    "cy",    "cz",  "nx",  "ny",  "nz",     "rho_r",
+                                            "rho_g", "rho_b", "E_r", "E_g", "E_b", "object", "group", "material"};
+  struct Scene {
+    std::string file, options;
+    std::size_t patches;
+  };
+  for (const Scene& s : {Scene{write_cabinet_room(dir, "cabinet", false).string(), " --max-edge 0.4", 0},
+                         Scene{source("meshes/cornell_box.obj"), " --max-edge 100", 383}}) {
+    INFO(s.file);
+    const Run first = run("patch " + s.file + s.options + " --contact-cut -o " + (dir / "cut.vtp").string() +
+                          " --csv " + (dir / "a.csv").string());
+    INFO(first.out);
+    REQUIRE(first.exit_code == 0);
+    const Run again = run("patch " + (dir / "cut.vtp").string() + " -o " + (dir / "b.vtp").string() + " --csv " +
+                          (dir / "b.csv").string() +
+                          " --json " + (dir / "b.json").string());
+    INFO(again.out);
+    REQUIRE(again.exit_code == 0);
+    const Table a = read_csv(dir / "a.csv"), b = read_csv(dir / "b.csv");
+    if (s.patches > 0) REQUIRE(a.rows == s.patches);
+    require_same_columns(a, b, columns);
+    REQUIRE(text_of(dir / "b.json").find("duplicate face") == std::string::npos);
+  }
+  // The cabinet's room has its pair: the bottom (nz = -1) at z = 0 with the cabinet's material, the floor piece
+  // under it (nz = 1) with the floor's.
+  {
+    const Run first = run("patch " + (dir / "cabinet.obj").string() + " --max-edge 0.4 --contact-cut -o " +
+                          (dir / "cut.vtp").string() + " --csv " + (dir / "a.csv").string());
+    REQUIRE(first.exit_code == 0);
+    const Table a = read_csv(dir / "a.csv");
+    std::size_t bottoms = 0;
+    for (std::size_t i = 0; i < a.rows; ++i)
+      bottoms += a.column.at("material")[i] == "cab" && std::stod(a.column.at("nz")[i]) == -1 &&
+                 std::stod(a.column.at("cz")[i]) == 0;
+    REQUIRE(bottoms == 1);
+  }
+  // A thin panel modelled as two faces back to back in an OBJ is still one two-sided face, with its warning, and
+  // so is it in the .vtp read back (written as the front and back of one two-sided face).
+  const fs::path panel = write_cabinet_room(dir, "panel", true);
+  const Run obj = run("patch " + panel.string() + " --max-edge 0.4 --contact-cut -o " + (dir / "panel.vtp").string() +
+                      " --csv " + (dir / "a.csv").string() + " --json " + (dir / "a.json").string());
+  INFO(obj.out);
+  REQUIRE(obj.exit_code == 0);
+  REQUIRE(text_of(dir / "a.json").find("back-to-back faces made two-sided") != std::string::npos);
+  const Run vtp = run("patch " + (dir / "panel.vtp").string() + " -o " + (dir / "b.vtp").string() + " --csv " +
+                      (dir / "b.csv").string());
+  INFO(vtp.out);
+  REQUIRE(vtp.exit_code == 0);
+  const Table a = read_csv(dir / "a.csv"), b = read_csv(dir / "b.csv");
+  REQUIRE(a.column.count("side") == 1);
+  require_same_columns(a, b, columns);
+  require_same_columns(a, b, {"side"});
   fs::remove_all(dir);
 }

@@ -1,15 +1,23 @@
 // A .vtp radwalk wrote (io/vtp_writer.h) read back by radwalk's own .vtp reader (mesh/read_vtk.h): the same faces
 // (the display mesh's T-junction points dropped again), reflectances, emissions and material names; and the same
-// .vtp converted to legacy .vtk by VTK's writer, read back by radwalk's own legacy reader.
+// .vtp converted to legacy .vtk by VTK's writer, read back by radwalk's own legacy reader; contact pairs (a floor
+// piece and the bottom lying on it) read back as two one-sided faces from radwalk's file only.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
+#include <functional>
+#include <utility>
+#include <vector>
 
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
 #include <vtkPolyDataWriter.h>
+#include <vtkXMLPolyDataWriter.h>
 
 #include "io/cell_field.h"
 #include "io/vtp_writer.h"
 #include "mesh/read_vtk.h"
+#include "mesh/validate.h"
 #include "patch/patch_builder.h"
 #include "vtp_test_helpers.h"
 
@@ -95,4 +103,104 @@ TEST_CASE("vtk .vtk reader: a radwalk .vtp that VTK's legacy writer converts rea
       }
       REQUIRE(m.findings.empty());
     }
+}
+
+namespace {
+
+// A floor of two quads facing up, a box's bottom lying on the first back to back (its corners starting elsewhere,
+// as a cut floor piece and the bottom over it come out of patching) and the box's side rising from it: patches 0
+// and 2 are a contact pair (patch/contact_pairs.h).
+PatchSet floor_under_a_box() {
+  PatchBuilder b;
+  const int floor = b.add_material("floor", Rgb(0.7, 0.6, 0.5));
+  const int box = b.add_material("box", Rgb(0.2, 0.3, 0.4));
+  const int lamp = b.add_material("lamp", Rgb::Zero(), Rgb::Constant(1));
+  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, floor);
+  b.add_quad({1, 0, 0}, {2, 0, 0}, {2, 1, 0}, {1, 1, 0}, floor);
+  b.add_quad({1, 1, 0}, {1, 0, 0}, {0, 0, 0}, {0, 1, 0}, box);
+  b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 0, 1}, {0, 0, 1}, box);
+  b.add_quad({0, 0, 3}, {0, 1, 3}, {1, 1, 3}, {1, 0, 3}, lamp);
+  return b.build();
+}
+
+std::size_t count_of(const Mesh& m, const std::string& kind) {
+  std::size_t n = 0;
+  for (const Finding& f : m.findings) n += f.kind == kind;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("vtk .vtp reader: a contact pair radwalk wrote reads back as its two one-sided faces", "[io][vtp][contact]") {
+  const PatchSet patches = floor_under_a_box();
+  const auto path = temp_file("radwalk_contact_pair.vtp");
+  write_vtp(path, patches, patch_fields(patches));
+  const vtkSmartPointer<vtkPolyData> poly = read_vtp(path);
+  vtkDataArray* pair = poly->GetCellData()->GetArray("contact_pair");
+  REQUIRE(pair != nullptr);
+  REQUIRE(pair->GetNumberOfTuples() == 5);
+  for (const auto& [cell, id] : std::vector<std::pair<int, double>>{{0, 0}, {1, -1}, {2, 0}, {3, -1}, {4, -1}})
+    REQUIRE(pair->GetTuple1(cell) == id);
+  for (const bool strict : {false, true}) {
+    INFO((strict ? "--strict" : "default"));
+    Mesh back = read_vtk_polydata(path);
+    ValidationTolerances tol;
+    tol.strict = strict;
+    validate_mesh(back, tol);  // a refusal (--strict: any duplicate) would throw
+    REQUIRE(back.face_count() == patches.size());
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      INFO("patch " << i);
+      REQUIRE(back.source_face(i) == static_cast<long>(i));
+      for (int k = 0; k < patches.corner_count(i); ++k)
+        REQUIRE(back.vertices[static_cast<std::size_t>(back.faces[i][static_cast<std::size_t>(k)])] ==
+                patches.corner(i, k));
+      const Material& m = back.materials[static_cast<std::size_t>(back.face_material[i])];
+      REQUIRE(m.name == patches.materials[static_cast<std::size_t>(patches.material[i])].name);
+      REQUIRE_FALSE(m.two_sided);
+    }
+    REQUIRE(count_of(back, "back-to-back faces made two-sided") == 0);
+    REQUIRE(count_of(back, "duplicate face") == 0);
+  }
+  std::filesystem::remove(path);
+}
+
+TEST_CASE("vtk .vtp reader: back-to-back duplicates of another program's file, or of an edited one, are still "
+          "made one two-sided face", "[io][vtp][contact]") {
+  // The same file as VTK's writer writes it after an edit: (a) as it is (radwalk's pair honoured), (b) its cells
+  // renumbered (the `patch` field no longer numbers them in order: the pair ids may name other cells now), (c)
+  // without `patch` (another program's file), (d) without `contact_pair` (a file that declares no pair), (e) the
+  // pair's id held by one cell only. Only (a) keeps the two faces; the others repair as any scene file.
+  const PatchSet patches = floor_under_a_box();
+  const auto path = temp_file("radwalk_contact_pair_edited.vtp");
+  write_vtp(path, patches, patch_fields(patches));
+  const vtkSmartPointer<vtkPolyData> written = read_vtp(path);
+  std::filesystem::remove(path);
+  const auto edited = [&](const std::function<void(vtkPolyData*)>& edit) {
+    vtkNew<vtkPolyData> copy;
+    copy->DeepCopy(written);
+    edit(copy);
+    vtkNew<vtkXMLPolyDataWriter> writer;
+    writer->SetInputData(copy);
+    writer->SetDataModeToAscii();
+    writer->WriteToOutputStringOn();
+    REQUIRE(writer->Write() == 1);
+    Mesh m = read_vtk_polydata_bytes("edited.vtp", writer->GetOutputString(), true);
+    validate_mesh(m);
+    return m;
+  };
+  const Mesh as_is = edited([](vtkPolyData*) {});
+  REQUIRE(as_is.face_count() == 5);
+  REQUIRE(count_of(as_is, "back-to-back faces made two-sided") == 0);
+  const std::vector<std::function<void(vtkPolyData*)>> edits = {
+      [](vtkPolyData* p) { p->GetCellData()->GetArray("patch")->SetTuple1(4, 7); },
+      [](vtkPolyData* p) { p->GetCellData()->RemoveArray("patch"); },
+      [](vtkPolyData* p) { p->GetCellData()->RemoveArray("contact_pair"); },
+      [](vtkPolyData* p) { p->GetCellData()->GetArray("contact_pair")->SetTuple1(2, 5); }};
+  for (std::size_t e = 0; e < edits.size(); ++e) {
+    INFO("edit " << e);
+    const Mesh m = edited(edits[e]);
+    REQUIRE(m.face_count() == 4);  // the pair is one two-sided face
+    REQUIRE(count_of(m, "back-to-back faces made two-sided") == 1);
+    REQUIRE(m.materials[static_cast<std::size_t>(m.face_material[0])].two_sided);
+  }
 }

@@ -38,8 +38,10 @@ if ! command -v Xvfb >/dev/null; then
 fi
 
 rm -rf "$work"
-mkdir -p "$work"
+mkdir -p "$work/tmp"
 cd "$work"
+# Temporary files of everything below (radwalk, pvpython, the X wrapper's folder) in the work folder, not in /tmp.
+export TMPDIR=$work/tmp
 cb=$src/meshes/cornell_box.obj
 run() { echo "+ radwalk $*" >&2; "$radwalk" -q "$@" >/dev/null; }
 run solve "$cb" --max-edge 50 --rays 2000 -o solve.vtp --paraview-state solve.py --json solve.json
