@@ -9,13 +9,22 @@
 //     over the faces and channels);
 //   - the budgets stop a run whose target is out of reach: the leaves within max_leaves, and no step started that
 //     the time budget predicts would pass it ("max-seconds"), not reached;
-//   - options out of range are refused.
+//   - options out of range are refused;
+//   - the two transports (hierarchical stochastic Jacobi, and the leaves solved as patches by traced form factors)
+//     estimate the same leaves' B: on the same starting tree, per leaf |B_ff - B_rays| <= t_crit sqrt(se_ff^2 +
+//     se_rays^2), t_crit Student's t with the rays' replicates - 1 degrees of freedom (its B_se is their spread)
+//     at a family-wise significance of 1e-3 over the leaves (Sidak), one channel (the room is grey).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
+#include "formfactor/emitter_form_factors.h"
+#include "solve/discretisation_error.h"
+#include "solve/form_factor_error.h"
+#include "solve/problem.h"
+#include "solve/solve_radiosity.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
 #include "pathtrace/patch_average.h"
@@ -47,7 +56,83 @@ HierarchicalOptions solve_options(std::uint64_t seed) {
   return o;
 }
 
+// The uniform route's work on given patches (the CLI's recommended route: Sobol rays, the emitter columns chosen
+// automatically, the automatic solver; B_se from F's noise, B_disc the discretisation estimate).
+TargetErrorStage form_factor_step(const PatchSet& p, long rays, std::uint64_t seed) {
+  TargetErrorStage stage;
+  const EmbreeVisibility visibility(p);
+  FormFactorOptions o;
+  o.rays_per_patch = rays;
+  o.seed = seed;
+  o.sobol = true;
+  stage.form_factors = estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples);
+  const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
+  SolveOptions s;
+  s.max_iterations = default_max_iterations(s.solver, p.size());
+  stage.solution = solve_radiosity(problem, s);
+  stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
+  stage.solution.B_disc = discretisation_error(p, visibility, problem, stage.solution.B, 4, seed).standard_error;
+  return stage;
+}
+
+// Student's t two-sided critical value at significance alpha with nu degrees of freedom, by the Cornish-Fisher
+// expansion about the normal quantile z (Abramowitz and Stegun 26.7.5, three terms; for nu >= 30 and z <= 5 its
+// error is below 0.01).
+double t_critical(double alpha, double nu) {
+  const double z = z_critical(alpha);
+  const double z3 = z * z * z, z5 = z3 * z * z;
+  return z + (z3 + z) / (4 * nu) + (5 * z5 + 16 * z3 + 3 * z) / (96 * nu * nu);
+}
+
 }  // namespace
+
+TEST_CASE("hierarchical target error: the two transports give the same leaves' B within their errors",
+          "[hierarchy][target_error]") {
+  const PatchSet roots = block_room();
+  const EmbreeVisibility visibility(roots);
+  HierarchicalTargetOptions o;
+  o.target = 0.001;   // out of reach: one step (max_steps) on the starting tree
+  o.max_steps = 1;
+  o.rays_per_leaf = 2000;
+  o.start_leaves = 150;
+  o.directions = 4;
+  HierarchicalOptions h = solve_options(5);
+  h.replicates = 40;
+  const HierarchicalTargetResult rays = solve_hierarchical_to_target_error(roots, visibility, h, o);
+  const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 17); };
+  const HierarchicalTargetResult ff = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  REQUIRE(ff.form_factor_transport);
+  REQUIRE_FALSE(rays.form_factor_transport);
+  CHECK(ff.stop_reason == "max-steps");
+  REQUIRE(ff.solution.leaves == rays.solution.leaves);  // the same tree
+  const PatchSet leaves = leaf_patches(roots, ff.solution.tree, ff.solution.leaves);
+  REQUIRE(leaves.size() > 100);
+  // The answer is the leaf solver's, row for row.
+  const Solution answer = hierarchical_target_solution(ff);
+  CHECK(answer.B.isApprox(ff.stage.solution.B));
+  CHECK(ff.B_disc.isApprox(ff.stage.solution.B_disc));
+
+  const double t_crit = t_critical(sidak(1e-3, leaves.size()), h.replicates - 1);
+  double max_t = 0;
+  std::size_t counted = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    if ((leaves.E[k] > 0).any()) continue;
+    const auto i = static_cast<Eigen::Index>(k);
+    const double d = ff.solution.B(i, 0) - rays.solution.B(i, 0);
+    const double s = std::hypot(ff.solution.B_se(i, 0), rays.solution.B_se(i, 0));
+    if (!(s > 0)) {  // a leaf no light reaches (the block's bottom on the floor): both exactly 0
+      CHECK(std::abs(d) == 0);
+      continue;
+    }
+    max_t = std::max(max_t, std::abs(d) / s);
+    ++counted;
+  }
+  INFO(counted << " leaves: largest |t| " << max_t << ", t_crit " << t_crit << "; statistical error rays "
+               << rays.steps[0].step.statistical << ", form factors " << ff.steps[0].step.statistical);
+  CHECK(max_t <= t_crit);
+  // The form-factor transport's statistical error is the smaller at equal rays (the reason it exists).
+  CHECK(ff.steps[0].step.statistical < rays.steps[0].step.statistical);
+}
 
 TEST_CASE("hierarchical target error: the block room to 5 %, each step as planned, faces agree with the path tracer",
           "[hierarchy][target_error]") {
