@@ -25,6 +25,7 @@
 #include "solve/form_factor_error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
+#include "hierarchy/estimate_refinement.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
 #include "pathtrace/patch_average.h"
@@ -227,4 +228,48 @@ TEST_CASE("hierarchical target error: options out of range are refused", "[hiera
   refused([](HierarchicalTargetOptions& o) { o.rays_per_leaf = 0; });
   refused([](HierarchicalTargetOptions& o) { o.max_leaves = 3; });
   refused([](HierarchicalTargetOptions& o) { o.points_side = 1; });
+}
+
+// With the estimated discretisation part at the target or above, the plan's share is 1 (solve/target_error.h): the
+// split must still leave alone the leaves within their equal share of the target, eta_l^2 <= 0.49 E^2 sum A B^2 /
+// N. Step 0 is recomputed from a run stopped after it (the same seed: the same tree, B, B_disc and W2), and the
+// split after it must be exactly the leaves above that share, fewer than those with eta_l^2 > 0 (which the rule
+// without the share split).
+TEST_CASE("hierarchical target error: far from the target, leaves within their share are not split",
+          "[hierarchy][target_error]") {
+  const PatchSet roots = block_room();
+  const EmbreeVisibility visibility(roots);
+  HierarchicalTargetOptions o;
+  o.target = 0.01;
+  o.max_steps = 2;
+  o.rays_per_leaf = 200;
+  o.start_leaves = 400;
+  o.directions = 4;
+  const HierarchicalOptions h = solve_options(6);
+  const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 23); };
+  const HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  o.max_steps = 1;
+  const HierarchicalTargetResult r0 = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  REQUIRE(r.steps.size() == 2);
+  const TargetErrorStep& first = r.steps[0].step;
+  const TargetErrorPlan plan = plan_target_error_step(first.statistical, first.discretisation, o.target,
+                                                      first.rays_per_patch);
+  REQUIRE(plan.refine);
+  REQUIRE(plan.split_fraction == 1.0);
+  const HierarchicalResult& s0 = r0.solution;
+  REQUIRE(s0.leaves.size() == first.patches);
+  const LeafErrorIndicator ind = leaf_error_indicator(roots, visibility, s0.tree, s0.leaves, s0.B, r0.B_disc,
+                                                      o.directions, o.points_side, h.seed);
+  const PatchSet leaves = leaf_patches(roots, s0.tree, s0.leaves);
+  double norm = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    if (!(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any())
+      norm += leaves.area[k] * s0.B.row(static_cast<Eigen::Index>(k)).square().sum();
+  const double share = 0.49 * o.target * o.target * norm / double(leaves.size());
+  std::size_t above = 0, positive = 0;
+  for (const double e2 : ind.eta2) above += e2 > share, positive += e2 > 0;
+  INFO("leaves " << first.patches << ", e_d " << first.discretisation << ": split " << first.split
+                 << ", above the share " << above << ", eta^2 > 0 " << positive);
+  CHECK(first.split == above);
+  CHECK(above < positive);
 }
