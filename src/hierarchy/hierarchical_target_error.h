@@ -21,7 +21,9 @@
 //      (sqrt(B_se^2 + B_disc^2)). Stop when e <= E;
 //   4. else the plan of solve/target_error.h (plan_target_error_step, the same rules): where the discretisation
 //      part dominates, the leaves with the largest eta_l^2 are split in 4 until they hold the plan's share of
-//      sum eta_l^2 (a leaf at max_level or below 4 min_area is skipped); where the statistical part is above its
+//      sum eta_l^2 (a leaf at max_level or below 4 min_area is skipped; a leaf within its equal share of the
+//      target, eta_l^2 <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh equidistributes
+//      eta_l^2, and far from the target the share is 1); where the statistical part is above its
 //      target, R grows by the plan's factor.
 // The stopping and the budgets are the uniform route's: e is judged on B_disc (the error of each leaf's average,
 // what the per-element benchmark measures), while the indicator that picks the leaves also weighs the variation
