@@ -59,9 +59,12 @@ int run_exchange(const ExchangeCommand& command) {
                      ": use --unit " + command.scene.unit + " --scale " + fmt(metres_per(command.scene.unit)) +
                      " (lengths times the scale become metres)");
   // Contact patches left out are whole patches (patch/contact_patches.h): the supports are cut along the
-  // footprints first, so that no patch of the floor reaches under a block, where its rays would start inside it.
-  SceneOptions scene_options = command.scene;
-  if (command.contact_faces == "exclude") scene_options.contact_cut = true;
+  // footprints first (the default), so that no patch of the floor reaches under a block, where its rays would start
+  // inside it.
+  if (command.contact_faces == "exclude" && !command.scene.contact_cut)
+    throw InputError("--contact-faces exclude needs the supports cut along the contact footprints: remove "
+                     "--no-contact-cut");
+  const SceneOptions& scene_options = command.scene;
   Mesh mesh;
   std::vector<ContactRegion> regions;
   PatchSet patches = load_patches(scene_options, summary, mesh, &regions);
@@ -221,6 +224,24 @@ int run_exchange(const ExchangeCommand& command) {
            " m^2) left out of the exchange");
   }
 
+  // Closed cavities (solve/heat_exchange.h, step 2b): one warning each, and the list in the JSON.
+  {
+    nlohmann::json list = nlohmann::json::array();
+    for (const HeatExchangeCavity& c : x.cavities) {
+      warn(summary, cavity_warning(c));
+      list.push_back({{"patches", c.cavity.patches.size()},
+                      {"area", c.cavity.area},
+                      {"leak", c.cavity.leak},
+                      {"given_Q", c.cavity.given_Q},
+                      {"objects", c.objects},
+                      {"groups", c.groups},
+                      {"materials", c.materials},
+                      {"first_patch", c.cavity.patches.front()}});
+    }
+    jx["cavities"] = list;
+    jx["cavity_leak_threshold"] = kCavityLeak;
+  }
+
   // Per-group tables.
   const std::vector<std::string>& names = x.groups.names;
   const std::vector<std::int32_t>& group = x.groups.group;
@@ -277,8 +298,10 @@ int run_exchange(const ExchangeCommand& command) {
   for (std::size_t k = 0; k < order.size() && k < 10; ++k) {
     const auto g = std::size_t(order[k]);
     const std::string se = error_note.empty() ? " (+- " + fmt(group_Q_se[g], "%.2g") + ")" : "";
-    std::fprintf(report_stream(), "  %s %s: Q = %.6g W%s, area %.4g m^2, radiant temperature %.2f K\n",
-                 command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g], group_T[g]);
+    const std::string T = std::isfinite(group_T[g]) ? fmt(group_T[g], "%.2f") + " K"
+                                                     : std::string("none (no patch of it radiates)");
+    std::fprintf(report_stream(), "  %s %s: Q = %.6g W%s, area %.4g m^2, radiant temperature %s\n",
+                 command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g], T.c_str());
   }
   if (order.size() > 10) std::fprintf(report_stream(), "  ... %zu more (--groups FILE.csv)\n", order.size() - 10);
 
@@ -294,34 +317,39 @@ int run_exchange(const ExchangeCommand& command) {
   }
   fields.push_back(scalar_field("emissivity", eps));
   fields.push_back(scalar_field("temperature_given", given, FieldKind::count));
-  fields.push_back(scalar_field("J", r.J));
-  fields.push_back(scalar_field("J_se", J_se));
-  fields.push_back(scalar_field("G", r.G));
+  // A closed cavity's J, G and T (and their errors) have no value (solve/heat_exchange.h, step 2b).
+  const auto missing = [&x](const std::vector<double>& v) { return undetermined_as_missing(v, x); };
+  fields.push_back(scalar_field("J", missing(r.J)));
+  fields.push_back(scalar_field("J_se", missing(J_se)));
+  fields.push_back(scalar_field("G", missing(r.G)));
   fields.push_back(scalar_field("q", r.q));
   fields.push_back(scalar_field("q_se", q_se));
   fields.push_back(scalar_field("Q", r.Q));
   fields.push_back(scalar_field("Q_se", Q_se));
-  fields.push_back(scalar_field("T", r.T));
-  fields.push_back(scalar_field("T_se", T_se));
+  fields.push_back(scalar_field("T", missing(r.T)));
+  fields.push_back(scalar_field("T_se", missing(T_se)));
   if (!disc.J.empty()) {
     const auto total = [](const std::vector<double>& se, const std::vector<double>& d) {
       std::vector<double> t(se.size());
       for (std::size_t i = 0; i < se.size(); ++i) t[i] = std::sqrt(se[i] * se[i] + d[i] * d[i]);
       return t;
     };
-    fields.push_back(scalar_field("J_disc", disc.J));
-    fields.push_back(scalar_field("J_err", total(J_se, disc.J)));
+    fields.push_back(scalar_field("J_disc", missing(disc.J)));
+    fields.push_back(scalar_field("J_err", missing(total(J_se, disc.J))));
     fields.push_back(scalar_field("q_disc", disc.q));
     fields.push_back(scalar_field("q_err", total(q_se, disc.q)));
     fields.push_back(scalar_field("Q_disc", disc.Q));
     fields.push_back(scalar_field("Q_err", total(Q_se, disc.Q)));
-    fields.push_back(scalar_field("T_disc", disc.T));
-    fields.push_back(scalar_field("T_err", total(T_se, disc.T)));
+    fields.push_back(scalar_field("T_disc", missing(disc.T)));
+    fields.push_back(scalar_field("T_err", missing(total(T_se, disc.T))));
   }
   fields.push_back(scalar_field("sky", input.sky));
   std::vector<double> contact(n);
   for (std::size_t i = 0; i < n; ++i) contact[i] = x.in_contact[i] ? 1 : 0;
   fields.push_back(scalar_field("contact", contact, FieldKind::count));
+  std::vector<double> in_cavity(n);
+  for (std::size_t i = 0; i < n; ++i) in_cavity[i] = x.cavity[i] >= 0 ? 1 : 0;
+  fields.push_back(scalar_field("cavity", in_cavity, FieldKind::count));
   if (traced) fields.push_back(scalar_field("back", back));
   VtpMetadata metadata = solution_metadata(solution, patches);
   metadata.set_text("solver", command.solver);

@@ -16,7 +16,7 @@ struct SceneOptions {
   std::string scene;       // OBJ (+MTL), PLY, STL, glTF/GLB, .vtp/.vtk (mesh/read_scene.h)
   double max_edge = 0;     // split faces until no patch edge is longer than this; 0 keeps input faces
   double max_area = 0;     // --max-area: split faces until no patch area is above this; 0: no bound
-  bool contact_cut = false;  // --contact-cut: cut faces that objects stand on along the footprints (patch/contact.h)
+  bool contact_cut = true;  // --contact-cut (default) / --no-contact-cut: cut faces along contacts when split (patch/contact.h)
   bool splits_later = false; // the command splits the patches itself (--target-error): --contact-cut cuts anyway
   int threads = 0;         // 0 = all cores
   std::uint64_t seed = 1;

@@ -310,10 +310,10 @@ void note_contacts(const SceneOptions& options, const PatchedScene& scene, RunSu
        " on faces of the scene: " +
        (scene.cut ? "the supporting faces are cut along the footprints (" + std::to_string(scene.contact_faces_cut) +
                         " faces cut), so no patch mixes the lit floor with the part hidden underneath"
-        : splitting ? std::string("not cut; --contact-cut cuts the supporting faces along the footprints, so "
-                                  "that no patch averages the lit floor with the part hidden underneath")
-                    : std::string("not cut, since the input faces are kept as patches (cut with --contact-cut "
-                                  "and --max-edge or --max-area)")));
+        : splitting ? std::string("not cut (--no-contact-cut), so a patch may average the lit floor with the "
+                                  "part hidden underneath")
+                    : std::string("not cut, since the input faces are kept as patches (they are cut along the "
+                                  "footprints when --max-edge or --max-area splits them)")));
 }
 
 PatchSet load_patches(const SceneOptions& options, RunSummary& summary) {

@@ -198,10 +198,11 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
         ->transform(kNonNegative)
         ->capture_default_str();
   if (patching)
-    cmd->add_flag("--contact-cut", o.contact_cut,
-                  "Cut a face that an object stands on along the contact footprint, so that no patch averages the "
-                  "lit part with the part hidden underneath (with --max-edge or --max-area; contacts are always "
-                  "noted)");
+    cmd->add_flag("--contact-cut,!--no-contact-cut", o.contact_cut,
+                  "Cut a face that an object stands on along the contact footprint and along the lines other faces "
+                  "touch it, so that no patch averages the lit part with the part hidden underneath (on by default; "
+                  "made when faces are split: --max-edge, --max-area, --target-error; --no-contact-cut keeps the "
+                  "plain split; contacts are always noted)");
   cmd->add_option("--scale", o.scale,
                   "Multiply every coordinate by S before anything else (--unit mm --scale 0.001: metres); lengths, "
                   "areas, --max-edge and B are then in the scaled unit")

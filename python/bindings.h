@@ -26,6 +26,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@
 #include "core/solution.h"
 #include "core/types.h"
 #include "formfactor/form_factors.h"
+#include "mesh/mesh.h"
 #include "patch/contact_patches.h"
 #include "patch/patch_set.h"
 #include "solve/problem.h"
@@ -54,14 +56,22 @@ struct Scene {
   std::string unit;                   // --unit as given ("" for none)
   std::string length_unit = "mesh unit", radiosity_unit = "W per mesh unit^2";  // after scaling (length_unit.h)
   bool two_sided = false;    // every material two-sided (the CLI's --two-sided)
-  bool contact_cut = false;  // faces cut along the footprints of objects standing on them (--contact-cut)
+  bool contact_cut = true;   // cut the faces along contacts when they are split (--contact-cut, the default)
+  bool cut = false;          // the faces were cut along contacts (contact_cut and a split)
   PatchSet patches;
   std::vector<std::int32_t> group;    // per patch: the group index of its input face, -1 outside any
   std::vector<std::string> groups;       // "object 'chair', group 'seat'" (what --response group:NAME matches)
   std::vector<std::string> group_names;  // the same groups as the user named them: "chair/seat", "chair", "seat"
   std::vector<std::string> warnings;  // validation's repairs and notices (the CLI's "radwalk: warning:" lines)
   std::vector<ContactRegion> contact_regions;  // of the objects standing on faces (patch/contact_patches.h)
+  // contact_cut, contacts found and the input faces kept as patches: the validated mesh, so that a computation that
+  // splits the patches itself (solve_to_target_error) cuts them first, as the CLI's --target-error does.
+  std::shared_ptr<const Mesh> uncut_mesh;
 };
+
+// The scene to split: `scene` itself, or (uncut_mesh set) the same mesh patched again with its supports cut along
+// the contacts and the input faces otherwise kept (patch_scene's splits_later).
+Scene cut_for_splitting(const Scene& scene);
 
 // Form factors of one scene, as estimated (rays, escaped, back_hits filled) or read from Matrix Market (empty).
 struct FormFactorsResult {

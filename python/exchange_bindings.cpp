@@ -52,12 +52,11 @@ ExchangeResult exchange(const Scene& scene, const py::object& F, const std::stri
                      std::to_string(ambient_temperature));
   // Excluded contact patches must be whole patches of the footprint (the CLI cuts the supports along the
   // footprints for --contact-faces exclude): a scene patched without the cut cannot honour it.
-  if (contact_faces == "exclude" && !scene.contact_regions.empty() &&
-      !(scene.contact_cut && (scene.max_edge > 0 || scene.max_area > 0)))
+  if (contact_faces == "exclude" && !scene.contact_regions.empty() && !scene.cut)
     throw InputError("contact_faces='exclude' needs the supports cut along the contact footprints: load the scene "
-                     "with contact_cut=True and max_edge or max_area (as `radwalk exchange --contact-faces "
-                     "exclude` does), otherwise floor patches reaching under an object would shoot rays from "
-                     "inside it");
+                     "with max_edge or max_area and contact_cut=True (the default; as `radwalk exchange "
+                     "--contact-faces exclude` does), otherwise floor patches reaching under an object would shoot "
+                     "rays from inside it");
   const std::vector<SurfaceCondition> conditions = surface_conditions(scene.patches);
   const int threads = check_run(scene, threads_arg);
   ExchangeResult out;
@@ -79,6 +78,8 @@ ExchangeResult exchange(const Scene& scene, const py::object& F, const std::stri
     out.x = exchange_heat(scene.patches, conditions, scene.contact_regions, std::move(ff), o);
   });
   check_solved(out.x.solution);
+  for (const HeatExchangeCavity& c : out.x.cavities)  // the CLI's warning, one each
+    if (PyErr_WarnEx(PyExc_UserWarning, cavity_warning(c).c_str(), 1) != 0) throw py::error_already_set();
   out.timings["solve"] = out.x.solution.seconds;
   if (!out.x.discretisation.J.empty()) out.timings["discretisation_error"] = out.x.discretisation.seconds;
   return out;
@@ -94,32 +95,35 @@ heat, W), T (K; solved where a heat flux was given), each with its statistical s
 T_se: the traced form factors' noise, first order; zero when F was not traced by radwalk), its discretisation error
 (J_disc, q_disc, Q_disc, T_disc; None when discretisation_directions = 0) and the total (J_err, ...: sqrt(se^2 +
 disc^2)); emissivity, temperature_given, sky (view factor to the ambient), back (fraction into backs of one-sided
-faces), contact (1 for a contact patch). These are the columns of the CLI's CSV with the same names.
+faces), contact (1 for a contact patch), cavity (1 for a patch of a closed cavity: radiation leaves its J, G and T
+undetermined, NaN in those arrays and their errors; docs/heat-exchange.md, "Closed cavities"; one UserWarning per
+cavity, and the list in cavities). These are the columns of the CLI's CSV with the same names (NaN where the CSV
+has an empty cell). groups' T_radiant is None for a group none of whose patches radiates.
 groups: a list of dicts {name, area, Q, Q_se, T_radiant, sky, back} (the CLI's --groups CSV); group_names and
 group_factors ((G, G) array F_GH, the CLI's --group-factors); balance: a dict of the energy balance in W (sum_Q,
 sum_Q_se, to_ambient, to_ambient_se, from_ambient, lost_to_back_faces, lost_to_back_faces_se, balance_residual,
 balance_residual_se, sky_area, contact_patches, contact_area, contact_radiated, contact_Q: the CLI's JSON keys);
 method, status, message, iterations, residual: the solve; error_method; timings.)doc")
-      .def_property_readonly("J", [](const ExchangeResult& r) { return copy_of(r.x.result.J); },
+      .def_property_readonly("J", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(r.x.result.J, r.x)); },
           "Radiosity J (N,) float64 per patch, W/m^2 (a copy).")
-      .def_property_readonly("G", [](const ExchangeResult& r) { return copy_of(r.x.result.G); },
+      .def_property_readonly("G", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(r.x.result.G, r.x)); },
           "Irradiance G (N,) float64 per patch, W/m^2 (a copy).")
       .def_property_readonly("q", [](const ExchangeResult& r) { return copy_of(r.x.result.q); },
           "Net heat flux q (N,) float64 per patch, W/m^2, leaving the surface (a copy).")
       .def_property_readonly("Q", [](const ExchangeResult& r) { return copy_of(r.x.result.Q); },
           "Net heat Q = A q (N,) float64 per patch, W, leaving the surface (a copy).")
-      .def_property_readonly("T", [](const ExchangeResult& r) { return copy_of(r.x.result.T); },
+      .def_property_readonly("T", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(r.x.result.T, r.x)); },
           "Temperature T (N,) float64 per patch, K: given, or solved where a heat flux was given (a copy).")
-      .def_property_readonly("J_se", [](const ExchangeResult& r) { return copy_of(r.x.J_se); },
+      .def_property_readonly("J_se", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(r.x.J_se, r.x)); },
           "Statistical standard error of J (N,) float64, W/m^2, from the traced form factors' noise (zeros when F was not traced by radwalk).")
       .def_property_readonly("q_se", [](const ExchangeResult& r) { return copy_of(r.x.q_se); },
           "Statistical standard error of q (N,) float64, W/m^2 (zeros when F was not traced by radwalk).")
       .def_property_readonly("Q_se", [](const ExchangeResult& r) { return copy_of(r.x.Q_se); },
           "Statistical standard error of Q (N,) float64, W (zeros when F was not traced by radwalk).")
-      .def_property_readonly("T_se", [](const ExchangeResult& r) { return copy_of(r.x.T_se); },
+      .def_property_readonly("T_se", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(r.x.T_se, r.x)); },
           "Statistical standard error of T (N,) float64, K, where T is solved (zeros elsewhere).")
       .def_property_readonly("J_disc", [](const ExchangeResult& r) -> py::object {
-        return r.x.discretisation.J.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.J));
+        return r.x.discretisation.J.empty() ? py::object(py::none()) : py::object(copy_of(undetermined_as_missing(r.x.discretisation.J, r.x)));
       },
           "Discretisation error of J (N,) float64, W/m^2 (1 standard deviation equivalent); None when not estimated.")
       .def_property_readonly("q_disc", [](const ExchangeResult& r) -> py::object {
@@ -131,16 +135,16 @@ method, status, message, iterations, residual: the solve; error_method; timings.
       },
           "Discretisation error of Q (N,) float64, W; None when not estimated.")
       .def_property_readonly("T_disc", [](const ExchangeResult& r) -> py::object {
-        return r.x.discretisation.T.empty() ? py::object(py::none()) : py::object(copy_of(r.x.discretisation.T));
+        return r.x.discretisation.T.empty() ? py::object(py::none()) : py::object(copy_of(undetermined_as_missing(r.x.discretisation.T, r.x)));
       },
           "Discretisation error of T (N,) float64, K; None when not estimated.")
-      .def_property_readonly("J_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.J_se, r.x.discretisation.J)); },
+      .def_property_readonly("J_err", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(total_of(r.x.J_se, r.x.discretisation.J), r.x)); },
           "Total error sqrt(J_se^2 + J_disc^2) (N,) float64, W/m^2 (J_se when J_disc is not estimated).")
       .def_property_readonly("q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.q_se, r.x.discretisation.q)); },
           "Total error sqrt(q_se^2 + q_disc^2) (N,) float64, W/m^2 (q_se when q_disc is not estimated).")
       .def_property_readonly("Q_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.Q_se, r.x.discretisation.Q)); },
           "Total error sqrt(Q_se^2 + Q_disc^2) (N,) float64, W (Q_se when Q_disc is not estimated).")
-      .def_property_readonly("T_err", [](const ExchangeResult& r) { return copy_of(total_of(r.x.T_se, r.x.discretisation.T)); },
+      .def_property_readonly("T_err", [](const ExchangeResult& r) { return copy_of(undetermined_as_missing(total_of(r.x.T_se, r.x.discretisation.T), r.x)); },
           "Total error sqrt(T_se^2 + T_disc^2) (N,) float64, K (T_se when T_disc is not estimated).")
       .def_property_readonly("emissivity",
                              [](const ExchangeResult& r) {
@@ -167,6 +171,30 @@ method, status, message, iterations, residual: the solve; error_method; timings.
                                return copy_of(c);
                              },
           "(N,) float64 per patch: 1 for a patch in contact with another surface (patch/contact_patches.h), else 0.")
+      .def_property_readonly("cavity",
+                             [](const ExchangeResult& r) {
+                               std::vector<double> c;
+                               for (std::int32_t k : r.x.cavity) c.push_back(k >= 0 ? 1 : 0);
+                               return copy_of(c);
+                             },
+          "(N,) float64 per patch: 1 for a patch of a closed cavity (J, G, T and their errors NaN there: undetermined), else 0.")
+      .def_property_readonly("cavities",
+                             [](const ExchangeResult& r) {
+                               py::list out;
+                               for (const HeatExchangeCavity& c : r.x.cavities) {
+                                 py::dict d;
+                                 d["patches"] = c.cavity.patches;
+                                 d["area"] = c.cavity.area;
+                                 d["leak"] = c.cavity.leak;
+                                 d["given_Q"] = c.cavity.given_Q;
+                                 d["objects"] = c.objects;
+                                 d["groups"] = c.groups;
+                                 d["materials"] = c.materials;
+                                 out.append(d);
+                               }
+                               return out;
+                             },
+          "The closed cavities: a list of dicts {patches (indices), area, leak, given_Q, objects, groups, materials}, as the CLI's JSON exchange.cavities (which gives the number of patches and the first).")
       .def_property_readonly("group_names", [](const ExchangeResult& r) { return r.x.groups.names; },
           "The names of the groups (objects, groups or materials under group_by), in the order of groups and group_factors.")
       .def_property_readonly("group_factors",
@@ -189,7 +217,8 @@ method, status, message, iterations, residual: the solve; error_method; timings.
                                  d["area"] = g.view_factors.area[k];
                                  d["Q"] = g.Q[k];
                                  d["Q_se"] = g.Q_se[k];
-                                 d["T_radiant"] = g.T_radiant[k];
+                                 d["T_radiant"] = std::isfinite(g.T_radiant[k]) ? py::object(py::float_(g.T_radiant[k]))
+                                                                                : py::object(py::none());
                                  d["sky"] = g.view_factors.sky[k];
                                  d["back"] = g.view_factors.back[k];
                                  out.append(d);
@@ -247,8 +276,8 @@ F: a FormFactors (form_factors), a scipy.sparse (N, N) matrix or (N, N) array, o
 solver: "auto" (direct up to 2000 patches, else GMRES), "direct", "gmres", "gauss-seidel", "jacobi",
   "southwell"; tol, max_iterations (0: the solver's default): as --tol, --max-iterations.
 ambient_temperature: K, what escaping rays reach (--ambient-temperature).
-contact_faces: "include" or "exclude" (--contact-faces); "exclude" needs a scene loaded with contact_cut=True and
-  max_edge (the CLI cuts the supports itself) and is refused otherwise.
+contact_faces: "include" or "exclude" (--contact-faces); "exclude" needs a scene cut along its contacts (loaded with
+  max_edge or max_area, contact_cut=True being the default) and is refused otherwise.
 group_by: "object", "group" or "material"; discretisation_directions: 0 to skip the discretisation error.
 Raises radwalk.InputError for bad options or thermal statements (the CLI's message); radwalk.NumericalError when
 the solve diverged or was refused.)doc");

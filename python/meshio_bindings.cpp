@@ -136,7 +136,7 @@ void bind_meshio(py::module_& m) {
   scene.attr("from_meshio") = py::staticmethod(py::cpp_function(
       &from_meshio, py::name("from_meshio"), py::scope(scene), py::arg("mesh"), py::arg("rho"),
       py::arg("emission") = py::none(), py::arg("groups") = py::none(), py::arg("two_sided") = false,
-      py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false, py::arg("contact_cut") = false,
+      py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false, py::arg("contact_cut") = true,
       R"doc(A Scene from a meshio.Mesh (Debian's python3-meshio), through Scene.from_arrays.
 
 mesh: a meshio.Mesh whose points are (V, 3) float coordinates in the mesh's length unit and whose cells are

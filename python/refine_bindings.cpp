@@ -114,6 +114,7 @@ Scene refined_scene(const Scene& scene, PatchSet patches) {
   out.radiosity_unit = scene.radiosity_unit;
   out.two_sided = scene.two_sided;
   out.contact_cut = scene.contact_cut;
+  out.cut = scene.cut;
   out.contact_regions = scene.contact_regions;
   out.groups = scene.groups;
   out.group_names = scene.group_names;

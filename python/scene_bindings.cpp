@@ -4,6 +4,8 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <map>
+#include <utility>
 
 #include <pybind11/stl/filesystem.h>
 
@@ -47,6 +49,16 @@ void keep_used_groups(const Mesh& mesh, Scene& scene) {
 // load_patches without its notes); its repairs and notices are one UserWarning that counts them (the lines are in
 // Scene.warnings).
 // `preparation` is the CLI's scaling, material overrides and validation options (mesh/prepare_mesh.h).
+// The patches, contact regions, groups and warnings of a patched mesh, into `scene`.
+void take_patched(PatchedScene&& patched, Scene& scene) {
+  scene.patches = std::move(patched.patches);
+  scene.contact_regions = std::move(patched.contact_regions);
+  scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
+  keep_used_groups(patched.mesh, scene);
+  scene.warnings = patched.mesh.warnings;
+  scene.cut = patched.cut;
+}
+
 Scene patched_scene(std::function<Mesh()> read, const std::string& path, double max_edge, double max_area,
                     const MeshPreparation& preparation, bool two_sided, bool contact_cut) {
   Scene scene;
@@ -59,12 +71,11 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
     patching.split.max_area = max_area;
     patching.contact_cut = contact_cut;
     patching.two_sided = two_sided;
+    const bool keeps_faces = max_edge == 0 && max_area == 0;
+    std::shared_ptr<Mesh> uncut = contact_cut && keeps_faces ? std::make_shared<Mesh>(mesh) : nullptr;
     PatchedScene patched = patch_scene(std::move(mesh), patching);
-    scene.patches = std::move(patched.patches);
-    scene.contact_regions = std::move(patched.contact_regions);
-    scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
-    keep_used_groups(patched.mesh, scene);
-    scene.warnings = patched.mesh.warnings;
+    if (uncut && !patched.contacts.empty()) scene.uncut_mesh = std::move(uncut);
+    take_patched(std::move(patched), scene);
   });
   scene.path = path;
   scene.max_edge = max_edge;
@@ -182,6 +193,44 @@ std::vector<std::vector<std::int64_t>> face_lists(const py::object& faces) {
 }
 
 }  // namespace
+
+Scene cut_for_splitting(const Scene& scene) {
+  if (!scene.uncut_mesh) return scene;
+  Scene out = scene;
+  out.uncut_mesh = nullptr;
+  interruptible([&] {
+    ScenePatchingOptions patching;
+    patching.contact_cut = true;
+    patching.splits_later = true;
+    patching.two_sided = scene.two_sided;
+    out.groups.clear();
+    out.group_names.clear();
+    take_patched(patch_scene(Mesh(*scene.uncut_mesh), patching), out);
+  });
+  // rho and E as the Scene holds them (edited in place or by set_material): every piece takes its input face's
+  // values (pieces keep their input face and side), which are one per face and side.
+  const PatchSet& from = scene.patches;
+  PatchSet& to = out.patches;
+  std::map<std::pair<std::int32_t, int>, std::size_t> patch_of;
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const auto key = std::make_pair(from.face[i], static_cast<int>(from.side_of(i)));
+    const auto [it, added] = patch_of.emplace(key, i);
+    if (!added && ((from.rho[i] != from.rho[it->second]).any() || (from.E[i] != from.E[it->second]).any()))
+      throw InputError(scene.path + ": input face " + std::to_string(from.face[i]) +
+                       " has patches with different rho or E, which its pieces cut along the contacts cannot "
+                       "inherit: load the scene with max_edge or max_area (cut as it loads) or contact_cut=False");
+  }
+  for (std::size_t i = 0; i < to.size(); ++i) {
+    const auto it = patch_of.find(std::make_pair(to.face[i], static_cast<int>(to.side_of(i))));
+    if (it == patch_of.end())
+      throw InternalError("cut_for_splitting: a piece of input face " + std::to_string(to.face[i]) +
+                          " has no patch in the uncut scene");
+    to.rho[i] = from.rho[it->second];
+    to.E[i] = from.E[it->second];
+  }
+  to.materials = from.materials;
+  return out;
+}
 
 Scene scene_from_arrays(const py::object& vertices, const py::object& faces, const py::object& rho,
                         const py::object& emission, const py::object& groups, bool two_sided, double max_edge,
@@ -315,7 +364,10 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
                     "The unit of lengths after scaling (str: \"m\", \"mesh unit\", ...), as the CLI's summaries name it.")
       .def_readonly("radiosity_unit", &Scene::radiosity_unit, "The unit of B (str: \"W/m^2\", ...).")
       .def_readonly("contact_cut", &Scene::contact_cut,
-                    "Whether faces were cut along the footprints of objects standing on them (bool), as --contact-cut.")
+                    "Whether faces are cut along contacts when they are split (bool), as --contact-cut (the default).")
+      .def_readonly("cut", &Scene::cut,
+                    "Whether faces were cut along the footprints and lines of objects touching them (bool): "
+                    "contact_cut and a split (max_edge or max_area).")
       .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, a list of str, one line each (as the CLI's).")
       .def_readonly("groups", &Scene::group_names,
                     "Group names (a list of str), indexed by Scene.group: the groups that hold a patch, each as the file names it: "
@@ -325,7 +377,7 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
       .def_static("from_arrays", &from_arrays, py::arg("vertices"), py::arg("faces"), py::arg("rho"),
                   py::arg("emission") = py::none(), py::arg("groups") = py::none(), py::arg("two_sided") = false,
                   py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0, py::arg("strict") = false,
-                  py::arg("contact_cut") = false,
+                  py::arg("contact_cut") = true,
                   R"doc(A Scene from numpy arrays, validated and patched as radwalk.load would the same mesh as a file.
 
 vertices: (V, 3) float coordinates, in the mesh's length unit.
@@ -410,7 +462,7 @@ set_radiometry_from_materials), so per-patch edits of rho or E made before are r
       });
 
   m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0,
-        py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = false,
+        py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = true,
         py::arg("orient") = "outward", py::arg("open_shells") = "auto", py::arg("scale") = 1.0,
         py::arg("unit") = py::none(), py::arg("set") = py::none(), py::arg("rho_scale") = 1.0,
         R"doc(Reads, validates and patches a scene (OBJ with MTL, PLY, STL, glTF/GLB, .vtp/.vtk): a Scene.
@@ -421,8 +473,10 @@ max_area: also split faces until no patch is larger than this (mesh units square
 strict: refuse what validation would repair (the CLI's --strict).
 two_sided: every material two-sided (a front and a back patch per face), as --two-sided; materials with
   `radwalk_two_sided 1` in their MTL block are two-sided either way.
-contact_cut: cut the faces that objects stand on along their footprints before splitting (only when max_edge or
-  max_area splits faces), as --contact-cut.
+contact_cut: cut the faces that objects stand on along their footprints and contact lines before splitting (True,
+  the default, as the CLI's --contact-cut; False as --no-contact-cut). The cut is made when max_edge or max_area
+  splits faces; with neither, the input faces stay the patches, and solve_to_target_error cuts them before its own
+  split.
 orient: "outward" (faces agree with their shells' neighbours, closed objects face out, the enclosing room in),
   "consistent" or "none", as --orient.
 open_shells: "auto" (two-sided inside a closed room, one-sided in an open scene), "one-sided" or "two-sided", as

@@ -104,19 +104,18 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   return out;
 }
 
-TargetErrorPyResult solve_to_target_error_py(const Scene& scene, double target_error, long rays, long max_patches,
+TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double target_error, long rays, long max_patches,
                                              double max_seconds, double tol, std::uint64_t seed,
                                              long long threads_arg, int discretisation_directions, bool hierarchical,
                                              const std::string& hierarchical_transport) {
-  const int threads = check_run(scene, threads_arg);
+  const int threads = check_run(scene_arg, threads_arg);
   if (discretisation_directions < 1)
     throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
                      ">= 1, got " + std::to_string(discretisation_directions));
   if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
-  if (scene.contact_cut && scene.max_edge == 0 && scene.max_area == 0)
-    throw InputError("solve_to_target_error: the scene was loaded with contact_cut=True but without max_edge or "
-                     "max_area, so its faces were not cut along the contacts (the cut is made when faces are "
-                     "split); load it with max_edge or max_area as well");
+  // Its own split comes after the cut along the contacts (the CLI's --target-error cuts as it loads).
+  const Scene cut = cut_for_splitting(scene_arg);
+  const Scene& scene = cut;
   if (hierarchical_transport != "form-factors" && hierarchical_transport != "rays")
     throw InputError("hierarchical_transport must be \"form-factors\" or \"rays\", got \"" + hierarchical_transport +
                      "\"");

@@ -65,19 +65,30 @@ std::vector<bool> contact_patches(const std::vector<ContactRegion>& regions, con
   const double tol = kContactTolerance * std::max(patches.scene_extent(), 1e-300);
   for (const ContactRegion& r : regions) {
     const Vec3& n = r.normal;
+    // The faces lying on the support back to back (bottoms), then the support's part under one of them.
+    std::vector<std::size_t> support_part;
+    std::vector<std::vector<Vec3>> bottoms;
     for (std::size_t i = 0; i < patches.size(); ++i) {
-      if (in_contact[i]) continue;
       const Vec3& x = patches.centroid[i];
-      if (std::abs((x - r.footprint[0]).dot(n)) > tol) continue;
+      if (std::abs((x - r.footprint[0]).dot(n)) > tol || !inside_convex(r.footprint, n, x, tol)) continue;
       const double along = patches.normal[i].dot(n);
-      bool touches = false;
-      if (along > 0.999)
-        touches = std::find(r.support_faces.begin(), r.support_faces.end(), patches.face[i]) != r.support_faces.end();
-      else if (along < -0.999)
-        touches = std::any_of(r.supports.begin(), r.supports.end(),
-                              [&](const std::vector<Vec3>& s) { return inside_polygon(s, n, x); });
-      if (touches && inside_convex(r.footprint, n, x, tol)) in_contact[i] = true;
+      if (along > 0.999 &&
+          std::find(r.support_faces.begin(), r.support_faces.end(), patches.face[i]) != r.support_faces.end()) {
+        support_part.push_back(i);
+      } else if (along < -0.999 && std::any_of(r.supports.begin(), r.supports.end(), [&](const std::vector<Vec3>& s) {
+                   return inside_polygon(s, n, x);
+                 })) {
+        in_contact[i] = true;
+        std::vector<Vec3> outline;
+        for (int k = 0; k < patches.corner_count(i); ++k) outline.push_back(patches.corner(i, k));
+        bottoms.push_back(std::move(outline));
+      }
     }
+    for (const std::size_t i : support_part)
+      if (std::any_of(bottoms.begin(), bottoms.end(), [&](const std::vector<Vec3>& b) {
+            return inside_polygon(b, n, patches.centroid[i]);
+          }))
+        in_contact[i] = true;
   }
   return in_contact;
 }

@@ -10,11 +10,13 @@
 //
 // Patch i is a contact patch of a region iff its centroid x lies in the support's plane (|(x - K_0) . n| <= tol),
 // strictly inside K, and
-//   - its normal is along n (n_i . n > 0.999) and its input face is one of the support faces (the support's own
-//     part under the footprint), or
 //   - its normal is opposite (n_i . n < -0.999) and x lies inside one of the support faces' outlines (a face lying
-//     on the support, back to back; only the part of it over the support touches it: a large face found lying on a
-//     small one, the floor on a block's bottom, touches it only there).
+//     on the support, back to back: a bottom; only the part of it over the support touches it: a large face found
+//     lying on a small one, the floor on a block's bottom, touches it only there), or
+//   - its normal is along n (n_i . n > 0.999), its input face is one of the support faces and x lies inside one of
+//     the region's bottom patches (the support's own part under a bottom). Under an object without a bottom (open
+//     below: a cabinet whose inside sees the floor) the support is not in contact with anything and radiates as any
+//     face: its part under the footprint belongs to the object's inside.
 // Only the centroid decides: a patch across K's outline counts whole on the side of its centroid, which is why
 // `exchange --contact-faces exclude` cuts the supports along the footprints first (patch_scene.h).
 #include <cstdint>

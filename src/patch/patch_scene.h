@@ -5,7 +5,7 @@
 //      report them; the supporting faces are cut along the footprints (cut_along_contacts) only when asked
 //      (contact_cut) AND the faces are split (split.max_edge > 0 or split.max_area > 0, or splits_later: the
 //      caller splits the patches itself, as --target-error does): kept input faces stay the patches, as the
-//      CLI's --contact-cut documents;
+//      CLI's --contact-cut (on by default) documents;
 //   2. the per-face split (patching.h, make_patches) with split.max_edge and split.max_area;
 //   3. the back sides (patch_set.h, add_back_sides): a back patch for every face of a two-sided material, or of
 //      every material with two_sided, appended after all front patches.
@@ -24,7 +24,7 @@ namespace radwalk {
 
 struct ScenePatchingOptions {
   PatchingOptions split;     // --max-edge, --max-area (0, 0: the input faces are the patches)
-  bool contact_cut = false;  // --contact-cut: cut the supporting faces along the footprints when faces are split
+  bool contact_cut = true;   // --contact-cut (default; --no-contact-cut): cut the supports along contacts when split
   bool splits_later = false; // the caller splits the patches afterwards (--target-error): cut as when splitting
   bool two_sided = false;    // --two-sided: every (non-dielectric) material two-sided
 };

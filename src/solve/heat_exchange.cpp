@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <map>
 
 #include "core/error.h"
@@ -69,6 +71,9 @@ HeatBalance energy_balance(const PatchSet& patches, const FormFactors& ff, const
   HeatBalance b;
   double var_backs = 0, var_to_ambient = 0, var_residual = 0;
   for (std::size_t i = 0; i < n; ++i) {
+    // A closed cavity exchanges nothing with the rest (its J is 0 inside the solve, s = b = 0, no row of F): only
+    // its given Q would enter, which no radiation carries anywhere.
+    if (x.cavity[i] >= 0) continue;
     const double A = patches.area[i], s = x.input.sky[i];
     b.sum_Q += r.Q[i];
     b.to_ambient += A * r.J[i] * s;
@@ -90,7 +95,7 @@ HeatBalance energy_balance(const PatchSet& patches, const FormFactors& ff, const
     }
   }
   b.residual = b.sum_Q - (b.to_ambient - b.from_ambient) - b.into_backs;
-  b.sum_Q_se = std::sqrt(sum_of_squares(x.Q_se));
+  b.sum_Q_se = std::sqrt(sum_of_squares(x.Q_se));  // 0 in the cavities
   b.to_ambient_se = std::sqrt(var_to_ambient);
   b.into_backs_se = std::sqrt(var_backs);
   b.residual_se = std::sqrt(var_residual);
@@ -116,7 +121,8 @@ HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, 
   g.Q.assign(std::size_t(groups), 0.0);
   g.Q_se.assign(std::size_t(groups), 0.0);
   g.T_radiant.assign(std::size_t(groups), 0.0);
-  std::vector<double> radiating_area(std::size_t(groups), 0.0);
+  std::vector<double>& radiating_area = g.radiating_area;
+  radiating_area.assign(std::size_t(groups), 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     const auto G = std::size_t(g.group[i]);
     g.Q[G] += x.result.Q[i];
@@ -124,21 +130,94 @@ HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, 
     // Only a patch that radiates counts: not one touching another surface (a contact patch, such as a cabinet's
     // bottom on the floor, whose rays leave through the floor's back to the ambient), nor one hidden inside a
     // closed object (every ray into a back): they have no irradiation, and a re-radiating one a T of 0 that is no
-    // temperature of the group.
+    // temperature of the group; nor one of a closed cavity, which radiation gives no temperature (step 2b).
     double seen = i < x.input.sky.size() ? x.input.sky[i] : 0.0;  // s_i + sum_j F_ij
     for (SparseF::InnerIterator it(x.problem.F, Eigen::Index(i)); it; ++it) seen += double(it.value());
-    if ((i < x.in_contact.size() && x.in_contact[i]) || !(seen > 0)) continue;
+    if ((i < x.in_contact.size() && x.in_contact[i]) || x.cavity[i] >= 0 || !(seen > 0)) continue;
     g.T_radiant[G] += patches.area[i] * std::pow(x.result.T[i], 4);
     radiating_area[G] += patches.area[i];
   }
   for (std::size_t G = 0; G < std::size_t(groups); ++G) {
     g.Q_se[G] = std::sqrt(g.Q_se[G]);
-    g.T_radiant[G] = radiating_area[G] > 0 ? std::pow(g.T_radiant[G] / radiating_area[G], 0.25) : 0.0;
+    g.T_radiant[G] = radiating_area[G] > 0 ? std::pow(g.T_radiant[G] / radiating_area[G], 0.25)
+                                           : std::numeric_limits<double>::quiet_NaN();  // no value
   }
   return g;
 }
 
+// Distinct values of name(i) over `patches` (in their order), "(none)" for an empty one.
+template <class Name>
+std::vector<std::string> distinct_names(const std::vector<std::size_t>& members, Name name) {
+  std::vector<std::string> out;
+  for (std::size_t i : members) {
+    std::string s = name(i);
+    if (s.empty()) s = "(none)";
+    if (std::find(out.begin(), out.end(), s) == out.end()) out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// "'a', 'b', 'c' and 4 more" (at most `shown` names quoted).
+std::string quoted_list(const std::vector<std::string>& names, std::size_t shown = 4) {
+  std::string out;
+  for (std::size_t k = 0; k < names.size() && k < shown; ++k) out += (k ? ", '" : "'") + names[k] + "'";
+  if (names.size() > shown) out += " and " + std::to_string(names.size() - shown) + " more";
+  return out;
+}
+
+std::string fmt(double x, const char* format = "%.4g") {
+  char text[48];
+  std::snprintf(text, sizeof text, format, x);
+  return text;
+}
+
+// Removes the patches flagged in `out` from the system as step 2 and 2b do: their rows and columns of F dropped,
+// what the others sent them counted with the backs (b_i += F_ij); they become black at 0 K with no sky and no
+// back (rho = 0, S = 0: J = 0 in the solve).
+void remove_from_system(const std::vector<bool>& out, FormFactors& ff, HeatExchange& x) {
+  const std::size_t n = out.size();
+  std::vector<Eigen::Triplet<float, std::int32_t>> kept;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (out[i]) continue;
+    for (SparseF::InnerIterator it(ff.F, Eigen::Index(i)); it; ++it) {
+      if (out[std::size_t(it.col())])
+        x.back[i] += double(it.value());
+      else
+        kept.emplace_back(std::int32_t(i), std::int32_t(it.col()), it.value());
+    }
+  }
+  SparseF reduced(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
+  reduced.setFromTriplets(kept.begin(), kept.end());
+  ff.F = std::move(reduced);
+  for (std::size_t i = 0; i < n; ++i)
+    if (out[i]) {
+      x.input.sky[i] = x.back[i] = 0;
+      x.input.surface[i] = SurfaceCondition{1.0, true, 0.0, 0.0};  // rho = 0, S = 0: J = 0
+    }
+}
+
 }  // namespace
+
+std::string cavity_warning(const HeatExchangeCavity& c) {
+  const ClosedCavity& k = c.cavity;
+  std::string text = "closed cavity: " + std::to_string(k.patches.size()) + " patches (" + fmt(k.area) +
+                     " m^2) of object" + (c.objects.size() > 1 ? "s " : " ") + quoted_list(c.objects) + ", group" +
+                     (c.groups.size() > 1 ? "s " : " ") + quoted_list(c.groups) +
+                     ", all with a given heat flux, exchange " +
+                     (k.leak > 0 ? "only " + fmt(k.leak, "%.2g") + " of their radiation" : "no radiation") +
+                     " with the rest of the scene (leak fraction below " + fmt(kCavityLeak, "%.0e") +
+                     "), so radiation leaves their temperature undetermined (in reality conduction sets it)";
+  if (k.given_Q != 0)
+    text += "; their given heat fluxes sum to " + fmt(k.given_Q) + " W, which radiation cannot carry out";
+  return text + ": their J, G and T are left empty (field cavity = 1) and out of the groups' T_radiant and the "
+                "energy balance";
+}
+
+std::vector<double> undetermined_as_missing(std::vector<double> v, const HeatExchange& x) {
+  for (std::size_t i = 0; i < v.size() && i < x.cavity.size(); ++i)
+    if (x.cavity[i] >= 0) v[i] = std::numeric_limits<double>::quiet_NaN();
+  return v;
+}
 
 HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCondition>& conditions,
                            const std::vector<ContactRegion>& regions, FormFactors ff,
@@ -174,25 +253,31 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
   x.in_contact = contact_patches(regions, patches);
   for (std::size_t i = 0; i < n; ++i)
     if (x.in_contact[i]) ++x.contact_count, x.contact_area += patches.area[i];
-  if (options.exclude_contacts && x.contact_count > 0) {
-    std::vector<Eigen::Triplet<float, std::int32_t>> kept;
-    for (std::size_t i = 0; i < n; ++i) {
-      if (x.in_contact[i]) continue;
-      for (SparseF::InnerIterator it(ff.F, Eigen::Index(i)); it; ++it) {
-        if (x.in_contact[std::size_t(it.col())])
-          x.back[i] += double(it.value());
-        else
-          kept.emplace_back(std::int32_t(i), std::int32_t(it.col()), it.value());
-      }
+  if (options.exclude_contacts && x.contact_count > 0) remove_from_system(x.in_contact, ff, x);
+
+  // Step 2b. The conditions are checked first (a scene where every surface has a given flux and nothing reaches an
+  // ambient is refused as a whole, net_radiation_coefficients).
+  net_radiation_coefficients(x.input);
+  x.cavity.assign(n, -1);
+  {
+    std::vector<bool> in_cavity(n, false);
+    for (ClosedCavity& c : closed_cavities(ff.F, x.input)) {
+      HeatExchangeCavity k;
+      k.objects = distinct_names(c.patches, [&](std::size_t i) { return patches.object_of(i); });
+      k.groups = distinct_names(c.patches, [&](std::size_t i) { return patches.group_of(i); });
+      k.materials = distinct_names(c.patches, [&](std::size_t i) { return patches.material_of(i); });
+      for (std::size_t i : c.patches) x.cavity[i] = std::int32_t(x.cavities.size()), in_cavity[i] = true;
+      k.cavity = std::move(c);
+      x.cavities.push_back(std::move(k));
     }
-    SparseF reduced(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(n));
-    reduced.setFromTriplets(kept.begin(), kept.end());
-    ff.F = std::move(reduced);
-    for (std::size_t i = 0; i < n; ++i)
-      if (x.in_contact[i]) {
-        x.input.sky[i] = x.back[i] = 0;
-        x.input.surface[i] = SurfaceCondition{1.0, true, 0.0, 0.0};  // rho = 0, S = 0: J = 0
-      }
+    if (!x.cavities.empty()) {
+      std::size_t determined = 0;
+      for (std::size_t i = 0; i < n; ++i) determined += !in_cavity[i] && !(options.exclude_contacts && x.in_contact[i]);
+      if (determined == 0)
+        throw InputError("every surface lies in a closed cavity (" + cavity_warning(x.cavities.front()) +
+                         "): give at least one surface a temperature (radwalk_temperature or --set NAME.temperature=T)");
+      remove_from_system(in_cavity, ff, x);
+    }
   }
 
   // Step 3. The error estimates below read the patches' rho and E: those of the net-radiation system (its rho
@@ -208,6 +293,8 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
   x.solved = x.solution.B.rows() == Eigen::Index(n);
   if (!x.solved) return x;
   x.result = net_radiation_result(x.input, x.problem.F, radiosity_of(x.solution));
+  for (std::size_t i = 0; i < n; ++i)  // a cavity's net flux is the given one (its J, G, T: no value)
+    if (x.cavity[i] >= 0) x.result.q[i] = conditions[i].heat_flux, x.result.Q[i] = patches.area[i] * x.result.q[i];
 
   // Step 4.
   x.J_se.assign(n, 0.0);
@@ -239,6 +326,9 @@ HeatExchange exchange_heat(const PatchSet& patches, const std::vector<SurfaceCon
   if (options.discretisation_directions > 0)
     x.discretisation = exchange_discretisation(thermal, x.problem, x.solution.B, x.input, x.result,
                                                options.discretisation_directions, options.seed);
+
+  for (std::size_t i = 0; i < n && !x.discretisation.q.empty(); ++i)
+    if (x.cavity[i] >= 0) x.discretisation.q[i] = x.discretisation.Q[i] = 0;  // given
 
   // Step 6.
   x.balance = energy_balance(patches, ff, x);

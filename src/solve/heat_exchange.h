@@ -9,6 +9,12 @@
 //      b_i = back_hits_i / n_i the backs of one-sided faces; analytic or read F: s_i = 1 - row sum, b_i = 0;
 //   2. contact patches (patch/contact_patches.h): flagged; with exclude_contacts their rows and columns of F are
 //      removed, what other patches sent to them counted with the backs (b_i += F_ij), and they get J = q = Q = 0;
+//   2b. closed cavities (solve/closed_cavities.h): components of known-flux patches that exchange less than
+//      kCavityLeak of their radiation with anything else, so that radiation leaves their J undetermined (any
+//      uniform value solves a re-radiating one); removed from the system as contact patches are (rows and
+//      columns of F, what others sent them counted with the backs, J = 0 inside the solve), their q and Q the
+//      given ones, their J, G and T (and errors) no value (`undetermined_as_missing`), left out of the energy
+//      balance and of the groups' radiant temperatures;
 //   3. the net-radiation system solved by options.solve;
 //   4. statistical errors from the traced F's noise (first order): J_se by the propagation of each row's gather
 //      variance (solve/form_factor_error.h); then linearly
@@ -20,8 +26,9 @@
 //      the reciprocity defect of F, and its standard error from each row's rays, J held fixed, first order:
 //        Var(R) = sum_i A_i^2 (sum_j F_ij (J_i - J_j)^2 - (sum_j F_ij (J_i - J_j))^2) / n_i;
 //   7. per group (object, group or material): Q, its standard error, the radiant temperature
-//      (sum A T^4 / sum A)^(1/4) over the group's patches that radiate: not contact patches, and seeing a surface
-//      or the ambient (row sum of F plus sky view factor > 0); 0 when none does. Then the view factors between
+//      (sum A T^4 / sum A)^(1/4) over the group's patches that radiate: not contact patches, not in a closed
+//      cavity, and seeing a surface or the ambient (row sum of F plus sky view factor > 0); NaN, no value (JSON null,
+//      an empty CSV cell, None in Python), when none does (`radiating_area` 0). Then the view factors between
 //      groups (solve/group_view_factors.h).
 #include <cstdint>
 #include <functional>
@@ -32,6 +39,7 @@
 #include "formfactor/form_factors.h"
 #include "patch/contact_patches.h"
 #include "patch/patch_set.h"
+#include "solve/closed_cavities.h"
 #include "solve/exchange_discretisation.h"
 #include "solve/group_view_factors.h"
 #include "solve/net_radiation.h"
@@ -65,10 +73,22 @@ struct HeatExchangeGroups {
   std::vector<std::int32_t> group;    // per patch
   GroupViewFactors view_factors;
   std::vector<double> Q, Q_se, T_radiant;
+  std::vector<double> radiating_area;  // m^2 per group: the patches T_radiant is taken over (0: no T_radiant)
 };
 
+// A closed cavity (step 2b) with the names of what it belongs to.
+struct HeatExchangeCavity {
+  ClosedCavity cavity;
+  std::vector<std::string> objects, groups, materials;  // distinct names of its patches, in patch order
+};
+
+// The one-line warning of a cavity: its objects and groups, patches, area, leak fraction, what is left out and
+// why (shared by the CLI and Python).
+std::string cavity_warning(const HeatExchangeCavity& c);
+
 struct HeatExchange {
-  NetRadiationInput input;            // the conditions used (contact patches excluded: black at 0 K, s = 0)
+  NetRadiationInput input;            // the conditions used (excluded contact patches and cavities: black at
+                                      // 0 K, s = 0)
   std::vector<SurfaceCondition> given;  // the conditions as the materials give them
   NetRadiationCoefficients coefficients;  // rho and source S of the system per patch (its E)
   RadiosityProblem problem;           // its F with the contact rows and columns removed when excluded
@@ -84,9 +104,16 @@ struct HeatExchange {
   std::vector<bool> in_contact;       // step 2
   std::size_t contact_count = 0;
   double contact_area = 0, contact_radiated = 0, contact_Q = 0;  // m^2, W (sum A J), W (sum Q)
-  HeatBalance balance;                // step 6
+  std::vector<HeatExchangeCavity> cavities;  // step 2b
+  std::vector<std::int32_t> cavity;   // per patch: its index in cavities, -1 for none
+  HeatBalance balance;                // step 6 (cavities left out)
   HeatExchangeGroups groups;          // step 7
 };
+
+// A per-patch quantity for the outputs with the patches of closed cavities, where it is undetermined (J, G, T and
+// their errors), set to NaN: the per-patch writers' "no value" (an empty CSV cell, docs/units-and-formats.md; in
+// the .vtp VTK's NaN, shown in ParaView's NaN colour), the `cavity` field saying why.
+std::vector<double> undetermined_as_missing(std::vector<double> v, const HeatExchange& x);
 
 // Steps 1 to 7. conditions: per patch (surface_conditions); regions: the scene's contact regions (from
 // patch_scene). ff is consumed (its F moves into the result's problem). Throws InputError for bad conditions or

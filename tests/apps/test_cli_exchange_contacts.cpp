@@ -82,6 +82,12 @@ TEST_CASE("exchange: the contact patches are the floor under a cabinet and its b
       CHECK(std::abs(x.at("contact_area").get<double>() - 0.32) <= 1e-9);
       CHECK(x.at("contact_patches").get<int>() == 2);
     }
+  // Without the cut the contact patches would not be whole pieces of the footprint: refused in one line.
+  const Run r = run("exchange " + write_room(dir, false, false).string() +
+                    " --max-edge 0.4 --rays 200 --contact-faces exclude --no-contact-cut");
+  INFO(r.out);
+  CHECK(r.exit_code == 2);
+  CHECK(r.out.find("--contact-faces exclude needs the supports cut along the contact footprints") != std::string::npos);
 }
 
 TEST_CASE("exchange: with a hollow cabinet on the floor the energy balance closes within its error bars",

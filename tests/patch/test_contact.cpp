@@ -333,3 +333,17 @@ TEST_CASE("contact patches: the floor under a block and the block's bottom, cut 
   }));
   CHECK(contact_area(contact_regions(cut, again), make_patches(cut, 0.5)) == Approx(2.0).epsilon(1e-12));
 }
+
+TEST_CASE("contact patches: under an object without a bottom the floor is in contact with nothing",
+          "[patch][contact]") {
+  // The same block open below (sides and top only): its inside sees the floor under it, which radiates as any face
+  // (a cabinet open below, whose floor part an `exchange --contact-faces exclude` held at J = 0 as if touched, so
+  // that the cabinet's inside read 140 K). The footprint is still found and cut along; no patch is in contact.
+  const Mesh m = block_on_floor(false, false);
+  const auto contacts = find_contacts(m);
+  REQUIRE(!contacts.empty());
+  const auto regions = contact_regions(m, contacts);
+  REQUIRE(!regions.empty());
+  CHECK(contact_area(regions, make_patches(m, 0.5)) == 0.0);
+  CHECK(contact_area(regions, make_patches(cut_along_contacts(m, contacts), 0.5)) == 0.0);
+}

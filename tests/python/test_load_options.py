@@ -23,6 +23,7 @@ def cli_and_module_csv(tmp_path, flags, **load):
     (["--two-sided"], {"two_sided": True}),
     (["--max-edge", 150, "--max-area", 5000], {"max_edge": 150, "max_area": 5000}),
     (["--max-edge", 150, "--contact-cut"], {"max_edge": 150, "contact_cut": True}),
+    (["--max-edge", 150, "--no-contact-cut"], {"max_edge": 150, "contact_cut": False}),
 ])
 def test_patching_options_equal_the_cli(tmp_path, flags, load):
     scene, cli, py = cli_and_module_csv(tmp_path, flags, **load)
@@ -33,8 +34,9 @@ def test_patching_options_equal_the_cli(tmp_path, flags, load):
 def test_two_sided_doubles_the_patches_and_contact_cut_adds_some():
     plain = radwalk.load(CORNELL)
     assert len(radwalk.load(CORNELL, two_sided=True).areas) == 2 * len(plain.areas)
-    uncut = radwalk.load(CORNELL, max_edge=150)
-    cut = radwalk.load(CORNELL, max_edge=150, contact_cut=True)
-    assert cut.contact_cut and not uncut.contact_cut
+    uncut = radwalk.load(CORNELL, max_edge=150, contact_cut=False)
+    cut = radwalk.load(CORNELL, max_edge=150)  # the cut is the default, made when faces are split
+    assert cut.contact_cut and cut.cut and not uncut.contact_cut and not uncut.cut
+    assert not plain.cut and len(plain.areas) == 37  # without a split the input faces stay the patches
     assert len(cut.areas) > len(uncut.areas)
     assert abs(cut.areas.sum() - uncut.areas.sum()) <= 1e-9 * uncut.areas.sum()  # the cut tiles the same surface

@@ -41,13 +41,23 @@ def test_options_out_of_range_raise():
         radwalk.solve_to_target_error(scene, 0.03, discretisation_directions=0)
 
 
-def test_a_contact_cut_scene_without_its_split_is_refused_not_ignored():
-    # load cuts along the contacts only when it splits the faces; the target error splits them later, so a scene
-    # loaded with contact_cut=True alone was never cut: refused in one line (the CLI cuts first, as it loads).
-    with pytest.raises(radwalk.InputError, match="contact_cut=True but without max_edge"):
-        radwalk.solve_to_target_error(radwalk.load(SCENE, contact_cut=True), 0.2)
-    r = radwalk.solve_to_target_error(radwalk.load(SCENE, max_edge=200, contact_cut=True), 0.2, seed=1)
-    assert r.steps
+def test_the_contact_cut_comes_before_its_own_split(tmp_path):
+    # load keeps the input faces as patches when it splits nothing, so nothing is cut; the target error splits them
+    # itself and, as the CLI's --target-error, cuts along the contacts first (the default), or not with
+    # contact_cut=False (--no-contact-cut): the same steps and patches as the CLI either way.
+    for flags, kwargs in (([], {}), (["--no-contact-cut"], {"contact_cut": False})):
+        run_cli("solve", SCENE, "--target-error", 0.2, "--seed", 1, *flags, "--json", tmp_path / "c.json")
+        cli = json.load(open(tmp_path / "c.json"))
+        scene = radwalk.load(SCENE, **kwargs)
+        assert not scene.cut and len(scene) == 37
+        r = radwalk.solve_to_target_error(scene, 0.2, seed=1)
+        assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
+        assert r.scene.cut == cli["contact_cut"] == (not kwargs)
+    # rho edited on the Scene in place carries over to the pieces of the cut (none of the file's materials has 0.3).
+    scene = radwalk.load(SCENE)
+    scene.rho[:] = 0.3
+    r = radwalk.solve_to_target_error(scene, 0.2, seed=1)
+    assert r.scene.cut and np.all(np.asarray(r.scene.rho) == 0.3)
 
 
 @pytest.mark.parametrize("transport", ["form-factors", "rays"])

@@ -9,10 +9,11 @@ against a wall; ten materials, four with one-letter names) and goes through radw
 
   check       exit 0, warnings only, every repair kind reported in one run with the counts the generator put in;
               --strict exits 2 and refuses all of them (the JSON is written also then);
-  patch       --max-edge 0.5: the patch count is exactly the documented per-face split (a quad n x m with
+  patch       --max-edge 0.5 --no-contact-cut: the patch count is exactly the documented per-face split (a quad n x m with
               n = ceil(longer of two opposite sides / L), a triangle n^2 with n = ceil(longest edge / L), a face
               within L kept whole), computed here from the repaired faces (`patch -o repaired.obj`), and it is
-              compared with "the room's faces split + the furniture's faces as they are";
+              compared with "the room's faces split + the furniture's faces as they are"; by default the faces the
+              furniture stands on or touches are cut along the contacts first, which adds patches;
   solve       the discrete system (auto: LU at L, Gauss-Seidel to 1e-10 at L/2), exit 0; the room counts as a
               closed shell (src/mesh/t_junctions.h: its faces on the bounding box's planes, facing in, are
               closed) although the furniture is open, so rays that leave it are warned about with the groups
@@ -269,9 +270,19 @@ def main():
     r = run(radwalk, "patch", scene, "-o", j("repaired.obj"), "--json", j("patch0.json"), "-q")
     expect(r.returncode == 0, "patch --max-edge 0 exits 0")
     repaired = obj_faces(j("repaired.obj"))
-    r = run(radwalk, "patch", scene, "--max-edge", L_COARSE, "-o", j("patches.vtp"), "--json", j("patch.json"), "-q")
-    expect(r.returncode == 0, "patch --max-edge %g exits 0" % L_COARSE)
+    # The per-face rule is that of the plain split (--no-contact-cut); the default cut along the contacts adds the
+    # pieces of the faces the furniture stands on or touches.
+    r = run(radwalk, "patch", scene, "--max-edge", L_COARSE, "--no-contact-cut", "-o", j("patches.vtp"), "--json",
+            j("patch.json"), "-q")
+    expect(r.returncode == 0, "patch --max-edge %g --no-contact-cut exits 0" % L_COARSE)
     patch = json.load(open(j("patch.json")))
+    r = run(radwalk, "patch", scene, "--max-edge", L_COARSE, "-o", j("patches_cut.vtp"), "--json", j("patch_cut.json"),
+            "-q")
+    cut = json.load(open(j("patch_cut.json")))
+    expect(r.returncode == 0 and cut["contact_cut"] and cut["contact_faces_cut"] > 0 and
+           cut["patches"] > patch["patches"],
+           "patch --max-edge %g: the default cuts %d faces along the contacts (%d patches)"
+           % (L_COARSE, cut.get("contact_faces_cut", 0), cut.get("patches", 0)))
     expected = sum(split_count(f, L_COARSE) for f in repaired)
     room_need = sum(math.ceil(a / L_COARSE) * math.ceil(b / L_COARSE) for a, b in manifest["room_rectangles"])
     furniture_faces = len(repaired) - manifest["room_faces"]
