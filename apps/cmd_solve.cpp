@@ -283,7 +283,7 @@ int run_solve(const SolveCommand& command) {
                                   : run_target_error(command, std::move(patches), summary);
     TargetErrorResult& r = target->result;
     patches = std::move(r.patches);
-    if (command.hierarchical) {
+    if (command.hierarchical && command.hierarchical_transport == "rays") {
       fates = trace_ray_fates(patches, command.scene.seed);  // no form factors: the fates' own rays
     } else {
       fates = {r.form_factors.rays, r.form_factors.escaped, r.form_factors.back_hits};
@@ -398,6 +398,7 @@ int run_solve(const SolveCommand& command) {
     metadata.set_text("solver", command.hierarchical ? "hierarchical" : command.solver);
     if (command.hierarchical && target) {
       metadata.set_integer("rays_per_leaf", target->result.steps.back().rays_per_patch);
+      metadata.set_text("hierarchical_transport", command.hierarchical_transport);
     } else if (command.hierarchical) {
       metadata.set_real("hierarchical_tol", command.hierarchical_tol);
       metadata.set_integer("rays", command.hierarchical_rays);

@@ -41,13 +41,17 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
                                           std::to_string(s.next_rays_per_patch) + " rays a leaf"
                                     : std::string()));
   };
-  HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, report);
-
+  const bool form_factors = command.hierarchical_transport == "form-factors";
   TargetErrorRun run;
+  const TargetErrorWork leaf_work =
+      form_factors ? form_factor_target_work(command, summary, run.error_line, false) : TargetErrorWork{};
+  HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, report, leaf_work);
+
   TargetErrorResult& t = run.result;
   t.patches = leaf_patches(roots, r.solution.tree, r.solution.leaves);
   t.solution = hierarchical_target_solution(r);
-  t.solution.info["replicates"] = h.replicates;
+  if (form_factors) t.form_factors = std::move(r.stage.form_factors);
+  else t.solution.info["replicates"] = h.replicates;
   for (const HierarchicalTargetStep& s : r.steps) t.steps.push_back(s.step);
   t.reached = r.reached;
   t.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
@@ -55,6 +59,9 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
 
   const TargetErrorStep& last = t.steps.back();
   auto& e = summary.json()["error_estimate"];
+  if (form_factors) {  // B_se and B_disc are the uniform route's (the leaf solver wrote them and the line)
+    e["total"] = {{"relative", last.total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
+  } else {
   e["statistical"] = {{"relative", last.statistical},
                       {"method", "the spread of " + std::to_string(h.replicates) +
                                      " independent replicates of the shooting, with the direct light's variance"}};
@@ -68,10 +75,12 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   run.error_line = "estimated error e = " + percent(last.total) + " (statistical " + percent(last.statistical) +
                    ", discretisation " + percent(last.discretisation) +
                    "; 1 standard deviation, relative to B over the reflecting leaves)";
+  }
 
   auto& j = summary.json()["target_error"];
   j["target"] = o.target;
   j["route"] = "hierarchical";
+  j["transport"] = command.hierarchical_transport;
   j["max_patches"] = o.max_leaves;
   j["max_seconds"] = o.max_seconds;
   j["reached"] = t.reached;
@@ -98,10 +107,13 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   hj["max_level"] = h.max_level;
   hj["min_area"] = h.min_area;
   hj["points"] = h.points_side * h.points_side;
+  hj["transport"] = command.hierarchical_transport;
   hj["rays"] = hr.rays;
-  hj["shadow_rays"] = hr.shadow_rays;
-  hj["replicates"] = h.replicates;
-  hj["iterations"] = hr.iterations;
+  if (!form_factors) {
+    hj["shadow_rays"] = hr.shadow_rays;
+    hj["replicates"] = h.replicates;
+    hj["iterations"] = hr.iterations;
+  }
   summary.json()["patches"] = t.patches.size();
   summary.json()["rays_per_patch"] = last.rays_per_patch;
   summary.add_timing("target_error", t.seconds);

@@ -17,6 +17,10 @@ struct Rule {
 
 bool random_walk(const SolveCommand& c) { return c.solver == "random-walk"; }
 bool hierarchical(const SolveCommand& c) { return c.hierarchical; }
+// --hierarchical --target-error --hierarchical-transport form-factors: the leaves solved by the traced F.
+bool leaf_form_factors(const SolveCommand& c) {
+  return c.hierarchical && c.target_error > 0 && c.hierarchical_transport == "form-factors";
+}
 
 // Walk options by their command-line names.
 const std::vector<Rule<SolveCommand>> kSolveRules = {
@@ -47,7 +51,15 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
      "for form factors, which --kernel ray does not use"},
     {{"--rays-per-area", "--min-rays", "--form-factors", "--reciprocity", "--sobol-rays", "--emitter-columns",
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
-     [](const SolveCommand& c) { return !hierarchical(c); }, "for form factors, which --hierarchical does not use"},
+     [](const SolveCommand& c) { return !hierarchical(c) || leaf_form_factors(c); },
+     "for form factors, which --hierarchical uses only with --target-error and --hierarchical-transport "
+     "form-factors"},
+    {{"--hierarchical-transport"}, [](const SolveCommand& c) { return hierarchical(c) && c.target_error > 0; },
+     "with --hierarchical --target-error"},
+    {{"--hierarchical-points", "--hierarchical-replicates"},
+     [](const SolveCommand& c) { return !leaf_form_factors(c); },
+     "by the hierarchical stochastic Jacobi (--hierarchical-transport rays): with form-factors the direct light is "
+     "the exact emitter columns and the standard errors come from F"},
     {{"--rays"}, [](const SolveCommand& c) { return !hierarchical(c) || c.target_error > 0; },
      "for form factors, which --hierarchical does not use"},  // with --target-error: the first step's rays per leaf
     {{"--hierarchical-tol", "--hierarchical-rays", "--hierarchical-refine", "--hierarchical-target",

@@ -110,6 +110,9 @@ struct SolveCommand {
   int hierarchical_steps = 12;           // estimate: splitting steps at most
   // oriented clusters of patches above the element trees (hierarchy/cluster_tree.h): "on" or "off"
   std::string hierarchical_clusters = "off";
+  // --hierarchical --target-error: how each step's leaves are solved: "rays" (the hierarchical stochastic Jacobi)
+  // or "form-factors" (the leaves as patches, the uniform route's traced F and solver; hierarchical_target_error.h)
+  std::string hierarchical_transport = "form-factors";
   double hierarchical_cluster_ratio = 0.25;  // a cluster receives only where its radius <= ratio x the distance
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)

@@ -650,6 +650,12 @@ int run_main(int argc, char** argv) {
                         "--hierarchical-target or --hierarchical-max-leaves)")
       ->check(CLI::IsMember({"oracle", "estimate"}))
       ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-transport", solve.hierarchical_transport,
+                        "Hierarchical --target-error: how each step solves the leaves: form-factors (the leaves as "
+                        "patches, traced F with the emitter columns exact and the direct solve, as the uniform "
+                        "route) or rays (hierarchical stochastic Jacobi)")
+      ->check(CLI::IsMember({"form-factors", "rays"}))
+      ->capture_default_str();
   solve_cmd->add_option("--hierarchical-clusters", solve.hierarchical_clusters,
                         "Hierarchical: oriented clusters of patches that receive a distant shooter's rays as one and "
                         "spread them over their members by the cosine rule (docs/hierarchy.md, Clusters)")

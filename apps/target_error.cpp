@@ -11,6 +11,31 @@
 #include "solve/solve_radiosity.h"
 
 namespace radwalk::app {
+
+TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
+                                        bool first_obtains) {
+  return [&command, &summary, &error_line, first_obtains](const PatchSet& p, long rays, int step) {
+    FormFactorCliOptions ff_options = command.ff;
+    ff_options.rays = rays;
+    TargetErrorStage stage;
+    stage.form_factors = step == 0 && first_obtains ? obtain_form_factors(command.scene, ff_options, p, summary)
+                                                    : trace_form_factors(command.scene, ff_options, p);
+    // A copy of F for the solve: the last step's F stays with its record, for the per-patch diagnostics.
+    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
+    SolveOptions solve;
+    solve.tol = command.tol;
+    solve.max_iterations = default_max_iterations(solve.solver, p.size());
+    stage.solution = solve_radiosity(problem, solve);
+    if (stage.solution.status == SolveStatus::converged) {
+      error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
+      const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
+                                                        command.discretisation_directions, command.scene.seed);
+      if (!disc.empty()) error_line += "\n" + disc;
+    }
+    return stage;
+  };
+}
+
 TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary) {
   if (command.discretisation_directions <= 0)
     throw InputError("--target-error needs the discretisation estimate: --discretisation-directions must be > 0");
@@ -21,26 +46,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   options.max_seconds = command.max_seconds;
   if (command.scene.max_edge == 0 && command.scene.max_area == 0) options.start_patches = kDefaultStartPatches;
   TargetErrorRun run;
-  const TargetErrorWork work = [&](const PatchSet& p, long rays, int step) {
-    FormFactorCliOptions ff_options = command.ff;
-    ff_options.rays = rays;
-    TargetErrorStage stage;
-    stage.form_factors = step == 0 ? obtain_form_factors(command.scene, ff_options, p, summary)
-                                   : trace_form_factors(command.scene, ff_options, p);
-    // A copy of F for the solve: the last step's F stays with its record, for the per-patch diagnostics.
-    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
-    SolveOptions solve;
-    solve.tol = command.tol;
-    solve.max_iterations = default_max_iterations(solve.solver, p.size());
-    stage.solution = solve_radiosity(problem, solve);
-    if (stage.solution.status == SolveStatus::converged) {
-      run.error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
-      const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
-                                                        command.discretisation_directions, command.scene.seed);
-      if (!disc.empty()) run.error_line += "\n" + disc;
-    }
-    return stage;
-  };
+  const TargetErrorWork work = form_factor_target_work(command, summary, run.error_line, true);
   const auto report = [](const TargetErrorStep& s, int step) {
     note("target error step " + std::to_string(step) + ": " + std::to_string(s.patches) + " patches, " +
          std::to_string(s.rays_per_patch) + " rays a patch: estimated error " + percent(s.total) + " (statistical " +

@@ -21,4 +21,11 @@ struct TargetErrorRun {
 
 TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary);
 
+// One step's work of that route on given patches with given rays per patch: F traced (the first step's through
+// obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), the automatic solver,
+// B_se and B_disc as a plain solve's (their JSON "error_estimate" and the line in error_line, overwritten each
+// step). The hierarchical route's form-factor transport uses it with first_obtains false.
+TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
+                                        bool first_obtains);
+
 }  // namespace radwalk::app

@@ -61,7 +61,7 @@ def main():
         rk = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
         found = np.array([k in set(rk(ptkey)) for k in rk(key)])
         material = np.array([row["material"] for row in rows])[found]
-        e, noise, _ = te.measured_error(run_csv, pt_csv)
+        e, _, noise, _ = te.measured_error(run_csv, pt_csv)
         print("run: %s %s; %d elements, CPU %.1f s, measured e %.4f (pt noise %.4f)%s" % (
             os.path.basename(a.scene), a.run, len(rows), cpu, e, noise,
             "" if unmatched == 0 else ", %d elements not in the path tracer's reading" % unmatched))

@@ -8,6 +8,9 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
   e_est          - the run's estimated total error (its JSON's error_estimate.total);
   e              - the measured relative error sqrt(sum A (B - B_pt)^2 / sum A B_pt^2), the path tracer's own
                    noise taken out (sum A B_se_pt^2 subtracted);
+  e_sd           - the standard deviation of e from the path tracer's noise: the subtracted sum is an estimate,
+                   Var(sum A (d + n)^2 - sum A se^2) ~ sum A^2 (2 se^4 + 4 d^2 se^2) (n ~ N(0, se^2) per element,
+                   d^2 taken as max((B - B_pt)^2 - se^2, 0)), carried to e by de = d(e^2) / (2 e);
   cpu            - user + system CPU seconds of the solve (all its steps).
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
@@ -67,7 +70,12 @@ def measured_error(run_csv, pt_csv):
     err2 = float((W * (r["B"] - pt["B"])[keep] ** 2).sum())
     noise2 = float((W * pt["B_se"][keep] ** 2).sum())
     size2 = float((W * pt["B"][keep] ** 2).sum())
-    return np.sqrt(max(err2 - noise2, 0.0) / size2), np.sqrt(noise2 / size2), unmatched
+    se2 = pt["B_se"][keep] ** 2
+    d2 = np.maximum((r["B"] - pt["B"])[keep] ** 2 - se2, 0.0)
+    var_e2 = float((W ** 2 * (2 * se2 ** 2 + 4 * d2 * se2)).sum()) / size2 ** 2
+    e = np.sqrt(max(err2 - noise2, 0.0) / size2)
+    e_sd = np.sqrt(var_e2) / (2 * e) if e > 0 else np.sqrt(np.sqrt(var_e2))
+    return e, e_sd, np.sqrt(noise2 / size2), unmatched
 
 
 def main():
@@ -85,7 +93,7 @@ def main():
     scene_options = ["-q"] + shlex.split(a.scene_options)
     runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",")] + a.hand
     print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
-    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "pt_noise", "cpu_s"))
+    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "e_sd", "pt_noise", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
         for options in runs:
             for seed in range(1, a.seeds + 1):
@@ -102,9 +110,9 @@ def main():
                 e_est = summary["error_estimate"]["total"]["relative"]
                 subprocess.run([a.radwalk, "pathtrace", vtp, "--spp", str(a.spp), "--seed", str(1000 + seed), "--csv",
                                 pt_csv, "-q", "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                e, noise, unmatched = measured_error(run_csv, pt_csv)
-                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.2f%s" %
-                      (options, seed, summary["patches"], rays, steps, e_est, e, noise, cpu,
+                e, e_sd, noise, unmatched = measured_error(run_csv, pt_csv)
+                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.2f%s" %
+                      (options, seed, summary["patches"], rays, steps, e_est, e, e_sd, noise, cpu,
                        ("" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")") +
                        ("" if unmatched == 0 else "  (%d patches not in the path tracer's reading, left out)" % unmatched)))
                 sys.stdout.flush()

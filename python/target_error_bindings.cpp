@@ -29,75 +29,10 @@ struct TargetErrorPyResult {
   std::string stop_reason;
 };
 
-// hierarchical=True: `radwalk solve SCENE --hierarchical --target-error E` (hierarchy/hierarchical_target_error.h
-// with the CLI's defaults: 8 levels, 16 direct-light points a leaf to start, 4 replicates): rays is the first step's
-// rays per leaf, max_patches the budget of leaves; no form factors (form_factors holds an empty F).
-TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double target_error, long rays, long max_patches,
-                                                 double max_seconds, std::uint64_t seed, int threads,
-                                                 int discretisation_directions) {
-  HierarchicalOptions h;
-  h.seed = seed;
-  HierarchicalTargetOptions o;
-  o.target = target_error;
-  o.rays_per_leaf = rays;
-  o.max_leaves = max_patches;
-  o.max_seconds = max_seconds;
-  o.directions = discretisation_directions;
-  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
-  HierarchicalTargetResult r;
-  interruptible([&] {
-    ThreadLimit limit(threads);
-    const EmbreeVisibility visibility(scene.patches);
-    r = solve_hierarchical_to_target_error(scene.patches, visibility, h, o);
-  });
-  TargetErrorPyResult out;
-  out.scene = refined_scene(scene, leaf_patches(scene.patches, r.solution.tree, r.solution.leaves));
-  out.form_factors.area = out.scene.patches.area;
-  for (const HierarchicalTargetStep& s : r.steps) out.steps.push_back(s.step);
-  out.reached = r.reached;
-  out.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
-  out.result.solution = hierarchical_target_solution(r);
-  out.result.timings = {{"target_error", r.seconds}};
-  nlohmann::json target = {{"target", target_error},    {"route", "hierarchical"}, {"max_patches", max_patches},
-                           {"max_seconds", max_seconds}, {"reached", out.reached}, {"stop_reason", out.stop_reason},
-                           {"seconds", r.seconds},      {"steps", nlohmann::json::array()}};
-  for (const HierarchicalTargetStep& s : r.steps) {
-    nlohmann::json x = app::target_error_step_json(s.step);
-    x["leaves"] = s.step.patches;
-    x["rays"] = s.rays;
-    target["steps"].push_back(x);
-  }
-  nlohmann::json run = {{"solver", "hierarchical"}, {"seed", seed}, {"threads", threads},
-                        {"rays_per_leaf", out.steps.back().rays_per_patch}, {"target_error", target}};
-  out.result.metadata = result_metadata(out.result, out.scene, run);
-  return out;
-}
-
-TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double target_error, long rays, long max_patches,
-                                             double max_seconds, double tol, std::uint64_t seed,
-                                             long long threads_arg, int discretisation_directions, bool hierarchical) {
-  const int threads = check_run(scene_arg, threads_arg);
-  if (discretisation_directions < 1)
-    throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
-                     ">= 1, got " + std::to_string(discretisation_directions));
-  if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
-  // Its own split comes after the cut along the contacts (the CLI's --target-error cuts as it loads).
-  const Scene cut = cut_for_splitting(scene_arg);
-  const Scene& scene = cut;
-  if (hierarchical) {
-    if (tol != 1e-10)
-      throw InputError("tol does not apply with hierarchical=True (the hierarchical solver shoots until the unshot "
-                       "power is below 1e-6 of the first shot's): remove it");
-    return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, seed, threads,
-                                        discretisation_directions);
-  }
-  TargetErrorOptions options;
-  options.target = target_error;
-  options.rays = rays;
-  options.max_patches = static_cast<std::size_t>(max_patches);
-  options.max_seconds = max_seconds;
-  if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
-  const TargetErrorWork work = [&](const PatchSet& p, long step_rays, int) {
+// One step's work of the uniform route (the CLI's defaults: Sobol rays, automatic emitter columns, the automatic
+// solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport.
+TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions) {
+  return [=](const PatchSet& p, long step_rays, int) {
     TargetErrorStage stage;
     const EmbreeVisibility visibility(p);
     FormFactorOptions o;  // the CLI's defaults: the recommended route
@@ -117,6 +52,89 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
     }
     return stage;
   };
+}
+
+// hierarchical=True: `radwalk solve SCENE --hierarchical --target-error E` (hierarchy/hierarchical_target_error.h
+// with the CLI's defaults: 8 levels, 16 direct-light points a leaf to start, 4 replicates): rays is the first step's
+// rays per leaf, max_patches the budget of leaves; transport "form-factors" (the leaves solved by the uniform
+// route's work; form_factors holds the last step's F) or "rays" (no form factors: form_factors holds an empty F).
+TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double target_error, long rays, long max_patches,
+                                                 double max_seconds, double tol, std::uint64_t seed, int threads,
+                                                 int discretisation_directions, const std::string& transport) {
+  HierarchicalOptions h;
+  h.seed = seed;
+  HierarchicalTargetOptions o;
+  o.target = target_error;
+  o.rays_per_leaf = rays;
+  o.max_leaves = max_patches;
+  o.max_seconds = max_seconds;
+  o.directions = discretisation_directions;
+  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  HierarchicalTargetResult r;
+  interruptible([&] {
+    ThreadLimit limit(threads);
+    const EmbreeVisibility visibility(scene.patches);
+    const TargetErrorWork leaf_work =
+        transport == "form-factors" ? form_factor_work(seed, tol, discretisation_directions) : TargetErrorWork{};
+    r = solve_hierarchical_to_target_error(scene.patches, visibility, h, o, {}, leaf_work);
+  });
+  if (r.form_factor_transport) check_solved(r.stage.solution);
+  TargetErrorPyResult out;
+  out.scene = refined_scene(scene, leaf_patches(scene.patches, r.solution.tree, r.solution.leaves));
+  out.form_factors.area = out.scene.patches.area;
+  if (r.form_factor_transport) out.form_factors.ff = std::move(r.stage.form_factors);
+  for (const HierarchicalTargetStep& s : r.steps) out.steps.push_back(s.step);
+  out.reached = r.reached;
+  out.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
+  out.result.solution = hierarchical_target_solution(r);
+  out.result.timings = {{"target_error", r.seconds}};
+  nlohmann::json target = {{"target", target_error},    {"route", "hierarchical"}, {"transport", transport},
+                           {"max_patches", max_patches},
+                           {"max_seconds", max_seconds}, {"reached", out.reached}, {"stop_reason", out.stop_reason},
+                           {"seconds", r.seconds},      {"steps", nlohmann::json::array()}};
+  for (const HierarchicalTargetStep& s : r.steps) {
+    nlohmann::json x = app::target_error_step_json(s.step);
+    x["leaves"] = s.step.patches;
+    x["rays"] = s.rays;
+    target["steps"].push_back(x);
+  }
+  nlohmann::json run = {{"solver", "hierarchical"}, {"seed", seed}, {"threads", threads},
+                        {"rays_per_leaf", out.steps.back().rays_per_patch}, {"target_error", target}};
+  out.result.metadata = result_metadata(out.result, out.scene, run);
+  return out;
+}
+
+TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double target_error, long rays, long max_patches,
+                                             double max_seconds, double tol, std::uint64_t seed,
+                                             long long threads_arg, int discretisation_directions, bool hierarchical,
+                                             const std::string& hierarchical_transport) {
+  const int threads = check_run(scene_arg, threads_arg);
+  if (discretisation_directions < 1)
+    throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
+                     ">= 1, got " + std::to_string(discretisation_directions));
+  if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
+  // Its own split comes after the cut along the contacts (the CLI's --target-error cuts as it loads).
+  const Scene cut = cut_for_splitting(scene_arg);
+  const Scene& scene = cut;
+  if (hierarchical_transport != "form-factors" && hierarchical_transport != "rays")
+    throw InputError("hierarchical_transport must be \"form-factors\" or \"rays\", got \"" + hierarchical_transport +
+                     "\"");
+  if (!hierarchical && hierarchical_transport != "form-factors")
+    throw InputError("hierarchical_transport applies only with hierarchical=True: remove it");
+  if (hierarchical) {
+    if (tol != 1e-10 && hierarchical_transport == "rays")
+      throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
+                       "hierarchical solver shoots until the unshot power is below 1e-6 of the first shot's): remove it");
+    return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, tol, seed, threads,
+                                        discretisation_directions, hierarchical_transport);
+  }
+  TargetErrorOptions options;
+  options.target = target_error;
+  options.rays = rays;
+  options.max_patches = static_cast<std::size_t>(max_patches);
+  options.max_seconds = max_seconds;
+  if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
+  const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions);
   TargetErrorResult r;
   interruptible([&] {
     ThreadLimit limit(threads);
@@ -176,6 +194,7 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
         py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
+        py::arg("hierarchical_transport") = "form-factors",
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
 As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
@@ -194,7 +213,9 @@ hierarchical=True: as `radwalk solve SCENE --hierarchical --target-error TARGET_
 hierarchical_target_error.h, docs/hierarchy.md): the element trees of the patches are refined by the estimate,
 leaves split in 4 where the discretisation part dominates and rays added where the statistical part does; rays is
 the first step's rays per leaf, max_patches the budget of leaves; scene holds the leaves (each with its input
-face), form_factors an empty F (no form factors are stored), tol does not apply (InputError if given).)doc");
+face). hierarchical_transport (only with hierarchical=True): "form-factors" (default; each step's leaves solved as
+patches by the route above, form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi;
+form_factors an empty F, tol does not apply: InputError if given).)doc");
 }
 
 }  // namespace radwalk::python

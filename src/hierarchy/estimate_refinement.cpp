@@ -16,32 +16,42 @@
 
 namespace radwalk {
 
-LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
-                                        int directions, int points_side, std::uint64_t seed) {
+LeafErrorIndicator leaf_error_indicator(const PatchSet& roots, const Visibility& visibility, const ElementTree& tree,
+                                        const std::vector<ElementIndex>& leaf_ids, const PatchRgb& B,
+                                        const PatchRgb& B_disc, int directions, int points_side, std::uint64_t seed) {
   LeafErrorIndicator out;
-  const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
-  const EmbreeVisibility leaf_visibility(leaves);
-  const auto n = static_cast<Eigen::Index>(leaves.size());
-  const RadiosityProblem problem = make_problem(leaves, SparseF(n, n));  // no stored F: the estimate's own rays give H
-  const DiscretisationError disc = discretisation_error(leaves, leaf_visibility, problem, h.B, directions, seed);
-  const LeafVariation var = leaf_variation(roots, visibility, h.tree, h.leaves, h.B, points_side, directions, seed);
-  out.B_disc = disc.standard_error;
-  out.rays = disc.rays + var.rays;
-  out.eta2.assign(h.leaves.size(), 0.0);
+  const PatchSet leaves = leaf_patches(roots, tree, leaf_ids);
+  const LeafVariation var = leaf_variation(roots, visibility, tree, leaf_ids, B, points_side, directions, seed);
+  out.B_disc = B_disc;
+  out.rays = var.rays;
+  out.eta2.assign(leaf_ids.size(), 0.0);
   double total = 0, disc_part = 0, norm = 0;
-  for (std::size_t k = 0; k < h.leaves.size(); ++k) {
+  for (std::size_t k = 0; k < leaf_ids.size(); ++k) {
     const auto r = static_cast<Eigen::Index>(k);
     const double A = leaves.area[k];
-    const double d2 = disc.standard_error.row(r).square().sum();
+    const double d2 = B_disc.row(r).square().sum();
     const double w2 = var.W2.row(r).cwiseMax(0.0).sum();
     out.eta2[k] = A * (d2 + w2);
     if ((leaves.E[k] > 0).any() || !(leaves.rho[k] > 0).any()) continue;
     total += out.eta2[k];
     disc_part += A * d2;
-    norm += A * h.B.row(r).square().sum();
+    norm += A * B.row(r).square().sum();
   }
   out.eta = norm > 0 ? std::sqrt(total / norm) : 0.0;
   out.disc_share = total > 0 ? disc_part / total : 0.0;
+  return out;
+}
+
+LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
+                                        int directions, int points_side, std::uint64_t seed) {
+  const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
+  const EmbreeVisibility leaf_visibility(leaves);
+  const auto n = static_cast<Eigen::Index>(leaves.size());
+  const RadiosityProblem problem = make_problem(leaves, SparseF(n, n));  // no stored F: the estimate's own rays give H
+  const DiscretisationError disc = discretisation_error(leaves, leaf_visibility, problem, h.B, directions, seed);
+  LeafErrorIndicator out = leaf_error_indicator(roots, visibility, h.tree, h.leaves, h.B, disc.standard_error,
+                                                directions, points_side, seed);
+  out.rays += disc.rays;
   return out;
 }
 

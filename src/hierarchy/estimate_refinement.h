@@ -68,6 +68,13 @@ struct LeafErrorIndicator {
 LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
                                         int directions, int points_side, std::uint64_t seed);
 
+// The same indicator for any solution B on the leaves (row k = leaves[k]) whose B_disc is already estimated (e.g.
+// by the form-factor route on the leaves as patches): eta_l^2 = A_l sum_c (B_disc_lc^2 + max(W2_lc, 0)), W2 from
+// leaf_variation with points_side and directions; rays are the variation's only.
+LeafErrorIndicator leaf_error_indicator(const PatchSet& roots, const Visibility& visibility, const ElementTree& tree,
+                                        const std::vector<ElementIndex>& leaves, const PatchRgb& B,
+                                        const PatchRgb& B_disc, int directions, int points_side, std::uint64_t seed);
+
 EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibility& visibility,
                                             const HierarchicalOptions& solve, const EstimateRefinementOptions& options);
 

@@ -21,7 +21,9 @@
 //      (sqrt(B_se^2 + B_disc^2)). Stop when e <= E;
 //   4. else the plan of solve/target_error.h (plan_target_error_step, the same rules): where the discretisation
 //      part dominates, the leaves with the largest eta_l^2 are split in 4 until they hold the plan's share of
-//      sum eta_l^2 (a leaf at max_level or below 4 min_area is skipped); where the statistical part is above its
+//      sum eta_l^2 (a leaf at max_level or below 4 min_area is skipped; a leaf within its equal share of the
+//      target, eta_l^2 <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh equidistributes
+//      eta_l^2, and far from the target the share is 1); where the statistical part is above its
 //      target, R grows by the plan's factor.
 // The stopping and the budgets are the uniform route's: e is judged on B_disc (the error of each leaf's average,
 // what the per-element benchmark measures), while the indicator that picks the leaves also weighs the variation
@@ -32,6 +34,14 @@
 // is kept with its own estimates.
 // start_leaves > 0: before the first step every leaf larger than 2 A / start_leaves (A the roots' total area) is
 // split, again until none is, within max_leaves (the uniform route's start of about 500 patches).
+//
+// Transport. Step 1 above is the hierarchy's own ("rays": hierarchical stochastic Jacobi) unless a leaf solver
+// `leaf_work` is given ("form factors"): then step 1 turns the current leaves into patches (leaf_patches.h, leaf k =
+// patch k) and hands them with R rays a leaf to leaf_work, which solves them as the uniform route solves its patches
+// (traced F with the emitter columns exact, the automatic solver) and returns B with B_se and B_disc estimated as
+// the uniform route estimates them; step 2 then adds only W2 to that B_disc (leaf_error_indicator). The element
+// trees, the start, the indicator, the splitting and the plan are the same for both transports; only how the
+// leaves' B, B_se and B_disc are obtained differs. A step whose solve did not converge stops the run ("solver").
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -62,24 +72,32 @@ struct HierarchicalTargetStep {
 };
 
 struct HierarchicalTargetResult {
-  HierarchicalResult solution;  // the last step's, on its tree
+  HierarchicalResult solution;  // the last step's, on its tree (with form factors: tree, leaves, B and B_se only)
   PatchRgb B_disc;              // its leaves' (row k = solution.leaves[k])
   std::vector<HierarchicalTargetStep> steps;
   bool reached = false;
-  std::string stop_reason;      // "target reached", "max-leaves", "max-seconds", "max-steps", "rays"
+  std::string stop_reason;      // "target reached", "max-leaves", "max-seconds", "max-steps", "rays", "solver"
   double seconds = 0;
+  // With form factors: the last step's stage on its leaves as patches (F and the solver's Solution, with B_se and
+  // B_disc); empty F and default Solution with rays.
+  bool form_factor_transport = false;
+  TargetErrorStage stage;
 };
 
-// The last step's solution on its leaves (row k = leaf k), as every solver reports one: B, B_se, B_disc and the
-// hierarchical solve's counts, method "hierarchical-jacobi", converged (its run ends when the unshot power is
-// below 1e-6 of the first shot's, or after 200 iterations per replicate).
+// The last step's solution on its leaves (row k = leaf k), as every solver reports one. Rays: B, B_se, B_disc and
+// the hierarchical solve's counts, method "hierarchical-jacobi", converged (its run ends when the unshot power is
+// below 1e-6 of the first shot's, or after 200 iterations per replicate). Form factors: the leaf solver's Solution
+// as it returned it (its method, status, B, B_se, B_disc).
 Solution hierarchical_target_solution(const HierarchicalTargetResult& result);
 
-// solve: the hierarchical solve's options (its particles and oracles are set per step here). InputError for
-// options out of range or max_leaves below the roots' count. on_step, if set, is called after each step.
+// solve: the hierarchical solve's options (its particles and oracles are set per step here; with form factors
+// only max_level, min_area and seed are read). InputError for options out of range, max_leaves below the roots'
+// count, or a leaf solver that returns no B_disc. on_step, if set, is called after each step. leaf_work empty:
+// rays; set: form factors (above).
 HierarchicalTargetResult solve_hierarchical_to_target_error(
     const PatchSet& roots, const Visibility& visibility, const HierarchicalOptions& solve,
     const HierarchicalTargetOptions& options,
-    const std::function<void(const HierarchicalTargetStep&, int step)>& on_step = {});
+    const std::function<void(const HierarchicalTargetStep&, int step)>& on_step = {},
+    const TargetErrorWork& leaf_work = {});
 
 }  // namespace radwalk

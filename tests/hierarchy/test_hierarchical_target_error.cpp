@@ -9,13 +9,23 @@
 //     over the faces and channels);
 //   - the budgets stop a run whose target is out of reach: the leaves within max_leaves, and no step started that
 //     the time budget predicts would pass it ("max-seconds"), not reached;
-//   - options out of range are refused.
+//   - options out of range are refused;
+//   - the two transports (hierarchical stochastic Jacobi, and the leaves solved as patches by traced form factors)
+//     estimate the same leaves' B: on the same starting tree, per leaf |B_ff - B_rays| <= t_crit sqrt(se_ff^2 +
+//     se_rays^2), t_crit Student's t with the rays' replicates - 1 degrees of freedom (its B_se is their spread)
+//     at a family-wise significance of 1e-3 over the leaves (Sidak), one channel (the room is grey).
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
+#include "formfactor/emitter_form_factors.h"
+#include "solve/discretisation_error.h"
+#include "solve/form_factor_error.h"
+#include "solve/problem.h"
+#include "solve/solve_radiosity.h"
+#include "hierarchy/estimate_refinement.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
 #include "pathtrace/patch_average.h"
@@ -47,7 +57,83 @@ HierarchicalOptions solve_options(std::uint64_t seed) {
   return o;
 }
 
+// The uniform route's work on given patches (the CLI's recommended route: Sobol rays, the emitter columns chosen
+// automatically, the automatic solver; B_se from F's noise, B_disc the discretisation estimate).
+TargetErrorStage form_factor_step(const PatchSet& p, long rays, std::uint64_t seed) {
+  TargetErrorStage stage;
+  const EmbreeVisibility visibility(p);
+  FormFactorOptions o;
+  o.rays_per_patch = rays;
+  o.seed = seed;
+  o.sobol = true;
+  stage.form_factors = estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples);
+  const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
+  SolveOptions s;
+  s.max_iterations = default_max_iterations(s.solver, p.size());
+  stage.solution = solve_radiosity(problem, s);
+  stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
+  stage.solution.B_disc = discretisation_error(p, visibility, problem, stage.solution.B, 4, seed).standard_error;
+  return stage;
+}
+
+// Student's t two-sided critical value at significance alpha with nu degrees of freedom, by the Cornish-Fisher
+// expansion about the normal quantile z (Abramowitz and Stegun 26.7.5, three terms; for nu >= 30 and z <= 5 its
+// error is below 0.01).
+double t_critical(double alpha, double nu) {
+  const double z = z_critical(alpha);
+  const double z3 = z * z * z, z5 = z3 * z * z;
+  return z + (z3 + z) / (4 * nu) + (5 * z5 + 16 * z3 + 3 * z) / (96 * nu * nu);
+}
+
 }  // namespace
+
+TEST_CASE("hierarchical target error: the two transports give the same leaves' B within their errors",
+          "[hierarchy][target_error]") {
+  const PatchSet roots = block_room();
+  const EmbreeVisibility visibility(roots);
+  HierarchicalTargetOptions o;
+  o.target = 0.001;   // out of reach: one step (max_steps) on the starting tree
+  o.max_steps = 1;
+  o.rays_per_leaf = 2000;
+  o.start_leaves = 150;
+  o.directions = 4;
+  HierarchicalOptions h = solve_options(5);
+  h.replicates = 40;
+  const HierarchicalTargetResult rays = solve_hierarchical_to_target_error(roots, visibility, h, o);
+  const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 17); };
+  const HierarchicalTargetResult ff = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  REQUIRE(ff.form_factor_transport);
+  REQUIRE_FALSE(rays.form_factor_transport);
+  CHECK(ff.stop_reason == "max-steps");
+  REQUIRE(ff.solution.leaves == rays.solution.leaves);  // the same tree
+  const PatchSet leaves = leaf_patches(roots, ff.solution.tree, ff.solution.leaves);
+  REQUIRE(leaves.size() > 100);
+  // The answer is the leaf solver's, row for row.
+  const Solution answer = hierarchical_target_solution(ff);
+  CHECK(answer.B.isApprox(ff.stage.solution.B));
+  CHECK(ff.B_disc.isApprox(ff.stage.solution.B_disc));
+
+  const double t_crit = t_critical(sidak(1e-3, leaves.size()), h.replicates - 1);
+  double max_t = 0;
+  std::size_t counted = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k) {
+    if ((leaves.E[k] > 0).any()) continue;
+    const auto i = static_cast<Eigen::Index>(k);
+    const double d = ff.solution.B(i, 0) - rays.solution.B(i, 0);
+    const double s = std::hypot(ff.solution.B_se(i, 0), rays.solution.B_se(i, 0));
+    if (!(s > 0)) {  // a leaf no light reaches (the block's bottom on the floor): both exactly 0
+      CHECK(std::abs(d) == 0);
+      continue;
+    }
+    max_t = std::max(max_t, std::abs(d) / s);
+    ++counted;
+  }
+  INFO(counted << " leaves: largest |t| " << max_t << ", t_crit " << t_crit << "; statistical error rays "
+               << rays.steps[0].step.statistical << ", form factors " << ff.steps[0].step.statistical);
+  CHECK(max_t <= t_crit);
+  // The form-factor transport's statistical error is the smaller at equal rays (the reason it exists).
+  CHECK(ff.steps[0].step.statistical < rays.steps[0].step.statistical);
+}
 
 TEST_CASE("hierarchical target error: the block room to 5 %, each step as planned, faces agree with the path tracer",
           "[hierarchy][target_error]") {
@@ -142,4 +228,48 @@ TEST_CASE("hierarchical target error: options out of range are refused", "[hiera
   refused([](HierarchicalTargetOptions& o) { o.rays_per_leaf = 0; });
   refused([](HierarchicalTargetOptions& o) { o.max_leaves = 3; });
   refused([](HierarchicalTargetOptions& o) { o.points_side = 1; });
+}
+
+// With the estimated discretisation part at the target or above, the plan's share is 1 (solve/target_error.h): the
+// split must still leave alone the leaves within their equal share of the target, eta_l^2 <= 0.49 E^2 sum A B^2 /
+// N. Step 0 is recomputed from a run stopped after it (the same seed: the same tree, B, B_disc and W2), and the
+// split after it must be exactly the leaves above that share, fewer than those with eta_l^2 > 0 (which the rule
+// without the share split).
+TEST_CASE("hierarchical target error: far from the target, leaves within their share are not split",
+          "[hierarchy][target_error]") {
+  const PatchSet roots = block_room();
+  const EmbreeVisibility visibility(roots);
+  HierarchicalTargetOptions o;
+  o.target = 0.01;
+  o.max_steps = 2;
+  o.rays_per_leaf = 200;
+  o.start_leaves = 400;
+  o.directions = 4;
+  const HierarchicalOptions h = solve_options(6);
+  const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 23); };
+  const HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  o.max_steps = 1;
+  const HierarchicalTargetResult r0 = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
+  REQUIRE(r.steps.size() == 2);
+  const TargetErrorStep& first = r.steps[0].step;
+  const TargetErrorPlan plan = plan_target_error_step(first.statistical, first.discretisation, o.target,
+                                                      first.rays_per_patch);
+  REQUIRE(plan.refine);
+  REQUIRE(plan.split_fraction == 1.0);
+  const HierarchicalResult& s0 = r0.solution;
+  REQUIRE(s0.leaves.size() == first.patches);
+  const LeafErrorIndicator ind = leaf_error_indicator(roots, visibility, s0.tree, s0.leaves, s0.B, r0.B_disc,
+                                                      o.directions, o.points_side, h.seed);
+  const PatchSet leaves = leaf_patches(roots, s0.tree, s0.leaves);
+  double norm = 0;
+  for (std::size_t k = 0; k < leaves.size(); ++k)
+    if (!(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any())
+      norm += leaves.area[k] * s0.B.row(static_cast<Eigen::Index>(k)).square().sum();
+  const double share = 0.49 * o.target * o.target * norm / double(leaves.size());
+  std::size_t above = 0, positive = 0;
+  for (const double e2 : ind.eta2) above += e2 > share, positive += e2 > 0;
+  INFO("leaves " << first.patches << ", e_d " << first.discretisation << ": split " << first.split
+                 << ", above the share " << above << ", eta^2 > 0 " << positive);
+  CHECK(first.split == above);
+  CHECK(above < positive);
 }

@@ -60,12 +60,15 @@ def test_the_contact_cut_comes_before_its_own_split(tmp_path):
     assert r.scene.cut and np.all(np.asarray(r.scene.rho) == 0.3)
 
 
-def test_hierarchical_equals_the_cli(tmp_path):
-    """hierarchical=True is `radwalk solve --hierarchical --target-error`: the same steps, leaves and B on a seed."""
+@pytest.mark.parametrize("transport", ["form-factors", "rays"])
+def test_hierarchical_equals_the_cli(tmp_path, transport):
+    """hierarchical=True is `radwalk solve --hierarchical --target-error`: the same steps, leaves and B on a seed,
+    with either transport."""
     run_cli("solve", SCENE, "--hierarchical", "--target-error", 0.06, "--rays", 200, "--seed", 3,
-            "--csv", tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
+            "--hierarchical-transport", transport, "--csv", tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
     scene = radwalk.load(SCENE)
-    r = radwalk.solve_to_target_error(scene, 0.06, rays=200, seed=3, hierarchical=True)
+    r = radwalk.solve_to_target_error(scene, 0.06, rays=200, seed=3, hierarchical=True,
+                                      hierarchical_transport=transport)
     cli = json.load(open(tmp_path / "cli.json"))
     assert r.reached and cli["target_error"]["reached"]
     assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
@@ -73,5 +76,10 @@ def test_hierarchical_equals_the_cli(tmp_path):
     rows = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True)
     np.testing.assert_allclose(np.column_stack([rows["B_r"], rows["B_g"], rows["B_b"]]), np.asarray(r.result.B),
                                rtol=1e-11, atol=0)
+    assert cli["target_error"]["transport"] == transport
     with pytest.raises(radwalk.InputError):
-        radwalk.solve_to_target_error(scene, 0.06, tol=1e-6, hierarchical=True)
+        radwalk.solve_to_target_error(scene, 0.06, tol=1e-6, hierarchical=True, hierarchical_transport="rays")
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical_transport="rays")  # without hierarchical=True
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical=True, hierarchical_transport="walks")
