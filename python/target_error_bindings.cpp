@@ -204,7 +204,8 @@ F by the recommended route with its rays per patch (rays: the first step's), sol
 estimates B_se and B_disc; where the statistical part dominates the next step has more rays, where the
 discretisation part dominates the patches with the largest B_disc are split in 4. A scene loaded without max_edge
 or max_area starts from about 500 patches (every patch above twice the mean area of 500 split in 4), as the CLI
-given no --max-edge or --max-area. max_patches bounds the patches,
+given no --max-edge or --max-area; its faces are first cut along the contacts when it was loaded with
+contact_cut=True (the default), as the CLI's --target-error does. max_patches bounds the patches,
 max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it first,
 reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is not
 changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.
