@@ -8,20 +8,18 @@
 // Let C be a set of known-flux patches none of whose rows reaches outside C (F_ij = 0 for j not in C, no sky
 // s_i, nothing into backs b_i: every row of F_CC sums to 1). Its block is (I - F_CC) J_C = q_C. The constant
 // vector spans the null space of I - F_CC (a stochastic matrix, irreducible on a connected C), so J_C is
-// determined only up to a uniform value; with reciprocity the left null vector is the areas (sum_i A_i
-// (delta_ij
-// - F_ij) = A_j - A_j sum_i F_ji = 0), so a solution exists only when sum_{i in C} A_i q_i = 0: re-radiating
+// determined only up to a uniform value; with reciprocity the left null vector is the areas
+// (sum_i A_i (delta_ij - F_ij) = A_j - A_j sum_i F_ji = 0), so a solution exists only when
+// sum_{i in C} A_i q_i = 0: re-radiating
 // faces (q = 0) give infinitely many solutions, any other given fluxes with a non-zero sum none (the heat put
 // in has no way out but conduction). Either way radiation does not give C a temperature.
 //
 // With a traced (sparse, noisy) or float-rounded F, a truly closed C has row sums 1 - O(1e-7) and an
 // enclosure with a tiny opening has a block that is determined but so ill-conditioned that J_C follows the
 // rounding and the rays that happened to leak. The rule: C is a cavity when its leak fraction
-//   lambda_C = max(out, in) / A_C,  out = sum_{i in C} A_i (1 - sum_{j in C} F_ij)   (to other patches, the
-//   sky,
-//                                                                                       backs, row deficit),
-//                                    in  = sum_{j not in C} sum_{i in C} A_j F_ji    (what the rest sends
-//                                    into C),
+//   lambda_C = max(out, in) / A_C,
+//   out = sum_{i in C} A_i (1 - sum_{j in C} F_ij)   (to other patches, the sky, backs, row deficit),
+//   in  = sum_{j not in C} sum_{i in C} A_j F_ji    (what the rest sends into C),
 // the fraction of C's own emitted radiation it exchanges with everything else (both directions, so a one-way
 // entry of a traced F counts), is below kCavityLeak. The sets C tested are the connected components, through
 // non-zero F_ij or F_ji, of the known-flux patches (a known-temperature patch fixes its J up to reflection,
