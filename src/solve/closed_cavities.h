@@ -10,9 +10,8 @@
 // vector spans the null space of I - F_CC (a stochastic matrix, irreducible on a connected C), so J_C is
 // determined only up to a uniform value; with reciprocity the left null vector is the areas
 // (sum_i A_i (delta_ij - F_ij) = A_j - A_j sum_i F_ji = 0), so a solution exists only when
-// sum_{i in C} A_i q_i = 0: re-radiating
-// faces (q = 0) give infinitely many solutions, any other given fluxes with a non-zero sum none (the heat put
-// in has no way out but conduction). Either way radiation does not give C a temperature.
+// sum_{i in C} A_i q_i = 0: re-radiating faces (q = 0) give infinitely many solutions, any other given fluxes
+// with a non-zero sum none (the heat put in has no way out but conduction). Either way radiation does not give C a temperature.
 //
 // With a traced (sparse, noisy) or float-rounded F, a truly closed C has row sums 1 - O(1e-7) and an
 // enclosure with a tiny opening has a block that is determined but so ill-conditioned that J_C follows the
