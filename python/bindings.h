@@ -69,7 +69,7 @@ struct Scene {
   std::shared_ptr<const Mesh> uncut_mesh;
 };
 
-// The scene to split: `scene` itself, or (uncut_mesh set) the same mesh patched again with its supports cut along
+// The scene to split, for a scene whose uncut_mesh is set: the same mesh patched again with its supports cut along
 // the contacts and the input faces otherwise kept (patch_scene's splits_later).
 Scene cut_for_splitting(const Scene& scene);
 

@@ -49,8 +49,9 @@ void keep_used_groups(const Mesh& mesh, Scene& scene) {
 // load_patches without its notes); its repairs and notices are one UserWarning that counts them (the lines are in
 // Scene.warnings).
 // `preparation` is the CLI's scaling, material overrides and validation options (mesh/prepare_mesh.h).
-// The patches, contact regions, groups and warnings of a patched mesh, into `scene`.
-void take_patched(PatchedScene&& patched, Scene& scene) {
+// The patches, contact regions, groups and warnings of a patched mesh, into `scene` (its patches and regions moved
+// out; its mesh left as it is).
+void take_patched(PatchedScene& patched, Scene& scene) {
   scene.patches = std::move(patched.patches);
   scene.contact_regions = std::move(patched.contact_regions);
   scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
@@ -71,11 +72,11 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
     patching.split.max_area = max_area;
     patching.contact_cut = contact_cut;
     patching.two_sided = two_sided;
-    const bool keeps_faces = max_edge == 0 && max_area == 0;
-    std::shared_ptr<Mesh> uncut = contact_cut && keeps_faces ? std::make_shared<Mesh>(mesh) : nullptr;
     PatchedScene patched = patch_scene(std::move(mesh), patching);
-    if (uncut && !patched.contacts.empty()) scene.uncut_mesh = std::move(uncut);
-    take_patched(std::move(patched), scene);
+    // Kept faces with contacts: the mesh (not cut, since nothing was split) for a later split's cut.
+    const bool cut_later = contact_cut && !patched.cut && !patched.contacts.empty();
+    take_patched(patched, scene);
+    if (cut_later) scene.uncut_mesh = std::make_shared<const Mesh>(std::move(patched.mesh));
   });
   scene.path = path;
   scene.max_edge = max_edge;
@@ -195,8 +196,8 @@ std::vector<std::vector<std::int64_t>> face_lists(const py::object& faces) {
 }  // namespace
 
 Scene cut_for_splitting(const Scene& scene) {
-  if (!scene.uncut_mesh) return scene;
-  Scene out = scene;
+  if (!scene.uncut_mesh) throw InternalError("cut_for_splitting: the scene keeps no uncut mesh");
+  Scene out = scene;  // the uncut scene's patches are its input faces: a small copy, overwritten below
   out.uncut_mesh = nullptr;
   interruptible([&] {
     ScenePatchingOptions patching;
@@ -205,7 +206,8 @@ Scene cut_for_splitting(const Scene& scene) {
     patching.two_sided = scene.two_sided;
     out.groups.clear();
     out.group_names.clear();
-    take_patched(patch_scene(Mesh(*scene.uncut_mesh), patching), out);
+    PatchedScene patched = patch_scene(Mesh(*scene.uncut_mesh), patching);
+    take_patched(patched, out);
   });
   // rho and E as the Scene holds them (edited in place or by set_material): every piece takes its input face's
   // values (pieces keep their input face and side), which are one per face and side.

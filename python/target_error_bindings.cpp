@@ -113,18 +113,19 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
     throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
                      ">= 1, got " + std::to_string(discretisation_directions));
   if (max_patches < 1) throw InputError("max_patches must be >= 1, got " + std::to_string(max_patches));
-  // Its own split comes after the cut along the contacts (the CLI's --target-error cuts as it loads).
-  const Scene cut = cut_for_splitting(scene_arg);
-  const Scene& scene = cut;
   if (hierarchical_transport != "form-factors" && hierarchical_transport != "rays")
     throw InputError("hierarchical_transport must be \"form-factors\" or \"rays\", got \"" + hierarchical_transport +
                      "\"");
   if (!hierarchical && hierarchical_transport != "form-factors")
     throw InputError("hierarchical_transport applies only with hierarchical=True: remove it");
+  if (hierarchical && tol != 1e-10 && hierarchical_transport == "rays")
+    throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
+                     "hierarchical solver shoots until the unshot power is below 1e-6 of the first shot's): remove it");
+  // Its own split comes after the cut along the contacts (the CLI's --target-error cuts as it loads); the options
+  // are checked first, so that a refusal costs no patching.
+  const Scene cut = scene_arg.uncut_mesh ? cut_for_splitting(scene_arg) : Scene();
+  const Scene& scene = scene_arg.uncut_mesh ? cut : scene_arg;
   if (hierarchical) {
-    if (tol != 1e-10 && hierarchical_transport == "rays")
-      throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
-                       "hierarchical solver shoots until the unshot power is below 1e-6 of the first shot's): remove it");
     return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, tol, seed, threads,
                                         discretisation_directions, hierarchical_transport);
   }
