@@ -1,5 +1,7 @@
 #include "apps/discretisation_error.h"
 
+#include <utility>
+
 #include "apps/statistical_error.h"
 #include "core/timer.h"
 #include "solve/discretisation_error.h"
@@ -8,11 +10,12 @@
 namespace radwalk::app {
 
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed) {
+                                     RunSummary& summary, int directions, std::uint64_t seed,
+                                     DiscretisationError* kept) {
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   if (solution.B.rows() != N || directions <= 0) return {};
   const EmbreeVisibility visibility(patches);
-  const DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
+  DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
   solution.B_disc = error.standard_error;
   const double disc = relative_error(patches, solution.B, solution.B_disc);
   const double stat = solution.B_se.rows() == N ? relative_error(patches, solution.B, solution.B_se) : 0.0;
@@ -29,8 +32,10 @@ std::string add_discretisation_error(const PatchSet& patches, const RadiosityPro
                  "B_disc = sqrt(e^2 + Var(e)) (docs/theory/discretisation_error.md)"}};
   j["total"] = {{"relative", total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
   summary.add_timing("discretisation_error", error.seconds);
-  return "estimated error e = " + percent(total) + " (statistical " + percent(stat) + ", discretisation " +
+  const std::string line = "estimated error e = " + percent(total) + " (statistical " + percent(stat) + ", discretisation " +
          percent(disc) + "; 1 standard deviation, relative to B over the reflecting patches)";
+  if (kept) *kept = std::move(error);
+  return line;
 }
 
 }  // namespace radwalk::app

@@ -11,12 +11,15 @@
 #include "core/solution.h"
 #include "io/run_summary.h"
 #include "patch/patch_set.h"
+#include "solve/discretisation_error.h"
 #include "solve/problem.h"
 
 namespace radwalk::app {
 
-// directions: L of solve/fluctuation_source.h (0: not estimated, returns ""). Collective over MPI when problem.F is row-distributed.
+// directions: L of solve/fluctuation_source.h (0: not estimated, returns ""). Collective over MPI when problem.F is
+// row-distributed. kept, if given, receives the whole estimate (its source d for the errors of group means).
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed);
+                                     RunSummary& summary, int directions, std::uint64_t seed,
+                                     DiscretisationError* kept = nullptr);
 
 }  // namespace radwalk::app

@@ -30,18 +30,19 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   o.max_seconds = command.max_seconds;
   o.directions = command.discretisation_directions;
   if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  const bool form_factors = command.hierarchical_transport == "form-factors";
+  o.each = target_groups(command, form_factors);
   const EmbreeVisibility visibility(roots);
-  const auto report = [](const HierarchicalTargetStep& r, int step) {
+  const auto report = [&o](const HierarchicalTargetStep& r, int step) {
     const TargetErrorStep& s = r.step;
     note("target error step " + std::to_string(step) + " (hierarchical): " + std::to_string(s.patches) + " leaves, " +
          std::to_string(s.rays_per_patch) + " rays a leaf: estimated error " + percent(s.total) + " (statistical " +
          percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " + std::to_string(s.seconds) +
-         " s" +
+         " s" + group_progress(s, o.each) +
          (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " leaves split, " +
                                           std::to_string(s.next_rays_per_patch) + " rays a leaf"
                                     : std::string()));
   };
-  const bool form_factors = command.hierarchical_transport == "form-factors";
   TargetErrorRun run;
   const TargetErrorWork leaf_work =
       form_factors ? form_factor_target_work(command, summary, run.error_line, false) : TargetErrorWork{};
@@ -53,6 +54,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   if (form_factors) t.form_factors = std::move(r.stage.form_factors);
   else t.solution.info["replicates"] = h.replicates;
   for (const HierarchicalTargetStep& s : r.steps) t.steps.push_back(s.step);
+  t.groups = r.groups;
   t.reached = r.reached;
   t.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
   t.seconds = r.seconds;
@@ -86,6 +88,8 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   j["reached"] = t.reached;
   j["stop_reason"] = t.stop_reason;
   j["seconds"] = t.seconds;
+  j["each"] = o.each.empty() ? "none" : o.each;
+  if (!o.each.empty()) j["groups"] = group_mean_errors_json(r.groups);
   j["steps"] = nlohmann::json::array();
   for (const HierarchicalTargetStep& s : r.steps) {
     nlohmann::json x = target_error_step_json(s.step);

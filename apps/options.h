@@ -92,6 +92,9 @@ struct SolveCommand {
   // most E; 0: off. The steps stop at max_patches or after max_seconds (0: no limit).
   double target_error = 0;
   double max_seconds = 0;
+  // --target-each material|object|group|none: also each group's mean within E; "": the default, material
+  // wherever the route can hold it (not the hierarchy's rays transport, which stores no F), else none.
+  std::string target_each;
   int discretisation_directions = 16;  // --discretisation-directions L: directions per point of the discretisation
                                       // error estimate (solve/fluctuation_source.h); 0: not estimated
   // --hierarchical: hierarchical stochastic Jacobi on the element trees of the patches (hierarchy/hierarchical_jacobi.h)

@@ -594,6 +594,13 @@ int run_main(int argc, char** argv) {
                    "or --max-patches / --max-seconds stop it (exit code 1); with --hierarchical it splits leaf elements "
                    "instead of patches (--rays: the first step's rays per leaf)")
       ->check(CLI::Range(1e-6, 0.999999));
+  solve_cmd->add_option("--target-each", solve.target_each,
+                        "--target-error: also hold the mean radiosity of each material (or object, group) within E, "
+                        "with its own estimated error (per-patch errors of one material are correlated, so its mean can "
+                        "be off by more than E); none: the per-patch RMS only. Default: material, except with "
+                        "--hierarchical-transport rays, which cannot hold it (none)")
+      ->check(CLI::IsMember({"material", "object", "group", "none"}))
+      ->needs(target);
   solve_cmd->add_option("--max-patches", solve.max_patches,
                         "Adaptive patching and --target-error: never split beyond M patches (with --hierarchical: leaves)")
       ->check(kPositive)

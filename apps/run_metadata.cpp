@@ -115,7 +115,26 @@ nlohmann::json target_error_step_json(const TargetErrorStep& s) {
           {"total", s.total},
           {"seconds", s.seconds},
           {"split", s.split},
-          {"next_rays_per_patch", s.next_rays_per_patch}};
+          {"next_rays_per_patch", s.next_rays_per_patch},
+          {"groups", s.groups},
+          {"groups_within", s.groups_within},
+          {"worst_group", s.worst_group},
+          {"worst_group_total", s.worst_group_total}};
+}
+
+nlohmann::json group_mean_errors_json(const std::vector<GroupMeanError>& groups) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const GroupMeanError& g : groups) {
+    if (!g.counted) continue;
+    a.push_back({{"name", g.name},
+                 {"area", g.area},
+                 {"mean", g.mean},
+                 {"estimate", g.estimate},
+                 {"discretisation", g.discretisation},
+                 {"statistical", g.statistical},
+                 {"total", g.total}});
+  }
+  return a;
 }
 
 nlohmann::json refine_step_json(const RefineStep& s) {

@@ -51,5 +51,8 @@ nlohmann::json refine_step_json(const RefineStep& step);
 
 // One step of --target-error (solve/target_error.h) as the JSON's target_error.steps holds it.
 nlohmann::json target_error_step_json(const TargetErrorStep& step);
+// The counted groups of a target-error run (solve/group_mean_error.h): name, area, mean, the signed relative
+// discretisation estimate and the relative discretisation, statistical and total errors of each group's mean.
+nlohmann::json group_mean_errors_json(const std::vector<GroupMeanError>& groups);
 
 }  // namespace radwalk::app

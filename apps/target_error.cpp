@@ -12,6 +12,17 @@
 
 namespace radwalk::app {
 
+std::string target_groups(const SolveCommand& command, bool can_hold) {
+  if (command.target_each.empty()) return can_hold ? "material" : "";
+  return command.target_each == "none" ? "" : command.target_each;
+}
+
+std::string group_progress(const TargetErrorStep& s, const std::string& each) {
+  if (s.groups == 0) return {};
+  return "; " + std::to_string(s.groups_within) + " of " + std::to_string(s.groups) + " " + each +
+         "s within (largest: " + s.worst_group + " " + percent(s.worst_group_total) + ")";
+}
+
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
                                         bool first_obtains) {
   return [&command, &summary, &error_line, first_obtains](const PatchSet& p, long rays, int step) {
@@ -28,8 +39,11 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
     stage.solution = solve_radiosity(problem, solve);
     if (stage.solution.status == SolveStatus::converged) {
       error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
+      DiscretisationError estimate;
       const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
-                                                        command.discretisation_directions, command.scene.seed);
+                                                        command.discretisation_directions, command.scene.seed, &estimate);
+      stage.source = std::move(estimate.source);
+      stage.source_sd = std::move(estimate.source_sd);
       if (!disc.empty()) error_line += "\n" + disc;
     }
     return stage;
@@ -44,14 +58,16 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   options.rays = command.ff.rays;
   options.max_patches = static_cast<std::size_t>(command.max_patches);
   options.max_seconds = command.max_seconds;
+  options.each = target_groups(command, true);
   if (command.scene.max_edge == 0 && command.scene.max_area == 0) options.start_patches = kDefaultStartPatches;
   TargetErrorRun run;
   const TargetErrorWork work = form_factor_target_work(command, summary, run.error_line, true);
-  const auto report = [](const TargetErrorStep& s, int step) {
+  const auto report = [&options](const TargetErrorStep& s, int step) {
     note("target error step " + std::to_string(step) + ": " + std::to_string(s.patches) + " patches, " +
          std::to_string(s.rays_per_patch) + " rays a patch: estimated error " + percent(s.total) + " (statistical " +
          percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " +
          std::to_string(s.seconds) + " s" +
+         group_progress(s, options.each) +
          (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " patches split, " +
                                           std::to_string(s.next_rays_per_patch) + " rays a patch"
                                     : std::string()));
@@ -67,6 +83,8 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   j["seconds"] = r.seconds;
   j["steps"] = nlohmann::json::array();
   for (const TargetErrorStep& s : r.steps) j["steps"].push_back(target_error_step_json(s));
+  j["each"] = options.each.empty() ? "none" : options.each;
+  if (!options.each.empty()) j["groups"] = group_mean_errors_json(r.groups);
   summary.json()["patches"] = r.patches.size();
   summary.json()["rays_per_patch"] = r.steps.back().rays_per_patch;
   summary.add_timing("target_error", r.seconds);

@@ -25,6 +25,15 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
 // obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), the automatic solver,
 // B_se and B_disc as a plain solve's (their JSON "error_estimate" and the line in error_line, overwritten each
 // step). The hierarchical route's form-factor transport uses it with first_obtains false.
+// The groups whose means a target-error run holds (TargetErrorOptions::each): --target-each, its default
+// (material) when not given, "" for none. can_hold: the route can (false: the default is none, and an explicit
+// group is left for the route to refuse).
+std::string target_groups(const SolveCommand& command, bool can_hold);
+
+// The part of a step's progress line about the groups ("; 17 of 18 materials within (largest: sofa 2.3 %)"),
+// "" without groups.
+std::string group_progress(const TargetErrorStep& step, const std::string& each);
+
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
                                         bool first_obtains);
 

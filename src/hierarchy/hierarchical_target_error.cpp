@@ -11,7 +11,9 @@
 #include "hierarchy/direct_refinement.h"
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/leaf_patches.h"
+#include "patch/patch_grouping.h"
 #include "solve/discretisation_error.h"
+#include "solve/problem.h"
 
 namespace radwalk {
 namespace {
@@ -52,6 +54,11 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
   if (o.max_steps < 1) throw InputError("the target error's steps must be >= 1");
   if (o.directions < 1 || o.points_side < 2)
     throw InputError("the hierarchical target error's estimate needs directions >= 1 and points per side >= 2");
+  if (!o.each.empty() && o.each != "material" && o.each != "object" && o.each != "group")
+    throw InputError("the target error's groups must be material, object or group, got '" + o.each + "'");
+  if (!o.each.empty() && !leaf_work)
+    throw InputError("the hierarchical target error per " + o.each + " needs the form-factor transport: the rays "
+                     "transport stores no F for the adjoint of a group's mean");
   if (o.max_leaves < static_cast<long>(roots.size()))
     throw InputError("the leaf budget " + std::to_string(o.max_leaves) + " is below the scene's " +
                      std::to_string(roots.size()) + " patches");
@@ -112,6 +119,22 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       st.discretisation = relative_error(leaves, h.B, ind.B_disc);
       st.total = relative_error(leaves, h.B, total_error(h.B_se, ind.B_disc));
     }
+    PatchGrouping grouping;
+    std::vector<GroupMeanError> groups;
+    if (solved && !o.each.empty()) {
+      if (stage.source.rows() != h.B.rows() || stage.source_sd.rows() != h.B.rows())
+        throw InputError("the hierarchical target error per " + o.each + " needs the discretisation estimate's "
+                         "source from its leaf solver, which this step did not give");
+      grouping = group_patches(leaves, o.each);
+      const RadiosityProblem problem = make_problem(leaves, SparseF(stage.form_factors.F));
+      groups = group_mean_errors(leaves, grouping, problem, h.B, h.B_se, stage.source, stage.source_sd, E);
+      for (const GroupMeanError& g : groups) {
+        if (!g.counted) continue;
+        ++st.groups;
+        if (g.total <= E) ++st.groups_within;
+        if (st.worst_group.empty() || g.total > st.worst_group_total) st.worst_group = g.name, st.worst_group_total = g.total;
+      }
+    }
     record.rays = h.rays + h.shadow_rays + ind.rays;
     record.estimate_seconds = estimate_timer->seconds();
     st.seconds = timer.seconds();
@@ -122,13 +145,16 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
     long next_rays = rays;
     if (!solved) {
       stop = "solver";
-    } else if (st.total <= E) {
+    } else if (st.total <= E && st.groups_within == st.groups) {
       stop = "target reached";
     } else if (s + 1 >= o.max_steps) {
       stop = "max-steps";
     } else {
-      const TargetErrorPlan plan = plan_target_error_step(st.statistical, st.discretisation, E, rays);
+      // The global plan where the per-leaf target is missed, then each group's above E.
+      const TargetErrorPlan plan = st.total > E ? plan_target_error_step(st.statistical, st.discretisation, E, rays)
+                                                : TargetErrorPlan{false, 0, rays};
       next_rays = plan.next_rays;
+      bool refine = plan.refine;
       if (plan.refine) {
         // The largest eta_l^2 first until they hold the plan's share of the counted leaves' sum.
         std::vector<std::size_t> order(h.leaves.size());
@@ -156,10 +182,23 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
           count += 3;
         }
       }
+      if (!groups.empty()) {
+        std::vector<bool> marks(leaves.size(), false), eligible(leaves.size(), false);
+        for (std::size_t k = 0; k < leaves.size(); ++k)
+          eligible[k] = splittable(h.tree, static_cast<std::size_t>(h.leaves[k]), solve);
+        for (const std::size_t k : split) marks[k] = true;
+        const long room = std::max(0L, (o.max_leaves - leaves_now) / 3 - static_cast<long>(split.size()));
+        const GroupTargetPlan own = plan_group_targets(groups, E, rays, static_cast<std::size_t>(room), marks, eligible);
+        next_rays = std::max(next_rays, own.next_rays);
+        refine = refine || own.refine;
+        split.clear();
+        for (std::size_t k = 0; k < marks.size(); ++k)
+          if (marks[k]) split.push_back(k);
+      }
       const bool more_rays = next_rays > rays;
-      if (plan.refine && split.empty() && !more_rays) {
+      if (refine && split.empty() && !more_rays) {
         stop = "max-leaves";
-      } else if (!plan.refine && !more_rays) {
+      } else if (!refine && !more_rays) {
         stop = "rays";
       } else if (o.max_seconds > 0) {
         const double next = double(leaves_now + 3 * static_cast<long>(split.size())) * double(next_rays);
@@ -177,6 +216,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       out.reached = stop == "target reached";
       out.stop_reason = stop;
       out.B_disc = ind.B_disc;
+      out.groups = std::move(groups);
       out.solution = std::move(h);
       out.form_factor_transport = static_cast<bool>(leaf_work);
       out.stage = std::move(stage);

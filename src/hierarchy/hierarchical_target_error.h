@@ -61,6 +61,10 @@ struct HierarchicalTargetOptions {
   std::size_t start_leaves = 0;
   int directions = 16;       // of B_disc and of W2 (>= 1)
   int points_side = 2;       // of W2: m^2 points per leaf (>= 2)
+  // "": the per-leaf target only; "material", "object" or "group": also each such group's mean within E (as the
+  // uniform route, solve/target_error.h: the leaves with the largest shares of a group's error are split). Form-factor transport only:
+  // the group means' errors need the adjoint of a stored F.
+  std::string each;
 };
 
 // One step: the uniform route's record (patches = leaves, rays_per_patch = rays per leaf) and the rays traced in
@@ -75,6 +79,7 @@ struct HierarchicalTargetResult {
   HierarchicalResult solution;  // the last step's, on its tree (with form factors: tree, leaves, B and B_se only)
   PatchRgb B_disc;              // its leaves' (row k = solution.leaves[k])
   std::vector<HierarchicalTargetStep> steps;
+  std::vector<GroupMeanError> groups;  // the last step's, with `each` (else empty)
   bool reached = false;
   std::string stop_reason;      // "target reached", "max-leaves", "max-seconds", "max-steps", "rays", "solver"
   double seconds = 0;
@@ -91,7 +96,8 @@ struct HierarchicalTargetResult {
 Solution hierarchical_target_solution(const HierarchicalTargetResult& result);
 
 // solve: the hierarchical solve's options (its particles and oracles are set per step here; with form factors
-// only max_level, min_area and seed are read). InputError for options out of range, max_leaves below the roots'
+// only max_level, min_area and seed are read). InputError for options out of range, `each` with the rays
+// transport, max_leaves below the roots'
 // count, or a leaf solver that returns no B_disc. on_step, if set, is called after each step. leaf_work empty:
 // rays; set: form factors (above).
 HierarchicalTargetResult solve_hierarchical_to_target_error(

@@ -43,6 +43,8 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
         discretisation_error(scaled_emission(patches, scale), visibility, p, B / scale, directions, seed);
     out.estimate *= scale;
     out.standard_error *= scale;
+    out.source *= scale;
+    out.source_sd *= scale;
     return out;
   }
   Timer timer;
@@ -65,6 +67,8 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   }
   const RadiosityProblem& h = out.own_form_factors ? own : p;
   const RowBlock rhs = source.d;
+  out.source = source.d;
+  out.source_sd = source.variance.sqrt();
   const BlockSolution e = solve_block_jacobi(h, rhs, 1e-6, "error estimate: the discretisation error's solve");
   // propagate_gather_variance propagates rho^2 V: V = Var(d) / rho^2 where rho > 0 (d is 0 elsewhere).
   const PatchRgb V = (p.rho > 0).select(source.variance / p.rho.square().max(1e-300), 0.0);
@@ -105,23 +109,37 @@ MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& 
     MeasurementDiscretisationError out = measurement_discretisation_error(
         scaled_emission(patches, scale), visibility, p, B / scale, W, directions, seed);
     out.estimate *= scale;
+    out.estimate_sd *= scale;
+    out.share *= scale;
     out.standard_error *= scale;
     return out;
   }
   Timer timer;
   RADWALK_CHECK_EQ(B.rows(), static_cast<Eigen::Index>(patches.size()));
-  MeasurementDiscretisationError out;
   const FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed);
+  MeasurementDiscretisationError out = measurement_discretisation_error(p, source.d, source.variance.sqrt(), W);
   out.rays = source.rays;
+  out.seconds = timer.seconds();
+  return out;
+}
+
+MeasurementDiscretisationError measurement_discretisation_error(const RadiosityProblem& p, const PatchRgb& d_in,
+                                                                const PatchRgb& d_sd, const Eigen::VectorXd& W) {
+  Timer timer;
+  RADWALK_CHECK_EQ(d_in.rows(), static_cast<Eigen::Index>(p.size()));
+  RADWALK_CHECK_EQ(d_sd.rows(), d_in.rows());
+  MeasurementDiscretisationError out;
   // Scaled before squaring (core/moments.h): W and d near the largest double.
   const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
   const PatchRgb psi = adjoint_weights(p, W / r, out.sweeps);
-  const double s = moment_scale(source.d.size() > 0 ? source.d.abs().maxCoeff() : 0.0);
-  const PatchRgb d = source.d / s;
-  const PatchRgb var = source.variance / (s * s);
+  const double s = moment_scale(d_in.size() > 0 ? std::max(d_in.abs().maxCoeff(), d_sd.maxCoeff()) : 0.0);
+  const PatchRgb d = d_in / s;
+  const PatchRgb var = (d_sd / s).square();
   const Rgb eps = (psi * d).colwise().sum().transpose();
   const Rgb v = (psi.square() * var).colwise().sum().transpose();
+  out.share = psi * d * (r * s);
   out.estimate = eps * (r * s);
+  out.estimate_sd = v.sqrt() * (r * s);
   out.standard_error = (eps.square() + v).sqrt() * (r * s);
   out.seconds = timer.seconds();
   return out;

@@ -29,6 +29,9 @@ struct DiscretisationError {
   Rgb prior_relative = Rgb::Zero();  // t_c: the prior's relative scale of e, from all the patches
   bool own_form_factors = false;  // true when H came from the estimate's own shot rays (p had no stored F)
   double seconds = 0;
+  // The source d of e = (I - H)^{-1} d and its standard deviation (solve/fluctuation_source.h), kept for the
+  // discretisation errors of measurements of the same solution (measurement_discretisation_error below).
+  PatchRgb source, source_sd;
 };
 
 // p: the problem B solves; when its F is empty (the ray kernel never stores F) the estimate's own shot rays give
@@ -48,7 +51,9 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
 // p must hold every row of F; B the discrete solution (to a few digits).
 struct MeasurementDiscretisationError {
   Rgb estimate = Rgb::Zero();        // eps
+  Rgb estimate_sd = Rgb::Zero();     // sqrt(Var(eps))
   Rgb standard_error = Rgb::Zero();  // M_disc
+  PatchRgb share;                    // Psi_jc d_jc per patch and channel: patch j's share of eps (sums to eps)
   long rays = 0;
   long sweeps = 0;
   double seconds = 0;
@@ -57,6 +62,10 @@ MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& 
                                                                 const RadiosityProblem& p, const PatchRgb& B,
                                                                 const Eigen::VectorXd& W, int directions,
                                                                 std::uint64_t seed);
+// The same from a source already estimated (DiscretisationError::source and source_sd of the solution): no rays,
+// one adjoint solve (rays 0).
+MeasurementDiscretisationError measurement_discretisation_error(const RadiosityProblem& p, const PatchRgb& d,
+                                                                const PatchRgb& d_sd, const Eigen::VectorXd& W);
 
 // The total error B_err = sqrt(B_se^2 + B_disc^2) per patch and channel (statistical and discretisation errors are
 // independent); either may be empty (then the other is returned; both empty: empty).

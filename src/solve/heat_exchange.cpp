@@ -4,10 +4,11 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <map>
+#include <utility>
 
 #include "core/error.h"
 #include "formfactor/form_factor_noise.h"
+#include "patch/patch_grouping.h"
 #include "solve/form_factor_error.h"
 #include "solve/solve_radiosity.h"
 #include "visibility/embree_visibility.h"
@@ -19,13 +20,6 @@ double sum_of_squares(const std::vector<double>& v) {
   double s = 0;
   for (double x : v) s += x * x;
   return s;
-}
-
-// The name of patch i's group under group_by.
-std::string group_name(const PatchSet& patches, std::size_t i, const std::string& by) {
-  const std::string& name = by == "object" ? patches.object_of(i) : by == "group" ? patches.group_of(i)
-                                                                                  : patches.material_of(i);
-  return name.empty() ? "(none)" : name;
 }
 
 // Step 4: the statistical errors of J, q, Q, T from the traced F's noise.
@@ -104,18 +98,11 @@ HeatBalance energy_balance(const PatchSet& patches, const FormFactors& ff, const
 
 // Step 7: the per-group tables.
 HeatExchangeGroups group_tables(const PatchSet& patches, const HeatExchange& x, const std::string& by) {
-  if (by != "object" && by != "group" && by != "material")
-    throw InputError("group_by '" + by + "' is not one of object, group, material");
   const std::size_t n = patches.size();
   HeatExchangeGroups g;
-  std::map<std::string, std::int32_t> index;
-  g.group.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const std::string name = group_name(patches, i, by);
-    auto [it, fresh] = index.emplace(name, std::int32_t(g.names.size()));
-    if (fresh) g.names.push_back(name);
-    g.group[i] = it->second;
-  }
+  PatchGrouping grouping = group_patches(patches, by);
+  g.names = std::move(grouping.names);
+  g.group = std::move(grouping.group);
   const int groups = int(g.names.size());
   g.view_factors = group_view_factors(x.problem.F, patches.area, g.group, groups, x.input.sky, x.back);
   g.Q.assign(std::size_t(groups), 0.0);

@@ -5,11 +5,13 @@
 #include <numeric>
 #include <utility>
 
+#include "core/check.h"
 #include "core/error.h"
 #include "core/moments.h"
 #include "core/timer.h"
 #include "patch/refine.h"
 #include "solve/discretisation_error.h"
+#include "solve/problem.h"
 
 namespace radwalk {
 namespace {
@@ -20,14 +22,20 @@ bool counted(const PatchSet& patches, std::size_t i) {
   return patches.E[i].maxCoeff() <= 0 && patches.rho[i].maxCoeff() > 0;
 }
 
-// The patches to split: the largest contributions c_i = A_i sum_c B_disc_ic^2 of the counted patches until their
-// sum reaches `fraction` of the total, at most `room` of them (ties: lower index first).
+// The contributions c_i = A_i sum_c B_disc_ic^2 of the counted patches (0 for the others), scaled before squaring.
+std::vector<double> contributions(const PatchSet& patches, const PatchRgb& B_disc) {
+  const double s = moment_scale(B_disc.size() > 0 ? B_disc.abs().maxCoeff() : 0.0);
+  std::vector<double> c(patches.size(), 0.0);
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    if (counted(patches, i)) c[i] = patches.area[i] * (B_disc.row(static_cast<Eigen::Index>(i)) / s).square().sum();
+  return c;
+}
+
+// The patches to split: the largest contributions c_i of the counted patches until their sum reaches `fraction`
+// of the total, at most `room` of them (ties: lower index first).
 std::vector<bool> patches_to_split(const PatchSet& patches, const PatchRgb& B_disc, double fraction, std::size_t room) {
   const std::size_t N = patches.size();
-  const double s = moment_scale(B_disc.size() > 0 ? B_disc.abs().maxCoeff() : 0.0);
-  std::vector<double> c(N, 0.0);
-  for (std::size_t i = 0; i < N; ++i)
-    if (counted(patches, i)) c[i] = patches.area[i] * (B_disc.row(static_cast<Eigen::Index>(i)) / s).square().sum();
+  const std::vector<double> c = contributions(patches, B_disc);
   const double total = std::accumulate(c.begin(), c.end(), 0.0);
   std::vector<std::size_t> order(N);
   std::iota(order.begin(), order.end(), std::size_t{0});
@@ -87,12 +95,45 @@ TargetErrorPlan plan_target_error_step(double statistical, double discretisation
   return plan;
 }
 
+GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, double E, long rays, std::size_t room,
+                                   std::vector<bool>& split, const std::vector<bool>& eligible) {
+  GroupTargetPlan out;
+  out.next_rays = rays;
+  for (const GroupMeanError& g : groups) {
+    if (!g.counted || g.total <= E) continue;
+    const TargetErrorPlan own = plan_target_error_step(g.statistical, g.discretisation, E, rays);
+    out.next_rays = std::max(out.next_rays, own.next_rays);
+    if (!own.refine) continue;
+    out.refine = true;
+    RADWALK_CHECK_EQ(g.share.size(), split.size());
+    std::vector<std::size_t> order;
+    double total = 0;
+    for (std::size_t i = 0; i < g.share.size(); ++i)
+      if (g.share[i] > 0) order.push_back(i), total += g.share[i];
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return g.share[a] > g.share[b]; });
+    double held = 0;
+    for (const std::size_t i : order) {
+      if (held >= own.split_fraction * total) break;
+      if (!split[i]) {
+        if (out.marked >= room) break;
+        if (!eligible.empty() && !eligible[i]) continue;
+        split[i] = true;
+        ++out.marked;
+      }
+      held += g.share[i];
+    }
+  }
+  return out;
+}
+
 TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork& work, const TargetErrorOptions& options,
                                         const std::function<void(const TargetErrorStep&, int step)>& on_step) {
   const double E = options.target;
   if (!(E > 0 && E < 1)) throw InputError("the target error must be in (0, 1), got " + std::to_string(E));
   if (options.rays < 1) throw InputError("the target error's rays per patch must be >= 1");
   if (!(options.max_seconds >= 0)) throw InputError("the target error's time budget must be >= 0 seconds");
+  if (!options.each.empty() && options.each != "material" && options.each != "object" && options.each != "group")
+    throw InputError("the target error's groups must be material, object or group, got '" + options.each + "'");
   if (options.max_patches < patches.size())
     throw InputError("the patch budget " + std::to_string(options.max_patches) + " is below the scene's " +
                      std::to_string(patches.size()) + " patches");
@@ -116,6 +157,22 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       s.discretisation = relative_error(patches, solution.B, solution.B_disc);
       s.total = relative_error(patches, solution.B, total_error(solution.B_se, solution.B_disc));
     }
+    PatchGrouping grouping;
+    std::vector<GroupMeanError> groups;
+    if (solved && !options.each.empty()) {
+      if (stage.source.rows() != solution.B.rows() || stage.source_sd.rows() != solution.B.rows())
+        throw InputError("the target error per " + options.each + " needs the discretisation estimate's source, "
+                         "which this step did not give");
+      grouping = group_patches(patches, options.each);
+      const RadiosityProblem problem = make_problem(patches, SparseF(stage.form_factors.F));
+      groups = group_mean_errors(patches, grouping, problem, solution.B, solution.B_se, stage.source, stage.source_sd, E);
+      for (const GroupMeanError& g : groups) {
+        if (!g.counted) continue;
+        ++s.groups;
+        if (g.total <= E) ++s.groups_within;
+        if (s.worst_group.empty() || g.total > s.worst_group_total) s.worst_group = g.name, s.worst_group_total = g.total;
+      }
+    }
     s.seconds = timer.seconds();
 
     // Stop, or plan the next step.
@@ -124,18 +181,28 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
     long next_rays = rays;
     if (!solved) {
       stop = "solver";
-    } else if (s.total <= E) {
+    } else if (s.total <= E && s.groups_within == s.groups) {
       stop = "target reached";
     } else if (step + 1 >= options.max_steps) {
       stop = "max-steps";
     } else {
-      const TargetErrorPlan plan = plan_target_error_step(s.statistical, s.discretisation, E, rays);
-      const bool refine = plan.refine;
+      // The global plan where the per-patch target is missed, then each group's above E.
+      const TargetErrorPlan plan = s.total > E ? plan_target_error_step(s.statistical, s.discretisation, E, rays)
+                                               : TargetErrorPlan{false, 0, rays};
+      bool refine = plan.refine;
       next_rays = plan.next_rays;
+      const std::size_t room = (options.max_patches - patches.size()) / 3;
       std::size_t marked = 0;
+      split.assign(patches.size(), false);
       if (refine) {
-        split = patches_to_split(patches, solution.B_disc, plan.split_fraction, (options.max_patches - patches.size()) / 3);
+        split = patches_to_split(patches, solution.B_disc, plan.split_fraction, room);
         marked = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
+      }
+      if (!groups.empty()) {
+        const GroupTargetPlan own = plan_group_targets(groups, E, rays, room - marked, split);
+        next_rays = std::max(next_rays, own.next_rays);
+        refine = refine || own.refine;
+        marked += own.marked;
       }
       const bool more_rays = next_rays > rays;
       if (refine && marked == 0 && !more_rays) {
@@ -160,6 +227,7 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       out.patches = std::move(patches);
       out.form_factors = std::move(stage.form_factors);
       out.solution = std::move(stage.solution);
+      out.groups = std::move(groups);
       break;
     }
     if (s.split > 0) patches = split_patches(patches, split);

@@ -15,6 +15,13 @@
 //     No cap on that share: capped at 80 % a step, the Cornell box needed 12 steps and 2,000 to 2,900 patches for
 //     3 % (uncapped: 3 steps, 577) and missed 2 % within 12 steps (bench/target_error.py), because the patches
 //     left coarse keep a large share while the split ones' estimates are noisy.
+// Groups (TargetErrorOptions::each: "material", "object" or "group"): the run also needs each group's mean within
+// the target, total_g <= E for every counted group g (solve/group_mean_error.h: the per-patch errors of one
+// material are correlated, so a mean can be off by several times the per-patch RMS). A group above E gets the plan
+// above from its own parts (stat_g, disc_g): its rays are the larger of the two plans', and where it refines, its
+// patches with the largest shares of its error are split (solve/group_mean_error.h: its own and those exchanging
+// light with it) until they hold its split share of their sum (added to the global marks; the budget goes first
+// to the global marks, then to the groups in the order of their first patches).
 // Budgets: never more than max_patches (the largest contributions split first, as many as fit); no step started
 // when the elapsed time plus the last step's time scaled by the rays the next traces (N' R' / (N R)) would pass
 // max_seconds (0: no limit); at most max_steps solves. When a budget stops the run first, `reached` is false and
@@ -27,6 +34,7 @@
 #include "core/solution.h"
 #include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
+#include "solve/group_mean_error.h"
 
 namespace radwalk {
 
@@ -50,6 +58,8 @@ struct TargetErrorOptions {
   // patches), within max_patches: the first estimate is then not one of the input faces, whose discretisation
   // error is far above any target, and the coarse steps are not paid for. 0: start from the given patches.
   std::size_t start_patches = 0;
+  // "": the per-patch target only; "material", "object" or "group": also every such group's mean (above).
+  std::string each;
 };
 
 // What a step's stage returns: F (with its record of how it was traced) and the solution with B_se and B_disc
@@ -57,6 +67,9 @@ struct TargetErrorOptions {
 struct TargetErrorStage {
   FormFactors form_factors;
   Solution solution;
+  // The source of B_disc and its standard deviation (DiscretisationError::source, source_sd): needed when the run
+  // targets groups (TargetErrorOptions::each), else may be empty.
+  PatchRgb source, source_sd;
 };
 using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
 
@@ -67,6 +80,11 @@ struct TargetErrorStep {
   double seconds = 0;
   std::size_t split = 0;         // patches split after this step
   long next_rays_per_patch = 0;  // the next step's rays (0 after the last)
+  // With TargetErrorOptions::each: the counted groups, how many are within E, and the one with the largest total
+  // (its name and total_g; "" and 0 without groups).
+  std::size_t groups = 0, groups_within = 0;
+  std::string worst_group;
+  double worst_group_total = 0;
 };
 
 struct TargetErrorResult {
@@ -74,6 +92,7 @@ struct TargetErrorResult {
   FormFactors form_factors;  // its F and record
   Solution solution;         // with B_se and B_disc
   std::vector<TargetErrorStep> steps;
+  std::vector<GroupMeanError> groups;  // the last step's, with TargetErrorOptions::each (else empty)
   bool reached = false;
   std::string stop_reason;   // "target reached", "max-patches", "max-seconds", "max-steps", "rays", "solver"
   double seconds = 0;
@@ -90,6 +109,20 @@ struct TargetErrorPlan {
   long next_rays = 0;
 };
 TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double target, long rays);
+
+// The groups' share of the plan (the rule above), for the uniform patches and the hierarchy's leaves alike: for
+// each counted group above E, its own plan (plan_target_error_step of stat_g, disc_g); next_rays the largest of
+// them (rays when none asks for more); where one refines, the patches (leaves) with the largest shares of its
+// error (GroupMeanError::share, which must be kept) are marked in `split` until the marked ones (already marked
+// ones included) hold its split share of the sum of its shares, skipping those not `eligible` (empty: all are), at
+// most `room` new marks in all (groups in index order).
+struct GroupTargetPlan {
+  bool refine = false;
+  long next_rays = 0;
+  std::size_t marked = 0;  // new marks
+};
+GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, double E, long rays, std::size_t room,
+                                   std::vector<bool>& split, const std::vector<bool>& eligible = {});
 
 // InputError for options out of range or max_patches below the scene's patches. on_step, if set, is called after
 // each step's record is complete.

@@ -95,7 +95,8 @@ TEST_CASE("target error: the patch budget stops the run, not reached, with the l
   CHECK(r.stop_reason == "max-patches");
   CHECK(r.steps[0].split == 1);  // room for (10 - 6) / 3 = 1 split
   CHECK(r.patches.size() == 9);
-  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), lawful(0.0, 0.1), TargetErrorOptions{0.01, 1000, 5}), InputError);
+  o.max_patches = 5;  // below the cube's 6 patches
+  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), lawful(0.0, 0.1), o), InputError);
 }
 
 TEST_CASE("target error: the time budget stops the run before a step that would pass it") {
@@ -119,7 +120,8 @@ TEST_CASE("target error: a failed solve stops the run") {
   const TargetErrorResult r = solve_to_target_error(lit_cube(), failing, o);
   CHECK_FALSE(r.reached);
   CHECK(r.stop_reason == "solver");
-  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), failing, TargetErrorOptions{1.5}), InputError);
+  o.target = 1.5;
+  CHECK_THROWS_AS(solve_to_target_error(lit_cube(), failing, o), InputError);
 }
 
 // start_patches = 100 on the cube (total area 6): every patch above 2 x 6 / 100 = 0.12 is split, so each unit face
@@ -154,4 +156,58 @@ TEST_CASE("target error: the plan of a step, shared with the hierarchical route"
   p = plan_target_error_step(0.0071, 0.05, 0.01, 1000);
   CHECK(p.split_fraction == 1.0);
   CHECK(p.next_rays == 1250);
+}
+
+// Groups (TargetErrorOptions::each): the floor (material "floor") has a discretisation source d_j = d0 sqrt(A_j)
+// B-units per patch and channel, every other source is 0, F = 0 (no interreflection: the adjoint is W itself) and
+// B_disc = 0, so the per-patch target is met at once while the floor's mean is off by exactly
+// eps / M = sum_j A_j 3 d0 sqrt(A_j) / (3 A_floor) = d0 sqrt(A_j) (equal pieces): 0.1 -> 0.05 -> 0.025 as its
+// patches are split (their shares are the floor's only ones), the walls never.
+TEST_CASE("target error: a material whose mean is off is refined where its error comes from until it is within") {
+  PatchSet cube = lit_cube();
+  cube.materials.resize(2);
+  cube.materials[0].name = "wall";
+  cube.materials[1].name = "floor";
+  cube.material.assign(cube.size(), 0);
+  for (std::size_t i = 0; i < cube.size(); ++i)
+    if (cube.centroid[i].z() < 1e-9) cube.material[i] = 1;
+  const double d0 = 0.1;
+  const TargetErrorWork work = [&](const PatchSet& p, long, int) {
+    const auto N = static_cast<Eigen::Index>(p.size());
+    TargetErrorStage s;
+    s.solution.status = SolveStatus::converged;
+    s.solution.B = PatchRgb::Ones(N, 3);
+    s.solution.B_se = PatchRgb::Zero(N, 3);
+    s.solution.B_disc = PatchRgb::Zero(N, 3);
+    s.form_factors.F = SparseF(N, N);
+    s.source = PatchRgb::Zero(N, 3);
+    s.source_sd = PatchRgb::Zero(N, 3);
+    for (Eigen::Index i = 0; i < N; ++i)
+      if (p.material[std::size_t(i)] == 1) s.source.row(i).setConstant(d0 * std::sqrt(p.area[std::size_t(i)]));
+    return s;
+  };
+  TargetErrorOptions o;
+  o.target = 0.03;
+  const TargetErrorResult plain = solve_to_target_error(cube, work, o);
+  CHECK(plain.steps.size() == 1);  // the per-patch target alone is met at once
+  CHECK(plain.groups.empty());
+  o.each = "material";
+  const TargetErrorResult r = solve_to_target_error(cube, work, o);
+  REQUIRE(r.steps.size() == 3);
+  CHECK(r.reached);
+  CHECK(r.steps[0].groups == 2);
+  CHECK(r.steps[0].groups_within == 1);
+  CHECK(r.steps[0].worst_group == "floor");
+  CHECK(r.steps[0].worst_group_total == Approx(0.1).epsilon(1e-9));
+  CHECK(r.steps[1].worst_group_total == Approx(0.05).epsilon(1e-9));
+  CHECK(r.steps[0].split == 1);  // the floor's one patch; the walls have no share
+  CHECK(r.steps[1].split == 4);
+  CHECK(r.patches.size() == 6 + 3 + 12);
+  REQUIRE(r.groups.size() == 2);
+  const GroupMeanError& floor = r.groups[0].name == "floor" ? r.groups[0] : r.groups[1];
+  CHECK(floor.name == "floor");
+  CHECK(floor.estimate == Approx(0.025).epsilon(1e-9));
+  CHECK(floor.total <= 0.03);
+  o.each = "colour";
+  CHECK_THROWS_AS(solve_to_target_error(cube, work, o), InputError);
 }
