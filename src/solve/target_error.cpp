@@ -105,6 +105,10 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
     out.next_rays = std::max(out.next_rays, own.next_rays);
     if (!own.refine) continue;
     out.refine = true;
+    // The shares add up to the error itself (not its square); a split is taken to halve a patch's share (as the
+    // global rule takes it to halve a contribution: first order would quarter it, a patch across a shadow line only
+    // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E the plan's target.
+    const double fraction = std::min(1.0, 2 * (1 - 0.7 * E / g.discretisation));
     RADWALK_CHECK_EQ(g.share.size(), split.size());
     std::vector<std::size_t> order;
     double total = 0;
@@ -113,7 +117,7 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
     std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return g.share[a] > g.share[b]; });
     double held = 0;
     for (const std::size_t i : order) {
-      if (held >= own.split_fraction * total) break;
+      if (held >= fraction * total) break;
       if (!split[i]) {
         if (out.marked >= room) break;
         if (!eligible.empty() && !eligible[i]) continue;

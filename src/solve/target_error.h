@@ -20,7 +20,7 @@
 // material are correlated, so a mean can be off by several times the per-patch RMS). A group above E gets the plan
 // above from its own parts (stat_g, disc_g): its rays are the larger of the two plans', and where it refines, its
 // patches with the largest shares of its error are split (solve/group_mean_error.h: its own and those exchanging
-// light with it) until they hold its split share of their sum (added to the global marks; the budget goes first
+// light with it) until they hold a share of their sum (plan_group_targets below) (added to the global marks; the budget goes first
 // to the global marks, then to the groups in the order of their first patches).
 // Budgets: never more than max_patches (the largest contributions split first, as many as fit); no step started
 // when the elapsed time plus the last step's time scaled by the rays the next traces (N' R' / (N R)) would pass
@@ -114,7 +114,8 @@ TargetErrorPlan plan_target_error_step(double statistical, double discretisation
 // each counted group above E, its own plan (plan_target_error_step of stat_g, disc_g); next_rays the largest of
 // them (rays when none asks for more); where one refines, the patches (leaves) with the largest shares of its
 // error (GroupMeanError::share, which must be kept) are marked in `split` until the marked ones (already marked
-// ones included) hold its split share of the sum of its shares, skipping those not `eligible` (empty: all are), at
+// ones included) hold the fraction f = min(1, 2 (1 - 0.7 E / disc_g)) of the sum of its shares (the shares add up
+// to the error, not to its square, and a split is taken to halve a share: f disc_g / 2 >= disc_g - 0.7 E), skipping those not `eligible` (empty: all are), at
 // most `room` new marks in all (groups in index order).
 struct GroupTargetPlan {
   bool refine = false;
