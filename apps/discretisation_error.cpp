@@ -2,9 +2,12 @@
 
 #include <utility>
 
+#include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
 #include "core/timer.h"
+#include "patch/patch_grouping.h"
 #include "solve/discretisation_error.h"
+#include "solve/group_mean_error.h"
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
@@ -32,8 +35,23 @@ std::string add_discretisation_error(const PatchSet& patches, const RadiosityPro
                  "B_disc = sqrt(e^2 + Var(e)) (docs/theory/discretisation_error.md)"}};
   j["total"] = {{"relative", total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
   summary.add_timing("discretisation_error", error.seconds);
-  const std::string line = "estimated error e = " + percent(total) + " (statistical " + percent(stat) + ", discretisation " +
-         percent(disc) + "; 1 standard deviation, relative to B over the reflecting patches)";
+  std::string line = "estimated error e = " + percent(total) + " (statistical " + percent(stat) + ", discretisation " +
+                     percent(disc) + "; 1 standard deviation, relative to B over the reflecting patches)";
+  // Each material's mean (solve/group_mean_error.h): its patches' errors are correlated, so a mean can be off by
+  // more than e. Needs every row of the solved F (not over MPI's row blocks, not the estimate's own rays).
+  if (problem.row_blocks.empty() && problem.F.nonZeros() > 0 && !error.own_form_factors) {
+    const std::vector<GroupMeanError> means =
+        group_mean_errors(patches, group_patches(patches, "material"), problem, solution.B, solution.B_se,
+                          error.source, error.source_sd);
+    j["materials"] = group_mean_errors_json(means);
+    const GroupMeanError* worst = nullptr;
+    for (const GroupMeanError& g : means)
+      if (g.counted && (!worst || g.total > worst->total)) worst = &g;
+    if (worst)
+      line += "\nestimated error of a material's mean: at most " + percent(worst->total) + " (" + worst->name +
+              ": discretisation " + percent(worst->discretisation) + ", statistical " + percent(worst->statistical) +
+              "; each material's in the JSON's error_estimate.materials)";
+  }
   if (kept) *kept = std::move(error);
   return line;
 }
