@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/rng.h"
 #include "mesh/face_geometry.h"
 #include "mesh/read_scene.h"
 #include "mesh/validate.h"
@@ -43,6 +44,13 @@ double inside_margin(const std::vector<Vec3>& K, const Vec3& n, const Vec3& q) {
     m = std::min(m, (q - K[k]).dot(d));
   }
   return m;
+}
+
+// (Vector area of polygon p) . n: positive when p turns counter-clockwise about n.
+double vector_area_dot(const std::vector<Vec3>& p, const Vec3& n) {
+  Vec3 a = Vec3::Zero();
+  for (std::size_t k = 0; k + 2 < p.size(); ++k) a += 0.5 * (p[k + 1] - p[0]).cross(p[k + 2] - p[0]);
+  return a.dot(n);
 }
 
 // Checks the cut: the pieces of each input face keep its orientation and material, add up to its area, and each
@@ -249,6 +257,69 @@ TEST_CASE("contacts: the Cornell box's floor is cut into pieces without slivers,
   // The nine faces: 2 uncut, the 7 cut ones into 28 pieces, 2 + 28 = 30 (1, 3, 5, 3, 8, 3, 3, 3, 1 by face;
   // at most one arm per footprint edge and the part under the footprint, per footprint on the face).
   CHECK(floor_pieces == 30);
+}
+
+TEST_CASE("contacts: random convex footprints across a floor's faces cut it into convex pieces that tile it",
+          "[patch][contact]") {
+  // A floor [0, 4]^2 (normal +y) of four faces: three quads and a quad cut into two triangles along a diagonal. Each
+  // trial puts one convex footprint anywhere (3 to 6 corners on a circle of radius 0.2 to 1.2, so it may reach
+  // beyond a face or the floor), or two disjoint ones, one each side of x = 2. Whichever way each pinwheel turns,
+  // its arms and the part under the footprint must tile every face (areas add up), lie inside or outside every
+  // footprint, and be convex with positive area (make_patches splits a quad bilinearly).
+  Mesh m;
+  m.path = "generated";
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) m.vertices.push_back({2.0 * i, 0, 2.0 * j});
+  auto at = [](int i, int j) { return static_cast<std::int32_t>(3 * j + i); };
+  m.faces.push_back({at(0, 0), at(0, 1), at(1, 1), at(1, 0)});  // (z) x (x) = +y
+  m.faces.push_back({at(1, 0), at(1, 1), at(2, 1), at(2, 0)});
+  m.faces.push_back({at(0, 1), at(0, 2), at(1, 2), at(1, 1)});
+  m.faces.push_back({at(1, 1), at(1, 2), at(2, 2), -1});
+  m.faces.push_back({at(1, 1), at(2, 2), at(2, 1), -1});
+  Material white;
+  white.name = "white";
+  white.Kd = Rgb(0.5, 0.5, 0.5);
+  m.materials = {white};
+  m.face_material.assign(m.faces.size(), 0);
+  validate_mesh(m);
+  const Vec3 up(0, 1, 0);
+  auto footprint = [&](Rng& rng, double x_lo, double x_hi) {
+    const int corners = 3 + static_cast<int>(rng.uniform_index(4));
+    const double r = 0.2 + (std::min(1.2, 0.5 * (x_hi - x_lo)) - 0.2) * rng.uniform();
+    const double cx = x_lo + r + (x_hi - x_lo - 2 * r) * rng.uniform(), cz = 0.5 + 3 * rng.uniform();
+    std::vector<double> angle;
+    for (int k = 0; k < corners; ++k) angle.push_back(2 * kPi * rng.uniform());
+    std::sort(angle.begin(), angle.end());
+    Contact c;
+    for (const double a : angle) c.footprint.push_back({cx + r * std::cos(a), 0, cz + r * std::sin(a)});
+    // Counter-clockwise about +y: the corners by increasing angle in (x, z) turn about -y, so reversed.
+    std::reverse(c.footprint.begin(), c.footprint.end());
+    c.supports = {0, 1, 2, 3, 4};  // a face the footprint misses keeps its one piece
+    return c;
+  };
+  Rng rng = stream(7, StreamDomain::test, 41, 0);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<Contact> contacts;
+    if (trial % 2 == 0) {
+      contacts.push_back(footprint(rng, -0.5, 4.5));
+    } else {
+      contacts.push_back(footprint(rng, 0, 2));
+      contacts.push_back(footprint(rng, 2, 4));
+    }
+    INFO("trial " << trial);
+    for (const Contact& c : contacts) REQUIRE(vector_area_dot(c.footprint, up) > 0);
+    const Mesh after = cut_along_contacts(m, contacts);
+    check_cut(m, after, contacts, 1e-9);
+    for (std::size_t f = 0; f < after.face_count(); ++f) {
+      INFO("piece " << f << " of face " << after.source_face(f));
+      CHECK(face_area(after, f) > 0);
+      const int n = after.corner_count(f);
+      for (int k = 0; k < n; ++k) {
+        const Vec3 &a = corner(after, f, k), &b = corner(after, f, (k + 1) % n), &c = corner(after, f, (k + 2) % n);
+        CHECK((b - a).cross(c - b).dot(up) >= -1e-12);
+      }
+    }
+  }
 }
 
 namespace {
