@@ -104,6 +104,67 @@ Polygon intersection(const Polygon& S, const Polygon& K, const Vec3& n, double t
   return current.size() >= 3 ? current : Polygon{};
 }
 
+// Arm k of a pinwheel of convex P about convex K (counter-clockwise about n): the part of P outside the line of
+// K's edge k and inside the line of its neighbouring edge j (j = k - 1 for the forward pinwheel, k + 1 for the
+// backward one),
+//   R_k = P n {x : (x - K_k) . m_k < 0} n {x : (x - K_j) . m_j >= 0}     (m_i: edge i's inward normal).
+// The arms of one pinwheel and P n K tile P: seen from a point x outside convex K, the edges whose lines x lies
+// outside of form one run of consecutive edges, and x is in the arm of the run's first edge only (forward) or of
+// its last edge only (backward). Each arm is P cut by two half-planes, so convex; each footprint edge's line is
+// continued beyond one of its two corners only, to P's boundary, instead of as a chord across the whole of P in
+// both directions, which cut the pieces beside K again into wedges and slivers.
+Polygon pinwheel_arm(const Polygon& P, const Polygon& K, std::size_t k, bool forward, const Vec3& n, double tol) {
+  const std::size_t j = forward ? (k + K.size() - 1) % K.size() : (k + 1) % K.size();
+  Polygon in, out, arm;
+  clip(P, K[j], inward(n, K[j], K[(j + 1) % K.size()]), tol, in, out);
+  in = simplified(in, tol);
+  if (in.size() < 3) return {};
+  clip(in, K[k], inward(n, K[k], K[(k + 1) % K.size()]), tol, out, arm);
+  return simplified(arm, tol);
+}
+
+// The smallest corner angle of polygon p (radians): the shape measure of a piece (pi / 3 for an equilateral
+// triangle, pi / 2 for a rectangle, near 0 for a sliver).
+double smallest_angle(const Polygon& p) {
+  double smallest = kPi;
+  for (std::size_t k = 0; k < p.size(); ++k) {
+    const Vec3 u = p[(k + p.size() - 1) % p.size()] - p[k], v = p[(k + 1) % p.size()] - p[k];
+    smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)));
+  }
+  return smallest;
+}
+
+// Convex polygon p as mesh faces: a fan of quads from corner s (s, s+1, s+2, s+3), (s, s+3, s+4, s+5), ... and one
+// triangle if the corner count is odd. Of the fans from each corner, the one whose smallest face angle is largest
+// (the first such corner on ties), so that a pentagon or hexagon is not split along a diagonal that leaves a sliver.
+std::vector<Polygon> fan_faces(const Polygon& p) {
+  std::vector<Polygon> best;
+  double best_angle = -1;
+  const std::size_t m = p.size();
+  for (std::size_t s = 0; s < (m > 4 ? m : 1); ++s) {
+    std::vector<Polygon> faces;
+    auto at = [&](std::size_t k) { return p[(s + k) % m]; };
+    std::size_t k = 1;
+    for (; k + 2 < m; k += 2) faces.push_back({at(0), at(k), at(k + 1), at(k + 2)});
+    if (k + 1 < m) faces.push_back({at(0), at(k), at(k + 1)});
+    double angle = kPi;
+    for (const Polygon& f : faces) angle = std::min(angle, smallest_angle(f));
+    if (angle > best_angle) {
+      best_angle = angle;
+      best = std::move(faces);
+    }
+  }
+  return best;
+}
+
+// The smallest face angle of the pieces as they will be written (fan_faces).
+double worst_angle(const std::vector<Polygon>& pieces) {
+  double angle = kPi;
+  for (const Polygon& piece : pieces)
+    for (const Polygon& f : fan_faces(piece)) angle = std::min(angle, smallest_angle(f));
+  return angle;
+}
+
 // Whether segment a-b crosses the interior of convex polygon P (counter-clockwise about n): the part of the segment
 // inside P is longer than tol and P has area more than min_area on both sides of the segment's line. The two sides
 // (clip's inside and outside of the line, normal n x (b - a)) are left in `in` and `out` when it does.
@@ -491,15 +552,18 @@ Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, 
           next.emplace_back(piece, covered);
           continue;
         }
-        Polygon current = piece, in, out_part;
         const Polygon& K = c->footprint;
-        for (std::size_t k = 0; k < K.size() && current.size() >= 3; ++k) {
-          clip(current, K[k], inward(n, K[k], K[(k + 1) % K.size()]), tol, in, out_part);
-          out_part = simplified(out_part, tol);
-          if (out_part.size() >= 3 && vector_area(out_part).norm() > min_area) next.emplace_back(out_part, false);
-          current = simplified(in, tol);
-        }
-        if (current.size() >= 3 && vector_area(current).norm() > min_area) next.emplace_back(current, true);
+        const Polygon under = simplified(intersection(piece, K, n, tol), tol);
+        if (under.size() >= 3 && vector_area(under).norm() > min_area) next.emplace_back(under, true);
+        // The pinwheel (forward or backward) whose arms have the better worst angle.
+        std::vector<Polygon> arms[2];
+        for (const bool forward : {true, false})
+          for (std::size_t k = 0; k < K.size(); ++k) {
+            Polygon arm = pinwheel_arm(piece, K, k, forward, n, tol);
+            if (arm.size() >= 3 && vector_area(arm).norm() > min_area) arms[forward ? 0 : 1].push_back(std::move(arm));
+          }
+        for (Polygon& arm : arms[worst_angle(arms[1]) > worst_angle(arms[0]) ? 1 : 0])
+          next.emplace_back(std::move(arm), false);
       }
       pieces = next;
     }
@@ -512,11 +576,8 @@ Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, 
     std::stable_partition(pieces.begin(), pieces.end(), [](const auto& p) { return p.second; });
     for (const auto& [piece, covered] : pieces) {
       (void)covered;
-      const std::size_t m = piece.size();
-      std::size_t k = 1;
-      for (; k + 2 < m; k += 2)
-        copy_face(f, {vertex(piece[0], f), vertex(piece[k], f), vertex(piece[k + 1], f), vertex(piece[k + 2], f)});
-      if (k + 1 < m) copy_face(f, {vertex(piece[0], f), vertex(piece[k], f), vertex(piece[k + 1], f), -1});
+      for (const Polygon& q : fan_faces(piece))
+        copy_face(f, {vertex(q[0], f), vertex(q[1], f), vertex(q[2], f), q.size() == 4 ? vertex(q[3], f) : -1});
     }
   }
   if (cut_faces) *cut_faces = cut;

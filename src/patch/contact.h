@@ -21,10 +21,14 @@
 // Each footprint lists the surface's faces it overlaps (area of S n K above 1e-9 of S's area).
 //
 // Cutting (cut_along_contacts): every overlapped support face S (convex: a triangle or convex quad) is replaced in
-// place by S n K and the pieces of S \ K, cut off one footprint edge at a time (the part of S outside the line of
-// edge i, then the rest continues with the part inside), each a convex polygon, given as quads and triangles (a fan
-// of quads from the first corner, one triangle if the count is odd). Several footprints on one face cut the pieces
-// in turn (a piece already under a footprint is not cut again). Pieces keep S's orientation, material, group,
+// place by S n K and the pieces of S \ K, the arms of a pinwheel about K: arm k is the part of S outside the line of
+// K's edge k and inside the line of its neighbouring edge (the previous one, or the next one for the pinwheel
+// turning the other way), so each footprint edge's line is continued beyond one of its corners only, up to S's
+// boundary (a cut along whole chords, both ways across S, left wedges and slivers where the lines crossed S's other
+// pieces). Of the two pinwheels, the one whose pieces have the larger smallest angle. Each piece is a convex
+// polygon, given as quads and triangles: a fan of quads (one triangle if the corner count is odd) from the corner
+// whose fan has the largest smallest angle. Several footprints on one face cut the pieces in turn (a piece already
+// under a footprint is not cut again). Pieces keep S's orientation, material, group,
 // line and input face (Mesh::face_source), so the `face` field still names the input face; they tile S (areas add
 // up to rounding). A cut point on an edge is computed from the edge's end points in a fixed order, so two faces
 // sharing the edge get the same point. Then every piece a contact line crosses is cut in two along the line (the whole

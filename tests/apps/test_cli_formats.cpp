@@ -244,7 +244,7 @@ TEST_CASE("radwalk: a scene cut along its contacts reads back from its .vtp cell
     std::size_t patches;
   };
   for (const Scene& s : {Scene{write_cabinet_room(dir, "cabinet", false).string(), " --max-edge 0.4", 0},
-                         Scene{source("meshes/cornell_box.obj"), " --max-edge 100", 383}}) {
+                         Scene{source("meshes/cornell_box.obj"), " --max-edge 100", 360}}) {
     INFO(s.file);
     const Run first = run("patch " + s.file + s.options + " --contact-cut -o " + (dir / "cut.vtp").string() +
                           " --csv " + (dir / "a.csv").string());

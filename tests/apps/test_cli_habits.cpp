@@ -160,7 +160,7 @@ TEST_CASE("radwalk: progress lines when stderr is a file, none for quick stages 
   REQUIRE(run_with_stderr("RADWALK_PROGRESS_INTERVAL=0.05", args, err) == 0);
   const std::string text = read_text(err);
   INFO(text);
-  const std::regex line(R"(radwalk: form factors [0-9]+% \([0-9]+/1138\), [0-9.]+ s elapsed, about [0-9.]+ s left\n)");
+  const std::regex line(R"(radwalk: form factors [0-9]+% \([0-9]+/1070\), [0-9.]+ s elapsed, about [0-9.]+ s left\n)");
   CHECK(std::regex_search(text, line));
   CHECK(text.find("radwalk: form factors done in ") != std::string::npos);
   CHECK(text.find('\r') == std::string::npos);

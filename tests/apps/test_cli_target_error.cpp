@@ -27,7 +27,7 @@ TEST_CASE("solve --target-error reaches a reachable target and lists its steps",
   const auto& t = j.at("target_error");
   CHECK(t.at("reached").get<bool>());
   CHECK(t.at("stop_reason") == "target reached");
-  REQUIRE(t.at("steps").size() >= 2);  // 137 patches of at most 200 mm (the floor cut along the blocks): 2.7 %
+  REQUIRE(t.at("steps").size() >= 2);  // 125 patches of at most 200 mm (the floor cut along the blocks): 2.8 %
   const auto& last = t.at("steps").back();
   CHECK(last.at("total").get<double>() <= 0.02);
   CHECK(last.at("total").get<double>() == Approx(j.at("error_estimate").at("total").at("relative").get<double>()));

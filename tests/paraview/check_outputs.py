@@ -332,13 +332,13 @@ def main():
     render = load_render_script()
     render_vtp = load_render_script("render_vtp")
 
-    print("solve .vtp (direct, Cornell box, 1138 patches)", flush=True)
+    print("solve .vtp (direct, Cornell box, 1070 patches)", flush=True)
     reader, data = open_vtp("solve.vtp")
-    B = check_ready(reader, data, "solve.vtp", patches=1138)
+    B = check_ready(reader, data, "solve.vtp", patches=1070)
     check_common_metadata(data, "solve.vtp", "solve")
     check(field_value(data, "method") == "direct", "solve.vtp: field method == direct")
     check((field_value(data, "residual") or 1) < 1e-10, "solve.vtp: field residual < 1e-10")
-    check((field_value(data, "rays") or 0) == 1138 * 2000, "solve.vtp: field rays == 1138 x 2000")
+    check((field_value(data, "rays") or 0) == 1070 * 2000, "solve.vtp: field rays == 1070 x 2000")
     for name in ("row_sum", "reciprocity_error", "row_std_error"):
         check_array(data, "cell", name, "real", 1, lo=0)
     for name in ("rays", "escaped", "back_hits"):
@@ -433,7 +433,7 @@ def main():
 
     print("random-walk .vtp with error bars (gather-expected-value, --theory)", flush=True)
     reader, data = open_vtp("random_walk.vtp")
-    B = check_ready(reader, data, "random_walk.vtp", patches=383)
+    B = check_ready(reader, data, "random_walk.vtp", patches=360)
     check_common_metadata(data, "random_walk.vtp", "solve")
     check(field_value(data, "method") == "gather-expected-value", "random_walk.vtp: field method")
     check(field_value(data, "walks_per_patch") == 200, "random_walk.vtp: field walks_per_patch == 200")
@@ -469,7 +469,7 @@ def main():
 
     print("path-tracer .vtp", flush=True)
     reader, data = open_vtp("pathtrace.vtp")
-    check_ready(reader, data, "pathtrace.vtp", patches=383)
+    check_ready(reader, data, "pathtrace.vtp", patches=360)
     check_common_metadata(data, "pathtrace.vtp", "pathtrace")
     check(field_value(data, "method") == "pathtrace-mis", "pathtrace.vtp: field method == pathtrace-mis")
     check(field_value(data, "spp") == 16, "pathtrace.vtp: field spp == 16")

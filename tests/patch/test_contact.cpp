@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/rng.h"
 #include "mesh/face_geometry.h"
 #include "mesh/read_scene.h"
 #include "mesh/validate.h"
@@ -43,6 +44,13 @@ double inside_margin(const std::vector<Vec3>& K, const Vec3& n, const Vec3& q) {
     m = std::min(m, (q - K[k]).dot(d));
   }
   return m;
+}
+
+// (Vector area of polygon p) . n: positive when p turns counter-clockwise about n.
+double vector_area_dot(const std::vector<Vec3>& p, const Vec3& n) {
+  Vec3 a = Vec3::Zero();
+  for (std::size_t k = 0; k + 2 < p.size(); ++k) a += 0.5 * (p[k + 1] - p[0]).cross(p[k + 2] - p[0]);
+  return a.dot(n);
 }
 
 // Checks the cut: the pieces of each input face keep its orientation and material, add up to its area, and each
@@ -137,15 +145,16 @@ TEST_CASE("contacts: a block on a floor is found and the floor cut into the foot
     std::size_t cut = 0;
     const Mesh after = cut_along_contacts(m, contacts, &cut);
     CHECK(cut == 1);
-    // The footprint first, then the strips cut off one footprint edge at a time (by hand: the loop starts with
-    // the edge on z = 2, so the parts of the floor outside the lines z = 2, x = 2, z = 1, x = 1 in turn: 8, 4, 2,
-    // 1).
+    // The footprint first, then the pinwheel's four arms, each beyond one footprint edge and bounded by that
+    // edge's line and the neighbouring edge's line continued beyond one corner (by hand, on [0, 4]^2 about
+    // [1, 2]^2, every arm a rectangle: 1 x 2, 3 x 1, 2 x 2 and 2 x 3, whichever way the pinwheel turns; the former
+    // cut along whole chords gave strips of 8, 4, 2, 1).
     REQUIRE(after.face_count() == m.face_count() + 4);
     CHECK(face_area(after, 0) == Approx(1.0));
-    std::vector<double> strips;
-    for (std::size_t f = 1; f <= 4; ++f) strips.push_back(face_area(after, f));
-    std::sort(strips.begin(), strips.end());
-    CHECK(strips == std::vector<double>{1, 2, 4, 8});
+    std::vector<double> arms;
+    for (std::size_t f = 1; f <= 4; ++f) arms.push_back(face_area(after, f));
+    std::sort(arms.begin(), arms.end());
+    CHECK(arms == std::vector<double>{2, 3, 4, 6});
     for (std::size_t f = 0; f < 5; ++f) CHECK(after.source_face(f) == 0);
     for (std::size_t f = 5; f < after.face_count(); ++f) CHECK(after.source_face(f) == static_cast<long>(f - 4));
     check_cut(m, after, contacts, 1e-12);
@@ -208,6 +217,108 @@ TEST_CASE("contacts: the Cornell box's blocks stand on the floor, cut along thei
       if (inside_margin(c.footprint, up, centre) > 0) under += face_area(after, f);
     }
     CHECK(under == Approx(c.area).epsilon(1e-9));
+  }
+}
+
+// The smallest corner angle of face f (radians).
+double smallest_angle(const Mesh& m, std::size_t f) {
+  double smallest = kPi;
+  const int n = m.corner_count(f);
+  for (int k = 0; k < n; ++k) {
+    const Vec3 u = corner(m, f, (k + n - 1) % n) - corner(m, f, k), v = corner(m, f, (k + 1) % n) - corner(m, f, k);
+    smallest = std::min(smallest, std::atan2(u.cross(v).norm(), u.dot(v)));
+  }
+  return smallest;
+}
+
+TEST_CASE("contacts: the Cornell box's floor is cut into pieces without slivers, the footprints exact",
+          "[patch][contact]") {
+  // The floor is nine input faces (a 3 x 3 grid) and the blocks' footprints are rotated by about 17 degrees, so
+  // every piece beside a footprint has angles of about 17, 73 or 107 degrees where a footprint edge's line meets a
+  // floor face's side. The smallest angle the geometry forces is 16.6 degrees: the short block's edge
+  // (82, 225) -> (240, 272) crosses the floor faces' side z = 227 at atan(47 / 158). The former cut, along whole
+  // chords and each piece fanned from its first corner, left a 0.6-degree sliver of 285 mm^2 (split into four
+  // 71 mm^2 slivers at --max-edge 200) and an 11 mm^2 triangle where a chord ran on beyond the footprint's
+  // neighbourhood; it fails both checks below (smallest angle 0.6 degrees, 35 pieces).
+  const Mesh m = load_scene(bundled("cornell_box.obj"));
+  const auto contacts = find_contacts(m);
+  const Mesh after = cut_along_contacts(m, contacts);
+  check_cut(m, after, contacts, 1e-9);
+  double smallest = kPi;
+  std::size_t floor_pieces = 0;
+  for (std::size_t f = 0; f < after.face_count(); ++f) {
+    if (after.source_face(f) > 8) continue;
+    ++floor_pieces;
+    INFO("piece " << f << " of face " << after.source_face(f) << ": area " << face_area(after, f));
+    CHECK(smallest_angle(after, f) >= 16.5 * kPi / 180);
+    smallest = std::min(smallest, smallest_angle(after, f));
+  }
+  CHECK(smallest == Approx(std::atan2(47.0, 158.0)).epsilon(1e-2));
+  // The nine faces: 2 uncut, the 7 cut ones into 28 pieces, 2 + 28 = 30 (1, 3, 5, 3, 8, 3, 3, 3, 1 by face;
+  // at most one arm per footprint edge and the part under the footprint, per footprint on the face).
+  CHECK(floor_pieces == 30);
+}
+
+TEST_CASE("contacts: random convex footprints across a floor's faces cut it into convex pieces that tile it",
+          "[patch][contact]") {
+  // A floor [0, 4]^2 (normal +y) of four faces: three quads and a quad cut into two triangles along a diagonal. Each
+  // trial puts one convex footprint anywhere (3 to 6 corners on a circle of radius 0.2 to 1.2, so it may reach
+  // beyond a face or the floor), or two disjoint ones, one each side of x = 2. Whichever way each pinwheel turns,
+  // its arms and the part under the footprint must tile every face (areas add up), lie inside or outside every
+  // footprint, and be convex with positive area (make_patches splits a quad bilinearly).
+  Mesh m;
+  m.path = "generated";
+  for (int j = 0; j <= 2; ++j)
+    for (int i = 0; i <= 2; ++i) m.vertices.push_back({2.0 * i, 0, 2.0 * j});
+  auto at = [](int i, int j) { return static_cast<std::int32_t>(3 * j + i); };
+  m.faces.push_back({at(0, 0), at(0, 1), at(1, 1), at(1, 0)});  // (z) x (x) = +y
+  m.faces.push_back({at(1, 0), at(1, 1), at(2, 1), at(2, 0)});
+  m.faces.push_back({at(0, 1), at(0, 2), at(1, 2), at(1, 1)});
+  m.faces.push_back({at(1, 1), at(1, 2), at(2, 2), -1});
+  m.faces.push_back({at(1, 1), at(2, 2), at(2, 1), -1});
+  Material white;
+  white.name = "white";
+  white.Kd = Rgb(0.5, 0.5, 0.5);
+  m.materials = {white};
+  m.face_material.assign(m.faces.size(), 0);
+  validate_mesh(m);
+  const Vec3 up(0, 1, 0);
+  auto footprint = [&](Rng& rng, double x_lo, double x_hi) {
+    const int corners = 3 + static_cast<int>(rng.uniform_index(4));
+    const double r = 0.2 + (std::min(1.2, 0.5 * (x_hi - x_lo)) - 0.2) * rng.uniform();
+    const double cx = x_lo + r + (x_hi - x_lo - 2 * r) * rng.uniform(), cz = 0.5 + 3 * rng.uniform();
+    std::vector<double> angle;
+    for (int k = 0; k < corners; ++k) angle.push_back(2 * kPi * rng.uniform());
+    std::sort(angle.begin(), angle.end());
+    Contact c;
+    for (const double a : angle) c.footprint.push_back({cx + r * std::cos(a), 0, cz + r * std::sin(a)});
+    // Counter-clockwise about +y: the corners by increasing angle in (x, z) turn about -y, so reversed.
+    std::reverse(c.footprint.begin(), c.footprint.end());
+    c.supports = {0, 1, 2, 3, 4};  // a face the footprint misses keeps its one piece
+    return c;
+  };
+  Rng rng = stream(7, StreamDomain::test, 41, 0);
+  for (int trial = 0; trial < 300; ++trial) {
+    std::vector<Contact> contacts;
+    if (trial % 2 == 0) {
+      contacts.push_back(footprint(rng, -0.5, 4.5));
+    } else {
+      contacts.push_back(footprint(rng, 0, 2));
+      contacts.push_back(footprint(rng, 2, 4));
+    }
+    INFO("trial " << trial);
+    for (const Contact& c : contacts) REQUIRE(vector_area_dot(c.footprint, up) > 0);
+    const Mesh after = cut_along_contacts(m, contacts);
+    check_cut(m, after, contacts, 1e-9);
+    for (std::size_t f = 0; f < after.face_count(); ++f) {
+      INFO("piece " << f << " of face " << after.source_face(f));
+      CHECK(face_area(after, f) > 0);
+      const int n = after.corner_count(f);
+      for (int k = 0; k < n; ++k) {
+        const Vec3 &a = corner(after, f, k), &b = corner(after, f, (k + 1) % n), &c = corner(after, f, (k + 2) % n);
+        CHECK((b - a).cross(c - b).dot(up) >= -1e-12);
+      }
+    }
   }
 }
 
