@@ -503,13 +503,33 @@ Mesh cut_along_contacts(const Mesh& mesh, const std::vector<Contact>& contacts, 
   out.face_line.clear();
   out.face_source.clear();
   out.face_group.clear();
-  std::map<std::array<double, 3>, std::int32_t> added;  // new vertices by position, shared between pieces
+  // New vertices shared between pieces: one vertex for all the positions within `weld` of each other (the pieces
+  // of neighbouring faces compute the same corner in different orders, a few units in the last place apart; two
+  // vertices there would make a cell with coincident corners, which no reader can triangulate), found in a grid
+  // of cells of that size (the 27 cells around a position).
+  const double weld = 1e-9 * scene_extent(mesh);
+  std::map<std::array<std::int64_t, 3>, std::vector<std::int32_t>> added;
+  const auto index = [&](double x) {  // clamped: a zero extent (one point) makes every quotient infinite
+    const double q = weld > 0 ? std::floor(x / weld) : 0.0;
+    return static_cast<std::int64_t>(std::clamp(std::isfinite(q) ? q : 0.0, -4e18, 4e18));
+  };
+  const auto cell = [&](const Vec3& p) { return std::array<std::int64_t, 3>{index(p.x()), index(p.y()), index(p.z())}; };
   auto vertex = [&](const Vec3& p, std::size_t f) {
     for (int k = 0; k < mesh.corner_count(f); ++k)
-      if (corner(mesh, f, k) == p) return mesh.faces[f][static_cast<std::size_t>(k)];
-    const auto [it, fresh] = added.try_emplace({p.x(), p.y(), p.z()}, static_cast<std::int32_t>(out.vertices.size()));
-    if (fresh) out.vertices.push_back(p);
-    return it->second;
+      if ((corner(mesh, f, k) - p).norm() <= weld) return mesh.faces[f][static_cast<std::size_t>(k)];
+    const std::array<std::int64_t, 3> c = cell(p);
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = added.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == added.end()) continue;
+          for (const std::int32_t v : it->second)
+            if ((out.vertices[static_cast<std::size_t>(v)] - p).norm() <= weld) return v;
+        }
+    const auto v = static_cast<std::int32_t>(out.vertices.size());
+    out.vertices.push_back(p);
+    added[c].push_back(v);
+    return v;
   };
   auto copy_face = [&](std::size_t f, const std::array<std::int32_t, 4>& corners) {
     out.faces.push_back(corners);
