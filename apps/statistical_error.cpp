@@ -1,10 +1,10 @@
 #include "apps/statistical_error.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "apps/pipeline.h"
+#include "core/format_number.h"
 #include "core/moments.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_noise.h"
@@ -15,9 +15,7 @@
 namespace radwalk::app {
 
 std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
-  return text;
+  return format_number(100 * x, 2) + " %";
 }
 
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,

@@ -1,19 +1,17 @@
 #include "io/obj_writer.h"
 
-#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <ostream>
 
 #include "core/atomic_write.h"
+#include "core/format_number.h"
 
 namespace radwalk {
 namespace {
 
 std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return format_number(v, 17);
 }
 
 std::string rgb(const Rgb& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c[2]); }

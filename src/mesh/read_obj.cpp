@@ -1,7 +1,6 @@
 #include "mesh/read_obj.h"
 
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 
@@ -9,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/excerpt.h"
+#include "core/format_number.h"
 #include "mesh/mtl.h"
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
@@ -187,12 +187,6 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
   return files;
 }
 
-std::string colour_text(const Rgb& c) {
-  char text[96];
-  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", c[0], c[1], c[2]);
-  return text;
-}
-
 // Kd with a map_Kd texture (mtl.h, "Textures"): Kd (1 if the block has none) times the texture's mean linear
 // colour (texture_mean.h), or times 0.5 when the texture cannot be read; a warning finding either way.
 void apply_texture(Mesh& mesh, const MtlEntry& e, const MtlSource& source) {
@@ -212,21 +206,21 @@ void apply_texture(Mesh& mesh, const MtlEntry& e, const MtlSource& source) {
   finding.file = e.file;
   finding.line = e.map_Kd_line;
   finding.material = e.name;
-  const std::string what = "material '" + excerpt(e.name) + "': Kd " + colour_text(Kd) + " with texture '" +
+  const std::string what = "material '" + excerpt(e.name) + "': Kd " + format_rgb(Kd, 4) + " with texture '" +
                            excerpt(name) + "'";
   if (t.mean) {
     m.Kd = Kd * *t.mean;
     m.texture = file;
     finding.kind = "texture mean colour used";
-    finding.message = what + ": rho = Kd times the texture's mean colour " + colour_text(*t.mean) + " (linear, " +
-                      std::to_string(t.width) + " x " + std::to_string(t.height) + " pixels) = " + colour_text(m.Kd) +
+    finding.message = what + ": rho = Kd times the texture's mean colour " + format_rgb(*t.mean, 4) + " (linear, " +
+                      std::to_string(t.width) + " x " + std::to_string(t.height) + " pixels) = " + format_rgb(m.Kd, 4) +
                       " (the radiosity solvers take one rho per material; --set '" + excerpt(e.name) +
                       ".Kd=r,g,b' sets another)";
   } else {
     m.Kd = 0.5 * Kd;
     finding.kind = "texture not read";
     finding.message = what + (found ? " that cannot be read (" + t.why + ")" : " not found (looked for " + printable(file) + ")") +
-                      ": rho = Kd times 0.5, radwalk's default reflectance, = " + colour_text(m.Kd) + "; --set '" +
+                      ": rho = Kd times 0.5, radwalk's default reflectance, = " + format_rgb(m.Kd, 4) + "; --set '" +
                       excerpt(e.name) + ".Kd=r,g,b' sets the texture's colour";
   }
   mesh.findings.push_back(finding);
