@@ -14,6 +14,12 @@ std::string add_discretisation_error(const PatchSet& patches, const RadiosityPro
   const EmbreeVisibility visibility(patches);
   const DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
   solution.B_disc = error.standard_error;
+  return report_discretisation_error(patches, error, solution, summary);
+}
+
+std::string report_discretisation_error(const PatchSet& patches, const DiscretisationError& error,
+                                        const Solution& solution, RunSummary& summary) {
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   const double disc = relative_error(patches, solution.B, solution.B_disc);
   const double stat = solution.B_se.rows() == N ? relative_error(patches, solution.B, solution.B_se) : 0.0;
   const double total = relative_error(patches, solution.B, total_error(solution.B_se, solution.B_disc));

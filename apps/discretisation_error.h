@@ -11,6 +11,7 @@
 #include "core/solution.h"
 #include "io/run_summary.h"
 #include "patch/patch_set.h"
+#include "solve/discretisation_error.h"
 #include "solve/problem.h"
 
 namespace radwalk::app {
@@ -18,5 +19,10 @@ namespace radwalk::app {
 // directions: L of solve/fluctuation_source.h (0: not estimated, returns ""). Collective over MPI when problem.F is row-distributed.
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
                                      RunSummary& summary, int directions, std::uint64_t seed);
+
+// The JSON record and summary line of add_discretisation_error for a solution whose B_disc is already set from
+// `error` (alone or through solve/target_error_stage.h).
+std::string report_discretisation_error(const PatchSet& patches, const DiscretisationError& error,
+                                        const Solution& solution, RunSummary& summary);
 
 }  // namespace radwalk::app

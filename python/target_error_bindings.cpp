@@ -11,10 +11,8 @@
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
 #include "interruptible.h"
-#include "solve/discretisation_error.h"
-#include "solve/form_factor_error.h"
-#include "solve/solve_radiosity.h"
 #include "solve/target_error.h"
+#include "solve/target_error_stage.h"
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::python {
@@ -33,24 +31,14 @@ struct TargetErrorPyResult {
 // solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport.
 TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions) {
   return [=](const PatchSet& p, long step_rays, int) {
-    TargetErrorStage stage;
     const EmbreeVisibility visibility(p);
     FormFactorOptions o;  // the CLI's defaults: the recommended route
     o.rays_per_patch = step_rays;
     o.seed = seed;
     o.sobol = true;
-    stage.form_factors = estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples);
-    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
-    SolveOptions s;
-    s.tol = tol;
-    s.max_iterations = default_max_iterations(s.solver, p.size());
-    stage.solution = solve_radiosity(problem, s);
-    if (stage.solution.status == SolveStatus::converged) {
-      stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
-      stage.solution.B_disc =
-          discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions, seed).standard_error;
-    }
-    return stage;
+    return solve_target_error_stage(p, visibility,
+                                    estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples),
+                                    {tol, discretisation_directions, seed});
   };
 }
 
