@@ -1,23 +1,13 @@
 #include "apps/closure_option.h"
 
-#include <cstdio>
 #include <string>
 
 #include "apps/pipeline.h"
 #include "core/error.h"
+#include "core/format_number.h"
 #include "formfactor/closure.h"
 
 namespace radwalk::app {
-namespace {
-
-std::string fmt(double x, const char* format = "%.3g") {
-  char text[48];
-  std::snprintf(text, sizeof text, format, x);
-  return text;
-}
-
-}  // namespace
-
 void apply_closure(FormFactors& ff, const PatchSet& patches, RunSummary& summary, const std::string& source) {
   const std::size_t n = patches.size();
   const bool traced = ff.rays.size() == n && n > 0;
@@ -32,21 +22,25 @@ void apply_closure(FormFactors& ff, const PatchSet& patches, RunSummary& summary
       if (f > worst_fraction) worst_fraction = f, worst = i;
     }
     if (double(leaked) > kClosureLeakTolerance * double(rays))
-      throw InputError("--enforce-closure needs a closed scene, but " + std::to_string(leaked) + " of " +
-                       std::to_string(rays) + " rays (" + fmt(100.0 * double(leaked) / double(rays)) +
-                       " %, more than " + fmt(100 * kClosureLeakTolerance) + " %) escaped or hit the back of a "
-                       "face, most from patch " + std::to_string(worst) + " (input face " +
-                       std::to_string(patches.face[worst]) + ", object '" + patches.object_of(worst) + "', " +
-                       fmt(100 * worst_fraction) + " % of its rays): closing the rows would send that radiation "
-                       "back into the scene. Close the scene (or make its faces two-sided / oriented inward), or "
-                       "drop --enforce-closure (the escaping part then reaches the ambient)");
+      throw InputError(
+          "--enforce-closure needs a closed scene, but " + std::to_string(leaked) + " of " +
+          std::to_string(rays) + " rays (" + format_number(100.0 * double(leaked) / double(rays), 3) +
+          " %, more than " + format_number(100 * kClosureLeakTolerance, 3) +
+          " %) escaped or hit the back of a "
+          "face, most from patch " +
+          std::to_string(worst) + " (input face " + std::to_string(patches.face[worst]) + ", object '" +
+          patches.object_of(worst) + "', " + format_number(100 * worst_fraction, 3) +
+          " % of its rays): closing the rows would send that radiation "
+          "back into the scene. Close the scene (or make its faces two-sided / oriented inward), or "
+          "drop --enforce-closure (the escaping part then reaches the ambient)");
   } else {
     for (std::size_t i = 0; i < n; ++i) {
       const double row = double(ff.F.row(Eigen::Index(i)).sum());
       if (row < 1 - kClosureLeakTolerance)
-        throw InputError("--enforce-closure needs a closed scene, but row " + std::to_string(i) + " of " + source +
-                         " (input face " + std::to_string(patches.face[i]) + ", object '" + patches.object_of(i) +
-                         "') sums to " + fmt(row, "%.6g") + " < 1 - " + fmt(kClosureLeakTolerance) +
+        throw InputError("--enforce-closure needs a closed scene, but row " + std::to_string(i) + " of " +
+                         source + " (input face " + std::to_string(patches.face[i]) + ", object '" +
+                         patches.object_of(i) + "') sums to " + format_number(row) + " < 1 - " +
+                         format_number(kClosureLeakTolerance, 3) +
                          ": part of its radiation leaves the scene; drop --enforce-closure");
     }
   }
@@ -71,11 +65,12 @@ void apply_closure(FormFactors& ff, const PatchSet& patches, RunSummary& summary
   j["active_set_rounds"] = c.rounds;
   j["cg_iterations"] = c.cg_iterations;
   j["cg_relative_residual"] = c.cg_error;
-  note("closure enforced: F changed by at most " + fmt(c.max_change) + " (RMS " + fmt(c.rms_change) +
-       ") per entry; row sums were within " + fmt(c.max_row_defect_before) + " of 1, now " +
-       fmt(c.max_row_defect_after) + " (float rounding); reciprocity defect now " +
-       fmt(c.max_reciprocity_defect_after) + (c.clipped > 0 ? "; " + std::to_string(c.clipped) +
-       " entries clipped to 0" : std::string()) + " (per patch: closure_max_change, closure_rms_change)");
+  note("closure enforced: F changed by at most " + format_number(c.max_change, 3) + " (RMS " +
+       format_number(c.rms_change, 3) + ") per entry; row sums were within " +
+       format_number(c.max_row_defect_before, 3) + " of 1, now " + format_number(c.max_row_defect_after, 3) +
+       " (float rounding); reciprocity defect now " + format_number(c.max_reciprocity_defect_after, 3) +
+       (c.clipped > 0 ? "; " + std::to_string(c.clipped) + " entries clipped to 0" : std::string()) +
+       " (per patch: closure_max_change, closure_rms_change)");
 }
 
 }  // namespace radwalk::app

@@ -9,11 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "apps/options.h"
 #include "apps/exchange_sensitivities.h"
+#include "apps/options.h"
 #include "apps/pipeline.h"
 #include "apps/run_metadata.h"
 #include "core/error.h"
+#include "core/format_number.h"
 #include "core/parallel.h"
 #include "formfactor/form_factor_noise.h"
 #include "io/csv_writer.h"
@@ -23,20 +24,14 @@
 #include "solve/group_view_factors.h"
 #include "solve/heat_exchange.h"
 #include "solve/net_radiation.h"
-#include "solve/surface_conditions.h"
 #include "solve/solve_radiosity.h"
+#include "solve/surface_conditions.h"
 #include "visibility/embree_visibility.h"
 #include "walk/random_walk_solver.h"
 #include "walk/walk_options.h"
 
 namespace radwalk::app {
 namespace {
-
-std::string fmt(double x, const char* format = "%.6g") {
-  char text[48];
-  std::snprintf(text, sizeof text, format, x);
-  return text;
-}
 
 SolveOptions solve_options(const ExchangeCommand& c, std::size_t patches) {
   SolveOptions o;
@@ -56,7 +51,8 @@ int run_exchange(const ExchangeCommand& command) {
   const std::string unit = length_unit(command.scene).length();
   if (unit != "m" && !command.scene.unit.empty())
     throw InputError("radwalk exchange works in metres (sigma T^4 is W/m^2) but the lengths are in " + unit +
-                     ": use --unit " + command.scene.unit + " --scale " + fmt(metres_per(command.scene.unit)) +
+                     ": use --unit " + command.scene.unit + " --scale " +
+                     format_number(metres_per(command.scene.unit)) +
                      " (lengths times the scale become metres)");
   // Contact patches left out are whole patches (patch/contact_patches.h): the supports are cut along the
   // footprints first (the default), so that no patch of the floor reaches under a block, where its rays would start
@@ -107,7 +103,7 @@ int run_exchange(const ExchangeCommand& command) {
     note("form factors not traced here (analytic or read from a file): 1 - the row sum of F is taken as the sky "
          "view factor; backs of one-sided faces cannot be told from the sky");
   if (bal.sky_area > 1e-6 * patches.total_area() && command.ambient_temperature == 0 && !command.ambient_given)
-    warn(summary, "part of the scene sees out (sky view factor x area = " + fmt(bal.sky_area) +
+    warn(summary, "part of the scene sees out (sky view factor x area = " + format_number(bal.sky_area) +
                       " m^2): escaping radiation reaches an ambient at 0 K; give --ambient-temperature T");
   // Patch description columns: the system's rho and source (E) of every patch.
   {
@@ -201,10 +197,11 @@ int run_exchange(const ExchangeCommand& command) {
   double largest = 0;
   for (double Q : r.Q) largest += std::abs(Q);
   if (into_backs > 0.01 * std::max(largest, 1e-300))
-    warn(summary, fmt(into_backs) + " W (+- " + fmt(bal.into_backs_se, "%.2g") +
-                      ") is radiated into the backs of one-sided faces, where it is lost (absorbed at 0 K): faces "
-                      "oriented the wrong way (--orient outward), or open and thin parts that should be two-sided "
-                      "(--open-shells two-sided, 'radwalk_two_sided 1', --two-sided); the back_hits field says where");
+    warn(summary,
+         format_number(into_backs) + " W (+- " + format_number(bal.into_backs_se, 2) +
+             ") is radiated into the backs of one-sided faces, where it is lost (absorbed at 0 K): faces "
+             "oriented the wrong way (--orient outward), or open and thin parts that should be two-sided "
+             "(--open-shells two-sided, 'radwalk_two_sided 1', --two-sided); the back_hits field says where");
 
   // The contact patches' share, W.
   {
@@ -214,13 +211,20 @@ int run_exchange(const ExchangeCommand& command) {
     jx["contact_radiated"] = x.contact_radiated;
     jx["contact_Q"] = x.contact_Q;
     if (x.contact_count > 0 && !exclude)
-      warn(summary, std::to_string(x.contact_count) + " patches (" + fmt(x.contact_area) + " m^2) touch another "
-                    "surface (faces lying on a support, e.g. furniture bottoms on the floor, and the support under "
-                    "them): they radiate " + fmt(x.contact_radiated) + " W into the backs of faces or out through the "
-                    "support, and their net heat is " + fmt(x.contact_Q) + " W, which in reality is conduction "
-                    "through the contact; --contact-faces exclude leaves them out of the exchange");
+      warn(
+          summary,
+          std::to_string(x.contact_count) + " patches (" + format_number(x.contact_area) +
+              " m^2) touch another "
+              "surface (faces lying on a support, e.g. furniture bottoms on the floor, and the support under "
+              "them): they radiate " +
+              format_number(x.contact_radiated) +
+              " W into the backs of faces or out through the "
+              "support, and their net heat is " +
+              format_number(x.contact_Q) +
+              " W, which in reality is conduction "
+              "through the contact; --contact-faces exclude leaves them out of the exchange");
     else if (x.contact_count > 0)
-      note(std::to_string(x.contact_count) + " contact patches (" + fmt(x.contact_area) +
+      note(std::to_string(x.contact_count) + " contact patches (" + format_number(x.contact_area) +
            " m^2) left out of the exchange");
   }
 
@@ -297,9 +301,10 @@ int run_exchange(const ExchangeCommand& command) {
                    [&](int a, int b) { return std::abs(group_Q[std::size_t(a)]) > std::abs(group_Q[std::size_t(b)]); });
   for (std::size_t k = 0; k < order.size() && k < 10; ++k) {
     const auto g = std::size_t(order[k]);
-    const std::string se = error_note.empty() ? " (+- " + fmt(group_Q_se[g], "%.2g") + ")" : "";
-    const std::string T = std::isfinite(group_T[g]) ? fmt(group_T[g], "%.2f") + " K"
-                                                     : std::string("none (no patch of it radiates)");
+    const std::string se = error_note.empty() ? " (+- " + format_number(group_Q_se[g], 2) + ")" : "";
+    const std::string T = std::isfinite(group_T[g])
+                              ? format_number(group_T[g], 2, NumberNotation::fixed) + " K"
+                              : std::string("none (no patch of it radiates)");
     std::fprintf(report_stream(), "  %s %s: Q = %.6g W%s, area %.4g m^2, radiant temperature %s\n",
                  command.group_by.c_str(), names[g].c_str(), group_Q[g], se.c_str(), gv.area[g], T.c_str());
   }

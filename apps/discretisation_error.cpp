@@ -1,7 +1,5 @@
 #include "apps/discretisation_error.h"
 
-#include <utility>
-
 #include "apps/run_metadata.h"
 #include "apps/statistical_error.h"
 #include "core/timer.h"
@@ -13,13 +11,19 @@
 namespace radwalk::app {
 
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed,
-                                     DiscretisationError* kept) {
+                                     RunSummary& summary, int directions, std::uint64_t seed) {
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   if (solution.B.rows() != N || directions <= 0) return {};
   const EmbreeVisibility visibility(patches);
-  DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
+  const DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
   solution.B_disc = error.standard_error;
+  return report_discretisation_error(patches, problem, error, solution, summary);
+}
+
+std::string report_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem,
+                                        const DiscretisationError& error, const Solution& solution,
+                                        RunSummary& summary) {
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   const double disc = relative_error(patches, solution.B, solution.B_disc);
   const double stat = solution.B_se.rows() == N ? relative_error(patches, solution.B, solution.B_se) : 0.0;
   const double total = relative_error(patches, solution.B, total_error(solution.B_se, solution.B_disc));
@@ -52,7 +56,6 @@ std::string add_discretisation_error(const PatchSet& patches, const RadiosityPro
               ": discretisation " + percent(worst->discretisation) + ", statistical " + percent(worst->statistical) +
               "; each material's in the JSON's error_estimate.materials)";
   }
-  if (kept) *kept = std::move(error);
   return line;
 }
 

@@ -4,8 +4,10 @@
 //
 // Sets solution.B_disc (1 standard deviation equivalent per patch and channel); records in the JSON's
 // "error_estimate" the part "discretisation" (relative error, points, directions, rays, the method) and "total"
-// (relative error of B_err = sqrt(B_se^2 + B_disc^2)); returns the summary line
-//   "estimated error e = 0.9 % (statistical 0.4 %, discretisation 0.8 %; ...)".
+// (relative error of B_err = sqrt(B_se^2 + B_disc^2)), and "materials", each material's mean with its own errors
+// (solve/group_mean_error.h), when the problem holds every row of a solved F; returns the summary line
+//   "estimated error e = 0.9 % (statistical 0.4 %, discretisation 0.8 %; ...)"
+// and, with the materials, a second line naming the largest error of a material's mean.
 #include <string>
 
 #include "core/solution.h"
@@ -17,9 +19,14 @@
 namespace radwalk::app {
 
 // directions: L of solve/fluctuation_source.h (0: not estimated, returns ""). Collective over MPI when problem.F is
-// row-distributed. kept, if given, receives the whole estimate (its source d for the errors of group means).
+// row-distributed.
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed,
-                                     DiscretisationError* kept = nullptr);
+                                     RunSummary& summary, int directions, std::uint64_t seed);
+
+// The JSON record and summary lines of add_discretisation_error for a solution whose B_disc is already set from
+// `error` (alone or through solve/target_error_stage.h); `problem` the one B solves.
+std::string report_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem,
+                                        const DiscretisationError& error, const Solution& solution,
+                                        RunSummary& summary);
 
 }  // namespace radwalk::app

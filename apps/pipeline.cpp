@@ -13,17 +13,19 @@
 #if defined(__GLIBC__)
 #include <malloc.h>  // malloc_trim
 #endif
-#include <map>
 #include <fstream>
+#include <map>
 
+#include "apps/closure_option.h"
 #include "core/digest.h"
 #include "core/distributed.h"
 #include "core/error.h"
+#include "core/format_number.h"
 #include "core/input_file.h"
+#include "core/parallel.h"
 #include "core/path_length.h"
 #include "core/standard_output.h"
 #include "core/timer.h"
-#include "core/parallel.h"
 #include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "formfactor/form_factor_diagnostics.h"
@@ -31,9 +33,7 @@
 #include "formfactor/form_factor_rows.h"
 #include "formfactor/matrix_market.h"
 #include "formfactor/reciprocity.h"
-#include "apps/closure_option.h"
 #include "io/csv_writer.h"
-#include "visibility/embree_visibility.h"
 #include "io/vtp_writer.h"
 #include "mesh/length_unit.h"
 #include "mesh/material_override.h"
@@ -44,6 +44,7 @@
 #include "patch/contact.h"
 #include "patch/patch_scene.h"
 #include "patch/patching.h"
+#include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
 
@@ -360,9 +361,7 @@ namespace {
 // (object, group, material) they come from, most first; escaped_by_group in the JSON.
 // "16.7 %".
 std::string percent(double fraction) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g %%", 100 * fraction);
-  return text;
+  return format_number(100 * fraction, 3) + " %";
 }
 
 void warn_escaped_rays(const FormFactors& ff, const PatchSet& patches, std::uint64_t escaped, std::uint64_t rays,

@@ -1,36 +1,53 @@
 #include "apps/statistical_error.h"
 
 #include <cmath>
-#include <cstdio>
+#include <optional>
 #include <string>
 
 #include "apps/pipeline.h"
+#include "core/format_number.h"
 #include "core/moments.h"
 #include "core/timer.h"
 #include "formfactor/form_factor_noise.h"
-#include "solve/target_error.h"
 #include "solve/form_factor_error.h"
+#include "solve/target_error.h"
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
 
 std::string percent(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.2g %%", 100 * x);
-  return text;
+  return format_number(100 * x, 2) + " %";
 }
 
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                           Solution& solution, RunSummary& summary) {
+                                  Solution& solution, RunSummary& summary) {
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
+  if (solution.B.rows() != N) return {};
+  const bool walks = solution.B_se.rows() == N;
+  const PatchRgb own_se = walks ? solution.B_se : PatchRgb();
+  Timer timer;
+  std::optional<FormFactorError> error;
+  if (has_noise_model(ff)) {
+    const EmbreeVisibility visibility(patches);
+    error = add_form_factor_error(patches, visibility, ff, problem, solution);
+  } else {
+    solution.B_se = walks ? own_se : PatchRgb::Zero(N, 3);  // F's noise unknown: the solver's own part alone
+  }
+  return report_statistical_error(patches, ff, solution, own_se, error ? &*error : nullptr, timer.seconds(), summary);
+}
+
+std::string report_statistical_error(const PatchSet& patches, const FormFactors& ff, const Solution& solution,
+                                     const PatchRgb& own_se, const FormFactorError* error, double seconds,
+                                     RunSummary& summary) {
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   if (solution.B.rows() != N) return {};
   auto& j = summary.json()["error_estimate"];
   auto& stat = j["statistical"];
-  const bool walks = solution.B_se.rows() == N;
-  const PatchRgb own_se = walks ? solution.B_se : PatchRgb::Zero(N, 3);
+  const bool walks = own_se.rows() == N;
   const double walks_relative = walks ? relative_error(patches, solution.B, own_se) : 0.0;
   if (walks) stat["walks_relative"] = walks_relative;
-  if (!has_noise_model(ff)) {
+  const double total = relative_error(patches, solution.B, solution.B_se);
+  if (!error) {
     // F read from a file records no sampling; the analytic route's visibility estimates have their row standard
     // errors (the CSV's row_std_error) but are not propagated yet.
     const bool analytic = !ff.row_std_error.empty();
@@ -38,21 +55,12 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
                                         "propagated"
                                       : "the noise of the form factors read from the file is not included";
     stat["form_factors"] = "not included: " + what;
-    solution.B_se = own_se;
-    const double total = relative_error(patches, solution.B, solution.B_se);
     stat["relative"] = total;
     return "estimated statistical error e = " + percent(total) + (walks ? " (the walks' own; " : " (") + what + ")";
   }
-  Timer timer;
-  const RadiosityProblem& p = problem;
-  const EmbreeVisibility visibility(patches);
-  const FormFactorError error = form_factor_error(patches, visibility, ff, p, solution.B);
-  const SamplingCalibration& calibration = error.calibration;
-  const PropagatedVariance& propagated = error.propagation;
-  const PatchRgb& F_se = error.standard_error;
-  solution.B_se = combined_standard_error(own_se, F_se);
-  const double total = relative_error(patches, solution.B, solution.B_se);
-  const double from_F = relative_error(patches, solution.B, F_se);
+  const SamplingCalibration& calibration = error->calibration;
+  const PropagatedVariance& propagated = error->propagation;
+  const double from_F = relative_error(patches, solution.B, error->standard_error);
   stat["relative"] = total;
   stat["form_factors_relative"] = from_F;
   stat["sampling_factor_rays"] = calibration.factors.rays;
@@ -67,7 +75,7 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
   stat["propagation_sweeps"] = propagated.sweeps;
   stat["method"] = "first-order propagation of each row's gather variance, Var(B_i) = sum_j G_ij^2 rho_j^2 V_j "
                    "(docs/theory/error_estimate.md)";
-  summary.add_timing("error_estimate", timer.seconds());
+  summary.add_timing("error_estimate", seconds);
   std::string line = "estimated statistical error e = " + percent(total) +
                      " (1 standard deviation, relative to B over the reflecting patches; from the form factors' noise " +
                      percent(from_F);

@@ -15,6 +15,7 @@
 #include "formfactor/form_factors.h"
 #include "io/run_summary.h"
 #include "patch/patch_set.h"
+#include "solve/form_factor_error.h"
 #include "solve/problem.h"
 #include "solve/target_error.h"
 
@@ -24,6 +25,14 @@ namespace radwalk::app {
 // when problem.F is row-distributed (each process works on its rows; the same result as one process).
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
                                   Solution& solution, RunSummary& summary);
+
+// The JSON record and summary line of add_statistical_error for a solution whose B_se is already set (by
+// add_form_factor_error, solve/form_factor_error.h, alone or through solve/target_error_stage.h): own_se the
+// solver's own standard error before (empty when it has none), error F's noise in B (nullptr when F records no
+// tracing), seconds the time of that estimate.
+std::string report_statistical_error(const PatchSet& patches, const FormFactors& ff, const Solution& solution,
+                                     const PatchRgb& own_se, const FormFactorError* error, double seconds,
+                                     RunSummary& summary);
 
 // relative_error (the relative error e of the benchmarks for a per-patch error): solve/target_error.h.
 

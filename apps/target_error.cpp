@@ -9,6 +9,8 @@
 #include "core/error.h"
 #include "solve/problem.h"
 #include "solve/solve_radiosity.h"
+#include "solve/target_error_stage.h"
+#include "visibility/embree_visibility.h"
 
 namespace radwalk::app {
 
@@ -28,23 +30,20 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
   return [&command, &summary, &error_line, first_obtains](const PatchSet& p, long rays, int step) {
     FormFactorCliOptions ff_options = command.ff;
     ff_options.rays = rays;
-    TargetErrorStage stage;
-    stage.form_factors = step == 0 && first_obtains ? obtain_form_factors(command.scene, ff_options, p, summary)
-                                                    : trace_form_factors(command.scene, ff_options, p);
-    // A copy of F for the solve: the last step's F stays with its record, for the per-patch diagnostics.
-    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
-    SolveOptions solve;
-    solve.tol = command.tol;
-    solve.max_iterations = default_max_iterations(solve.solver, p.size());
-    stage.solution = solve_radiosity(problem, solve);
+    FormFactors ff = step == 0 && first_obtains ? obtain_form_factors(command.scene, ff_options, p, summary)
+                                                : trace_form_factors(command.scene, ff_options, p);
+    // The step shared with radwalk.solve_to_target_error (solve/target_error_stage.h); its estimates reported here.
+    TargetErrorStageEstimates estimates;
+    TargetErrorStage stage = solve_target_error_stage(
+        p, EmbreeVisibility(p), std::move(ff),
+        {command.tol, command.discretisation_directions, command.scene.seed}, &estimates);
     if (stage.solution.status == SolveStatus::converged) {
-      error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
-      DiscretisationError estimate;
-      const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
-                                                        command.discretisation_directions, command.scene.seed, &estimate);
-      stage.source = std::move(estimate.source);
-      stage.source_sd = std::move(estimate.source_sd);
-      if (!disc.empty()) error_line += "\n" + disc;
+      const FormFactorError* statistical = estimates.statistical ? &*estimates.statistical : nullptr;
+      error_line = report_statistical_error(p, stage.form_factors, stage.solution, estimates.solver_standard_error, statistical,
+                                            estimates.statistical_seconds, summary);
+      if (estimates.discretisation)
+        error_line += "\n" + report_discretisation_error(p, make_problem(p, SparseF(stage.form_factors.F)),
+                                                         *estimates.discretisation, stage.solution, summary);
     }
     return stage;
   };

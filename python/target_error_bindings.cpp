@@ -2,6 +2,9 @@
 // E` runs it: each step traces F by the recommended route (Sobol rays, automatic emitter columns) with the step's
 // rays, solves with the automatic solver, and estimates B_se and B_disc as radwalk.solve does; the same seed
 // gives the CLI's patches and B.
+#include <optional>
+#include <string>
+
 #include <nlohmann/json.hpp>
 
 #include "apps/run_metadata.h"
@@ -11,10 +14,8 @@
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
 #include "interruptible.h"
-#include "solve/discretisation_error.h"
-#include "solve/form_factor_error.h"
-#include "solve/solve_radiosity.h"
 #include "solve/target_error.h"
+#include "solve/target_error_stage.h"
 #include "visibility/embree_visibility.h"
 
 namespace radwalk::python {
@@ -25,32 +26,30 @@ struct TargetErrorPyResult {
   FormFactorsResult form_factors;  // their F
   Result result;                   // their solve, with B_se and B_disc
   std::vector<TargetErrorStep> steps;
+  std::vector<GroupMeanError> groups;  // the last step's, when the run held each group's mean
   bool reached = false;
   std::string stop_reason;
 };
+
+// The groups whose means the run holds, as the CLI's --target-each: None -> "material" where the route can hold
+// it (not hierarchical_transport="rays"), else none; "none" -> none (""); an unknown name is refused by the route.
+std::string held_groups(const std::optional<std::string>& each, bool can_hold) {
+  if (!each) return can_hold ? "material" : "";
+  return *each == "none" ? "" : *each;
+}
 
 // One step's work of the uniform route (the CLI's defaults: Sobol rays, automatic emitter columns, the automatic
 // solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport.
 TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions) {
   return [=](const PatchSet& p, long step_rays, int) {
-    TargetErrorStage stage;
     const EmbreeVisibility visibility(p);
     FormFactorOptions o;  // the CLI's defaults: the recommended route
     o.rays_per_patch = step_rays;
     o.seed = seed;
     o.sobol = true;
-    stage.form_factors = estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples);
-    const RadiosityProblem problem = make_problem(p, SparseF(stage.form_factors.F));
-    SolveOptions s;
-    s.tol = tol;
-    s.max_iterations = default_max_iterations(s.solver, p.size());
-    stage.solution = solve_radiosity(problem, s);
-    if (stage.solution.status == SolveStatus::converged) {
-      stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
-      stage.solution.B_disc =
-          discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions, seed).standard_error;
-    }
-    return stage;
+    return solve_target_error_stage(p, visibility,
+                                    estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples),
+                                    {tol, discretisation_directions, seed});
   };
 }
 
@@ -60,7 +59,8 @@ TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisat
 // route's work; form_factors holds the last step's F) or "rays" (no form factors: form_factors holds an empty F).
 TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double target_error, long rays, long max_patches,
                                                  double max_seconds, double tol, std::uint64_t seed, int threads,
-                                                 int discretisation_directions, const std::string& transport) {
+                                                 int discretisation_directions, const std::string& transport,
+                                                 const std::optional<std::string>& each) {
   HierarchicalOptions h;
   h.seed = seed;
   HierarchicalTargetOptions o;
@@ -69,6 +69,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   o.max_leaves = max_patches;
   o.max_seconds = max_seconds;
   o.directions = discretisation_directions;
+  o.each = held_groups(each, transport == "form-factors");
   if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
   HierarchicalTargetResult r;
   interruptible([&] {
@@ -84,6 +85,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   out.form_factors.area = out.scene.patches.area;
   if (r.form_factor_transport) out.form_factors.ff = std::move(r.stage.form_factors);
   for (const HierarchicalTargetStep& s : r.steps) out.steps.push_back(s.step);
+  out.groups = r.groups;
   out.reached = r.reached;
   out.stop_reason = r.stop_reason == "max-leaves" ? "max-patches" : r.stop_reason;
   out.result.solution = hierarchical_target_solution(r);
@@ -91,7 +93,9 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   nlohmann::json target = {{"target", target_error},    {"route", "hierarchical"}, {"transport", transport},
                            {"max_patches", max_patches},
                            {"max_seconds", max_seconds}, {"reached", out.reached}, {"stop_reason", out.stop_reason},
-                           {"seconds", r.seconds},      {"steps", nlohmann::json::array()}};
+                           {"seconds", r.seconds},      {"steps", nlohmann::json::array()},
+                           {"each", o.each.empty() ? "none" : o.each}};
+  if (!o.each.empty()) target["groups"] = app::group_mean_errors_json(out.groups);
   for (const HierarchicalTargetStep& s : r.steps) {
     nlohmann::json x = app::target_error_step_json(s.step);
     x["leaves"] = s.step.patches;
@@ -107,7 +111,8 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
 TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double target_error, long rays, long max_patches,
                                              double max_seconds, double tol, std::uint64_t seed,
                                              long long threads_arg, int discretisation_directions, bool hierarchical,
-                                             const std::string& hierarchical_transport) {
+                                             const std::string& hierarchical_transport,
+                                             const std::optional<std::string>& each) {
   const int threads = check_run(scene_arg, threads_arg);
   if (discretisation_directions < 1)
     throw InputError("solve_to_target_error needs the discretisation estimate: discretisation_directions must be "
@@ -127,13 +132,14 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
   const Scene& scene = scene_arg.uncut_mesh ? cut : scene_arg;
   if (hierarchical) {
     return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, tol, seed, threads,
-                                        discretisation_directions, hierarchical_transport);
+                                        discretisation_directions, hierarchical_transport, each);
   }
   TargetErrorOptions options;
   options.target = target_error;
   options.rays = rays;
   options.max_patches = static_cast<std::size_t>(max_patches);
   options.max_seconds = max_seconds;
+  options.each = held_groups(each, true);
   if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
   const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions);
   TargetErrorResult r;
@@ -147,13 +153,16 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
   out.form_factors.area = out.scene.patches.area;
   out.form_factors.ff = std::move(r.form_factors);
   out.steps = std::move(r.steps);
+  out.groups = std::move(r.groups);
   out.reached = r.reached;
   out.stop_reason = r.stop_reason;
   out.result.solution = std::move(r.solution);
   out.result.timings = {{"target_error", r.seconds}};
   nlohmann::json target = {{"target", target_error},    {"max_patches", max_patches}, {"max_seconds", max_seconds},
                            {"reached", out.reached},    {"stop_reason", out.stop_reason}, {"seconds", r.seconds},
-                           {"steps", nlohmann::json::array()}};
+                           {"steps", nlohmann::json::array()},
+                           {"each", options.each.empty() ? "none" : options.each}};
+  if (!options.each.empty()) target["groups"] = app::group_mean_errors_json(out.groups);
   for (const TargetErrorStep& s : out.steps) target["steps"].push_back(app::target_error_step_json(s));
   nlohmann::json run = {{"solver", "auto"}, {"tol", tol}, {"seed", seed}, {"threads", threads},
                         {"rays_per_patch", out.steps.back().rays_per_patch}, {"target_error", target}};
@@ -184,6 +193,12 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
           },
           "One dict per step (a list): patches, rays_per_patch, statistical, discretisation, total (relative "
           "errors), seconds, split, next_rays_per_patch (the JSON's target_error.steps).")
+      .def_property_readonly(
+          "groups",
+          [](const TargetErrorPyResult& a) { return json_to_python(app::group_mean_errors_json(a.groups).dump()); },
+          "One dict per material (object, group) whose mean the run held, of the last step (a list; empty with "
+          "each=\"none\"): name, area, mean, estimate (the signed relative discretisation error of the mean), "
+          "discretisation, statistical, total (relative errors of the mean; the JSON's target_error.groups).")
       .def_readonly("reached", &TargetErrorPyResult::reached, "Whether the target was reached (bool).")
       .def_readonly("stop_reason", &TargetErrorPyResult::stop_reason, "Why the steps stopped (str).")
       .def("__repr__", [](const TargetErrorPyResult& a) {
@@ -195,7 +210,7 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
         py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
-        py::arg("hierarchical_transport") = "form-factors",
+        py::arg("hierarchical_transport") = "form-factors", py::arg("each") = py::none(),
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
 As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
@@ -206,7 +221,10 @@ estimates B_se and B_disc; where the statistical part dominates the next step ha
 discretisation part dominates the patches with the largest B_disc are split in 4. A scene loaded without max_edge
 or max_area starts from about 500 patches (every patch above twice the mean area of 500 split in 4), as the CLI
 given no --max-edge or --max-area; its faces are first cut along the contacts when it was loaded with
-contact_cut=True (the default), as the CLI's --target-error does. max_patches bounds the patches,
+contact_cut=True (the default), as the CLI's --target-error does. each (the CLI's --target-each): also hold each
+"material" (the default, None), "object" or "group" mean within the target, with its own estimated error (the
+patches of one material have correlated errors, so its mean can be off by more than the per-patch RMS); "none":
+the per-patch target alone (hierarchical_transport="rays" holds none by default and refuses a group). max_patches bounds the patches,
 max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it first,
 reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is not
 changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.

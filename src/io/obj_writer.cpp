@@ -1,19 +1,20 @@
 #include "io/obj_writer.h"
 
-#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <ostream>
+#include <vector>
 
 #include "core/atomic_write.h"
+#include "core/format_number.h"
+#include "mesh/read_obj.h"
+#include "patch/contact_pairs.h"
 
 namespace radwalk {
 namespace {
 
 std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
+  return format_number(v, 17);
 }
 
 std::string rgb(const Rgb& c) { return num(c[0]) + " " + num(c[1]) + " " + num(c[2]); }
@@ -60,13 +61,16 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
     }
   });
   obj_file.write([&](std::ostream& out) {
-    out << "# radwalk patches of " << patches.source << ": " << patches.size() << " patches\n" << id_line;
+    out << kObjRadwalkHeader << patches.source << ": " << patches.size() << " patches\n" << id_line;
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
     int current = -1;
     std::string object, group;  // the statements in force: none at the start
+    std::vector<long> face_of(patches.size(), 0);  // the file's face number (1-based) of each written patch
+    long faces = 0;
     for (std::size_t i = 0; i < patches.size(); ++i) {
       if (patches.is_back(i)) continue;  // written by its front (radwalk_two_sided above)
+      face_of[i] = ++faces;
       // o starts an object and leaves its group, so each change writes o, then g when there is a group.
       if (object != patches.object_of(i) || group != patches.group_of(i)) {
         object = patches.object_of(i);
@@ -83,6 +87,17 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
       out << 'f';
       for (int k = 0; k < patches.corner_count(i); ++k) out << ' ' << patches.corners[i][k] + 1;
       out << '\n';
+    }
+    // The contact pairs, as comments other readers skip (docs/units-and-formats.md, "OBJ radwalk wrote").
+    const std::vector<std::int32_t> pair = contact_pair_ids(patches);
+    std::vector<long> first(patches.size(), 0);  // pair id -> its lower patch's face number
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      if (pair[i] < 0) continue;
+      long& lower = first[static_cast<std::size_t>(pair[i])];
+      if (lower == 0)
+        lower = face_of[i];
+      else
+        out << kObjContactPairComment << ' ' << lower << ' ' << face_of[i] << '\n';
     }
   });
   commit_together({&mtl_file, &obj_file});

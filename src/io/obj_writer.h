@@ -7,6 +7,12 @@
 // are written as the OBJ name rule reads them back: control characters and '#' become '_'.
 // The MTL file is PATH with its extension replaced by .mtl. Both files are written atomically.
 // run_id: when not empty, both files' second line is the comment "# run_id RUN_ID" (apps/run_metadata.h).
+// Contact pairs (patch/contact_pairs.h: a floor piece cut along a footprint and the bottom lying on it, two front
+// patches on the same corners back to back) are named after the faces, one comment line per pair,
+// "# radwalk_contact_pair A B" with A < B the pair's face numbers in the file (1-based, as `f` statements count),
+// in the order of their lower patch: radwalk's OBJ reader honours them in a file whose first line is this writer's
+// "# radwalk patches of ..." (mesh/read_obj.h), so that the pair reads back as two one-sided faces instead of one
+// two-sided face; other readers skip them as comments.
 #include <string>
 
 #include "patch/patch_set.h"

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <ostream>
 
 #include "core/atomic_write.h"
+#include "core/format_number.h"
 
 namespace radwalk {
 namespace {
@@ -21,16 +21,12 @@ std::string python_string(const std::string& s) {
   return out + "'";
 }
 
-std::string python_list(const Vec3& v) {
-  char buf[96];
-  std::snprintf(buf, sizeof buf, "[%.17g, %.17g, %.17g]", v.x(), v.y(), v.z());
-  return buf;
+std::string python_number(double x) {
+  return format_number(x, 17);
 }
 
-std::string python_number(double x) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.17g", x);
-  return buf;
+std::string python_list(const Vec3& v) {
+  return '[' + python_number(v.x()) + ", " + python_number(v.y()) + ", " + python_number(v.z()) + ']';
 }
 
 }  // namespace
@@ -71,8 +67,7 @@ void write_paraview_state(const std::string& path, const std::string& vtp, const
                           const StateColouring& colouring, const std::string& run_id) {
   const std::filesystem::path data(vtp);
   const std::string absolute = std::filesystem::absolute(data).lexically_normal().string();
-  char angle[32];
-  std::snprintf(angle, sizeof angle, "%.17g", view.view_angle_deg);
+  const std::string angle = python_number(view.view_angle_deg);
   write_atomically(path, [&](std::ostream& out) {
     out << "# ParaView state written by radwalk: File > Load State, `paraview --state=THIS.py` or `pvpython "
            "THIS.py`.\n"

@@ -1,8 +1,9 @@
 #include "mesh/length_unit.h"
 
 #include <cmath>
-#include <cstdio>
 #include <utility>
+
+#include "core/format_number.h"
 
 namespace radwalk {
 
@@ -10,12 +11,6 @@ namespace {
 
 const std::pair<const char*, double> kUnits[] = {
     {"mm", 1e-3}, {"cm", 1e-2}, {"m", 1.0}, {"in", 0.0254}, {"ft", 0.3048}};
-
-std::string number(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
 
 }  // namespace
 
@@ -36,7 +31,7 @@ std::string LengthUnit::length() const {
     for (const auto& [name, m] : kUnits)
       if (std::abs(metres - m) <= 1e-9 * m) return name;
   }
-  return number(1 / scale) + " " + base;
+  return format_number(1 / scale) + " " + base;
 }
 
 std::string LengthUnit::radiosity() const {

@@ -35,7 +35,8 @@ struct Mesh {
   std::vector<std::string> warnings;             // one line per repair or notice, naming the face (after
                                                  // validate_mesh: the non-error findings, grouped by kind)
   std::vector<Finding> findings;                 // what the reader and validation found (finding.h)
-  // Contact pairs the file declares (radwalk's own .vtp: its cell field contact_pair, mesh/read_vtk.h): the pair
+  // Contact pairs the file declares (radwalk's own .vtp: its cell field contact_pair, mesh/read_vtk.h; radwalk's own
+  // .obj: its "# radwalk_contact_pair" lines, mesh/read_obj.h): the pair
   // id of input face s (Mesh::source_face), -1 for none; empty for other files. Two faces of one pair that lie
   // back to back on the same corners stay two one-sided faces (a floor piece cut along a footprint and the bottom
   // lying on it, patch/contact_pairs.h) instead of becoming one two-sided face (mesh/validate.h).

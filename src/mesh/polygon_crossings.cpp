@@ -1,13 +1,12 @@
 #include "mesh/polygon_crossings.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <map>
-#include <sstream>
 
-#include <Eigen/Eigenvalues>
-
+#include "core/format_number.h"
 #include "mesh/triangulate.h"
 
 namespace radwalk {
@@ -308,13 +307,11 @@ PolygonPieces split_at_crossings(const std::vector<Vec3>& corners, bool touches)
 }
 
 std::string split_message(const std::string& what, const PolygonPieces& pieces, std::size_t triangles) {
-  std::ostringstream area;
-  area.precision(6);
-  area << pieces.area;
   const std::size_t m = pieces.meetings, k = pieces.pieces.size();
-  std::string s = what + " crosses itself: split at " + std::to_string(m) + (m == 1 ? " crossing" : " crossings") +
-                  " into " + std::to_string(k) + " simple " + (k == 1 ? "piece" : "pieces") + " of area " +
-                  area.str() + " in all (the lobes' areas as drawn)";
+  std::string s = what + " crosses itself: split at " + std::to_string(m) +
+                  (m == 1 ? " crossing" : " crossings") + " into " + std::to_string(k) + " simple " +
+                  (k == 1 ? "piece" : "pieces") + " of area " + format_number(pieces.area) +
+                  " in all (the lobes' areas as drawn)";
   if (pieces.nested > 0)
     s += ", " + std::to_string(pieces.nested) + (pieces.nested == 1 ? " piece" : " pieces") +
          " inside another left out (a region the outline winds around twice is covered once)";

@@ -1,13 +1,12 @@
 #include "mesh/polygon_faces.h"
 
-#include <sstream>
+#include <algorithm>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "mesh/polygon_crossings.h"
 #include "mesh/repeated_corners.h"
 #include "mesh/triangulate.h"
-
-#include <algorithm>
 
 namespace radwalk {
 
@@ -19,17 +18,6 @@ void PolygonFaces::push(const std::array<std::int32_t, 4>& corners, long line, s
   mesh_.face_group.push_back(group);
   mesh_.face_source.push_back(source);
 }
-
-namespace {
-
-std::string area_text(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
-}  // namespace
 
 double PolygonFaces::outline_area(const std::vector<std::int32_t>& corners) const {
   Vec3 N = Vec3::Zero();
@@ -95,10 +83,10 @@ void PolygonFaces::add(const std::vector<std::int32_t>& input, long line, std::i
   if (kept == 0) {
     return found("face without area dropped", Severity::repair,
                  what + "no loop between its repeats has 3 corners, so it has no area: dropped, area " +
-                     area_text(drawn) + " (--strict refuses it)");
+                     format_number(drawn) + " (--strict refuses it)");
   }
   what += kept == 1 ? "the repeats removed, kept as one face" : "split at its repeats into " + std::to_string(kept) + " faces";
-  what += " of area " + area_text(kept_area) + " (as drawn " + area_text(drawn) + ")";
+  what += " of area " + format_number(kept_area) + " (as drawn " + format_number(drawn) + ")";
   if (dropped > 0) what += ", " + std::to_string(dropped) + " spike(s) without area dropped (area 0)";
   found("repeated corners removed", Severity::repair, what + " (--strict refuses it)");
 }

@@ -1,14 +1,15 @@
 #include "mesh/read_obj.h"
 
+#include <sys/stat.h>
+
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
-
-#include <sys/stat.h>
+#include <optional>
 
 #include "core/error.h"
 #include "core/excerpt.h"
+#include "core/format_number.h"
 #include "mesh/mtl.h"
 #include "mesh/polygon_faces.h"
 #include "mesh/text_scan.h"
@@ -41,6 +42,12 @@ struct ObjScan {
   std::vector<NamedLine> bad_vertices;  // why a `v` statement cannot be read, and its line
   long ignored_elements = 0;  // `l` and `p` statements
   long first_ignored_line = 0;
+  bool written_by_radwalk = false;  // the first line starts with kObjRadwalkHeader
+  struct PairLine {
+    long line = 0;
+    std::optional<long> a, b;  // the face numbers declared (1-based), when they are numbers
+  };
+  std::vector<PairLine> contact_pairs;  // kObjContactPairComment lines, in order
 };
 
 // The parser: one pass over the statements, exact coordinates and strict checks (see read_obj.h).
@@ -49,6 +56,15 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
   std::string object, group_name;  // the current o and g names
   std::int32_t group = -1;
   for_each_line(text, [&](long line, std::string_view content) {
+    if (line == 1 && content.substr(0, kObjRadwalkHeader.size()) == kObjRadwalkHeader) s.written_by_radwalk = true;
+    if (content.substr(0, kObjContactPairComment.size()) == kObjContactPairComment) {
+      const auto numbers = split_tokens(content.substr(kObjContactPairComment.size()));
+      ObjScan::PairLine pair;
+      pair.line = line;
+      if (numbers.size() == 2) pair.a = parse_long(numbers[0]), pair.b = parse_long(numbers[1]);
+      s.contact_pairs.push_back(pair);
+      return;
+    }
     const auto tokens = split_tokens(content);
     if (tokens.empty()) return;
     const std::string_view key = tokens[0];
@@ -187,12 +203,6 @@ std::vector<std::string> resolve_mtllib(const std::string& path, const NamedLine
   return files;
 }
 
-std::string colour_text(const Rgb& c) {
-  char text[96];
-  std::snprintf(text, sizeof text, "(%.4g, %.4g, %.4g)", c[0], c[1], c[2]);
-  return text;
-}
-
 // Kd with a map_Kd texture (mtl.h, "Textures"): Kd (1 if the block has none) times the texture's mean linear
 // colour (texture_mean.h), or times 0.5 when the texture cannot be read; a warning finding either way.
 void apply_texture(Mesh& mesh, const MtlEntry& e, const MtlSource& source) {
@@ -212,22 +222,25 @@ void apply_texture(Mesh& mesh, const MtlEntry& e, const MtlSource& source) {
   finding.file = e.file;
   finding.line = e.map_Kd_line;
   finding.material = e.name;
-  const std::string what = "material '" + excerpt(e.name) + "': Kd " + colour_text(Kd) + " with texture '" +
-                           excerpt(name) + "'";
+  const std::string what =
+      "material '" + excerpt(e.name) + "': Kd " + format_rgb(Kd, 4) + " with texture '" + excerpt(name) + "'";
   if (t.mean) {
     m.Kd = Kd * *t.mean;
     m.texture = file;
     finding.kind = "texture mean colour used";
-    finding.message = what + ": rho = Kd times the texture's mean colour " + colour_text(*t.mean) + " (linear, " +
-                      std::to_string(t.width) + " x " + std::to_string(t.height) + " pixels) = " + colour_text(m.Kd) +
+    finding.message = what + ": rho = Kd times the texture's mean colour " + format_rgb(*t.mean, 4) +
+                      " (linear, " + std::to_string(t.width) + " x " + std::to_string(t.height) +
+                      " pixels) = " + format_rgb(m.Kd, 4) +
                       " (the radiosity solvers take one rho per material; --set '" + excerpt(e.name) +
                       ".Kd=r,g,b' sets another)";
   } else {
     m.Kd = 0.5 * Kd;
     finding.kind = "texture not read";
-    finding.message = what + (found ? " that cannot be read (" + t.why + ")" : " not found (looked for " + printable(file) + ")") +
-                      ": rho = Kd times 0.5, radwalk's default reflectance, = " + colour_text(m.Kd) + "; --set '" +
-                      excerpt(e.name) + ".Kd=r,g,b' sets the texture's colour";
+    finding.message =
+        what +
+        (found ? " that cannot be read (" + t.why + ")" : " not found (looked for " + printable(file) + ")") +
+        ": rho = Kd times 0.5, radwalk's default reflectance, = " + format_rgb(m.Kd, 4) + "; --set '" +
+        excerpt(e.name) + ".Kd=r,g,b' sets the texture's colour";
   }
   mesh.findings.push_back(finding);
 }
@@ -359,6 +372,36 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
                                         excerpt(use.name) + ".Kd=r,g,b' sets it (--strict refuses it)");
     given.material = use.name;
     mesh.findings.push_back(given);
+  }
+
+  if (scan.written_by_radwalk && !scan.contact_pairs.empty()) {
+    // The contact pairs radwalk's writer names (read_obj.h): each face in one declaration at most.
+    std::vector<int> declared(n_faces, 0);
+    const auto face_of = [&](const std::optional<long>& number) -> long {
+      return number && *number >= 1 && static_cast<std::size_t>(*number) <= n_faces ? *number - 1 : -1;
+    };
+    for (const auto& pair : scan.contact_pairs) {
+      const long a = face_of(pair.a), b = face_of(pair.b);
+      if (a >= 0) ++declared[static_cast<std::size_t>(a)];
+      if (b >= 0 && b != a) ++declared[static_cast<std::size_t>(b)];
+    }
+    std::int32_t id = 0;
+    for (const auto& pair : scan.contact_pairs) {
+      const long a = face_of(pair.a), b = face_of(pair.b);
+      if (a < 0 || b < 0 || a == b || declared[static_cast<std::size_t>(a)] != 1 ||
+          declared[static_cast<std::size_t>(b)] != 1) {
+        mesh.findings.push_back(mesh.finding_of(
+            -1, pair.line, -1, -1, "contact pair declaration ignored", Severity::warning,
+            "'" + std::string(kObjContactPairComment) + " A B' needs two different face numbers of the file (1 to " +
+                std::to_string(n_faces) + "), each in one such line only: not used (the two faces, if they lie "
+                                          "back to back, become one two-sided face)"));
+        continue;
+      }
+      mesh.source_contact_pair.resize(n_faces, -1);
+      mesh.source_contact_pair[static_cast<std::size_t>(a)] = id;
+      mesh.source_contact_pair[static_cast<std::size_t>(b)] = id;
+      ++id;
+    }
   }
 
   if (scan.ignored_elements > 0)

@@ -26,6 +26,13 @@
 // tinyobjloader is the independent reference parse of the same bytes in the tests (tests/mesh), not a second
 // reader here.
 // Out-of-range vertex indices are kept and reported by validate_mesh.
+// Contact pairs of an OBJ radwalk wrote (io/obj_writer.h; docs/units-and-formats.md): in a file whose first line
+// starts with kObjRadwalkHeader, a comment line "# radwalk_contact_pair A B" (kObjContactPairComment, then two face
+// numbers counted as `f` statements are, from 1) declares faces A and B a contact pair (Mesh::source_contact_pair,
+// numbered in the order of the lines), which validation keeps as two one-sided faces when they lie on the same
+// corners back to back (mesh/validate.h) instead of making them one two-sided face. A declaration that is not two
+// different face numbers of the file, or names a face another declaration named, is not used (a warning finding
+// naming its line). In other files these lines are comments like any other.
 #include <functional>
 #include <string>
 #include <string_view>
@@ -33,6 +40,10 @@
 #include "mesh/mesh.h"
 
 namespace radwalk {
+
+// The first line of an OBJ radwalk wrote starts with this; its contact-pair lines with kObjContactPairComment.
+inline constexpr std::string_view kObjRadwalkHeader = "# radwalk patches of ";
+inline constexpr std::string_view kObjContactPairComment = "# radwalk_contact_pair";
 
 // Where the material libraries of an OBJ come from. exists(path) says whether a library of that (resolved)
 // path can be read: it decides how an mtllib statement is split (see above) and whether a library is "not

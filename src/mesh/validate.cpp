@@ -5,10 +5,10 @@
 #include <limits>
 #include <map>
 #include <numeric>
-#include <sstream>
 
 #include "core/error.h"
 #include "core/excerpt.h"
+#include "core/format_number.h"
 #include "mesh/coplanar_overlaps.h"
 #include "mesh/edge_table.h"
 #include "mesh/face_geometry.h"
@@ -20,20 +20,6 @@
 namespace radwalk {
 
 namespace {
-
-std::string fmt(double x) {
-  std::ostringstream s;
-  s.precision(6);
-  s << x;
-  return s.str();
-}
-
-std::string fmt(const Rgb& c) {
-  std::ostringstream s;
-  s.precision(6);
-  s << '(' << c[0] << ", " << c[1] << ", " << c[2] << ')';
-  return s.str();
-}
 
 // "vertex 5" in the file's 1-based counting.
 std::string vertex_name(std::int32_t v) { return "vertex " + std::to_string(static_cast<long>(v) + 1); }
@@ -159,22 +145,23 @@ bool check_extent(const Mesh& mesh, const ValidationTolerances& tol, FindingLog&
   const double reach = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
   if (!(extent <= tol.max_extent) || !(reach <= tol.max_extent)) {
     log.add_global("scene too large", Severity::error,
-                   "the scene is too large for single-precision ray tracing: extent " + fmt(extent) +
-                       ", largest |coordinate| " + fmt(reach) + " (limit " + fmt(tol.max_extent) +
-                       " mesh units); rescale the mesh (e.g. to metres)");
+                   "the scene is too large for single-precision ray tracing: extent " +
+                       format_number(extent) + ", largest |coordinate| " + format_number(reach) + " (limit " +
+                       format_number(tol.max_extent) + " mesh units); rescale the mesh (e.g. to metres)");
     return false;
   }
   if (!(extent >= tol.min_extent)) {
     log.add_global("scene too small", Severity::error,
-                   "the scene is too small for single-precision ray tracing: extent " + fmt(extent) + " (limit " +
-                       fmt(tol.min_extent) + " mesh units); rescale the mesh (e.g. to millimetres)");
+                   "the scene is too small for single-precision ray tracing: extent " +
+                       format_number(extent) + " (limit " + format_number(tol.min_extent) +
+                       " mesh units); rescale the mesh (e.g. to millimetres)");
     return false;
   }
   if (reach > tol.max_offset_ratio * extent)
     log.add_global("scene far from the origin", Severity::warning,
-                   "the scene lies far from the origin: largest |coordinate| " + fmt(reach) + " is " +
-                       fmt(reach / extent) + " x its extent " + fmt(extent) +
-                       ", so rays (single precision) resolve only about " + fmt(reach * 6e-8) +
+                   "the scene lies far from the origin: largest |coordinate| " + format_number(reach) +
+                       " is " + format_number(reach / extent) + " x its extent " + format_number(extent) +
+                       ", so rays (single precision) resolve only about " + format_number(reach * 6e-8) +
                        " mesh units; move the origin into the scene");
   return true;
 }
@@ -218,8 +205,8 @@ void repair_repeated_corners(Mesh& mesh, const ValidationTolerances& tol, Findin
     }
     if (loops.empty()) {
       log.add("face without area dropped", Severity::repair, f,
-              what + ": no loop between its repeats has 3 corners, so it has no area: dropped, area " + fmt(drawn) +
-                  " (--strict refuses it)");
+              what + ": no loop between its repeats has 3 corners, so it has no area: dropped, area " +
+                  format_number(drawn) + " (--strict refuses it)");
       keep[f] = false;
       continue;
     }
@@ -227,8 +214,8 @@ void repair_repeated_corners(Mesh& mesh, const ValidationTolerances& tol, Findin
     mesh.faces[f] = loops[0];
     const double kept = face_vector_area(mesh, f).norm();
     log.add("repeated vertex repaired", Severity::repair, f,
-            what + ", repaired to a " + (loops[0][3] >= 0 ? "quad" : "triangle") + " of area " + fmt(kept) +
-                " (as drawn " + fmt(drawn) + "; --strict refuses it)");
+            what + ", repaired to a " + (loops[0][3] >= 0 ? "quad" : "triangle") + " of area " +
+                format_number(kept) + " (as drawn " + format_number(drawn) + "; --strict refuses it)");
   }
   if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
@@ -279,8 +266,8 @@ void merge_duplicate_faces(Mesh& mesh, const ValidationTolerances& tol, FindingL
     keep[f] = false;
     if (!back_to_back) {
       log.add("duplicate face dropped", Severity::repair, f,
-              "duplicate face: same corners as " + other + ", facing the same way: dropped (area " + fmt(area) +
-                  ", counted once; --strict refuses it)");
+              "duplicate face: same corners as " + other + ", facing the same way: dropped (area " +
+                  format_number(area) + ", counted once; --strict refuses it)");
       continue;
     }
     std::int32_t& m = mesh.face_material[g];
@@ -299,10 +286,12 @@ void merge_duplicate_faces(Mesh& mesh, const ValidationTolerances& tol, FindingL
       }
       m = c->second;
     }
-    log.add("back-to-back faces made two-sided", Severity::repair, f,
-            "duplicate face: same corners as " + other +
-                " but facing the other way (a thin part modelled as two faces): the pair is one two-sided face "
-                "(a front and a back patch, area " + fmt(area) + " each)" + materials + " (--strict refuses it)");
+    log.add(
+        "back-to-back faces made two-sided", Severity::repair, f,
+        "duplicate face: same corners as " + other +
+            " but facing the other way (a thin part modelled as two faces): the pair is one two-sided face "
+            "(a front and a back patch, area " +
+            format_number(area) + " each)" + materials + " (--strict refuses it)");
   }
   if (std::find(keep.begin(), keep.end(), false) != keep.end()) keep_faces(mesh, keep);
 }
@@ -344,15 +333,17 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
       return;
     }
     log.add("zero-area face dropped", Severity::repair, f,
-            "degenerate piece dropped: " + split + " left a triangle of area " + fmt(piece) + ", zero or below " +
-                fmt(tol.degenerate_area) + " x (scene diagonal " + fmt(diagonal) + ")^2; it carries no power");
+            "degenerate piece dropped: " + split + " left a triangle of area " + format_number(piece) +
+                ", zero or below " + format_number(tol.degenerate_area) + " x (scene diagonal " +
+                format_number(diagonal) + ")^2; it carries no power");
   };
   for (std::size_t f = 0; f < mesh.face_count(); ++f) {
     const double area = face_area(mesh, f);
     if (!(area > min_area)) {
       log.add("zero-area face dropped", Severity::repair, f,
-              "degenerate face dropped: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
-                  " x (scene diagonal " + fmt(diagonal) + ")^2; it carries no power");
+              "degenerate face dropped: area " + format_number(area) + " is zero or below " +
+                  format_number(tol.degenerate_area) + " x (scene diagonal " + format_number(diagonal) +
+                  ")^2; it carries no power");
       changed = true;
       continue;
     }
@@ -409,9 +400,9 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
         log.add("folded quad split", Severity::repair, f,
                 "folded quad split into two triangles along its diagonal " +
                     std::string((*fold)[0][0] == 0 ? "0-2" : "1-3") + " (vector area " +
-                    fmt(face_vector_area(mesh, f).norm()) + " below half its area " + fmt(area) +
-                    ": its outline folds over itself; the triangles, of area " +
-                    fmt(triangle_area((*fold)[0]) + triangle_area((*fold)[1])) +
+                    format_number(face_vector_area(mesh, f).norm()) + " below half its area " +
+                    format_number(area) + ": its outline folds over itself; the triangles, of area " +
+                    format_number(triangle_area((*fold)[0]) + triangle_area((*fold)[1])) +
                     ", do not overlap seen along its normal; --strict refuses it)");
         continue;
       }
@@ -442,16 +433,20 @@ void repair_face_geometry(Mesh& mesh, const ValidationTolerances& tol, FindingLo
     if (bent)
       log.add("non-planar quad split", Severity::repair, f,
               "non-planar quad split into two triangles along its diagonal " + diag + " (a corner is " +
-                  fmt(100 * bend) + "% of the quad's width off its plane, limit " + fmt(100 * tol.planar_error) + "%)");
+                  format_number(100 * bend) + "% of the quad's width off its plane, limit " +
+                  format_number(100 * tol.planar_error) + "%)");
     else if (concave)
       log.add("non-convex quad split", Severity::repair, f,
-              "non-convex quad split into two triangles along its inner diagonal " + diag + " (turning sine " +
-                  fmt(turn) + ")");
+              "non-convex quad split into two triangles along its inner diagonal " + diag +
+                  " (turning sine " + format_number(turn) + ")");
     else
       log.add("area-ambiguous quad split", Severity::repair, f,
-              "bent quad split into two triangles along its diagonal " + diag + ": its triangulations and its "
-              "surface differ in area by " + fmt(100 * ambiguity) + "% (limit " + fmt(100 * tol.area_ambiguity) +
-                  "%), although a corner is only " + fmt(100 * bend) + "% of its width off its plane");
+              "bent quad split into two triangles along its diagonal " + diag +
+                  ": its triangulations and its "
+                  "surface differ in area by " +
+                  format_number(100 * ambiguity) + "% (limit " + format_number(100 * tol.area_ambiguity) +
+                  "%), although a corner is only " + format_number(100 * bend) +
+                  "% of its width off its plane");
   }
   if (!changed) return;
   mesh.faces = std::move(out.faces);
@@ -475,8 +470,9 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Find
     const double area = face_area(mesh, f);
     if (!(area > min_area)) {
       log.error("degenerate face", f,
-                "degenerate face: area " + fmt(area) + " is zero or below " + fmt(tol.degenerate_area) +
-                    " x (scene diagonal " + fmt(diagonal) + ")^2" + otherwise("dropped"));
+                "degenerate face: area " + format_number(area) + " is zero or below " +
+                    format_number(tol.degenerate_area) + " x (scene diagonal " + format_number(diagonal) +
+                    ")^2" + otherwise("dropped"));
       continue;
     }
     if (!mesh.is_quad(f)) continue;
@@ -485,36 +481,37 @@ void check_face_geometry(const Mesh& mesh, const ValidationTolerances& tol, Find
     const double vector_area = face_vector_area(mesh, f).norm();
     if (!(vector_area > 0.5 * area)) {
       log.error("self-intersecting quad", f,
-                "self-intersecting or folded quad: its vector area " + fmt(vector_area) +
-                    " is below half its area " + fmt(area) + " (a bow-tie); split it into two triangles");
+                "self-intersecting or folded quad: its vector area " + format_number(vector_area) +
+                    " is below half its area " + format_number(area) +
+                    " (a bow-tie); split it into two triangles");
       continue;
     }
     const double bend = quad_nonplanarity(mesh, f);
     if (bend > tol.planar_error) {
       log.error("non-planar quad", f,
-                "non-planar quad: a corner is " + fmt(100 * bend) + "% of the quad's width off its plane (limit " +
-                    fmt(100 * tol.planar_error) +
+                "non-planar quad: a corner is " + format_number(100 * bend) +
+                    "% of the quad's width off its plane (limit " + format_number(100 * tol.planar_error) +
                     "%); split it into two triangles" + otherwise("split"));
       continue;
     }
     const double turn = quad_min_turn_sine(mesh, f);
     if (turn < -tol.convex_sine) {
       log.error("non-convex quad", f,
-                "non-convex quad: a corner turns the wrong way (sine " + fmt(turn) +
+                "non-convex quad: a corner turns the wrong way (sine " + format_number(turn) +
                     "), the quad is concave; split it into two triangles" + otherwise("split"));
       continue;
     }
     const double ambiguity = quad_area_ambiguity(mesh, f);
     if (ambiguity > tol.area_ambiguity) {
       log.error("area-ambiguous quad", f,
-                "bent quad: its triangulations and its surface differ in area by " + fmt(100 * ambiguity) +
-                    "% (limit " + fmt(100 * tol.area_ambiguity) +
+                "bent quad: its triangulations and its surface differ in area by " +
+                    format_number(100 * ambiguity) + "% (limit " + format_number(100 * tol.area_ambiguity) +
                     "%); split it into two triangles" + otherwise("split"));
       continue;
     }
     if (bend > tol.planar_clean)
       log.add("slightly non-planar quad", Severity::warning, f,
-              "slightly non-planar quad: a corner is " + fmt(100 * bend) +
+              "slightly non-planar quad: a corner is " + format_number(100 * bend) +
                   "% of the quad's width off its plane; patches treat it as flat");
   }
 }
@@ -565,23 +562,25 @@ void check_materials(Mesh& mesh, FindingLog& log) {
     }
     if (!((m.Kd >= 0).all() && (m.Kd < 1).all()))
       log.error("reflectance out of range", f,
-                "reflectance out of range: " + material_name(m) + " has Kd " + fmt(m.Kd) +
+                "reflectance out of range: " + material_name(m) + " has Kd " + format_rgb(m.Kd) +
                     ", rho must be in [0, 1) for the radiosity equation to have a solution" +
                     (m.texture.empty() ? std::string() : " (Kd times its texture's mean colour)") +
                     "; --set '" + excerpt(m.name) + ".Kd=r,g,b' sets it" +
-                    ((m.Kd >= 0).all() ? ", --rho-scale S (< " + fmt(1 / m.Kd.maxCoeff()) + ") scales every Kd"
-                                       : std::string()));
+                    ((m.Kd >= 0).all()
+                         ? ", --rho-scale S (< " + format_number(1 / m.Kd.maxCoeff()) + ") scales every Kd"
+                         : std::string()));
     if (!m.Ke.allFinite() || (m.Ke < 0).any())
       log.error("negative emission", f,
-                "negative emission: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                    ", emitted radiance must be finite and >= 0; --set '" + excerpt(m.name) + ".Ke=r,g,b' sets it");
+                "negative emission: " + material_name(m) + " has Ke " + format_rgb(m.Ke) +
+                    ", emitted radiance must be finite and >= 0; --set '" + excerpt(m.name) +
+                    ".Ke=r,g,b' sets it");
     // E = pi Ke must be finite too, and leave room for the radiosity it drives (found by fuzz_validate_patch:
     // Ke 1e308 passed and made E infinite).
     else if (!(m.Ke.maxCoeff() <= kMaxKe))
       log.error("emission too large", f,
-                "emission too large: " + material_name(m) + " has Ke " + fmt(m.Ke) +
-                    ", above the 1e300 radwalk computes with (E = pi Ke would overflow); --set '" + excerpt(m.name) +
-                    ".Ke=r,g,b' sets it");
+                "emission too large: " + material_name(m) + " has Ke " + format_rgb(m.Ke) +
+                    ", above the 1e300 radwalk computes with (E = pi Ke would overflow); --set '" +
+                    excerpt(m.name) + ".Ke=r,g,b' sets it");
     if (m.kind != BsdfKind::diffuse)
       log.add("non-diffuse material", Severity::warning, f,
               material_name(m) + " is " + kind_name(m.kind) +
@@ -619,14 +618,15 @@ void orient_faces(Mesh& mesh, const ValidationTolerances& given, FindingLog& log
     for (std::size_t k = 0; k < order.size() && k < 5; ++k)
       objects += (k ? ", " : "") + order[k] + " " + std::to_string(by[order[k]]);
     if (order.size() > 5) objects += ", and " + std::to_string(order.size() - 5) + " more";
-    log.add_global("faces flipped", Severity::warning,
-                   std::to_string(r.flipped_faces) + " faces (area " + fmt(r.flipped_area) + ") flipped by --orient " +
-                       orient_mode_name(tol.orient) + " to agree with their neighbours" +
-                       (tol.orient == OrientMode::outward ? " and to face out of their closed shells (the room's in)"
-                                                          : "") +
-                       ": " + objects + " (" + std::to_string(r.shells) + " shells, " +
-                       std::to_string(r.closed_shells) + " closed, " + std::to_string(r.rooms) +
-                       " enclosing the scene and facing in; --orient none keeps the file's orientation)");
+    log.add_global(
+        "faces flipped", Severity::warning,
+        std::to_string(r.flipped_faces) + " faces (area " + format_number(r.flipped_area) +
+            ") flipped by --orient " + orient_mode_name(tol.orient) + " to agree with their neighbours" +
+            (tol.orient == OrientMode::outward ? " and to face out of their closed shells (the room's in)"
+                                               : "") +
+            ": " + objects + " (" + std::to_string(r.shells) + " shells, " + std::to_string(r.closed_shells) +
+            " closed, " + std::to_string(r.rooms) +
+            " enclosing the scene and facing in; --orient none keeps the file's orientation)");
   }
   const bool two_sided = tol.open_shells == OpenShellSides::two_sided ||
                          (tol.open_shells == OpenShellSides::automatic && r.enclosing_shells > 0);
@@ -655,10 +655,12 @@ void orient_faces(Mesh& mesh, const ValidationTolerances& given, FindingLog& log
   }
   for (const OpenShell& o : r.open_shells)
     log.add("open shell", Severity::note, o.first_face,
-            "open shell: " + std::to_string(o.faces) + " faces (area " + fmt(o.area) + ") with " +
+            "open shell: " + std::to_string(o.faces) + " faces (area " + format_number(o.area) + ") with " +
                 std::to_string(o.boundary_edges) +
-                " boundary edges; the backs of one-sided faces absorb the light that reaches them, so make an open or "
-                "thin part two-sided (--open-shells two-sided, 'radwalk_two_sided 1' in its material, or --two-sided) "
+                " boundary edges; the backs of one-sided faces absorb the light that reaches them, so make "
+                "an open or "
+                "thin part two-sided (--open-shells two-sided, 'radwalk_two_sided 1' in its material, or "
+                "--two-sided) "
                 "unless its backs are hidden");
   for (std::size_t f : r.non_orientable_faces)
     log.add("non-orientable shell", Severity::warning, f,
@@ -706,7 +708,7 @@ void check_topology(const Mesh& mesh, FindingLog& log) {
         "face " + std::to_string(mesh.source_face(g)) + " at line " + std::to_string(log.line(g)) + mesh.context(g);
     log.add("coplanar overlapping faces", Severity::warning, f,
             "coplanar overlapping faces: this face and " + other + " lie in one plane and overlap in area " +
-                fmt(o.area) + ", facing the same way" +
+                format_number(o.area) + ", facing the same way" +
                 "; the radiosity counts the shared area twice (remove one, or give them a gap)");
   }
 

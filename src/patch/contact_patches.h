@@ -40,7 +40,9 @@ struct ContactRegion {
 // found on (before any cut).
 std::vector<ContactRegion> contact_regions(const Mesh& mesh, const std::vector<Contact>& contacts);
 
-// in_contact[i] for every patch, by the rule above, with tol = kContactTolerance x the patches' scene extent.
+// in_contact[i] for every patch, by the rule above, with tol = kContactTolerance x the patches' scene extent. The
+// patches a region tests are those whose centroid lies near its footprint's bounding box, found through a grid of
+// the centroids: O(N + sum over the regions of the patches near each footprint), not O(regions x N).
 std::vector<bool> contact_patches(const std::vector<ContactRegion>& regions, const PatchSet& patches);
 
 }  // namespace radwalk

@@ -3,19 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
+#include "core/format_number.h"
 #include "solve/residual.h"
 
 namespace radwalk {
 namespace {
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 double needed(double tol, double radius, double rate_factor) {
   if (radius <= 0) return 1;
@@ -37,27 +30,30 @@ StabilityCheck check_stability(const RadiosityProblem& p, const SolveOptions& op
   check.radius = estimate_spectral_radius(p);
   const SpectralRadius& r = check.radius;
   const double radius = r.lower > 0 ? r.lower : r.estimate;
-  const std::string described = fmt(r.estimate) + " (bounds [" + fmt(r.lower) + ", " + fmt(r.upper) +
-                                "], channel " + std::to_string(r.channel) + ")";
+  const std::string described = format_number(r.estimate) + " (bounds [" + format_number(r.lower) + ", " +
+                                format_number(r.upper) + "], channel " + std::to_string(r.channel) + ")";
   if (r.lower >= 1 - kRadiusOneTolerance || r.estimate >= 1 - kRadiusOneTolerance) {
     check.ok = false;
     check.status = SolveStatus::diverged;
     check.iterations_needed = std::numeric_limits<double>::infinity();
-    check.message = method + " cannot converge: the spectral radius of diag(rho) F is " + described +
-                    ", not below 1, so the series B = sum_k (diag(rho) F)^k E diverges and no finite non-negative"
-                    " radiosity exists (max rho = " + fmt(r.max_rho) + ", max row sum of F = " +
-                    fmt(r.max_row_sum) + ", at most 1 for valid form factors). Check the reflectances (each must"
-                    " be < 1 where the scene is closed) and the form factors (rows must sum to <= 1).";
+    check.message =
+        method + " cannot converge: the spectral radius of diag(rho) F is " + described +
+        ", not below 1, so the series B = sum_k (diag(rho) F)^k E diverges and no finite non-negative"
+        " radiosity exists (max rho = " +
+        format_number(r.max_rho) + ", max row sum of F = " + format_number(r.max_row_sum) +
+        ", at most 1 for valid form factors). Check the reflectances (each must"
+        " be < 1 where the scene is closed) and the form factors (rows must sum to <= 1).";
     return check;
   }
   check.iterations_needed = needed(options.tol, radius, rate_factor);
   if (check.iterations_needed > budget) {
     check.ok = false;
     check.status = SolveStatus::max_iterations;
-    check.message = method + " would not reach tol " + fmt(options.tol) + " within max-iterations " +
-                    std::to_string(options.max_iterations) + ": the spectral radius of diag(rho) F is " +
-                    described + ", so it needs about " + fmt(check.iterations_needed) +
-                    " iterations. Raise --max-iterations above that, use the direct solver, or loosen the tolerance.";
+    check.message =
+        method + " would not reach tol " + format_number(options.tol) + " within max-iterations " +
+        std::to_string(options.max_iterations) + ": the spectral radius of diag(rho) F is " + described +
+        ", so it needs about " + format_number(check.iterations_needed) +
+        " iterations. Raise --max-iterations above that, use the direct solver, or loosen the tolerance.";
   }
   return check;
 }
@@ -75,8 +71,9 @@ Verdict judge_progress(const std::vector<double>& h, long entry_size, const Solv
   if (last <= options.tol) return Verdict::converged;
   const double least = *std::min_element(h.begin(), h.end());
   if (last > kGrowthFactor * least) {
-    *why = method + " diverged: the relative residual grew from " + fmt(least) + " to " + fmt(last) + " in " +
-           std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1. Use the direct"
+    *why = method + " diverged: the relative residual grew from " + format_number(least) + " to " +
+           format_number(last) + " in " + std::to_string(done) +
+           " iterations, so the spectral radius of its iteration is >= 1. Use the direct"
            " solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
     return Verdict::diverged;
   }
@@ -84,26 +81,28 @@ Verdict judge_progress(const std::vector<double>& h, long entry_size, const Solv
     const double before = h[std::size_t(k - kRateWindow)];
     const double rate = std::pow(last / before, 1.0 / kRateWindow);
     if (rate > 1 && last > 10 * least) {
-      *why = method + " diverged: the relative residual grew by a factor " + fmt(rate) + " per " +
-             (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") + " to " + fmt(last) +
-             " after " + std::to_string(done) + " iterations, so the spectral radius of its iteration is >= 1."
+      *why = method + " diverged: the relative residual grew by a factor " + format_number(rate) + " per " +
+             (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") + " to " +
+             format_number(last) + " after " + std::to_string(done) +
+             " iterations, so the spectral radius of its iteration is >= 1."
              " Use the direct solver, and check reflectances (< 1) and form-factor row sums (<= 1).";
       return Verdict::diverged;
     }
     if (!(rate < 1)) {
-      *why = method + " stagnated: the relative residual stayed at " + fmt(last) + " over the last " +
-             std::to_string(kRateWindow * entry_size) + " iterations, above tol " + fmt(options.tol) +
-             ": either tol is below the rounding level of this problem (loosen it) or the spectral radius of the"
-             " iteration is about 1 (use the direct solver, check reflectances and form factors).";
+      *why =
+          method + " stagnated: the relative residual stayed at " + format_number(last) + " over the last " +
+          std::to_string(kRateWindow * entry_size) + " iterations, above tol " + format_number(options.tol) +
+          ": either tol is below the rounding level of this problem (loosen it) or the spectral radius of the"
+          " iteration is about 1 (use the direct solver, check reflectances and form factors).";
       return Verdict::stagnated;
     }
     const double projected = double(done) + double(entry_size) * std::log(options.tol / last) / std::log(rate);
     if (projected > double(options.max_iterations)) {
-      *why = method + " stopped early: at the observed rate " + fmt(rate) + " per " +
+      *why = method + " stopped early: at the observed rate " + format_number(rate) + " per " +
              (entry_size == 1 ? std::string("sweep") : std::to_string(entry_size) + " shots") +
-             " the relative residual " + fmt(last) + " would reach tol " + fmt(options.tol) + " after about " +
-             fmt(std::ceil(projected)) + " iterations, above max-iterations " +
-             std::to_string(options.max_iterations) +
+             " the relative residual " + format_number(last) + " would reach tol " +
+             format_number(options.tol) + " after about " + format_number(std::ceil(projected)) +
+             " iterations, above max-iterations " + std::to_string(options.max_iterations) +
              ". Raise --max-iterations, use the direct solver, or loosen the tolerance.";
       return Verdict::too_slow;
     }
@@ -143,7 +142,7 @@ void finish_iterative(Solution& s, const RadiosityProblem& p, const SolveOptions
     s.residual_history = std::move(history);
   }
   const std::string summary = " after " + std::to_string(iterations) + " " + unit + ", relative residual " +
-                              fmt(s.residual) + " (tol " + fmt(options.tol) + ").";
+                              format_number(s.residual) + " (tol " + format_number(options.tol) + ").";
   if (s.residual <= options.tol) {
     s.status = SolveStatus::converged;
     s.message = s.method + " converged" + summary;

@@ -5,11 +5,11 @@
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <limits>
-#include <sstream>
 #include <vector>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/format_number.h"
 #include "core/progress.h"
 #include "core/timer.h"
 #include "solve/residual.h"
@@ -35,13 +35,6 @@ namespace {
 using SparseD = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 constexpr double kFloatEpsilon = 5.9604644775390625e-08;  // 2^-24, unit roundoff of the stored F
-
-std::string fmt(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
 
 // ||I - diag(rho) F||_inf.
 double infinity_norm(const SparseF& F, const Eigen::VectorXd& rho) {
@@ -134,20 +127,26 @@ DirectSolver::DirectSolver(const RadiosityProblem& p, DirectMethod method) : imp
     const double kappa = infinity_norm(p.F, rho) * x.maxCoeff();
     if (!x.allFinite() || !(x.minCoeff() > 0)) {
       m.ok = false;
-      m.message = "direct solve refused: I - diag(rho) F is singular or not an M-matrix for channel " +
-                  std::to_string(c) + " ((I - H)^{-1} 1 has entries from " + fmt(x.minCoeff()) + " to " +
-                  fmt(x.maxCoeff()) + ", all must be >= 1): the spectral radius of diag(rho) F is >= 1, so no"
-                  " finite non-negative radiosity exists (max rho = " + fmt(rho.maxCoeff()) +
-                  "). Check the reflectances (each must be < 1 where the scene is closed) and the form factors"
-                  " (form-factor rows must sum to <= 1).";
+      m.message =
+          "direct solve refused: I - diag(rho) F is singular or not an M-matrix for channel " +
+          std::to_string(c) + " ((I - H)^{-1} 1 has entries from " + format_number(x.minCoeff()) + " to " +
+          format_number(x.maxCoeff()) +
+          ", all must be >= 1): the spectral radius of diag(rho) F is >= 1, so no"
+          " finite non-negative radiosity exists (max rho = " +
+          format_number(rho.maxCoeff()) +
+          "). Check the reflectances (each must be < 1 where the scene is closed) and the form factors"
+          " (form-factor rows must sum to <= 1).";
       break;
     }
     if (!(kappa * kFloatEpsilon < 1)) {
       m.ok = false;
-      m.message = "direct solve refused: I - diag(rho) F is numerically singular for channel " +
-                  std::to_string(c) + " (condition number " + fmt(kappa) + " >= 1/2^-24 = 1.7e7, so the float"
-                  " form factors determine no digit of B): the spectral radius of diag(rho) F is within rounding"
-                  " of 1. Check the reflectances (max rho = " + fmt(rho.maxCoeff()) + ").";
+      m.message =
+          "direct solve refused: I - diag(rho) F is numerically singular for channel " + std::to_string(c) +
+          " (condition number " + format_number(kappa) +
+          " >= 1/2^-24 = 1.7e7, so the float"
+          " form factors determine no digit of B): the spectral radius of diag(rho) F is within rounding"
+          " of 1. Check the reflectances (max rho = " +
+          format_number(rho.maxCoeff()) + ").";
       break;
     }
     m.kappa = std::max(m.kappa, kappa);
@@ -199,8 +198,10 @@ Solution DirectSolver::solve(const RadiosityProblem& p) const {
   s.seconds = m.factor_seconds + timer.seconds();
   s.message = std::string(m.dense ? "dense" : "sparse") + " LU of I - diag(rho) F (" +
               std::to_string(m.dense ? m.dense_lu.size() : m.sparse_lu.size()) +
-              " factorisation(s)); relative residual " + fmt(s.residual) + ", condition number kappa_inf " +
-              fmt(m.kappa) + ", so the solve's own (rounding) error of B is at most about " + fmt(m.kappa * s.residual) +
+              " factorisation(s)); relative residual " + format_number(s.residual) +
+              ", condition number kappa_inf " + format_number(m.kappa) +
+              ", so the solve's own (rounding) error of B is at most about " +
+              format_number(m.kappa * s.residual) +
               " relative (the form factors' noise is a separate error, estimated apart)";
   if (!s.B.allFinite()) {  // cannot happen after the checks above; never hand out NaN
     s.status = SolveStatus::refused;

@@ -21,6 +21,21 @@ FormFactorError form_factor_error(const PatchSet& patches, const Visibility& vis
   return out;
 }
 
+std::optional<FormFactorError> add_form_factor_error(const PatchSet& patches, const Visibility& visibility,
+                                                     const FormFactors& ff, const RadiosityProblem& p,
+                                                     Solution& solution) {
+  const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
+  if (solution.B.rows() != N) return std::nullopt;
+  const PatchRgb own = solution.B_se.rows() == N ? solution.B_se : PatchRgb::Zero(N, 3);
+  if (!has_noise_model(ff)) {
+    solution.B_se = own;
+    return std::nullopt;
+  }
+  FormFactorError error = form_factor_error(patches, visibility, ff, p, solution.B);
+  solution.B_se = combined_standard_error(own, error.standard_error);
+  return error;
+}
+
 PatchRgb combined_standard_error(const PatchRgb& a, const PatchRgb& b) {
   const PatchRgb larger = a.max(b);
   return (larger > 0).select(larger * ((a.min(b) / larger).square() + 1.0).sqrt(), PatchRgb::Zero(a.rows(), 3));

@@ -3,6 +3,9 @@
 // with: the sampling factors measured on replicated rows (formfactor/sampling_factor.h), each row's gather variance
 // (formfactor/form_factor_noise.h) and its first-order propagation through (I - diag(rho) F)^{-1}
 // (solve/error_propagation.h). Derivation: docs/theory/error_estimate.md.
+#include <optional>
+
+#include "core/solution.h"
 #include "formfactor/form_factors.h"
 #include "formfactor/sampling_factor.h"
 #include "patch/patch_set.h"
@@ -25,6 +28,17 @@ struct FormFactorError {
 // (has_noise_model(ff); its own F may have been moved into p); B: the solution (N x 3); `visibility` of `patches`.
 FormFactorError form_factor_error(const PatchSet& patches, const Visibility& visibility, const FormFactors& ff,
                                   const RadiosityProblem& p, const PatchRgb& B, int probes = 16);
+
+// B_se of a solution from the form factors it was solved with: when ff records how F was traced
+// (has_noise_model(ff)), F's noise propagated to B (form_factor_error above) combined with the solver's own
+// standard error (combined_standard_error below; a walk's own noise is independent of F's given F, so the variances
+// add: Var(B) = E[Var(B | F)] + Var(E[B | F])), and the estimate returned; otherwise (F read from a file, or the
+// analytic route's) the solver's own alone, and nothing returned. The solver's own is solution.B_se when it has
+// one row per patch, else zero. Sets solution.B_se (N x 3); nothing when B does not have N rows. Arguments as for
+// form_factor_error.
+std::optional<FormFactorError> add_form_factor_error(const PatchSet& patches, const Visibility& visibility,
+                                                     const FormFactors& ff, const RadiosityProblem& p,
+                                                     Solution& solution);
 
 // sqrt(a^2 + b^2) per entry without squaring values near the largest double: the standard error of the sum of two
 // independent errors (a walk's own and the form factors' noise).

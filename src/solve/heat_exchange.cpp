@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <utility>
 
 #include "core/error.h"
+#include "core/format_number.h"
 #include "formfactor/form_factor_noise.h"
 #include "patch/patch_grouping.h"
 #include "solve/form_factor_error.h"
@@ -152,12 +152,6 @@ std::string quoted_list(const std::vector<std::string>& names, std::size_t shown
   return out;
 }
 
-std::string fmt(double x, const char* format = "%.4g") {
-  char text[48];
-  std::snprintf(text, sizeof text, format, x);
-  return text;
-}
-
 // Removes the patches flagged in `out` from the system as step 2 and 2b do: their rows and columns of F dropped,
 // what the others sent them counted with the backs (b_i += F_ij); they become black at 0 K with no sky and no
 // back (rho = 0, S = 0: J = 0 in the solve).
@@ -187,15 +181,17 @@ void remove_from_system(const std::vector<bool>& out, FormFactors& ff, HeatExcha
 
 std::string cavity_warning(const HeatExchangeCavity& c) {
   const ClosedCavity& k = c.cavity;
-  std::string text = "closed cavity: " + std::to_string(k.patches.size()) + " patches (" + fmt(k.area) +
-                     " m^2) of object" + (c.objects.size() > 1 ? "s " : " ") + quoted_list(c.objects) + ", group" +
-                     (c.groups.size() > 1 ? "s " : " ") + quoted_list(c.groups) +
-                     ", all with a given heat flux, exchange " +
-                     (k.leak > 0 ? "only " + fmt(k.leak, "%.2g") + " of their radiation" : "no radiation") +
-                     " with the rest of the scene (leak fraction below " + fmt(kCavityLeak, "%.0e") +
-                     "), so radiation leaves their temperature undetermined (in reality conduction sets it)";
+  std::string text =
+      "closed cavity: " + std::to_string(k.patches.size()) + " patches (" + format_number(k.area, 4) + " m^2) of object" +
+      (c.objects.size() > 1 ? "s " : " ") + quoted_list(c.objects) + ", group" +
+      (c.groups.size() > 1 ? "s " : " ") + quoted_list(c.groups) + ", all with a given heat flux, exchange " +
+      (k.leak > 0 ? "only " + format_number(k.leak, 2) + " of their radiation" : "no radiation") +
+      " with the rest of the scene (leak fraction below " +
+      format_number(kCavityLeak, 0, NumberNotation::scientific) +
+      "), so radiation leaves their temperature undetermined (in reality conduction sets it)";
   if (k.given_Q != 0)
-    text += "; their given heat fluxes sum to " + fmt(k.given_Q) + " W, which radiation cannot carry out";
+    text += "; their given heat fluxes sum to " + format_number(k.given_Q, 4) +
+            " W, which radiation cannot carry out";
   return text + ": their J, G and T are left empty (field cavity = 1) and out of the groups' T_radiant and the "
                 "energy balance";
 }

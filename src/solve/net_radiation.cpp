@@ -2,20 +2,14 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "core/check.h"
 #include "core/error.h"
+#include "core/format_number.h"
 
 namespace radwalk {
 namespace {
-
-std::string fmt(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", x);
-  return text;
-}
 
 double sky_of(const NetRadiationInput& input, std::size_t i) { return input.sky.empty() ? 0.0 : input.sky[i]; }
 
@@ -27,7 +21,7 @@ NetRadiationCoefficients net_radiation_coefficients(const NetRadiationInput& inp
   if (!input.sky.empty()) RADWALK_CHECK_EQ(input.sky.size(), n);
   const double Ta = input.ambient_temperature;
   if (!(Ta >= 0 && std::isfinite(Ta)))
-    throw InputError("ambient temperature " + fmt(Ta) + " K: must be finite and >= 0");
+    throw InputError("ambient temperature " + format_number(Ta) + " K: must be finite and >= 0");
   const double ambient = kStefanBoltzmann * Ta * Ta * Ta * Ta;  // sigma T_a^4, the ambient's radiosity
   NetRadiationCoefficients c;
   c.rho.resize(n);
@@ -37,18 +31,20 @@ NetRadiationCoefficients net_radiation_coefficients(const NetRadiationInput& inp
     const SurfaceCondition& s = input.surface[i];
     const std::string at = "patch " + std::to_string(i) + ": ";
     if (!(s.emissivity > 0 && s.emissivity <= 1))
-      throw InputError(at + "emissivity " + fmt(s.emissivity) + " must be in (0, 1]");
+      throw InputError(at + "emissivity " + format_number(s.emissivity) + " must be in (0, 1]");
     const double sky = sky_of(input, i);
-    if (!(sky >= 0 && sky <= 1)) throw InputError(at + "sky view factor " + fmt(sky) + " must be in [0, 1]");
+    if (!(sky >= 0 && sky <= 1))
+      throw InputError(at + "sky view factor " + format_number(sky) + " must be in [0, 1]");
     if (s.temperature_given) {
       if (!(s.temperature >= 0 && std::isfinite(s.temperature)))
-        throw InputError(at + "temperature " + fmt(s.temperature) + " K must be finite and >= 0");
+        throw InputError(at + "temperature " + format_number(s.temperature) + " K must be finite and >= 0");
       const double T = s.temperature;
       c.rho[i] = 1 - s.emissivity;
       c.source[i] = s.emissivity * kStefanBoltzmann * T * T * T * T + c.rho[i] * sky * ambient;
       anchored = true;
     } else {
-      if (!std::isfinite(s.heat_flux)) throw InputError(at + "heat flux " + fmt(s.heat_flux) + " must be finite");
+      if (!std::isfinite(s.heat_flux))
+        throw InputError(at + "heat flux " + format_number(s.heat_flux) + " must be finite");
       c.rho[i] = 1;
       c.source[i] = s.heat_flux + sky * ambient;
       anchored = anchored || sky * input.area[i] > 0;
@@ -116,9 +112,10 @@ NetRadiationResult net_radiation_result(const NetRadiationInput& input, const Sp
       r.q[i] = s.heat_flux;
       const double emissive = r.G[i] + s.heat_flux / s.emissivity;  // sigma T^4
       if (!(emissive >= 0))
-        throw InputError("patch " + std::to_string(i) + ": the given heat flux q = " + fmt(s.heat_flux) +
+        throw InputError("patch " + std::to_string(i) +
+                         ": the given heat flux q = " + format_number(s.heat_flux) +
                          " W/m^2 (net leaving) takes more than the surface absorbs (eps G = " +
-                         fmt(s.emissivity * r.G[i]) + " W/m^2): no temperature gives it");
+                         format_number(s.emissivity * r.G[i]) + " W/m^2): no temperature gives it");
       r.T[i] = std::pow(emissive / kStefanBoltzmann, 0.25);
     }
     r.Q[i] = input.area[i] * r.q[i];

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "patch/contact_pairs.h"
+
 namespace radwalk {
 namespace {
 
@@ -32,11 +34,17 @@ std::optional<double> intersect_patch(const PatchSet& patches, std::size_t i, co
   return std::nullopt;
 }
 
+BruteForceVisibility::BruteForceVisibility(const PatchSet& patches)
+    : patches_(patches), pair_(contact_pair_ids(patches)) {}
+
 Hit BruteForceVisibility::intersect(const Ray& ray) const {
   Hit hit;
   for (std::size_t i = 0; i < patches_.size(); ++i) {
-    // A two-sided face's patch is seen from its front only (the other side's patch takes the rest).
-    if (patches_.two_sided(i) && !(ray.direction.dot(patches_.normal[i]) < 0)) continue;
+    // A two-sided face's patch is seen from its front only (the other side's patch takes the rest); a contact
+    // pair's patch from its back only (its partner, on the same points, takes the ray at its back first).
+    const bool front = ray.direction.dot(patches_.normal[i]) < 0;
+    if (patches_.two_sided(i) && !front) continue;
+    if (pair_[i] >= 0 && front) continue;
     const auto t = intersect_patch(patches_, i, ray);
     if (t && *t < hit.t) {
       hit.t = *t;

@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "patch/contact_pairs.h"
 #include "visibility/ray_packet.h"
 
 namespace radwalk {
@@ -83,18 +84,20 @@ void validate(const PatchSet& patches) {
     }
 }
 
-// The intersection filter of the two-sided geometries: a hit that arrives at the back of its patch
-// (dot(direction, normal) >= 0, the complement of Hit::front in the same float arithmetic) is rejected, so
-// traversal goes on to the coincident patch of the other side.
-void reject_back_hits(const RTCFilterFunctionNArguments* args) {
+// The intersection filter of the filtered geometries: a hit is rejected when it arrives at a side its patch
+// rejects (EmbreeVisibility::kRejectBack, kRejectFront), the side told by dot(direction, normal) < 0 in the float
+// arithmetic of Hit::front, so that traversal goes on to the coincident patch that takes the hit.
+void reject_hits(const RTCFilterFunctionNArguments* args) {
   const auto* prims = static_cast<const EmbreeVisibility::Primitives*>(args->geometryUserPtr);
   for (unsigned k = 0; k < args->N; ++k) {
     if (args->valid[k] != -1) continue;
-    const unsigned prim = RTCHitN_primID(args->hit, args->N, k);
-    const Eigen::Vector3f& n = (*prims->normal)[std::size_t(prims->patch[prim])];
+    const auto patch = std::size_t(prims->patch[RTCHitN_primID(args->hit, args->N, k)]);
+    const Eigen::Vector3f& n = (*prims->normal)[patch];
     const float dx = RTCRayN_dir_x(args->ray, args->N, k), dy = RTCRayN_dir_y(args->ray, args->N, k),
                 dz = RTCRayN_dir_z(args->ray, args->N, k);
-    if (!(dx * n.x() + dy * n.y() + dz * n.z() < 0.0f)) args->valid[k] = 0;
+    const bool front = dx * n.x() + dy * n.y() + dz * n.z() < 0.0f;
+    if ((*prims->reject)[patch] & (front ? EmbreeVisibility::kRejectFront : EmbreeVisibility::kRejectBack))
+      args->valid[k] = 0;
   }
 }
 
@@ -115,20 +118,26 @@ EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions&
   rtcSetSceneFlags(device_->scene, options.robust ? RTC_SCENE_FLAG_ROBUST : RTC_SCENE_FLAG_NONE);
   device_->check("scene");
 
-  // Step 3: split patches into triangles and quads, remembering each primitive's patch.
+  // Step 3: split patches into triangles and quads, remembering each primitive's patch; the patches that reject
+  // a side (two-sided faces: the back; contact pairs: the front) go into the filtered geometries.
   const std::size_t n = patches.size();
   normal_.resize(n);
+  reject_.assign(n, 0);
+  const std::vector<std::int32_t> pair = contact_pair_ids(patches);
   for (std::size_t i = 0; i < n; ++i) {
     normal_[i] = patches.normal[i].cast<float>();
-    primitives_[(patches.two_sided(i) ? 2 : 0) + (patches.is_quad(i) ? 1 : 0)].patch.push_back(PatchIndex(i));
+    if (patches.two_sided(i)) reject_[i] |= kRejectBack;
+    if (pair[i] >= 0) reject_[i] |= kRejectFront;
+    primitives_[(reject_[i] ? 2 : 0) + (patches.is_quad(i) ? 1 : 0)].patch.push_back(PatchIndex(i));
   }
   if (!primitives_[2].patch.empty() || !primitives_[3].patch.empty()) {
     if (!rtcGetDeviceProperty(device_->device, RTC_DEVICE_PROPERTY_FILTER_FUNCTION_SUPPORTED))
-      throw std::runtime_error("embree: this Embree has no filter functions, which two-sided faces need");
+      throw std::runtime_error("embree: this Embree has no filter functions, which two-sided faces and contact "
+                               "pairs need");
   }
 
   // Step 4: one geometry per primitive kind, both over all points (float copies made by Embree buffers).
-  auto add_geometry = [&](RTCGeometryType type, Primitives& primitives, bool two_sided) -> unsigned {
+  auto add_geometry = [&](RTCGeometryType type, Primitives& primitives, bool filtered) -> unsigned {
     const std::vector<PatchIndex>& prims = primitives.patch;
     if (prims.empty()) return ~0u;
     RTCGeometry geom = rtcNewGeometry(device_->device, type);
@@ -148,10 +157,11 @@ EmbreeVisibility::EmbreeVisibility(const PatchSet& patches, const EmbreeOptions&
       // Quads rotated by one corner: Embree splits (q0,q1,q3),(q2,q3,q1), i.e. along p0-p2 after rotation.
       for (int r = 0; r < m; ++r) idx[m * k + r] = unsigned(quad ? c[(r + 1) % 4] : c[r]);
     }
-    if (two_sided) {
+    if (filtered) {
       primitives.normal = &normal_;
+      primitives.reject = &reject_;
       rtcSetGeometryUserData(geom, &primitives);
-      rtcSetGeometryIntersectFilterFunction(geom, reject_back_hits);
+      rtcSetGeometryIntersectFilterFunction(geom, reject_hits);
     }
     rtcCommitGeometry(geom);
     const unsigned id = rtcAttachGeometry(device_->scene, geom);

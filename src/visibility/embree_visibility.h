@@ -10,7 +10,16 @@
 // - Two-sided faces (PatchSet::two_sided): their patches go into geometries of their own (triangles, quads) with an
 //   intersection filter that rejects a hit arriving at a patch's back (the same float test as Hit::front), so the
 //   ray goes on to the coincident patch of the other side, which it reaches from its front. A one-sided scene
-//   builds exactly the geometries it built before (no filter, the same hits).
+//   without contact pairs builds exactly the geometries it built before (no filter, the same hits).
+// - Contact pairs (patch/contact_pairs.h: two front patches on the same corners back to back, e.g. a floor piece
+//   cut along a box's footprint and the box's bottom on it): their patches go into the filtered geometries too,
+//   whose filter rejects a hit arriving at a pair patch's front. Such a front can only be reached through its
+//   partner, which lies on the same points facing the other way, at the same t up to float rounding; without the
+//   filter either could be hit. With it the ray stops at the partner's back, the member on the ray's side: a ray
+//   from inside the box towards its bottom hits the bottom (a back hit), never the floor piece under it, and a
+//   ray from below the floor hits the floor piece's back. Both are absorbing backs, so no figure changes; the
+//   choice is only made deterministic. A patch that is both (a two-sided face's front in a pair) rejects both
+//   sides: its own back patch and its partner take the hits.
 // - Hit::t is the ray parameter in the mesh's length unit (directions are unit length); rays are traced in
 //   single precision, so t and the hit patch near a shared edge agree with exact arithmetic only up to float
 //   rounding. Origins should come from spawn_ray (ray_offset.h), which keeps them off their own patch.
@@ -19,6 +28,7 @@
 //   constructor; a PatchSet with corner indices out of range or non-finite points is an InputError.
 // - Thread-safe: all query methods are const and may be called concurrently. Non-copyable, non-movable (RAII
 //   owner of the device and the scene).
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,18 +69,23 @@ class EmbreeVisibility final : public Visibility {
   Hit make_hit(unsigned geom_id, unsigned prim_id, float t, const float dir[3]) const;
 
  public:
-  // The patches of one Embree geometry (primID -> patch) and the normals, for the two-sided filter.
+  // What the filter rejects of a patch: hits arriving at its back (two-sided faces), at its front (contact pairs).
+  static constexpr std::uint8_t kRejectBack = 1, kRejectFront = 2;
+  // The patches of one Embree geometry (primID -> patch), the normals and the rejected sides, for the filter.
   struct Primitives {
     std::vector<PatchIndex> patch;
     const std::vector<Eigen::Vector3f>* normal = nullptr;
+    const std::vector<std::uint8_t>* reject = nullptr;
   };
 
  private:
   std::unique_ptr<Device> device_;
-  // Geometries in the order triangles, quads, two-sided triangles, two-sided quads; empty ones are not attached.
+  // Geometries in the order triangles, quads, filtered triangles, filtered quads (the patches that reject a side);
+  // empty ones are not attached.
   std::vector<Primitives> primitives_ = std::vector<Primitives>(4);
   std::vector<unsigned> geometry_kind_;   // Embree geomID -> index into primitives_
   std::vector<Eigen::Vector3f> normal_;   // patch normals, for Hit::front
+  std::vector<std::uint8_t> reject_;      // per patch: kRejectBack | kRejectFront, 0 for none
 };
 
 }  // namespace radwalk

@@ -465,3 +465,55 @@ TEST_CASE("contact patches: under an object without a bottom the floor is in con
   CHECK(contact_area(regions, make_patches(m, 0.5)) == 0.0);
   CHECK(contact_area(regions, make_patches(cut_along_contacts(m, contacts), 0.5)) == 0.0);
 }
+
+TEST_CASE("contact patches: a hundred blocks on a floor, each region's patches found near its footprint",
+          "[patch][contact]") {
+  // A 20 x 20 floor with 10 x 10 unit blocks (bottoms included) at [2i + 0.5, 2i + 1.5] x [2j + 0.5, 2j + 1.5],
+  // 0.5 m patches: exactly the floor's patches under the blocks and the bottoms' patches are in contact, 2 m^2 a
+  // block. The regions' patches come from a grid of the centroids: a patch outside every footprint's box is never
+  // tested, one inside is.
+  Mesh m;
+  m.path = "generated";
+  auto v = [&](double x, double y, double z) {
+    m.vertices.push_back({x, y, z});
+    return static_cast<std::int32_t>(m.vertices.size() - 1);
+  };
+  auto quad = [&](std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d) { m.faces.push_back({a, b, c, d}); };
+  quad(v(0, 0, 0), v(0, 0, 20), v(20, 0, 20), v(20, 0, 0));  // normal +y
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) {
+      const double x0 = 2 * i + 0.5, x1 = x0 + 1, z0 = 2 * j + 0.5, z1 = z0 + 1;
+      const auto b0 = v(x0, 0, z0), b1 = v(x1, 0, z0), b2 = v(x1, 0, z1), b3 = v(x0, 0, z1);
+      const auto t0 = v(x0, 1, z0), t1 = v(x1, 1, z0), t2 = v(x1, 1, z1), t3 = v(x0, 1, z1);
+      quad(b1, b0, t0, t1);
+      quad(b2, b1, t1, t2);
+      quad(b3, b2, t2, t3);
+      quad(b0, b3, t3, t0);
+      quad(t0, t3, t2, t1);
+      quad(b0, b1, b2, b3);  // the bottom, facing down
+    }
+  Material white;
+  white.name = "white";
+  white.Kd = Rgb(0.5, 0.5, 0.5);
+  m.materials = {white};
+  m.face_material.assign(m.faces.size(), 0);
+  validate_mesh(m);
+  const auto contacts = find_contacts(m);
+  const auto regions = contact_regions(m, contacts);
+  REQUIRE(regions.size() == 100);
+  for (const bool cut : {false, true}) {
+    INFO("cut " << cut);
+    const PatchSet patches = make_patches(cut ? cut_along_contacts(m, contacts) : m, 0.5);
+    const std::vector<bool> in = contact_patches(regions, patches);
+    std::size_t expected = 0, wrong = 0;
+    for (std::size_t i = 0; i < patches.size(); ++i) {
+      const Vec3& x = patches.centroid[i];
+      const double u = std::fmod(x.x(), 2.0), w = std::fmod(x.z(), 2.0);
+      const bool under = std::abs(x.y()) < 1e-12 && u > 0.5 && u < 1.5 && w > 0.5 && w < 1.5;
+      expected += under;
+      wrong += in[i] != under;
+    }
+    CHECK(expected == 100 * 2 * 4);  // per block: the floor's 4 patches under it and the bottom's 4
+    CHECK(wrong == 0);
+  }
+}

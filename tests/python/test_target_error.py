@@ -25,6 +25,23 @@ def test_solve_to_target_error_equals_the_cli(tmp_path):
     B = np.asarray(r.result.B)
     # the CSV keeps 12 significant digits
     np.testing.assert_allclose(np.column_stack([rows["B_r"], rows["B_g"], rows["B_b"]]), B, rtol=1e-11, atol=0)
+    # each material's mean (the default, as the CLI's --target-each material): the same groups and figures
+    assert cli["target_error"]["each"] == "material"
+    assert [g["name"] for g in r.groups] == [g["name"] for g in cli["target_error"]["groups"]] != []
+    for a, b in zip(r.groups, cli["target_error"]["groups"]):
+        assert a["total"] == pytest.approx(b["total"], rel=1e-9) and a["total"] <= 0.03
+
+
+def test_each_material_or_none():
+    scene = radwalk.load(SCENE)
+    none = radwalk.solve_to_target_error(scene, 0.2, seed=1, each="none")
+    assert none.groups == [] and none.result.metadata["target_error"]["each"] == "none"
+    objects = radwalk.solve_to_target_error(scene, 0.2, seed=1, each="object")
+    assert len(objects.groups) > 0 and all(g["total"] <= 0.2 for g in objects.groups)
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.2, each="colour")
+    with pytest.raises(radwalk.InputError):  # the rays transport stores no F for a group's adjoint
+        radwalk.solve_to_target_error(scene, 0.2, hierarchical=True, hierarchical_transport="rays", each="material")
 
 
 def test_a_scene_with_its_own_patching_starts_there():

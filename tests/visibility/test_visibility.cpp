@@ -9,6 +9,9 @@
 #include "core/error.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "mesh/validate.h"
+#include "patch/contact_pairs.h"
+#include "patch/patch_scene.h"
 #include "support/box_scenes.h"
 #include "visibility/brute_force_visibility.h"
 #include "visibility/embree_visibility.h"
@@ -269,5 +272,97 @@ TEST_CASE("bad patch sets are refused", "[visibility]") {
   } catch (const std::runtime_error& e) {
     INFO(e.what());
     CHECK(std::string(e.what()).find("embree") != std::string::npos);
+  }
+}
+
+namespace {
+
+// A 4 x 4 floor (normal +y) with a unit box standing on [1, 2] x [1, 2] (sides and top facing out, a bottom facing
+// down onto the floor), patched as the CLI does with --max-edge 4: the floor is cut along the box's footprint, so
+// that its piece under the box and the box's bottom are a contact pair (patch/contact_pairs.h).
+PatchSet box_on_cut_floor(bool two_sided_floor) {
+  Mesh m;
+  m.path = "generated";
+  auto v = [&](double x, double y, double z) {
+    m.vertices.push_back({x, y, z});
+    return static_cast<std::int32_t>(m.vertices.size() - 1);
+  };
+  auto quad = [&](std::int32_t a, std::int32_t b, std::int32_t c, std::int32_t d, std::int32_t material) {
+    m.faces.push_back({a, b, c, d});
+    m.face_material.push_back(material);
+  };
+  quad(v(0, 0, 0), v(0, 0, 4), v(4, 0, 4), v(4, 0, 0), 0);
+  const auto b0 = v(1, 0, 1), b1 = v(2, 0, 1), b2 = v(2, 0, 2), b3 = v(1, 0, 2);
+  const auto t0 = v(1, 1, 1), t1 = v(2, 1, 1), t2 = v(2, 1, 2), t3 = v(1, 1, 2);
+  quad(b1, b0, t0, t1, 1);  // z = 1, normal -z
+  quad(b2, b1, t1, t2, 1);  // x = 2, normal +x
+  quad(b3, b2, t2, t3, 1);  // z = 2, normal +z
+  quad(b0, b3, t3, t0, 1);  // x = 1, normal -x
+  quad(t0, t3, t2, t1, 1);  // top, normal +y
+  quad(b0, b1, b2, b3, 1);  // bottom, normal -y: onto the floor
+  Material floor, box;
+  floor.name = "floor";
+  floor.Kd = Rgb(0.5, 0.5, 0.5);
+  floor.two_sided = two_sided_floor;
+  box.name = "box";
+  box.Kd = Rgb(0.4, 0.4, 0.4);
+  m.materials = {floor, box};
+  validate_mesh(m);
+  ScenePatchingOptions o;
+  o.split.max_edge = 4;
+  return patch_scene(std::move(m), o).patches;
+}
+
+}  // namespace
+
+TEST_CASE("a ray from inside a box standing on a cut floor hits the box's bottom, never the floor piece under it",
+          "[visibility][contact]") {
+  for (const bool two_sided_floor : {false, true}) {
+    INFO("two-sided floor " << two_sided_floor);
+    const PatchSet ps = box_on_cut_floor(two_sided_floor);
+    const std::vector<std::int32_t> pair = contact_pair_ids(ps);
+    // The pair: the floor piece under the box (normal +y) and the bottom (normal -y).
+    PatchIndex piece = -1, bottom = -1;
+    for (std::size_t i = 0; i < ps.size(); ++i)
+      if (pair[i] == 0) (ps.normal[i].y() > 0 ? piece : bottom) = PatchIndex(i);
+    REQUIRE(piece >= 0);
+    REQUIRE(bottom >= 0);
+    const EmbreeVisibility embree(ps);
+    const BruteForceVisibility brute(ps);
+    // Rays from points inside the box, down through its bottom, and from points below the floor, up through the
+    // floor piece: single rays and packets, the first always reaching the bottom's back, the second the piece's.
+    Rng rng = stream(7, StreamDomain::test, 0);
+    std::vector<Ray> down, up;
+    for (int k = 0; k < 4096; ++k) {
+      const double x = 1 + 0.9 * rng.uniform() + 0.05, z = 1 + 0.9 * rng.uniform() + 0.05;
+      // Directions steep enough to reach the plane y = 0 inside the footprint from the height chosen.
+      const double h = 0.05 + 0.9 * rng.uniform();
+      const double dx = (1 + 0.05 - x + 0.9 * rng.uniform()), dz = (1 + 0.05 - z + 0.9 * rng.uniform());
+      const Vec3 d = Vec3(dx, -h, dz).normalized();
+      down.push_back(Ray{Vec3(x, h, z), d});
+      up.push_back(Ray{Vec3(x + dx, -h, z + dz), Vec3(-d.x(), -d.y(), -d.z())});
+    }
+    std::vector<Hit> down_hits(down.size()), up_hits(up.size());
+    embree.intersect(down.data(), down_hits.data(), down.size());
+    embree.intersect(up.data(), up_hits.data(), up.size());
+    // Hits that are not the expected one, of Embree (single rays and packets) and of the brute-force reference.
+    std::size_t embree_wrong = 0, brute_wrong = 0;
+    const auto down_ok = [&](const Hit& h, const Ray& r) {
+      return h.patch == bottom && !h.front && std::abs(h.t - r.origin.y() / -r.direction.y()) < 1e-5;
+    };
+    // A two-sided floor: the piece's own back patch (facing down, seen from its front); else the piece's back.
+    const auto up_ok = [&](const Hit& h) {
+      return two_sided_floor ? h.patch >= 0 && ps.side[std::size_t(h.patch)] == Side::back &&
+                                   ps.face[std::size_t(h.patch)] == ps.face[std::size_t(piece)] && h.front
+                             : h.patch == piece && !h.front;
+    };
+    for (std::size_t k = 0; k < down.size(); ++k) {
+      embree_wrong += !down_ok(embree.intersect(down[k]), down[k]) + !down_ok(down_hits[k], down[k]);
+      brute_wrong += !down_ok(brute.intersect(down[k]), down[k]);
+      embree_wrong += !up_ok(embree.intersect(up[k])) + !up_ok(up_hits[k]);
+      brute_wrong += !up_ok(brute.intersect(up[k]));
+    }
+    CHECK(embree_wrong == 0);
+    CHECK(brute_wrong == 0);
   }
 }

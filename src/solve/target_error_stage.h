@@ -1,0 +1,44 @@
+#pragma once
+// One step's stage of accuracy on request (solve/target_error.h, TargetErrorWork) once its F is traced: the one
+// definition that `radwalk solve --target-error` (apps/target_error.h) and radwalk.solve_to_target_error run, so
+// that the same F gives the same B, B_se and B_disc on both; how F is traced (the command's route, or Python's
+// recommended one) and what is reported stay with the caller.
+#include <cstdint>
+#include <optional>
+
+#include "formfactor/form_factors.h"
+#include "patch/patch_set.h"
+#include "solve/discretisation_error.h"
+#include "solve/form_factor_error.h"
+#include "solve/target_error.h"
+#include "visibility/visibility.h"
+
+namespace radwalk {
+
+struct TargetErrorStageOptions {
+  double tol = 1e-10;                 // the automatic solver's tolerance (solve/solve_options.h)
+  int discretisation_directions = 16;  // L of solve/fluctuation_source.h; <= 0: B_disc not estimated
+  std::uint64_t seed = 1;              // of the discretisation estimate's rays
+};
+
+// What the stage's estimates measured, for a caller that reports them (the CLI's JSON and summary lines): each
+// set only when computed.
+struct TargetErrorStageEstimates {
+  PatchRgb solver_standard_error;              // the solver's own B_se before F's noise (empty: it has none)
+  std::optional<FormFactorError> statistical;  // F's noise in B (none: F records no tracing, or no convergence)
+  double statistical_seconds = 0;              // its time, the Embree scene of `visibility` not included
+  std::optional<DiscretisationError> discretisation;
+};
+
+// The problem of `patches` with a copy of F (the stage keeps form_factors, with its record of how F was traced,
+// for the caller's per-patch diagnostics), solved by the automatic solver (SolveOptions' default) to options.tol
+// within default_max_iterations; when it converged, B_se = the solver's own error combined with F's noise
+// (add_form_factor_error, solve/form_factor_error.h) and B_disc = the discretisation error of B
+// (discretisation_error, solve/discretisation_error.h) with options.discretisation_directions and options.seed,
+// with its source d and d's standard deviation in stage.source and stage.source_sd (for the groups' means).
+// `visibility` is of `patches`. estimates, if given, receives what the estimates measured.
+TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibility& visibility,
+                                          FormFactors form_factors, const TargetErrorStageOptions& options,
+                                          TargetErrorStageEstimates* estimates = nullptr);
+
+}  // namespace radwalk
