@@ -1,5 +1,7 @@
 #include "apps/discretisation_error.h"
 
+#include <utility>
+
 #include "apps/statistical_error.h"
 #include "core/timer.h"
 #include "solve/discretisation_error.h"
@@ -8,11 +10,15 @@
 namespace radwalk::app {
 
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed) {
+                                     RunSummary& summary, int directions, std::uint64_t seed,
+                                     std::vector<double>* shooter_share) {
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   if (solution.B.rows() != N || directions <= 0) return {};
   const EmbreeVisibility visibility(patches);
-  const DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed);
+  ShooterAttribution attribution;
+  const DiscretisationError error = discretisation_error(patches, visibility, problem, solution.B, directions, seed,
+                                                        shooter_share ? &attribution : nullptr);
+  if (shooter_share) *shooter_share = std::move(attribution.share);
   solution.B_disc = error.standard_error;
   const double disc = relative_error(patches, solution.B, solution.B_disc);
   const double stat = solution.B_se.rows() == N ? relative_error(patches, solution.B, solution.B_se) : 0.0;

@@ -7,6 +7,7 @@
 // (relative error of B_err = sqrt(B_se^2 + B_disc^2)); returns the summary line
 //   "estimated error e = 0.9 % (statistical 0.4 %, discretisation 0.8 %; ...)".
 #include <string>
+#include <vector>
 
 #include "core/solution.h"
 #include "io/run_summary.h"
@@ -16,7 +17,10 @@
 namespace radwalk::app {
 
 // directions: L of solve/fluctuation_source.h (0: not estimated, returns ""). Collective over MPI when problem.F is row-distributed.
+// shooter_share, if given: each patch's share of the squared error as a shooter (solve/shooter_attribution.h; left
+// empty over MPI with F row-distributed), for the refinement of --target-error.
 std::string add_discretisation_error(const PatchSet& patches, const RadiosityProblem& problem, Solution& solution,
-                                     RunSummary& summary, int directions, std::uint64_t seed);
+                                     RunSummary& summary, int directions, std::uint64_t seed,
+                                     std::vector<double>* shooter_share = nullptr);
 
 }  // namespace radwalk::app

@@ -29,7 +29,8 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
     if (stage.solution.status == SolveStatus::converged) {
       error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
       const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
-                                                        command.discretisation_directions, command.scene.seed);
+                                                        command.discretisation_directions, command.scene.seed,
+                                                        &stage.shooter_share);
       if (!disc.empty()) error_line += "\n" + disc;
     }
     return stage;

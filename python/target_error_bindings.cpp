@@ -47,8 +47,10 @@ TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisat
     stage.solution = solve_radiosity(problem, s);
     if (stage.solution.status == SolveStatus::converged) {
       stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
-      stage.solution.B_disc =
-          discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions, seed).standard_error;
+      ShooterAttribution attribution;  // the shooters' shares, for the refinement (solve/refinement_marks.h)
+      stage.solution.B_disc = discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions,
+                                                   seed, &attribution).standard_error;
+      stage.shooter_share = std::move(attribution.share);
     }
     return stage;
   };

@@ -178,6 +178,20 @@ class Shooter {
   Emitters emitters_;
 };
 
+// The points per side s_j of each patch (header): s on a patch of the median area or smaller, round(s sqrt(A_j /
+// A_median)) on a larger one, at most kMaxSide.
+std::vector<int> point_sides(const PatchSet& patches, int side) {
+  const std::size_t N = patches.size();
+  std::vector<double> sorted_area(patches.area.begin(), patches.area.end());
+  std::nth_element(sorted_area.begin(), sorted_area.begin() + std::ptrdiff_t(N / 2), sorted_area.end());
+  const double median_area = N ? sorted_area[N / 2] : 0.0;
+  std::vector<int> sides(N, side);
+  for (std::size_t j = 0; j < N; ++j)
+    if (median_area > 0 && patches.area[j] > median_area)
+      sides[j] = std::min(kMaxSide, int(std::lround(side * std::sqrt(patches.area[j] / median_area))));
+  return sides;
+}
+
 }  // namespace
 
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
@@ -187,13 +201,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   RADWALK_CHECK_EQ(B.rows(), n);
   RADWALK_CHECK(directions >= 1 && points >= 2);
   const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
-  std::vector<double> sorted_area(patches.area.begin(), patches.area.end());
-  std::nth_element(sorted_area.begin(), sorted_area.begin() + std::ptrdiff_t(N / 2), sorted_area.end());
-  const double median_area = N ? sorted_area[N / 2] : 0.0;
-  std::vector<int> sides(N, side);
-  for (std::size_t j = 0; j < N; ++j)
-    if (median_area > 0 && patches.area[j] > median_area)
-      sides[j] = std::min(kMaxSide, int(std::lround(side * std::sqrt(patches.area[j] / median_area))));
+  const std::vector<int> sides = point_sides(patches, side);
   // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
   const PatchRgb scaled = B / scale;
@@ -238,12 +246,40 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
         next_row += part.size();
       });
   out.d = (d[0] + d[1]) / 2;
+  out.replicate[0] = d[0];
+  out.replicate[1] = d[1];
   out.variance = (d[0] - d[1]).square() / 4;
   // The replicates' difference has one degree of freedom: by chance it can be near 0 where d rests on a few large
   // shots (a small patch hit from a large one). The (direction, target) units, many per patch, bound it below.
   out.variance = out.variance.max(units / 4);
   out.F = SparseF(n, n);
   out.F.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
+                                               const PatchRgb& B, const PatchRgb (&weights)[2], int directions,
+                                               std::uint64_t seed, int points) {
+  const std::size_t N = patches.size();
+  const auto n = static_cast<Eigen::Index>(N);
+  RADWALK_CHECK_EQ(B.rows(), n);
+  RADWALK_CHECK_EQ(weights[0].rows(), n);
+  RADWALK_CHECK_EQ(weights[1].rows(), n);
+  RADWALK_CHECK(directions >= 1 && points >= 2);
+  const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
+  // The same scaling as fluctuation_source, so that the shots are the same numbers; multiplied back per patch.
+  const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
+  const PatchRgb scaled = B / scale;
+  const Shooter shooter(patches, visibility, scaled, scale, seed, point_sides(patches, side), directions);
+  std::vector<double> out(N, 0.0);
+  parallel_for(N, [&](std::size_t j) {
+    if (!(patches.rho[j].maxCoeff() > 0)) return;
+    PatchShots shots;
+    shooter.shoot(j, shots);
+    double sum = 0;
+    for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
+    out[j] = sum * scale;
+  }, 16);
   return out;
 }
 

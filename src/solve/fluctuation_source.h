@@ -38,6 +38,7 @@
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
+#include <vector>
 
 #include "core/types.h"
 #include "formfactor/sparse_f.h"
@@ -48,6 +49,7 @@ namespace radwalk {
 
 struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
+  PatchRgb replicate[2];  // N x 3 each: d^(0), d^(1), the two independent replicates (d = their mean)
   PatchRgb variance;  // N x 3: the variance of that estimate
   SparseF F;          // N x N: the shot rays' form factors (2 M L rays per row), for scenes solved without a stored F
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
@@ -59,5 +61,17 @@ struct FluctuationSource {
 // (rounded up to a square; larger patches get more, above).
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
                                      int directions, std::uint64_t seed, int points = 4);
+
+// The shots of fluctuation_source weighted by the receivers, summed per shooter (docs/theory/discretisation_error.md,
+// "Which patch causes the error: the shooter attribution"):
+//   a_j = sum_r sum_{shots s of j in replicate r} sum_c w^(r)_{k(s) c} s_c,
+// where s is one shot rho_k delta_m A_j / (A_k M L) of patch j to the patch k it hits (the terms whose sum over j is
+// d^(r)_k), and w^(r) (N x 3, finite) the receivers' weights for replicate r's shots. Traced again with the same
+// arguments and streams as fluctuation_source, so the shots are the same ones, bit for bit: sum_j a_j =
+// sum_r sum_{k,c} w^(r)_kc d^(r)_kc up to rounding. Patch j's sum is formed by j alone (its shots in their own
+// order): reproducible for any thread count. Rays: as many as fluctuation_source's.
+std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
+                                               const PatchRgb& B, const PatchRgb (&weights)[2], int directions,
+                                               std::uint64_t seed, int points = 4);
 
 }  // namespace radwalk
