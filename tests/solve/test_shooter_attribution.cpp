@@ -4,7 +4,8 @@
 // 1. The identity: on the unit cube lit by its ceiling (3 x 3 patches a face, F exact), the shares sum to
 //    sum_{i,c} A_i e^(0)_ic e^(1)_ic, with e^(r) = (I - H)^{-1} d^(r) solved here independently by dense LU from the
 //    replicates of fluctuation_source (same arguments): a relative difference below 1e-6 (the Jacobi tolerances are
-//    1e-10; the shots are summed in another order). Deterministic: not a hypothesis test.
+//    1e-10; the shots are summed in another order). Deterministic: not a hypothesis test. 1 and 2 threads give the
+//    same shares bit for bit.
 // 2. No bias where nothing fluctuates: in the furnace (every patch emits 1 and reflects 0.5: B = 2 everywhere, in
 //    the continuous and the discrete system) every shooter's true share is 0. Over S = 60 seeds the mean c_j of each
 //    patch is z-tested against 0 (standard error from the seeds' spread, 59 degrees of freedom: the normal quantile
@@ -29,6 +30,7 @@
 
 #include <Eigen/Dense>
 
+#include "core/parallel.h"
 #include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "mesh/read_scene.h"
@@ -77,7 +79,7 @@ double sum_of(const std::vector<double>& v) {
 
 }  // namespace
 
-TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense LU of both replicates)") {
+TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense LU of both replicates), for any thread count") {
   const Solved s = solved_cube(3, false);
   const EmbreeVisibility visibility(s.patches);
   const auto N = static_cast<Eigen::Index>(s.patches.size());
@@ -104,6 +106,18 @@ TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense L
   REQUIRE(size > 0);
   CHECK(std::abs(sum_of(a.share) - expected) <= 1e-6 * size);
   CHECK(std::abs(a.total - expected) <= 1e-6 * size);
+  // Reproducible: 1 and 2 threads give the same shares bit for bit.
+  ShooterAttribution one, two;
+  {
+    const ThreadLimit limit(1);
+    discretisation_error(s.patches, visibility, s.problem, s.B, L, seed, &one);
+  }
+  {
+    const ThreadLimit limit(2);
+    discretisation_error(s.patches, visibility, s.problem, s.B, L, seed, &two);
+  }
+  CHECK(one.share == two.share);
+  CHECK(one.share == a.share);
 }
 
 TEST_CASE("shooter attribution: in the furnace every share is 0 in expectation (z-tests over 60 seeds), and the "
@@ -208,4 +222,17 @@ TEST_CASE("shooter attribution: on the spot-lit room the floor beside the light'
   }
   INFO("probability of these marks at random " << p_random);
   CHECK(p_random < 1e-3);
+}
+
+TEST_CASE("refinement marks: the union of the two shares' marks, the budget by the larger normalised share") {
+  const std::vector<double> receiver = {10, 1, 1, 0}, shooter = {0, 0, 5, -3};
+  // Receiver: 10 of 12 holds 1/2. Shooter: 5 of the positive 5 holds 1/2 (the negative share never ranks).
+  CHECK(refinement_marks(receiver, {}, 0.5, 0.0, 4) == std::vector<bool>{true, false, false, false});
+  CHECK(refinement_marks(receiver, shooter, 0.5, 0.0, 4) == std::vector<bool>{true, false, true, false});
+  // Room for one: patch 2 (5 / 5 of the shooters' total) before patch 0 (10 / 12 of the receivers').
+  CHECK(refinement_marks(receiver, shooter, 0.5, 0.0, 1) == std::vector<bool>{false, false, true, false});
+  // A floor above a share leaves it unmarked; an element that cannot be split is passed over.
+  CHECK(refinement_marks(receiver, shooter, 0.5, 6.0, 4) == std::vector<bool>{true, false, false, false});
+  CHECK(refinement_marks(receiver, shooter, 0.5, 0.0, 4, {false, true, true, true}) ==
+        std::vector<bool>{false, true, true, false});
 }
