@@ -167,11 +167,13 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
         // "Refinement by both shares").
         const std::vector<double>& shooter = leaf_work ? stage.shooter_share : ind.shooter_share;
         std::vector<double> receiver = ind.eta2;
-        if (shooter.size() == leaves.size())
+        if (shooter.size() == leaves.size()) {
+          receiver.assign(leaves.size(), 0.0);
           for (std::size_t k = 0; k < leaves.size(); ++k)
             receiver[k] = !(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any()
                               ? leaves.area[k] * ind.B_disc.row(static_cast<Eigen::Index>(k)).square().sum()
                               : 0.0;
+        }
         split = leaves_to_split(h.tree, h.leaves, receiver, shooter, plan.split_fraction, share,
                                 static_cast<std::size_t>(std::max(0L, o.max_leaves - leaves_now)) / 3, solve);
       }

@@ -53,7 +53,7 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   RADWALK_CHECK_EQ(B.rows(), N);
   RADWALK_CHECK_EQ(static_cast<Eigen::Index>(p.size()), N);
-  FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed);
+  FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed, 4, attribution != nullptr);
   DiscretisationError out;
   out.points = source.points;
   out.directions = source.directions;

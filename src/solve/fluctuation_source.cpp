@@ -49,6 +49,7 @@ struct PatchShots {
   std::vector<Shot> shots;
   std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
+  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
   long rays = 0;
 };
 
@@ -61,8 +62,10 @@ class Shooter {
         eps_(ray_epsilon(ps)),
         emitters_(find_emitters(ps)) {}
 
-  // Patch j's contributions to d (both replicates).
-  void shoot(std::size_t j, PatchShots& out) const {
+  // Patch j's contributions to d (both replicates). deltas: null, or the delta_m of an earlier shoot(j) with the
+  // same streams (then the gathers are not traced again: their random numbers are drawn and dropped, so the points
+  // and the shot directions are the same ones).
+  void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr) const {
     const int side = side_[j], M = side * side;
     const PatchPointSampler on_j(ps_, j);
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
@@ -77,31 +80,37 @@ class Shooter {
         for (int b = 0; b < side; ++b)
           y[a * side + b] = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
                                        std::min((b + rng.uniform()) / side, kBelowOne));
-      // The gather g_m: L shared cosine directions (the reflected part) ...
-      for (int l = 0; l < L_; ++l) {
-        const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
-        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
-      }
-      vis_.intersect(rays.data(), hits.data(), rays.size());
-      out.rays += long(rays.size());
-      for (int m = 0; m < M; ++m) {
-        g[m] = Rgb::Zero();
-        for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
-      }
-      // ... and L shared emitter points (the emitted part).
-      if (!emitters_.patch.empty()) {
-        for (int l = 0; l < L_; ++l) {
-          const std::size_t k = emitters_.choice.sample(rng.uniform());
-          const std::size_t e = emitters_.patch[k];
-          const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
-          const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
-          for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
-          out.rays += M;
-        }
-      }
       Rgb mean = Rgb::Zero();
-      for (int m = 0; m < M; ++m) mean += g[m] /= L_;
-      mean /= M;
+      if (deltas) {
+        for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform();
+        if (!emitters_.patch.empty())
+          for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform(), rng.uniform();
+      } else {
+        // The gather g_m: L shared cosine directions (the reflected part) ...
+        for (int l = 0; l < L_; ++l) {
+          const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+          for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
+        }
+        vis_.intersect(rays.data(), hits.data(), rays.size());
+        out.rays += long(rays.size());
+        for (int m = 0; m < M; ++m) {
+          g[m] = Rgb::Zero();
+          for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
+        }
+        // ... and L shared emitter points (the emitted part).
+        if (!emitters_.patch.empty()) {
+          for (int l = 0; l < L_; ++l) {
+            const std::size_t k = emitters_.choice.sample(rng.uniform());
+            const std::size_t e = emitters_.patch[k];
+            const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
+            const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
+            for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
+            out.rays += M;
+          }
+        }
+        for (int m = 0; m < M; ++m) mean += g[m] /= L_;
+        mean /= M;
+      }
       // The fluctuation delta_m, shot along L shared directions.
       for (int l = 0; l < L_; ++l) {
         const Vec3 v = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
@@ -112,7 +121,8 @@ class Shooter {
       const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m) {
-        const Rgb delta = ps_.rho[j] * (g[m] - mean);
+        const Rgb delta = deltas ? (*deltas)[std::size_t(r) * M + m] : Rgb(ps_.rho[j] * (g[m] - mean));
+        if (!deltas) out.deltas.push_back(delta);
         for (int l = 0; l < L_; ++l) {
           const Hit& h = hits[std::size_t(m) * L_ + l];
           if (h.missed() || !h.front) continue;
@@ -195,7 +205,7 @@ std::vector<int> point_sides(const PatchSet& patches, int side) {
 }  // namespace
 
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
-                                     int directions, std::uint64_t seed, int points) {
+                                     int directions, std::uint64_t seed, int points, bool keep_deltas) {
   const std::size_t N = patches.size();
   const auto n = static_cast<Eigen::Index>(N);
   RADWALK_CHECK_EQ(B.rows(), n);
@@ -208,6 +218,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions);
 
   FluctuationSource out;
+  if (keep_deltas) out.deltas.resize(N);
   out.points = side * side;
   out.directions = directions;
   PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
@@ -242,6 +253,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
             a = b;
           }
           out.rays += part[q].rays;
+          if (keep_deltas) out.deltas[next_row + q] = std::move(part[q].deltas);
         }
         next_row += part.size();
       });
@@ -258,14 +270,16 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
 }
 
 std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
-                                               const PatchRgb& B, const PatchRgb (&weights)[2], int directions,
-                                               std::uint64_t seed, int points) {
+                                               const PatchRgb& B, const FluctuationSource& source,
+                                               const PatchRgb (&weights)[2], int directions, std::uint64_t seed,
+                                               int points) {
   const std::size_t N = patches.size();
   const auto n = static_cast<Eigen::Index>(N);
   RADWALK_CHECK_EQ(B.rows(), n);
   RADWALK_CHECK_EQ(weights[0].rows(), n);
   RADWALK_CHECK_EQ(weights[1].rows(), n);
   RADWALK_CHECK(directions >= 1 && points >= 2);
+  RADWALK_CHECK_EQ(source.deltas.size(), N);
   const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
   // The same scaling as fluctuation_source, so that the shots are the same numbers; multiplied back per patch.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
@@ -275,7 +289,7 @@ std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Vi
   parallel_for(N, [&](std::size_t j) {
     if (!(patches.rho[j].maxCoeff() > 0)) return;
     PatchShots shots;
-    shooter.shoot(j, shots);
+    shooter.shoot(j, shots, &source.deltas[j]);
     double sum = 0;
     for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
     out[j] = sum * scale;

@@ -54,8 +54,9 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
   const Eigen::ArrayXXd psi = adjoint_block(h, W, out.sweeps);
   // Replicate r's shots weighted by the other replicate's adjoint, halved.
   PatchRgb weights[2] = {psi.middleCols(3, 3) / 2, psi.middleCols(0, 3) / 2};
-  out.share = weighted_fluctuation_shots(patches, visibility, B, weights, directions, seed);
-  out.rays = source.rays;
+  out.share = weighted_fluctuation_shots(patches, visibility, B, source, weights, directions, seed);
+  for (std::size_t j = 0; j < patches.size(); ++j)
+    out.rays += 2 * static_cast<long>(source.deltas[j].size()) * directions;  // the shot rays, per replicate M_j L
   for (Eigen::Index i = 0; i < N; ++i)
     out.total += patches.area[static_cast<std::size_t>(i)] * (e.X.row(i).segment(0, 3) * e.X.row(i).segment(3, 3)).sum();
   out.seconds = timer.seconds();

@@ -34,14 +34,14 @@ namespace radwalk {
 struct ShooterAttribution {
   std::vector<double> share;  // c_j per patch (B's units squared times area, as A_i |e_i|^2)
   double total = 0;           // sum_{i,c} A_i e^(0)_ic e^(1)_ic, which sum_j c_j equals up to rounding
-  long rays = 0;              // traced again (as many as the source's)
+  long rays = 0;              // the shot rays traced again (a third of the source's, a half without emitters)
   long sweeps = 0;            // of the two solves
   double seconds = 0;
 };
 
 // h: the problem whose H = diag(rho) F the error e was solved with (every row of F: not row-distributed, checked);
-// source: fluctuation_source(patches, visibility, B, directions, seed) of the same arguments (its shots are traced
-// again, the same ones). Values of ordinary size (the caller scales as discretisation_error does).
+// source: fluctuation_source(patches, visibility, B, directions, seed, 4, true) of the same arguments (its delta_m
+// are shot again, the same shots). Values of ordinary size (the caller scales as discretisation_error does).
 ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility& visibility,
                                        const RadiosityProblem& h, const PatchRgb& B, const FluctuationSource& source,
                                        int directions, std::uint64_t seed);

@@ -137,7 +137,7 @@ TEST_CASE("shooter attribution: in the furnace every share is 0 in expectation (
     const double total = sum_of(a.share);
     cross_sum += total, cross_sq += total * total;
     // The deliberately wrong estimate: each replicate's shots weighted by its own adjoint.
-    const FluctuationSource source = fluctuation_source(s.patches, visibility, s.B, L, seed);
+    const FluctuationSource source = fluctuation_source(s.patches, visibility, s.B, L, seed, 4, true);
     const auto n = static_cast<Eigen::Index>(N);
     RowBlock Z(n, 6);
     for (int r = 0; r < 2; ++r) Z.middleCols(3 * r, 3) = source.replicate[r];
@@ -147,7 +147,7 @@ TEST_CASE("shooter attribution: in the furnace every share is 0 in expectation (
     long sweeps = 0;
     const Eigen::ArrayXXd psi = adjoint_block(s.problem, W, sweeps);
     const PatchRgb own[2] = {psi.middleCols(0, 3) / 2, psi.middleCols(3, 3) / 2};
-    const double wrong = sum_of(weighted_fluctuation_shots(s.patches, visibility, s.B, own, L, seed));
+    const double wrong = sum_of(weighted_fluctuation_shots(s.patches, visibility, s.B, source, own, L, seed));
     own_sum += wrong, own_sq += wrong * wrong;
   }
   const double z_crit = z_critical(sidak(1e-3, N));
