@@ -13,8 +13,8 @@
 namespace radwalk::app {
 
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
-                                        bool first_obtains) {
-  return [&command, &summary, &error_line, first_obtains](const PatchSet& p, long rays, int step) {
+                                        bool first_obtains, bool attribute_shooters) {
+  return [&command, &summary, &error_line, first_obtains, attribute_shooters](const PatchSet& p, long rays, int step) {
     FormFactorCliOptions ff_options = command.ff;
     ff_options.rays = rays;
     TargetErrorStage stage;
@@ -30,7 +30,7 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
       error_line = add_statistical_error(p, stage.form_factors, problem, stage.solution, summary);
       const std::string disc = add_discretisation_error(p, problem, stage.solution, summary,
                                                         command.discretisation_directions, command.scene.seed,
-                                                        &stage.shooter_share);
+                                                        attribute_shooters ? &stage.shooter_share : nullptr);
       if (!disc.empty()) error_line += "\n" + disc;
     }
     return stage;

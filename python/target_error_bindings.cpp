@@ -30,8 +30,10 @@ struct TargetErrorPyResult {
 };
 
 // One step's work of the uniform route (the CLI's defaults: Sobol rays, automatic emitter columns, the automatic
-// solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport.
-TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions) {
+// solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport, which
+// also asks for the shooter shares (attribute_shooters; apps/target_error.h says why the uniform route does not).
+TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions,
+                                 bool attribute_shooters) {
   return [=](const PatchSet& p, long step_rays, int) {
     TargetErrorStage stage;
     const EmbreeVisibility visibility(p);
@@ -49,7 +51,7 @@ TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisat
       stage.solution.B_se = form_factor_error(p, visibility, stage.form_factors, problem, stage.solution.B).standard_error;
       ShooterAttribution attribution;  // the shooters' shares, for the refinement (solve/refinement_marks.h)
       stage.solution.B_disc = discretisation_error(p, visibility, problem, stage.solution.B, discretisation_directions,
-                                                   seed, &attribution).standard_error;
+                                                   seed, attribute_shooters ? &attribution : nullptr).standard_error;
       stage.shooter_share = std::move(attribution.share);
     }
     return stage;
@@ -77,7 +79,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
     ThreadLimit limit(threads);
     const EmbreeVisibility visibility(scene.patches);
     const TargetErrorWork leaf_work =
-        transport == "form-factors" ? form_factor_work(seed, tol, discretisation_directions) : TargetErrorWork{};
+        transport == "form-factors" ? form_factor_work(seed, tol, discretisation_directions, true) : TargetErrorWork{};
     r = solve_hierarchical_to_target_error(scene.patches, visibility, h, o, {}, leaf_work);
   });
   if (r.form_factor_transport) check_solved(r.stage.solution);
@@ -137,7 +139,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
   options.max_patches = static_cast<std::size_t>(max_patches);
   options.max_seconds = max_seconds;
   if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
-  const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions);
+  const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions, false);
   TargetErrorResult r;
   interruptible([&] {
     ThreadLimit limit(threads);

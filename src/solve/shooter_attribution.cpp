@@ -7,6 +7,10 @@
 
 namespace radwalk {
 
+// The relative change at which the Jacobi sweeps of e^(r) and psi^(r) stop: c_j needs a few digits (it ranks), the
+// identity (11) holds to about this over (1 - rho).
+constexpr double kTolerance = 1e-7;
+
 Eigen::ArrayXXd adjoint_block(const RadiosityProblem& p, const Eigen::ArrayXXd& W, long& sweeps) {
   const Eigen::Index N = static_cast<Eigen::Index>(p.size());
   RADWALK_CHECK_EQ(W.rows(), N);
@@ -26,7 +30,7 @@ Eigen::ArrayXXd adjoint_block(const RadiosityProblem& p, const Eigen::ArrayXXd& 
     ++sweeps;
     const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
     psi.swap(next);
-    if (!(change > 1e-10 * size)) break;
+    if (!(change > kTolerance * size)) break;
     if (own + 1 >= 100000)
       throw InputError("error estimate: the shooter attribution's adjoint did not converge in 100,000 sweeps "
                        "(spectral radius of diag(rho) F near 1)");
@@ -46,7 +50,7 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
   // e^(r) = (I - H)^{-1} d^(r), both replicates in one block (columns 3 r + c).
   RowBlock Z(N, 6);
   for (int r = 0; r < 2; ++r) Z.middleCols(3 * r, 3) = source.replicate[r];
-  const BlockSolution e = solve_block_jacobi(h, Z, 1e-10, "error estimate: the shooter attribution's solve");
+  const BlockSolution e = solve_block_jacobi(h, Z, kTolerance, "error estimate: the shooter attribution's solve");
   out.sweeps += e.sweeps;
   // psi^(r) = (I - H)^{-T} (A e^(r)).
   Eigen::ArrayXXd W(N, 6);
@@ -56,7 +60,7 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
   PatchRgb weights[2] = {psi.middleCols(3, 3) / 2, psi.middleCols(0, 3) / 2};
   out.share = weighted_fluctuation_shots(patches, visibility, B, source, weights, directions, seed);
   for (std::size_t j = 0; j < patches.size(); ++j)
-    out.rays += 2 * static_cast<long>(source.deltas[j].size()) * directions;  // the shot rays, per replicate M_j L
+    out.rays += static_cast<long>(source.deltas[j].size()) * directions;  // the shot rays: M_j L per replicate
   for (Eigen::Index i = 0; i < N; ++i)
     out.total += patches.area[static_cast<std::size_t>(i)] * (e.X.row(i).segment(0, 3) * e.X.row(i).segment(3, 3)).sum();
   out.seconds = timer.seconds();

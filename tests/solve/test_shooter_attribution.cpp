@@ -3,8 +3,8 @@
 //
 // 1. The identity: on the unit cube lit by its ceiling (3 x 3 patches a face, F exact), the shares sum to
 //    sum_{i,c} A_i e^(0)_ic e^(1)_ic, with e^(r) = (I - H)^{-1} d^(r) solved here independently by dense LU from the
-//    replicates of fluctuation_source (same arguments): a relative difference below 1e-6 (the Jacobi tolerances are
-//    1e-10; the shots are summed in another order). Deterministic: not a hypothesis test. 1 and 2 threads give the
+//    replicates of fluctuation_source (same arguments): a relative difference below 1e-5 (the Jacobi tolerances are
+//    1e-7, the error of a sweep's fixed point 1e-7 / (1 - rho); the shots are summed in another order). Deterministic: not a hypothesis test. 1 and 2 threads give the
 //    same shares bit for bit.
 // 2. No bias where nothing fluctuates: in the furnace (every patch emits 1 and reflects 0.5: B = 2 everywhere, in
 //    the continuous and the discrete system) every shooter's true share is 0. Over S = 60 seeds the mean c_j of each
@@ -104,8 +104,8 @@ TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense L
   }
   INFO("sum c_j " << sum_of(a.share) << ", sum A e0 e1 " << expected << ", reported total " << a.total);
   REQUIRE(size > 0);
-  CHECK(std::abs(sum_of(a.share) - expected) <= 1e-6 * size);
-  CHECK(std::abs(a.total - expected) <= 1e-6 * size);
+  CHECK(std::abs(sum_of(a.share) - expected) <= 1e-5 * size);
+  CHECK(std::abs(a.total - expected) <= 1e-5 * size);
   // Reproducible: 1 and 2 threads give the same shares bit for bit.
   ShooterAttribution one, two;
   {
