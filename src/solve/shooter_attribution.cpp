@@ -11,27 +11,27 @@ namespace radwalk {
 // identity (11) holds to about this over (1 - rho).
 constexpr double kTolerance = 1e-7;
 
-Eigen::ArrayXXd adjoint_block(const RadiosityProblem& p, const Eigen::ArrayXXd& W, long& sweeps) {
+RowBlock adjoint_block(const RadiosityProblem& p, const RowBlock& W, long& sweeps) {
   const Eigen::Index N = static_cast<Eigen::Index>(p.size());
   RADWALK_CHECK_EQ(W.rows(), N);
   RADWALK_CHECK(W.cols() % 3 == 0);
   RADWALK_CHECK(p.row_blocks.empty());
   const Eigen::Index Q = W.cols() / 3;
-  // psi = W + F^T (rho psi): F^T applied by scattering F's rows.
-  Eigen::ArrayXXd psi = W, next(N, W.cols());
-  for (long own = 0;; ++own) {
+  // psi = W + F^T (rho psi): F^T applied by scattering F's rows (row-major: a patch's columns contiguous).
+  RowBlock psi = W, next(N, W.cols());
+  Eigen::Array<double, 1, Eigen::Dynamic> source(W.cols());
+  for (long sweep = 0;; ++sweep) {
     next = W;
     for (Eigen::Index i = 0; i < N; ++i) {
-      Eigen::ArrayXd source(W.cols());
       for (Eigen::Index q = 0; q < Q; ++q)
         for (int c = 0; c < 3; ++c) source[3 * q + c] = p.rho(i, c) * psi(i, 3 * q + c);
-      for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source.transpose();
+      for (SparseF::InnerIterator it(p.F, i); it; ++it) next.row(it.col()) += double(it.value()) * source;
     }
     ++sweeps;
     const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
     psi.swap(next);
     if (!(change > kTolerance * size)) break;
-    if (own + 1 >= 100000)
+    if (sweep + 1 >= 100000)
       throw InputError("error estimate: the shooter attribution's adjoint did not converge in 100,000 sweeps "
                        "(spectral radius of diag(rho) F near 1)");
   }
@@ -53,9 +53,8 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
   const BlockSolution e = solve_block_jacobi(h, Z, kTolerance, "error estimate: the shooter attribution's solve");
   out.sweeps += e.sweeps;
   // psi^(r) = (I - H)^{-T} (A e^(r)).
-  Eigen::ArrayXXd W(N, 6);
-  for (Eigen::Index i = 0; i < N; ++i) W.row(i) = patches.area[static_cast<std::size_t>(i)] * e.X.row(i);
-  const Eigen::ArrayXXd psi = adjoint_block(h, W, out.sweeps);
+  const RowBlock W = Eigen::Map<const Eigen::ArrayXd>(patches.area.data(), N).replicate(1, 6) * e.X;
+  const RowBlock psi = adjoint_block(h, W, out.sweeps);
   // Replicate r's shots weighted by the other replicate's adjoint, halved.
   PatchRgb weights[2] = {psi.middleCols(3, 3) / 2, psi.middleCols(0, 3) / 2};
   out.share = weighted_fluctuation_shots(patches, visibility, B, source, weights, directions, seed);

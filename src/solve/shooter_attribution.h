@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "solve/block_jacobi.h"
 #include "patch/patch_set.h"
 #include "solve/fluctuation_source.h"
 #include "solve/problem.h"
@@ -49,6 +50,6 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
 // The adjoint psi = (I - H)^{-T} W for a weight per patch and column: column 3 q + c of W (N x 3Q) belongs to
 // channel c, psi_c = W_c + F^T diag(rho_c) psi_c by Jacobi sweeps to a relative change below 1e-7 (InputError after
 // 100,000 sweeps: spectral radius of H near 1). F must hold every row (checked). The sweeps are added to `sweeps`.
-Eigen::ArrayXXd adjoint_block(const RadiosityProblem& p, const Eigen::ArrayXXd& W, long& sweeps);
+RowBlock adjoint_block(const RadiosityProblem& p, const RowBlock& W, long& sweeps);
 
 }  // namespace radwalk

@@ -142,10 +142,10 @@ TEST_CASE("shooter attribution: in the furnace every share is 0 in expectation (
     RowBlock Z(n, 6);
     for (int r = 0; r < 2; ++r) Z.middleCols(3 * r, 3) = source.replicate[r];
     const BlockSolution e = solve_block_jacobi(s.problem, Z, 1e-10, "test");
-    Eigen::ArrayXXd W(n, 6);
+    RowBlock W(n, 6);
     for (Eigen::Index i = 0; i < n; ++i) W.row(i) = s.patches.area[static_cast<std::size_t>(i)] * e.X.row(i);
     long sweeps = 0;
-    const Eigen::ArrayXXd psi = adjoint_block(s.problem, W, sweeps);
+    const RowBlock psi = adjoint_block(s.problem, W, sweeps);
     const PatchRgb own[2] = {psi.middleCols(0, 3) / 2, psi.middleCols(3, 3) / 2};
     const double wrong = sum_of(weighted_fluctuation_shots(s.patches, visibility, s.B, source, own, L, seed));
     own_sum += wrong, own_sq += wrong * wrong;
