@@ -9,6 +9,7 @@
 //   "estimated error e = 0.9 % (statistical 0.4 %, discretisation 0.8 %; ...)"
 // and, with the materials, a second line naming the largest error of a material's mean.
 #include <string>
+#include <vector>
 
 #include "core/solution.h"
 #include "io/run_summary.h"

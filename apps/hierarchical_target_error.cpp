@@ -45,7 +45,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   };
   TargetErrorRun run;
   const TargetErrorWork leaf_work =
-      form_factors ? form_factor_target_work(command, summary, run.error_line, false) : TargetErrorWork{};
+      form_factors ? form_factor_target_work(command, summary, run.error_line, false, true) : TargetErrorWork{};
   HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, report, leaf_work);
 
   TargetErrorResult& t = run.result;

@@ -26,8 +26,8 @@ std::string group_progress(const TargetErrorStep& s, const std::string& each) {
 }
 
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
-                                        bool first_obtains) {
-  return [&command, &summary, &error_line, first_obtains](const PatchSet& p, long rays, int step) {
+                                        bool first_obtains, bool attribute_shooters) {
+  return [&command, &summary, &error_line, first_obtains, attribute_shooters](const PatchSet& p, long rays, int step) {
     FormFactorCliOptions ff_options = command.ff;
     ff_options.rays = rays;
     FormFactors ff = step == 0 && first_obtains ? obtain_form_factors(command.scene, ff_options, p, summary)
@@ -36,7 +36,7 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
     TargetErrorStageEstimates estimates;
     TargetErrorStage stage = solve_target_error_stage(
         p, EmbreeVisibility(p), std::move(ff),
-        {command.tol, command.discretisation_directions, command.scene.seed}, &estimates);
+        {command.tol, command.discretisation_directions, command.scene.seed, attribute_shooters}, &estimates);
     if (stage.solution.status == SolveStatus::converged) {
       const FormFactorError* statistical = estimates.statistical ? &*estimates.statistical : nullptr;
       error_line = report_statistical_error(p, stage.form_factors, stage.solution, estimates.solver_standard_error, statistical,

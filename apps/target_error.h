@@ -21,10 +21,6 @@ struct TargetErrorRun {
 
 TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary);
 
-// One step's work of that route on given patches with given rays per patch: F traced (the first step's through
-// obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), the automatic solver,
-// B_se and B_disc as a plain solve's (their JSON "error_estimate" and the line in error_line, overwritten each
-// step). The hierarchical route's form-factor transport uses it with first_obtains false.
 // The groups whose means a target-error run holds (TargetErrorOptions::each): --target-each, its default
 // (material) when not given, "" for none. can_hold: the route can (false: the default is none, and an explicit
 // group is left for the route to refuse).
@@ -34,7 +30,15 @@ std::string target_groups(const SolveCommand& command, bool can_hold);
 // "" without groups.
 std::string group_progress(const TargetErrorStep& step, const std::string& each);
 
+// One step's work of that route on given patches with given rays per patch: F traced (the first step's through
+// obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), then the step shared with
+// Python (solve/target_error_stage.h: the automatic solver, B_se and B_disc), reported as a plain solve's (their
+// JSON "error_estimate" and the line in error_line, overwritten each step). The hierarchical route's form-factor
+// transport uses it with first_obtains false and attribute_shooters true: each step also gives the patches' shooter
+// shares (solve/shooter_attribution.h) for the refinement (solve/refinement_marks.h). The uniform route does not
+// ask for them: measured on the Cornell box they cost about a third more CPU per step and changed nothing
+// (docs/theory/discretisation_error.md, "Refinement by both shares").
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
-                                        bool first_obtains);
+                                        bool first_obtains, bool attribute_shooters = false);
 
 }  // namespace radwalk::app

@@ -39,8 +39,10 @@ std::string held_groups(const std::optional<std::string>& each, bool can_hold) {
 }
 
 // One step's work of the uniform route (the CLI's defaults: Sobol rays, automatic emitter columns, the automatic
-// solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport.
-TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions) {
+// solver), B_se and B_disc as radwalk.solve estimates them; also the hierarchical route's form-factor transport, which
+// also asks for the shooter shares (attribute_shooters; apps/target_error.h says why the uniform route does not).
+TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisation_directions,
+                                 bool attribute_shooters) {
   return [=](const PatchSet& p, long step_rays, int) {
     const EmbreeVisibility visibility(p);
     FormFactorOptions o;  // the CLI's defaults: the recommended route
@@ -49,7 +51,7 @@ TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisat
     o.sobol = true;
     return solve_target_error_stage(p, visibility,
                                     estimate_form_factors_with_emitters(p, visibility, o, kAutoEmitterSamples),
-                                    {tol, discretisation_directions, seed});
+                                    {tol, discretisation_directions, seed, attribute_shooters});
   };
 }
 
@@ -76,7 +78,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
     ThreadLimit limit(threads);
     const EmbreeVisibility visibility(scene.patches);
     const TargetErrorWork leaf_work =
-        transport == "form-factors" ? form_factor_work(seed, tol, discretisation_directions) : TargetErrorWork{};
+        transport == "form-factors" ? form_factor_work(seed, tol, discretisation_directions, true) : TargetErrorWork{};
     r = solve_hierarchical_to_target_error(scene.patches, visibility, h, o, {}, leaf_work);
   });
   if (r.form_factor_transport) check_solved(r.stage.solution);
@@ -141,7 +143,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
   options.max_seconds = max_seconds;
   options.each = held_groups(each, true);
   if (scene.max_edge == 0 && scene.max_area == 0) options.start_patches = kDefaultStartPatches;
-  const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions);
+  const TargetErrorWork work = form_factor_work(seed, tol, discretisation_directions, false);
   TargetErrorResult r;
   interruptible([&] {
     ThreadLimit limit(threads);

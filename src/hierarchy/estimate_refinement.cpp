@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 #include <string>
+#include <utility>
 
 #include "core/error.h"
 #include "core/timer.h"
@@ -43,12 +44,34 @@ LeafErrorIndicator leaf_error_indicator(const PatchSet& roots, const Visibility&
 }
 
 LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
-                                        int directions, int points_side, std::uint64_t seed) {
+                                        int directions, int points_side, std::uint64_t seed,
+                                        bool attribute_shooters) {
   const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
   const EmbreeVisibility leaf_visibility(leaves);
   const auto n = static_cast<Eigen::Index>(leaves.size());
   const RadiosityProblem problem = make_problem(leaves, SparseF(n, n));  // no stored F: the estimate's own rays give H
-  const DiscretisationError disc = discretisation_error(leaves, leaf_visibility, problem, h.B, directions, seed);
+  ShooterAttribution attribution;
+  const DiscretisationError disc =
+      discretisation_error(leaves, leaf_visibility, problem, h.B, directions, seed,
+                           attribute_shooters ? &attribution : nullptr);
+  if (attribute_shooters) {
+    LeafErrorIndicator out;
+    out.B_disc = disc.standard_error;
+    out.shooter_share = std::move(attribution.share);
+    out.rays = disc.rays;
+    out.eta2.assign(leaves.size(), 0.0);
+    double total = 0, norm = 0;
+    for (std::size_t k = 0; k < leaves.size(); ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      out.eta2[k] = leaves.area[k] * out.B_disc.row(r).square().sum();
+      if ((leaves.E[k] > 0).any() || !(leaves.rho[k] > 0).any()) continue;
+      total += out.eta2[k];
+      norm += leaves.area[k] * h.B.row(r).square().sum();
+    }
+    out.eta = norm > 0 ? std::sqrt(total / norm) : 0.0;
+    out.disc_share = 1;
+    return out;
+  }
   LeafErrorIndicator out = leaf_error_indicator(roots, visibility, h.tree, h.leaves, h.B, disc.standard_error,
                                                 directions, points_side, seed);
   out.rays += disc.rays;

@@ -61,12 +61,18 @@ struct EstimateRefinementResult {
 // and the rays of both estimates. directions L >= 1, points_side m >= 2.
 struct LeafErrorIndicator {
   std::vector<double> eta2;
+  std::vector<double> shooter_share;  // each leaf's share of the squared error as a shooter (estimate_leaf_errors
+                                      // when asked: solve/shooter_attribution.h); else empty
   PatchRgb B_disc;
   double eta = 0, disc_share = 0;
   long rays = 0;
 };
+// attribute_shooters: instead of the within-leaf variation, each leaf's shooter share (shooter_share; traces the
+// discretisation estimate's fluctuation shots again; docs/theory/discretisation_error.md, "Refinement by both
+// shares"): eta_l^2 is then A_l sum_c B_disc_lc^2 alone and the variation's rays are not traced.
 LeafErrorIndicator estimate_leaf_errors(const PatchSet& roots, const Visibility& visibility, const HierarchicalResult& h,
-                                        int directions, int points_side, std::uint64_t seed);
+                                        int directions, int points_side, std::uint64_t seed,
+                                        bool attribute_shooters = false);
 
 // The same indicator for any solution B on the leaves (row k = leaves[k]) whose B_disc is already estimated (e.g.
 // by the form-factor route on the leaves as patches): eta_l^2 = A_l sum_c (B_disc_lc^2 + max(W2_lc, 0)), W2 from

@@ -14,6 +14,7 @@
 #include "patch/patch_grouping.h"
 #include "solve/discretisation_error.h"
 #include "solve/problem.h"
+#include "solve/refinement_marks.h"
 
 namespace radwalk {
 namespace {
@@ -39,6 +40,23 @@ ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& sol
     if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > o.max_leaves) return tree;
     for (const ElementIndex e : marked) tree.split(static_cast<std::size_t>(e));
   }
+}
+
+// The leaf rows to split (solve/refinement_marks.h): by eta_l^2 and by the shooter shares (when estimated), each
+// until its marked leaves hold `fraction` of its sum or the next is at most `floor`, at most `room` leaves, only
+// splittable ones.
+std::vector<std::size_t> leaves_to_split(const ElementTree& tree, const std::vector<ElementIndex>& leaves,
+                                         const std::vector<double>& eta2, const std::vector<double>& shooter,
+                                         double fraction, double floor, std::size_t room,
+                                         const HierarchicalOptions& solve) {
+  std::vector<bool> can(leaves.size());
+  for (std::size_t k = 0; k < leaves.size(); ++k) can[k] = splittable(tree, static_cast<std::size_t>(leaves[k]), solve);
+  const std::vector<bool> marks =
+      refinement_marks(eta2, shooter.size() == leaves.size() ? shooter : std::vector<double>{}, fraction, floor, room, can);
+  std::vector<std::size_t> split;
+  for (std::size_t k = 0; k < marks.size(); ++k)
+    if (marks[k]) split.push_back(k);
+  return split;
 }
 
 }  // namespace
@@ -100,13 +118,16 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       h.seconds = x.seconds;
       h.memory_bytes = h.tree.memory_bytes() + stage.form_factors.F.nonZeros() * (sizeof(double) + sizeof(int));
       estimate_timer = std::make_unique<Timer>();
-      if (solved)
+      if (solved && stage.shooter_share.size() == h.leaves.size()) {
+        ind.B_disc = x.B_disc;  // with the shooters' shares the within-leaf variation is not needed (below)
+      } else if (solved) {
         ind = leaf_error_indicator(roots, visibility, h.tree, h.leaves, h.B, x.B_disc, o.directions, o.points_side,
                                    so.seed);
+      }
     } else {
       h = solve_hierarchical(roots, visibility, std::move(tree), so);
       estimate_timer = std::make_unique<Timer>();
-      ind = estimate_leaf_errors(roots, visibility, h, o.directions, o.points_side, so.seed);
+      ind = estimate_leaf_errors(roots, visibility, h, o.directions, o.points_side, so.seed, true);
     }
     const PatchSet leaves = leaf_patches(roots, h.tree, h.leaves);
 
@@ -156,12 +177,8 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       next_rays = plan.next_rays;
       bool refine = plan.refine;
       if (plan.refine) {
-        // The largest eta_l^2 first until they hold the plan's share of the counted leaves' sum.
-        std::vector<std::size_t> order(h.leaves.size());
-        std::iota(order.begin(), order.end(), std::size_t{0});
-        std::stable_sort(order.begin(), order.end(),
-                         [&](std::size_t a, std::size_t b) { return ind.eta2[a] > ind.eta2[b]; });
-        const double total = std::accumulate(ind.eta2.begin(), ind.eta2.end(), 0.0);
+        // The largest eta_l^2 (and the largest shooter shares, where estimated: solve/refinement_marks.h) first
+        // until they hold the plan's share of their sums.
         // A leaf already within its equal share of the discretisation target, eta_l^2 <= t_d^2 sum_l A_l |B_l|^2 / N
         // (t_d = 0.7 E, the plan's; N the leaves now), is never split: the optimal mesh equidistributes eta_l^2, and
         // when the plan's share is 1 (e_d far above the target) the rule alone would split every leaf, however
@@ -171,16 +188,20 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
           if (!(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any())
             norm += leaves.area[k] * h.B.row(static_cast<Eigen::Index>(k)).square().sum();
         const double share = 0.49 * E * E * norm / double(leaves_now);
-        double held = 0;
-        long count = leaves_now;
-        for (const std::size_t k : order) {
-          if (held >= plan.split_fraction * total || !(ind.eta2[k] > share)) break;
-          if (count + 3 > o.max_leaves) break;
-          if (!splittable(h.tree, static_cast<std::size_t>(h.leaves[k]), solve)) continue;
-          split.push_back(k);
-          held += ind.eta2[k];
-          count += 3;
+        // The receiver share: eta_l^2, or A_l |B_disc_l|^2 where the shooter shares are estimated (they hold the
+        // part of the within-leaf variation that the leaves' averages see: docs/theory/discretisation_error.md,
+        // "Refinement by both shares").
+        const std::vector<double>& shooter = leaf_work ? stage.shooter_share : ind.shooter_share;
+        std::vector<double> receiver = ind.eta2;
+        if (shooter.size() == leaves.size()) {
+          receiver.assign(leaves.size(), 0.0);
+          for (std::size_t k = 0; k < leaves.size(); ++k)
+            receiver[k] = !(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any()
+                              ? leaves.area[k] * ind.B_disc.row(static_cast<Eigen::Index>(k)).square().sum()
+                              : 0.0;
         }
+        split = leaves_to_split(h.tree, h.leaves, receiver, shooter, plan.split_fraction, share,
+                                static_cast<std::size_t>(std::max(0L, o.max_leaves - leaves_now)) / 3, solve);
       }
       if (!groups.empty()) {
         std::vector<bool> marks(leaves.size(), false), eligible(leaves.size(), false);

@@ -14,16 +14,21 @@
 //      cost as much as the shooting;
 //   2. estimate per leaf B_se (the replicates' spread, with the direct light's variance), B_disc (the
 //      discretisation estimate of the leaves as patches, solve/discretisation_error.h) and the refinement
-//      indicator eta_l^2 = A_l sum_c (B_disc_lc^2 + max(W2_lc, 0)) (estimate_refinement.h: W2 the within-leaf
-//      variation, the part of the L2 error B_disc does not hold);
+//      indicators: each leaf's shooter share c_l (solve/shooter_attribution.h) and the receiver share
+//      eta_l^2 = A_l sum_c B_disc_lc^2; when the shooter shares are not estimated (a leaf solver that gives none),
+//      eta_l^2 = A_l sum_c (B_disc_lc^2 + max(W2_lc, 0)) (estimate_refinement.h: W2 the within-leaf variation,
+//      the part of the L2 error B_disc does not hold; with the shooter shares only the part of it that the
+//      leaves' averages see counts, which c_l holds: docs/theory/discretisation_error.md, "Refinement by both
+//      shares");
 //   3. the errors over the reflecting non-emitting leaves, the same definitions as the uniform --target-error's
 //      (solve/target_error.h, relative_error): statistical e_s (B_se), discretisation e_d (B_disc), total e
 //      (sqrt(B_se^2 + B_disc^2)). Stop when e <= E;
 //   4. else the plan of solve/target_error.h (plan_target_error_step, the same rules): where the discretisation
 //      part dominates, the leaves with the largest eta_l^2 are split in 4 until they hold the plan's share of
-//      sum eta_l^2 (a leaf at max_level or below 4 min_area is skipped; a leaf within its equal share of the
-//      target, eta_l^2 <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh equidistributes
-//      eta_l^2, and far from the target the share is 1); where the statistical part is above its
+//      sum eta_l^2, and so are those with the largest c_l until they hold that share of sum max(c_l, 0)
+//      (solve/refinement_marks.h) (a leaf at max_level or below 4 min_area is skipped; a leaf within its equal
+//      share of the target, eta_l^2 (or c_l) <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh
+//      equidistributes the error, and far from the target the share is 1); where the statistical part is above its
 //      target, R grows by the plan's factor.
 // The stopping and the budgets are the uniform route's: e is judged on B_disc (the error of each leaf's average,
 // what the per-element benchmark measures), while the indicator that picks the leaves also weighs the variation

@@ -34,24 +34,28 @@ PatchSet scaled_emission(const PatchSet& patches, double s) {
 
 DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
                                          const RadiosityProblem& p, const PatchRgb& B, int directions,
-                                         std::uint64_t seed) {
+                                         std::uint64_t seed, ShooterAttribution* attribution) {
   // d and e are linear in (E, B) together: for values whose squares overflow, estimate for (E, B) / s and scale
   // the results back (moment_scale: s = 1 for ordinary values).
   const double scale = moment_scale(largest_value(patches, B));
   if (scale != 1.0) {
     DiscretisationError out =
-        discretisation_error(scaled_emission(patches, scale), visibility, p, B / scale, directions, seed);
+        discretisation_error(scaled_emission(patches, scale), visibility, p, B / scale, directions, seed, attribution);
     out.estimate *= scale;
     out.standard_error *= scale;
     out.source *= scale;
     out.source_sd *= scale;
+    if (attribution) {  // c_j is quadratic in (E, B)
+      for (double& c : attribution->share) c *= scale * scale;
+      attribution->total *= scale * scale;
+    }
     return out;
   }
   Timer timer;
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   RADWALK_CHECK_EQ(B.rows(), N);
   RADWALK_CHECK_EQ(static_cast<Eigen::Index>(p.size()), N);
-  FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed);
+  FluctuationSource source = fluctuation_source(patches, visibility, B, directions, seed, 4, attribution != nullptr);
   DiscretisationError out;
   out.points = source.points;
   out.directions = source.directions;
@@ -74,6 +78,13 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   const PatchRgb V = (p.rho > 0).select(source.variance / p.rho.square().max(1e-300), 0.0);
   const PropagatedVariance variance = propagate_gather_variance(h, V, 16, seed);
   out.sweeps = e.sweeps + variance.sweeps;
+  if (attribution) {
+    *attribution = ShooterAttribution{};
+    if (h.row_blocks.empty()) {
+      *attribution = shooter_attribution(patches, visibility, h, B, source, directions, seed);
+      out.rays += attribution->rays;
+    }
+  }
   out.estimate = e.X;
   // Empirical Bayes (docs/theory/discretisation_error.md): e_i ~ N(0, t_c^2 B_ic^2) a priori, t_c^2 from all the
   // patches, e^ ~ N(e, V) given e; then E[e^2 | e^] = e^2 w^2 + tau^2 w V / tau^2 ... written with

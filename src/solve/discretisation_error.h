@@ -15,6 +15,7 @@
 #include "core/types.h"
 #include "patch/patch_set.h"
 #include "solve/problem.h"
+#include "solve/shooter_attribution.h"
 #include "visibility/visibility.h"
 
 namespace radwalk {
@@ -37,9 +38,11 @@ struct DiscretisationError {
 // p: the problem B solves; when its F is empty (the ray kernel never stores F) the estimate's own shot rays give
 // H (their noise is of second order in e). Collective over MPI when p's F is row-distributed; every process traces
 // every patch's rays (the same numbers on every process). directions L >= 1 (fluctuation_source.h).
+// attribution, if given: filled with each patch's share of the squared error as a shooter
+// (solve/shooter_attribution.h), from the same source and H; left empty (share empty) when p's F is row-distributed.
 DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
                                          const RadiosityProblem& p, const PatchRgb& B, int directions,
-                                         std::uint64_t seed);
+                                         std::uint64_t seed, ShooterAttribution* attribution = nullptr);
 
 // The discretisation error of a measurement M_c = sum_i W_i B_ic (W = A R, solve/measurement.h): with the
 // adjoint Psi = (I - H)^{-T} W (solve/form_factor_error.h, adjoint_weights) and the source d of the exact

@@ -49,6 +49,7 @@ struct PatchShots {
   std::vector<Shot> shots;
   std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
+  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
   long rays = 0;
 };
 
@@ -61,8 +62,10 @@ class Shooter {
         eps_(ray_epsilon(ps)),
         emitters_(find_emitters(ps)) {}
 
-  // Patch j's contributions to d (both replicates).
-  void shoot(std::size_t j, PatchShots& out) const {
+  // Patch j's contributions to d (both replicates). deltas: null, or the delta_m of an earlier shoot(j) with the
+  // same streams (then the gathers are not traced again: their random numbers are drawn and dropped, so the points
+  // and the shot directions are the same ones).
+  void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr) const {
     const int side = side_[j], M = side * side;
     const PatchPointSampler on_j(ps_, j);
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
@@ -77,31 +80,37 @@ class Shooter {
         for (int b = 0; b < side; ++b)
           y[a * side + b] = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
                                        std::min((b + rng.uniform()) / side, kBelowOne));
-      // The gather g_m: L shared cosine directions (the reflected part) ...
-      for (int l = 0; l < L_; ++l) {
-        const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
-        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
-      }
-      vis_.intersect(rays.data(), hits.data(), rays.size());
-      out.rays += long(rays.size());
-      for (int m = 0; m < M; ++m) {
-        g[m] = Rgb::Zero();
-        for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
-      }
-      // ... and L shared emitter points (the emitted part).
-      if (!emitters_.patch.empty()) {
-        for (int l = 0; l < L_; ++l) {
-          const std::size_t k = emitters_.choice.sample(rng.uniform());
-          const std::size_t e = emitters_.patch[k];
-          const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
-          const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
-          for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
-          out.rays += M;
-        }
-      }
       Rgb mean = Rgb::Zero();
-      for (int m = 0; m < M; ++m) mean += g[m] /= L_;
-      mean /= M;
+      if (deltas) {
+        for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform();
+        if (!emitters_.patch.empty())
+          for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform(), rng.uniform();
+      } else {
+        // The gather g_m: L shared cosine directions (the reflected part) ...
+        for (int l = 0; l < L_; ++l) {
+          const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+          for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
+        }
+        vis_.intersect(rays.data(), hits.data(), rays.size());
+        out.rays += long(rays.size());
+        for (int m = 0; m < M; ++m) {
+          g[m] = Rgb::Zero();
+          for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
+        }
+        // ... and L shared emitter points (the emitted part).
+        if (!emitters_.patch.empty()) {
+          for (int l = 0; l < L_; ++l) {
+            const std::size_t k = emitters_.choice.sample(rng.uniform());
+            const std::size_t e = emitters_.patch[k];
+            const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
+            const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
+            for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
+            out.rays += M;
+          }
+        }
+        for (int m = 0; m < M; ++m) mean += g[m] /= L_;
+        mean /= M;
+      }
       // The fluctuation delta_m, shot along L shared directions.
       for (int l = 0; l < L_; ++l) {
         const Vec3 v = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
@@ -112,7 +121,8 @@ class Shooter {
       const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m) {
-        const Rgb delta = ps_.rho[j] * (g[m] - mean);
+        const Rgb delta = deltas ? (*deltas)[std::size_t(r) * M + m] : Rgb(ps_.rho[j] * (g[m] - mean));
+        if (!deltas) out.deltas.push_back(delta);
         for (int l = 0; l < L_; ++l) {
           const Hit& h = hits[std::size_t(m) * L_ + l];
           if (h.missed() || !h.front) continue;
@@ -178,15 +188,10 @@ class Shooter {
   Emitters emitters_;
 };
 
-}  // namespace
-
-FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
-                                     int directions, std::uint64_t seed, int points) {
+// The points per side s_j of each patch (header): s on a patch of the median area or smaller, round(s sqrt(A_j /
+// A_median)) on a larger one, at most kMaxSide.
+std::vector<int> point_sides(const PatchSet& patches, int side) {
   const std::size_t N = patches.size();
-  const auto n = static_cast<Eigen::Index>(N);
-  RADWALK_CHECK_EQ(B.rows(), n);
-  RADWALK_CHECK(directions >= 1 && points >= 2);
-  const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
   std::vector<double> sorted_area(patches.area.begin(), patches.area.end());
   std::nth_element(sorted_area.begin(), sorted_area.begin() + std::ptrdiff_t(N / 2), sorted_area.end());
   const double median_area = N ? sorted_area[N / 2] : 0.0;
@@ -194,12 +199,26 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   for (std::size_t j = 0; j < N; ++j)
     if (median_area > 0 && patches.area[j] > median_area)
       sides[j] = std::min(kMaxSide, int(std::lround(side * std::sqrt(patches.area[j] / median_area))));
+  return sides;
+}
+
+}  // namespace
+
+FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
+                                     int directions, std::uint64_t seed, int points, bool keep_deltas) {
+  const std::size_t N = patches.size();
+  const auto n = static_cast<Eigen::Index>(N);
+  RADWALK_CHECK_EQ(B.rows(), n);
+  RADWALK_CHECK(directions >= 1 && points >= 2);
+  const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
+  const std::vector<int> sides = point_sides(patches, side);
   // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
   const PatchRgb scaled = B / scale;
   const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions);
 
   FluctuationSource out;
+  if (keep_deltas) out.deltas.resize(N);
   out.points = side * side;
   out.directions = directions;
   PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
@@ -234,16 +253,47 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
             a = b;
           }
           out.rays += part[q].rays;
+          if (keep_deltas) out.deltas[next_row + q] = std::move(part[q].deltas);
         }
         next_row += part.size();
       });
   out.d = (d[0] + d[1]) / 2;
+  out.replicate[0] = d[0];
+  out.replicate[1] = d[1];
   out.variance = (d[0] - d[1]).square() / 4;
   // The replicates' difference has one degree of freedom: by chance it can be near 0 where d rests on a few large
   // shots (a small patch hit from a large one). The (direction, target) units, many per patch, bound it below.
   out.variance = out.variance.max(units / 4);
   out.F = SparseF(n, n);
   out.F.setFromTriplets(entries.begin(), entries.end());
+  return out;
+}
+
+std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
+                                               const PatchRgb& B, const FluctuationSource& source,
+                                               const PatchRgb (&weights)[2], int directions, std::uint64_t seed,
+                                               int points) {
+  const std::size_t N = patches.size();
+  const auto n = static_cast<Eigen::Index>(N);
+  RADWALK_CHECK_EQ(B.rows(), n);
+  RADWALK_CHECK_EQ(weights[0].rows(), n);
+  RADWALK_CHECK_EQ(weights[1].rows(), n);
+  RADWALK_CHECK(directions >= 1 && points >= 2);
+  RADWALK_CHECK_EQ(source.deltas.size(), N);
+  const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
+  // The same scaling as fluctuation_source, so that the shots are the same numbers; multiplied back per patch.
+  const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
+  const PatchRgb scaled = B / scale;
+  const Shooter shooter(patches, visibility, scaled, scale, seed, point_sides(patches, side), directions);
+  std::vector<double> out(N, 0.0);
+  parallel_for(N, [&](std::size_t j) {
+    if (!(patches.rho[j].maxCoeff() > 0)) return;
+    PatchShots shots;
+    shooter.shoot(j, shots, &source.deltas[j]);
+    double sum = 0;
+    for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
+    out[j] = sum * scale;
+  }, 16);
   return out;
 }
 

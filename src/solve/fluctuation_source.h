@@ -38,6 +38,7 @@
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
+#include <vector>
 
 #include "core/types.h"
 #include "formfactor/sparse_f.h"
@@ -48,8 +49,11 @@ namespace radwalk {
 
 struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
+  PatchRgb replicate[2];  // N x 3 each: d^(0), d^(1), the two independent replicates (d = their mean)
   PatchRgb variance;  // N x 3: the variance of that estimate
   SparseF F;          // N x N: the shot rays' form factors (2 M L rays per row), for scenes solved without a stored F
+  std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m (B / moment_scale(max B));
+                                         // only when asked (keep_deltas), for weighted_fluctuation_shots
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
   int directions = 0; // L
   long rays = 0;      // traced in all
@@ -58,6 +62,21 @@ struct FluctuationSource {
 // B: the discrete solution (N x 3, finite, >= 0). directions L >= 1; points M >= 2 on a patch of the median area
 // (rounded up to a square; larger patches get more, above).
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
-                                     int directions, std::uint64_t seed, int points = 4);
+                                     int directions, std::uint64_t seed, int points = 4, bool keep_deltas = false);
+
+// The shots of fluctuation_source weighted by the receivers, summed per shooter (docs/theory/discretisation_error.md,
+// "Which patch causes the error: the shooter attribution"):
+//   a_j = sum_r sum_{shots s of j in replicate r} sum_c w^(r)_{k(s) c} s_c,
+// where s is one shot rho_k delta_m A_j / (A_k M L) of patch j to the patch k it hits (the terms whose sum over j is
+// d^(r)_k), and w^(r) (N x 3, finite) the receivers' weights for replicate r's shots. source: fluctuation_source of
+// the same arguments with keep_deltas (checked): its delta_m are shot again along the same directions from the same
+// points (the same streams; the gathers are not traced again), so the shots are the same ones bit for bit and
+// sum_j a_j = sum_r sum_{k,c} w^(r)_kc d^(r)_kc up to rounding. Patch j's sum is formed by j alone (its shots in
+// their own order): reproducible for any thread count. Rays: the shot rays only, a third of the source's (a half
+// without emitters).
+std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
+                                               const PatchRgb& B, const FluctuationSource& source,
+                                               const PatchRgb (&weights)[2], int directions, std::uint64_t seed,
+                                               int points = 4);
 
 }  // namespace radwalk

@@ -12,6 +12,7 @@
 #include "patch/refine.h"
 #include "solve/discretisation_error.h"
 #include "solve/problem.h"
+#include "solve/refinement_marks.h"
 
 namespace radwalk {
 namespace {
@@ -22,9 +23,9 @@ bool counted(const PatchSet& patches, std::size_t i) {
   return patches.E[i].maxCoeff() <= 0 && patches.rho[i].maxCoeff() > 0;
 }
 
-// The contributions c_i = A_i sum_c B_disc_ic^2 of the counted patches (0 for the others), scaled before squaring.
-std::vector<double> contributions(const PatchSet& patches, const PatchRgb& B_disc) {
-  const double s = moment_scale(B_disc.size() > 0 ? B_disc.abs().maxCoeff() : 0.0);
+// The contributions c_i = A_i sum_c B_disc_ic^2 of the counted patches (0 for the others), scaled by 1 / s^2
+// (s = moment_scale of B_disc: values near the largest double).
+std::vector<double> contributions(const PatchSet& patches, const PatchRgb& B_disc, double s) {
   std::vector<double> c(patches.size(), 0.0);
   for (std::size_t i = 0; i < patches.size(); ++i)
     if (counted(patches, i)) c[i] = patches.area[i] * (B_disc.row(static_cast<Eigen::Index>(i)) / s).square().sum();
@@ -32,24 +33,15 @@ std::vector<double> contributions(const PatchSet& patches, const PatchRgb& B_dis
 }
 
 // The patches to split: the largest contributions c_i of the counted patches until their sum reaches `fraction`
-// of the total, at most `room` of them (ties: lower index first).
-std::vector<bool> patches_to_split(const PatchSet& patches, const PatchRgb& B_disc, double fraction, std::size_t room) {
-  const std::size_t N = patches.size();
-  const std::vector<double> c = contributions(patches, B_disc);
-  const double total = std::accumulate(c.begin(), c.end(), 0.0);
-  std::vector<std::size_t> order(N);
-  std::iota(order.begin(), order.end(), std::size_t{0});
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return c[a] > c[b]; });
-  std::vector<bool> split(N, false);
-  double marked = 0;
-  std::size_t count = 0;
-  for (std::size_t i : order) {
-    if (count >= room || !(c[i] > 0) || marked >= fraction * total) break;
-    split[i] = true;
-    marked += c[i];
-    ++count;
-  }
-  return split;
+// of the total, and the largest shooter shares (when given) until theirs do (solve/refinement_marks.h), at most
+// `room` of them (ties: lower index first).
+std::vector<bool> patches_to_split(const PatchSet& patches, const PatchRgb& B_disc, const std::vector<double>& shooter,
+                                   double fraction, std::size_t room) {
+  const double s = moment_scale(B_disc.size() > 0 ? B_disc.abs().maxCoeff() : 0.0);
+  const std::vector<double> c = contributions(patches, B_disc, s);
+  std::vector<double> shot(shooter.size());
+  for (std::size_t i = 0; i < shooter.size(); ++i) shot[i] = shooter[i] / (s * s);
+  return refinement_marks(c, shot, fraction, 0.0, room);
 }
 
 // The starting patches of TargetErrorOptions::start_patches: rounds of splitting every patch above twice the mean
@@ -199,7 +191,7 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       std::size_t marked = 0;
       split.assign(patches.size(), false);
       if (refine) {
-        split = patches_to_split(patches, solution.B_disc, plan.split_fraction, room);
+        split = patches_to_split(patches, solution.B_disc, stage.shooter_share, plan.split_fraction, room);
         marked = static_cast<std::size_t>(std::count(split.begin(), split.end(), true));
       }
       if (!groups.empty()) {

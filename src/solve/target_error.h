@@ -10,7 +10,9 @@
 //   - rays: if e_s > t_s, R grows to R (e_s / t_s)^2 x 1.1, at least x 1.25 (a statistical error falls at least
 //     as 1 / sqrt(R); randomised Sobol points do better, so this is conservative); at most 2^24;
 //   - patches: if e_d > t_d, the patches with the largest contributions c_i = A_i sum_c B_disc_ic^2 are split in
-//     4 (patch/refine.h) until the marked contributions reach 2 (1 - t_d^2 / e_d^2) of the total (a split patch's
+//     4 (patch/refine.h) until the marked contributions reach 2 (1 - t_d^2 / e_d^2) of the total, and as well those
+//     with the largest shooter shares (the stage's shooter_share, when given) until they reach that fraction of
+//     theirs (solve/refinement_marks.h) (a split patch's
 //     contribution taken as halved: first order would quarter it; a patch across a shadow line only halves it).
 //     No cap on that share: capped at 80 % a step, the Cornell box needed 12 steps and 2,000 to 2,900 patches for
 //     3 % (uncapped: 3 steps, 577) and missed 2 % within 12 steps (bench/target_error.py), because the patches
@@ -70,6 +72,9 @@ struct TargetErrorStage {
   // The source of B_disc and its standard deviation (DiscretisationError::source, source_sd): needed when the run
   // targets groups (TargetErrorOptions::each), else may be empty.
   PatchRgb source, source_sd;
+  // Each patch's share of the squared discretisation error as a shooter (solve/shooter_attribution.h; empty: not
+  // estimated, the receiver share alone picks the patches to split; solve/refinement_marks.h).
+  std::vector<double> shooter_share;
 };
 using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
 

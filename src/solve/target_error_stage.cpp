@@ -27,8 +27,11 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
   const double seconds = timer.seconds();
   std::optional<DiscretisationError> discretisation;
   if (options.discretisation_directions > 0) {
+    ShooterAttribution attribution;
     discretisation = discretisation_error(patches, visibility, problem, stage.solution.B,
-                                          options.discretisation_directions, options.seed);
+                                          options.discretisation_directions, options.seed,
+                                          options.attribute_shooters ? &attribution : nullptr);
+    stage.shooter_share = std::move(attribution.share);
     stage.solution.B_disc = discretisation->standard_error;
     stage.source = discretisation->source;
     stage.source_sd = discretisation->source_sd;

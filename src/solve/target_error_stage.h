@@ -19,6 +19,9 @@ struct TargetErrorStageOptions {
   double tol = 1e-10;                 // the automatic solver's tolerance (solve/solve_options.h)
   int discretisation_directions = 16;  // L of solve/fluctuation_source.h; <= 0: B_disc not estimated
   std::uint64_t seed = 1;              // of the discretisation estimate's rays
+  // Also each patch's shooter share of the squared discretisation error (stage.shooter_share,
+  // solve/shooter_attribution.h; about a third more of the estimate's rays), for the refinement.
+  bool attribute_shooters = false;
 };
 
 // What the stage's estimates measured, for a caller that reports them (the CLI's JSON and summary lines): each
