@@ -11,9 +11,7 @@
 #include "hierarchy/direct_refinement.h"
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/leaf_patches.h"
-#include "patch/patch_grouping.h"
 #include "solve/discretisation_error.h"
-#include "solve/problem.h"
 #include "solve/refinement_marks.h"
 
 namespace radwalk {
@@ -140,22 +138,9 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       st.discretisation = relative_error(leaves, h.B, ind.B_disc);
       st.total = relative_error(leaves, h.B, total_error(h.B_se, ind.B_disc));
     }
-    PatchGrouping grouping;
-    std::vector<GroupMeanError> groups;
-    if (solved && !o.each.empty()) {
-      if (stage.source.rows() != h.B.rows() || stage.source_sd.rows() != h.B.rows())
-        throw InputError("the hierarchical target error per " + o.each + " needs the discretisation estimate's "
-                         "source from its leaf solver, which this step did not give");
-      grouping = group_patches(leaves, o.each);
-      const RadiosityProblem problem = make_problem(leaves, SparseF(stage.form_factors.F));
-      groups = group_mean_errors(leaves, grouping, problem, h.B, h.B_se, stage.source, stage.source_sd, E);
-      for (const GroupMeanError& g : groups) {
-        if (!g.counted) continue;
-        ++st.groups;
-        if (g.total <= E) ++st.groups_within;
-        if (st.worst_group.empty() || g.total > st.worst_group_total) st.worst_group = g.name, st.worst_group_total = g.total;
-      }
-    }
+    // With the form-factor transport only (checked above): the stage holds F and the source.
+    std::vector<GroupMeanError> groups =
+        solved ? step_group_errors(leaves, stage, h.B, h.B_se, o.each, E, st) : std::vector<GroupMeanError>();
     record.rays = h.rays + h.shadow_rays + ind.rays;
     record.estimate_seconds = estimate_timer->seconds();
     st.seconds = timer.seconds();

@@ -87,6 +87,28 @@ TargetErrorPlan plan_target_error_step(double statistical, double discretisation
   return plan;
 }
 
+std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const TargetErrorStage& stage, const PatchRgb& B,
+                                              const PatchRgb& B_se, const std::string& each, double E,
+                                              TargetErrorStep& record) {
+  if (each.empty()) return {};
+  if (stage.source.rows() != B.rows() || stage.source_sd.rows() != B.rows())
+    throw InputError("the target error per " + each + " needs the discretisation estimate's source, which this "
+                     "step did not give");
+  const RadiosityProblem problem = make_problem(patches, SparseF(stage.form_factors.F));
+  std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), problem, B, B_se,
+                                                         stage.source, stage.source_sd, E);
+  for (const GroupMeanError& g : groups) {
+    if (!g.counted) continue;
+    ++record.groups;
+    if (g.total <= E) ++record.groups_within;
+    if (record.worst_group.empty() || g.total > record.worst_group_total) {
+      record.worst_group = g.name;
+      record.worst_group_total = g.total;
+    }
+  }
+  return groups;
+}
+
 GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, double E, long rays, std::size_t room,
                                    std::vector<bool>& split, const std::vector<bool>& eligible) {
   GroupTargetPlan out;
@@ -153,22 +175,9 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       s.discretisation = relative_error(patches, solution.B, solution.B_disc);
       s.total = relative_error(patches, solution.B, total_error(solution.B_se, solution.B_disc));
     }
-    PatchGrouping grouping;
-    std::vector<GroupMeanError> groups;
-    if (solved && !options.each.empty()) {
-      if (stage.source.rows() != solution.B.rows() || stage.source_sd.rows() != solution.B.rows())
-        throw InputError("the target error per " + options.each + " needs the discretisation estimate's source, "
-                         "which this step did not give");
-      grouping = group_patches(patches, options.each);
-      const RadiosityProblem problem = make_problem(patches, SparseF(stage.form_factors.F));
-      groups = group_mean_errors(patches, grouping, problem, solution.B, solution.B_se, stage.source, stage.source_sd, E);
-      for (const GroupMeanError& g : groups) {
-        if (!g.counted) continue;
-        ++s.groups;
-        if (g.total <= E) ++s.groups_within;
-        if (s.worst_group.empty() || g.total > s.worst_group_total) s.worst_group = g.name, s.worst_group_total = g.total;
-      }
-    }
+    const std::vector<GroupMeanError> groups =
+        solved ? step_group_errors(patches, stage, solution.B, solution.B_se, options.each, E, s)
+               : std::vector<GroupMeanError>();
     s.seconds = timer.seconds();
 
     // Stop, or plan the next step.
@@ -223,7 +232,7 @@ TargetErrorResult solve_to_target_error(PatchSet patches, const TargetErrorWork&
       out.patches = std::move(patches);
       out.form_factors = std::move(stage.form_factors);
       out.solution = std::move(stage.solution);
-      out.groups = std::move(groups);
+      out.groups = groups;
       break;
     }
     if (s.split > 0) patches = split_patches(patches, split);

@@ -115,6 +115,14 @@ struct TargetErrorPlan {
 };
 TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double target, long rays);
 
+// A step's errors of each group's mean (solve/group_mean_error.h, the groups of `each`; none when it is "") for the
+// solution B, B_se of `patches` and the stage's F and discretisation source, with their shares kept for the groups
+// above E; records in `record` the counted groups, how many are within E and the worst. InputError when the stage
+// gave no source. Shared by the uniform steps and the hierarchy's (form-factor transport).
+std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const TargetErrorStage& stage, const PatchRgb& B,
+                                              const PatchRgb& B_se, const std::string& each, double E,
+                                              TargetErrorStep& record);
+
 // The groups' share of the plan (the rule above), for the uniform patches and the hierarchy's leaves alike: for
 // each counted group above E, its own plan (plan_target_error_step of stat_g, disc_g); next_rays the largest of
 // them (rays when none asks for more); where one refines, the patches (leaves) with the largest shares of its

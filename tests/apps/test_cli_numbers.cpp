@@ -204,7 +204,9 @@ void check_all_finite(const Run& r, const fs::path& csv, const fs::path& json, c
       // The name columns may be empty (a scene without o/g statements); every number column is filled.
       const bool name = table[0][k] == "object" || table[0][k] == "group" || table[0][k] == "material";
       CHECK((name || !table[row][k].empty()));
-      if (!table[row][k].empty() && table[row][k].find_first_not_of("0123456789.e+-") == std::string::npos)
+      // run_id is a hex identifier, not a number (one of only digits and 'e' looks like one).
+      if (table[0][k] != "run_id" && !table[row][k].empty() &&
+          table[row][k].find_first_not_of("0123456789.e+-") == std::string::npos)
         CHECK(std::isfinite(std::stod(table[row][k])));
     }
   }
