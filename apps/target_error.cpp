@@ -42,8 +42,8 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
       error_line = report_statistical_error(p, stage.form_factors, stage.solution, estimates.solver_standard_error, statistical,
                                             estimates.statistical_seconds, summary);
       if (estimates.discretisation)
-        error_line += "\n" + report_discretisation_error(p, make_problem(p, SparseF(stage.form_factors.F)),
-                                                         *estimates.discretisation, stage.solution, summary);
+        error_line += "\n" + report_discretisation_error(p, *stage.problem, *estimates.discretisation,
+                                                         stage.solution, summary);
     }
     return stage;
   };

@@ -226,6 +226,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       out.solution = std::move(h);
       out.form_factor_transport = static_cast<bool>(leaf_work);
       out.stage = std::move(stage);
+      out.stage.problem.reset();  // its copy of F is not needed past the step
       break;
     }
     tree = std::move(h.tree);

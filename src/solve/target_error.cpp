@@ -94,8 +94,10 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
   if (stage.source.rows() != B.rows() || stage.source_sd.rows() != B.rows())
     throw InputError("the target error per " + each + " needs the discretisation estimate's source, which this "
                      "step did not give");
-  const RadiosityProblem problem = make_problem(patches, SparseF(stage.form_factors.F));
-  std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), problem, B, B_se,
+  const std::shared_ptr<const RadiosityProblem> problem =
+      stage.problem ? stage.problem
+                    : std::make_shared<const RadiosityProblem>(make_problem(patches, SparseF(stage.form_factors.F)));
+  std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), *problem, B, B_se,
                                                          stage.source, stage.source_sd, E);
   for (const GroupMeanError& g : groups) {
     if (!g.counted) continue;

@@ -30,6 +30,7 @@
 // stop_reason names the budget; the last solution is kept (the most accurate), with its own error estimates.
 #include <cstddef>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,7 @@
 #include "formfactor/form_factors.h"
 #include "patch/patch_set.h"
 #include "solve/group_mean_error.h"
+#include "solve/problem.h"
 
 namespace radwalk {
 
@@ -75,6 +77,9 @@ struct TargetErrorStage {
   // Each patch's share of the squared discretisation error as a shooter (solve/shooter_attribution.h; empty: not
   // estimated, the receiver share alone picks the patches to split; solve/refinement_marks.h).
   std::vector<double> shooter_share;
+  // The problem the solution solved (its own copy of F), when the stage kept it: the group means' adjoints and the
+  // caller's reports use it instead of copying F again (null: made from form_factors.F where needed).
+  std::shared_ptr<const RadiosityProblem> problem;
 };
 using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
 

@@ -1,5 +1,6 @@
 #include "solve/target_error_stage.h"
 
+#include <memory>
 #include <utility>
 
 #include "core/timer.h"
@@ -14,7 +15,8 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
                                           TargetErrorStageEstimates* estimates) {
   TargetErrorStage stage;
   stage.form_factors = std::move(form_factors);
-  const RadiosityProblem problem = make_problem(patches, SparseF(stage.form_factors.F));
+  stage.problem = std::make_shared<const RadiosityProblem>(make_problem(patches, SparseF(stage.form_factors.F)));
+  const RadiosityProblem& problem = *stage.problem;
   SolveOptions solve;
   solve.tol = options.tol;
   solve.max_iterations = default_max_iterations(solve.solver, patches.size());

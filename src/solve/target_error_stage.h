@@ -33,8 +33,8 @@ struct TargetErrorStageEstimates {
   std::optional<DiscretisationError> discretisation;
 };
 
-// The problem of `patches` with a copy of F (the stage keeps form_factors, with its record of how F was traced,
-// for the caller's per-patch diagnostics), solved by the automatic solver (SolveOptions' default) to options.tol
+// The problem of `patches` with a copy of F, kept as stage.problem (the stage keeps form_factors, with its record
+// of how F was traced, for the caller's per-patch diagnostics), solved by the automatic solver (SolveOptions' default) to options.tol
 // within default_max_iterations; when it converged, B_se = the solver's own error combined with F's noise
 // (add_form_factor_error, solve/form_factor_error.h) and B_disc = the discretisation error of B
 // (discretisation_error, solve/discretisation_error.h) with options.discretisation_directions and options.seed,
