@@ -19,7 +19,7 @@ std::vector<GroupMeanError> group_mean_errors(const PatchSet& patches, const Pat
   RADWALK_CHECK_EQ(grouping.group.size(), N);
   RADWALK_CHECK_EQ(B.rows(), n);
   const bool has_se = B_se.rows() == n;
-  const bool first_order = noise.gather_standard_error.rows() == n;
+  const bool first_order = n > 0 && noise.gather_standard_error.rows() == n;
   const bool has_own = first_order && noise.solver_standard_error.rows() == n &&
                        noise.solver_standard_error.maxCoeff() > 0;
   // Sums of B scaled before they are formed (core/moments.h): B near the largest double.
