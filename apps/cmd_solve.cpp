@@ -270,11 +270,12 @@ int run_solve(const SolveCommand& command) {
   Solution solution;
   std::string error_line;  // the estimated error, printed after the solver's line
   RayFates fates;  // where the rays leaving each patch went (power_balance.h)
+  GroupNoiseModel noise;  // B_se's model, for the materials' means (add_statistical_error)
   // The discretisation error and the total after the statistical line (apps/discretisation_error.h).
   const auto add_discretisation = [&](const RadiosityProblem& problem) {
     if (solution.status == SolveStatus::refused) return;
     const std::string line = add_discretisation_error(patches, problem, solution, summary,
-                                                      command.discretisation_directions, command.scene.seed);
+                                                      command.discretisation_directions, command.scene.seed, noise);
     if (!line.empty()) error_line += (error_line.empty() ? "" : "\n") + line;
   };
   std::optional<TargetErrorRun> target;
@@ -323,7 +324,7 @@ int run_solve(const SolveCommand& command) {
     const RadiosityProblem problem = make_problem(patches, std::move(ff.F), std::move(ff.row_blocks));
     if (walks) {
       solution = run_walks(command, walk, problem, patches, nullptr, summary);
-      error_line = add_statistical_error(patches, ff, problem, solution, summary);
+      error_line = add_statistical_error(patches, ff, problem, solution, summary, &noise);
       add_discretisation(problem);
     } else {
       SolveOptions o = solve_options(command, patches.size());
@@ -341,7 +342,7 @@ int run_solve(const SolveCommand& command) {
       }
       solution = solve_radiosity(problem, o);
       if (solution.status != SolveStatus::refused)
-        error_line = add_statistical_error(patches, ff, problem, solution, summary);
+        error_line = add_statistical_error(patches, ff, problem, solution, summary, &noise);
       add_discretisation(problem);
       if (series) {
         const std::size_t steps = series->finish();

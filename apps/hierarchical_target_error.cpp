@@ -63,6 +63,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   auto& e = summary.json()["error_estimate"];
   if (form_factors) {  // B_se and B_disc are the uniform route's (the leaf solver wrote them and the line)
     e["total"] = {{"relative", last.total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
+    report_held_materials(o.each, run, summary);  // the leaf work left them to the run (apps/target_error.h)
   } else {
   e["statistical"] = {{"relative", last.statistical},
                       {"method", "the spread of " + std::to_string(h.replicates) +

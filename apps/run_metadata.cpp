@@ -132,6 +132,8 @@ nlohmann::json group_mean_errors_json(const std::vector<GroupMeanError>& groups)
                  {"estimate", g.estimate},
                  {"discretisation", g.discretisation},
                  {"statistical", g.statistical},
+                 {"statistical_kind", g.statistical_kind},
+                 {"statistical_bound", g.statistical_bound},
                  {"total", g.total}});
   }
   return a;

@@ -20,7 +20,7 @@ std::string percent(double x) {
 }
 
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                                  Solution& solution, RunSummary& summary) {
+                                  Solution& solution, RunSummary& summary, GroupNoiseModel* noise) {
   const Eigen::Index N = static_cast<Eigen::Index>(patches.size());
   if (solution.B.rows() != N) return {};
   const bool walks = solution.B_se.rows() == N;
@@ -32,6 +32,10 @@ std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff
     error = add_form_factor_error(patches, visibility, ff, problem, solution);
   } else {
     solution.B_se = walks ? own_se : PatchRgb::Zero(N, 3);  // F's noise unknown: the solver's own part alone
+  }
+  if (noise) {
+    noise->gather_standard_error = error ? error->gather_standard_error : PatchRgb();
+    noise->solver_standard_error = own_se;
   }
   return report_statistical_error(patches, ff, solution, own_se, error ? &*error : nullptr, timer.seconds(), summary);
 }

@@ -16,15 +16,18 @@
 #include "io/run_summary.h"
 #include "patch/patch_set.h"
 #include "solve/form_factor_error.h"
+#include "solve/group_mean_error.h"
 #include "solve/problem.h"
 #include "solve/target_error.h"
 
 namespace radwalk::app {
 
 // `ff` describes how problem.F was obtained (its F may have been moved into the problem). Collective over MPI
-// when problem.F is row-distributed (each process works on its rows; the same result as one process).
+// when problem.F is row-distributed (each process works on its rows; the same result as one process). noise, if
+// given, receives B_se's model for the groups' means (solve/group_mean_error.h: F's row noise when measured, the
+// solver's own standard error when it has one).
 std::string add_statistical_error(const PatchSet& patches, const FormFactors& ff, const RadiosityProblem& problem,
-                                  Solution& solution, RunSummary& summary);
+                                  Solution& solution, RunSummary& summary, GroupNoiseModel* noise = nullptr);
 
 // The JSON record and summary line of add_statistical_error for a solution whose B_se is already set (by
 // add_form_factor_error, solve/form_factor_error.h, alone or through solve/target_error_stage.h): own_se the

@@ -37,16 +37,25 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
     TargetErrorStage stage = solve_target_error_stage(
         p, EmbreeVisibility(p), std::move(ff),
         {command.tol, command.discretisation_directions, command.scene.seed, attribute_shooters}, &estimates);
+    // When the run holds each material's mean it computes the materials' means itself (step_group_errors, the
+    // same numbers): reported after the run (report_held_materials), not computed twice a step.
+    const bool materials = target_groups(command, true) != "material";
     if (stage.solution.status == SolveStatus::converged) {
       const FormFactorError* statistical = estimates.statistical ? &*estimates.statistical : nullptr;
       error_line = report_statistical_error(p, stage.form_factors, stage.solution, estimates.solver_standard_error, statistical,
                                             estimates.statistical_seconds, summary);
       if (estimates.discretisation)
         error_line += "\n" + report_discretisation_error(p, *stage.problem, *estimates.discretisation,
-                                                         stage.solution, summary);
+                                                         stage.solution, summary, stage.noise, materials);
     }
     return stage;
   };
+}
+
+void report_held_materials(const std::string& each, TargetErrorRun& run, RunSummary& summary) {
+  if (each != "material" || run.result.groups.empty()) return;
+  const std::string line = report_material_means(run.result.groups, summary);
+  if (!line.empty()) run.error_line += (run.error_line.empty() ? "" : "\n") + line;
 }
 
 TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, RunSummary& summary) {
@@ -84,6 +93,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   for (const TargetErrorStep& s : r.steps) j["steps"].push_back(target_error_step_json(s));
   j["each"] = options.each.empty() ? "none" : options.each;
   if (!options.each.empty()) j["groups"] = group_mean_errors_json(r.groups);
+  report_held_materials(options.each, run, summary);
   summary.json()["patches"] = r.patches.size();
   summary.json()["rays_per_patch"] = r.steps.back().rays_per_patch;
   summary.add_timing("target_error", r.seconds);

@@ -33,12 +33,18 @@ std::string group_progress(const TargetErrorStep& step, const std::string& each)
 // One step's work of that route on given patches with given rays per patch: F traced (the first step's through
 // obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), then the step shared with
 // Python (solve/target_error_stage.h: the automatic solver, B_se and B_disc), reported as a plain solve's (their
-// JSON "error_estimate" and the line in error_line, overwritten each step). The hierarchical route's form-factor
+// JSON "error_estimate" and the line in error_line, overwritten each step; the materials' means only when the run
+// does not hold them, target_groups(command, true) != "material": else report_held_materials). The hierarchical route's form-factor
 // transport uses it with first_obtains false and attribute_shooters true: each step also gives the patches' shooter
 // shares (solve/shooter_attribution.h) for the refinement (solve/refinement_marks.h). The uniform route does not
 // ask for them: measured on the Cornell box they cost about a third more CPU per step and changed nothing
 // (docs/theory/discretisation_error.md, "Refinement by both shares").
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
                                         bool first_obtains, bool attribute_shooters = false);
+
+// With each == "material": the last step's groups (run.result.groups, the materials' means the run computed for its
+// target) reported as a plain solve's materials (report_material_means, apps/discretisation_error.h: the JSON's
+// error_estimate.materials and a line appended to run.error_line), so that each step computes them once.
+void report_held_materials(const std::string& each, TargetErrorRun& run, RunSummary& summary);
 
 }  // namespace radwalk::app

@@ -12,12 +12,17 @@ non-emitting elements the path tracer sees, all channels together:
   ok     = |d| <= max(2 %, 2.5 sigma)   (the issue's criterion);
   sigma_ind: the same with the run's elements taken as independent (sqrt(sum A^2 B_se^2)), for comparison: the
            hierarchical replicates' leaves are positively correlated within a replicate, so the truth lies between.
+  And the run's own error bar of each material's mean, from its JSON (target_error.groups, else
+  error_estimate.materials; solve/group_mean_error.h): stat (its statistical part, of kind first-order or bound),
+  bound (the statistical bound), bar = sqrt(total^2 + (s_pt / mean_pt)^2) (its total error with the path tracer's
+  noise) and |d| / bar.
 Example (the furniture room of tests/realmesh, in metres):
   python3 bench/per_material.py --scene DIR/furniture_room.obj --spp 4096 --run "--hierarchical --target-error 0.02"
 """
 import argparse
 import collections
 import csv
+import json
 import math
 import os
 import shlex
@@ -65,14 +70,18 @@ def main():
         print("run: %s %s; %d elements, CPU %.1f s, measured e %.4f (pt noise %.4f)%s" % (
             os.path.basename(a.scene), a.run, len(rows), cpu, e, noise,
             "" if unmatched == 0 else ", %d elements not in the path tracer's reading" % unmatched))
-        print("%-12s %8s %10s %10s %8s %8s %11s %4s" % ("material", "elements", "mean", "mean_pt", "d %", "sigma %",
-                                                    "sigma_ind %", "ok"))
+        run_json = json.load(open(os.path.join(d, "run.json")))
+        own = run_json.get("target_error", {}).get("groups") or run_json.get("error_estimate", {}).get("materials") or []
+        own = {g["name"]: g for g in own}
+        print("%-12s %8s %10s %10s %8s %8s %11s %4s %8s %8s %8s %7s" % (
+            "material", "elements", "mean", "mean_pt", "d %", "sigma %", "sigma_ind %", "ok", "stat %", "bound %",
+            "bar %", "|d|/bar"))
         keep = (pt["E"].max(1) == 0) & (pt["rho"].max(1) > 0)
         groups = collections.OrderedDict()
         for i, m in enumerate(material):
             if keep[i]:
                 groups.setdefault(m, []).append(i)
-        worst = 0.0
+        worst = worst_bar = 0.0
         for m, idx in groups.items():
             idx = np.array(idx)
             A = r["area"][idx]
@@ -86,10 +95,19 @@ def main():
             sigma = math.sqrt(s_run ** 2 + s_pt ** 2) / mean_pt
             ok = abs(dd) <= max(0.02, 2.5 * sigma)
             worst = max(worst, abs(dd) / max(0.02, 2.5 * sigma))
-            print("%-12s %8d %10.4g %10.4g %+8.2f %8.2f %11.2f %4s" % (
+            g = own.get(m)
+            columns = ""
+            if g:
+                bar = math.sqrt(g["total"] ** 2 + (s_pt / mean_pt) ** 2)
+                worst_bar = max(worst_bar, abs(dd) / bar)
+                columns = " %8.2f %8.2f %8.2f %7.2f %s" % (100 * g["statistical"], 100 * g.get("statistical_bound", g["statistical"]),
+                                                      100 * bar, abs(dd) / bar, g.get("statistical_kind", ""))
+            print("%-12s %8d %10.4g %10.4g %+8.2f %8.2f %11.2f %4s%s" % (
                 m, len(idx), mean, mean_pt, 100 * dd, 100 * sigma, 100 * math.sqrt(s_ind ** 2 + s_pt ** 2) / mean_pt,
-                "yes" if ok else "NO"))
+                "yes" if ok else "NO", columns))
         print("largest |d| / max(2 %%, 2.5 sigma) = %.2f" % worst)
+        if own:
+            print("largest |d| / bar = %.2f (the run's own error bar of each mean with the path tracer's noise)" % worst_bar)
 
 
 if __name__ == "__main__":

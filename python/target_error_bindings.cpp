@@ -200,7 +200,9 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
           [](const TargetErrorPyResult& a) { return json_to_python(app::group_mean_errors_json(a.groups).dump()); },
           "One dict per material (object, group) whose mean the run held, of the last step (a list; empty with "
           "each=\"none\"): name, area, mean, estimate (the signed relative discretisation error of the mean), "
-          "discretisation, statistical, total (relative errors of the mean; the JSON's target_error.groups).")
+          "discretisation, statistical, total (relative errors of the mean; the JSON's target_error.groups), "
+          "statistical_kind (\"first-order\", or \"bound\" where F's noise has no model) and statistical_bound "
+          "(the patches' B_se added as if fully correlated).")
       .def_readonly("reached", &TargetErrorPyResult::reached, "Whether the target was reached (bool).")
       .def_readonly("stop_reason", &TargetErrorPyResult::stop_reason, "Why the steps stopped (str).")
       .def("__repr__", [](const TargetErrorPyResult& a) {

@@ -138,11 +138,23 @@ MeasurementDiscretisationError measurement_discretisation_error(const RadiosityP
                                                                 const PatchRgb& d_sd, const Eigen::VectorXd& W) {
   Timer timer;
   RADWALK_CHECK_EQ(d_in.rows(), static_cast<Eigen::Index>(p.size()));
+  // Scaled before squaring (core/moments.h): W near the largest double.
+  const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
+  long sweeps = 0;
+  const PatchRgb psi = adjoint_weights(p, W / r, sweeps);
+  MeasurementDiscretisationError out = measurement_discretisation_error(psi, r, d_in, d_sd);
+  out.sweeps = sweeps;
+  out.seconds = timer.seconds();
+  return out;
+}
+
+MeasurementDiscretisationError measurement_discretisation_error(const PatchRgb& psi, double r, const PatchRgb& d_in,
+                                                                const PatchRgb& d_sd) {
+  Timer timer;
+  RADWALK_CHECK_EQ(d_in.rows(), psi.rows());
   RADWALK_CHECK_EQ(d_sd.rows(), d_in.rows());
   MeasurementDiscretisationError out;
-  // Scaled before squaring (core/moments.h): W and d near the largest double.
-  const double r = moment_scale(W.size() > 0 ? W.cwiseAbs().maxCoeff() : 0.0);
-  const PatchRgb psi = adjoint_weights(p, W / r, out.sweeps);
+  // Scaled before squaring (core/moments.h): d near the largest double.
   const double s = moment_scale(d_in.size() > 0 ? std::max(d_in.abs().maxCoeff(), d_sd.maxCoeff()) : 0.0);
   const PatchRgb d = d_in / s;
   const PatchRgb var = (d_sd / s).square();

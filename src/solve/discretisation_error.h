@@ -69,6 +69,11 @@ MeasurementDiscretisationError measurement_discretisation_error(const PatchSet& 
 // one adjoint solve (rays 0).
 MeasurementDiscretisationError measurement_discretisation_error(const RadiosityProblem& p, const PatchRgb& d,
                                                                 const PatchRgb& d_sd, const Eigen::VectorXd& W);
+// The same with the adjoint already solved (shared with other errors of the same measurement, e.g. its variance
+// from F's noise, solve/group_mean_error.h): psi = adjoint_weights(p, W / r) (solve/form_factor_error.h), r > 0 the
+// scale W was divided by (core/moments.h: W near the largest double); sweeps 0.
+MeasurementDiscretisationError measurement_discretisation_error(const PatchRgb& psi, double r, const PatchRgb& d,
+                                                                const PatchRgb& d_sd);
 
 // The total error B_err = sqrt(B_se^2 + B_disc^2) per patch and channel (statistical and discretisation errors are
 // independent); either may be empty (then the other is returned; both empty: empty).

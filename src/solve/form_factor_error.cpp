@@ -18,6 +18,9 @@ FormFactorError form_factor_error(const PatchSet& patches, const Visibility& vis
   const GatherVariance gathers = gather_variance(p.F, ff, b, p.row_blocks);
   out.propagation = propagate_gather_variance(p, gathers.scaled(out.calibration.factors), probes, ff.options.seed);
   out.standard_error = out.propagation.variance.sqrt() * s;
+  SamplingFactors mean_variance = out.calibration.factors;  // a sum over many rows: kappa = 1
+  mean_variance.coverage = 1;
+  out.gather_standard_error = gathers.scaled(mean_variance).sqrt() * s;
   return out;
 }
 

@@ -19,6 +19,10 @@ namespace radwalk {
 // and the standard errors multiplied back, so that B up to the largest double gives finite results.
 struct FormFactorError {
   PatchRgb standard_error;  // sqrt(Var(B_i)) per patch and channel from F's noise
+  // sqrt(V_jc) per row and channel: the standard error of row j's gather (F B)_j with the mean sampling factors
+  // and kappa = 1 (a sum over many rows: measurement_form_factor_error below), for the variance of measurements
+  // and group means of the same solution, Var(M_c) = sum_j (Psi_jc rho_jc)^2 V_jc, without tracing again.
+  PatchRgb gather_standard_error;
   SamplingCalibration calibration;
   PropagatedVariance propagation;
 };

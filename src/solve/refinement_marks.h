@@ -18,6 +18,15 @@
 
 namespace radwalk {
 
+// One share's ranking, shared by refinement_marks and the groups' marks (solve/target_error.h,
+// plan_group_targets): the elements in decreasing x (ties: lower index first) are held until the held ones' x
+// reach `fraction` of sum_i max(x_i, 0), or the next x_i is at most `floor` (or 0), or an unmarked one would be the
+// (room + 1)-th new mark: an element already in `marks` is held as it is (a split asked for by another reading of
+// the error serves this one too); an unmarked splittable one is marked and held; an unmarked one not splittable is
+// passed over. splittable: per element (empty: all). Returns the new marks.
+std::size_t mark_largest(const std::vector<double>& x, double fraction, double floor,
+                         const std::vector<bool>& splittable, std::size_t room, std::vector<bool>& marks);
+
 // receiver: r_i (>= 0) per element; shooter: c_i per element or empty; splittable: per element (empty: all).
 std::vector<bool> refinement_marks(const std::vector<double>& receiver, const std::vector<double>& shooter,
                                    double fraction, double floor, std::size_t room,

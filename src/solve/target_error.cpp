@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <utility>
 
 #include "core/check.h"
@@ -98,7 +97,7 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
       stage.problem ? stage.problem
                     : std::make_shared<const RadiosityProblem>(make_problem(patches, SparseF(stage.form_factors.F)));
   std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), *problem, B, B_se,
-                                                         stage.source, stage.source_sd, E);
+                                                         stage.source, stage.source_sd, E, stage.noise);
   for (const GroupMeanError& g : groups) {
     if (!g.counted) continue;
     ++record.groups;
@@ -126,22 +125,7 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
     // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E the plan's target.
     const double fraction = std::min(1.0, 2 * (1 - 0.7 * E / g.discretisation));
     RADWALK_CHECK_EQ(g.share.size(), split.size());
-    std::vector<std::size_t> order;
-    double total = 0;
-    for (std::size_t i = 0; i < g.share.size(); ++i)
-      if (g.share[i] > 0) order.push_back(i), total += g.share[i];
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return g.share[a] > g.share[b]; });
-    double held = 0;
-    for (const std::size_t i : order) {
-      if (held >= fraction * total) break;
-      if (!split[i]) {
-        if (out.marked >= room) break;
-        if (!eligible.empty() && !eligible[i]) continue;
-        split[i] = true;
-        ++out.marked;
-      }
-      held += g.share[i];
-    }
+    out.marked += mark_largest(g.share, fraction, 0.0, eligible, room - out.marked, split);
   }
   return out;
 }

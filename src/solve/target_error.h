@@ -80,6 +80,9 @@ struct TargetErrorStage {
   // The problem the solution solved (its own copy of F), when the stage kept it: the group means' adjoints and the
   // caller's reports use it instead of copying F again (null: made from form_factors.F where needed).
   std::shared_ptr<const RadiosityProblem> problem;
+  // B_se's model (F's row noise and the solver's own error): the groups' statistical parts first-order instead of
+  // the bound (solve/group_mean_error.h; empty: the bound).
+  GroupNoiseModel noise;
 };
 using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
 
@@ -121,8 +124,8 @@ struct TargetErrorPlan {
 TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double target, long rays);
 
 // A step's errors of each group's mean (solve/group_mean_error.h, the groups of `each`; none when it is "") for the
-// solution B, B_se of `patches` and the stage's F and discretisation source, with their shares kept for the groups
-// above E; records in `record` the counted groups, how many are within E and the worst. InputError when the stage
+// solution B, B_se of `patches` and the stage's F, discretisation source and noise model, with their shares kept
+// for the groups above E; records in `record` the counted groups, how many are within E and the worst. InputError when the stage
 // gave no source. Shared by the uniform steps and the hierarchy's (form-factor transport).
 std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const TargetErrorStage& stage, const PatchRgb& B,
                                               const PatchRgb& B_se, const std::string& each, double E,
@@ -133,8 +136,9 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
 // them (rays when none asks for more); where one refines, the patches (leaves) with the largest shares of its
 // error (GroupMeanError::share, which must be kept) are marked in `split` until the marked ones (already marked
 // ones included) hold the fraction f = min(1, 2 (1 - 0.7 E / disc_g)) of the sum of its shares (the shares add up
-// to the error, not to its square, and a split is taken to halve a share: f disc_g / 2 >= disc_g - 0.7 E), skipping those not `eligible` (empty: all are), at
-// most `room` new marks in all (groups in index order).
+// to the error, not to its square, and a split is taken to halve a share: f disc_g / 2 >= disc_g - 0.7 E),
+// skipping those not `eligible` (empty: all are), at most `room` new marks in all (groups in index order): the
+// ranking of solve/refinement_marks.h, mark_largest.
 struct GroupTargetPlan {
   bool refine = false;
   long next_rays = 0;

@@ -27,6 +27,9 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
   std::optional<FormFactorError> statistical =
       add_form_factor_error(patches, visibility, stage.form_factors, problem, stage.solution);
   const double seconds = timer.seconds();
+  // B_se's model for the groups' means (solve/group_mean_error.h): F's row noise, measured above, and the solver's own.
+  if (statistical) stage.noise.gather_standard_error = statistical->gather_standard_error;
+  stage.noise.solver_standard_error = own;
   std::optional<DiscretisationError> discretisation;
   if (options.discretisation_directions > 0) {
     ShooterAttribution attribution;

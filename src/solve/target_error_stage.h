@@ -38,7 +38,8 @@ struct TargetErrorStageEstimates {
 // within default_max_iterations; when it converged, B_se = the solver's own error combined with F's noise
 // (add_form_factor_error, solve/form_factor_error.h) and B_disc = the discretisation error of B
 // (discretisation_error, solve/discretisation_error.h) with options.discretisation_directions and options.seed,
-// with its source d and d's standard deviation in stage.source and stage.source_sd (for the groups' means).
+// with its source d and d's standard deviation in stage.source and stage.source_sd, and B_se's model in stage.noise
+// (F's row noise, when F records its tracing, and the solver's own: the groups' means' first-order statistical part).
 // `visibility` is of `patches`. estimates, if given, receives what the estimates measured.
 TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibility& visibility,
                                           FormFactors form_factors, const TargetErrorStageOptions& options,

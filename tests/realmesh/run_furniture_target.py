@@ -13,7 +13,7 @@ bench/target_error.py matches them), all channels together:
 Checked:
   1. the issue's criterion |d_m| <= max(2 %, 2.5 sigma_m) for every material;
   2. the run's own error bar of each material's mean (JSON target_error.groups: total_g, which holds the
-     discretisation estimate and a bound of the statistical part) covers d_m: |d_m| <= z sqrt(total_g^2 +
+     discretisation estimate and the first-order statistical part) covers d_m: |d_m| <= z sqrt(total_g^2 +
      (s_pt / mean_pt)^2), z the two-sided normal quantile at alpha = 0.01 Sidak-corrected over the materials;
   3. a negative control: the same run with `--target-each none` (the per-patch target alone, which stops at its
      start) fails criterion 1 on at least one material (the sofa, +5 % measured when this test was written).
