@@ -62,6 +62,8 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
   });
   obj_file.write([&](std::ostream& out) {
     out << kObjRadwalkHeader << patches.source << ": " << patches.size() << " patches\n" << id_line;
+    // The faces are this run's patches, oriented and sided as it made them: radwalk's reader keeps them so.
+    out << kObjAsWrittenComment << ": faces oriented and sided as this run made them\n";
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
     int current = -1;

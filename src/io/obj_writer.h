@@ -13,6 +13,11 @@
 // in the order of their lower patch: radwalk's OBJ reader honours them in a file whose first line is this writer's
 // "# radwalk patches of ..." (mesh/read_obj.h), so that the pair reads back as two one-sided faces instead of one
 // two-sided face; other readers skip them as comments.
+// Orientation and sides: after the first line (and the run id), the comment line kObjAsWrittenComment says that
+// the faces are this run's patches, oriented and sided as the run made them (the front patches' corner order, the
+// two-sided materials), so that radwalk's reader keeps their orientation instead of deriving it again
+// (Mesh::as_written, mesh/validate.h): the file reads back as the same patches facing the same way, as the .vtp
+// does. Without it the cut floor piece under a bottomless block would close the block's shell and be turned.
 #include <string>
 
 #include "patch/patch_set.h"
