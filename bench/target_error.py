@@ -52,7 +52,7 @@ def main():
     p.add_argument("--hand", action="append", default=[], help="a fixed setting to compare (repeatable)")
     a = p.parse_args()
     scene_options = ["-q"] + shlex.split(a.scene_options)
-    runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",")] + a.hand
+    runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",") if t] + a.hand
     print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
     print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "e_sd", "pt_noise", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
