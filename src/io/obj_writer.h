@@ -1,6 +1,7 @@
 #pragma once
-// Writes patches as OBJ + MTL so that they load back as the same scene: one material per input material
-// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters), faces in patch order (patch i = face i of the output),
+// Writes patches as OBJ + MTL so that they load back as the same scene: one material per material the patches use
+// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters; a later material of a name already written, such as
+// validation's two-sided copy of a material beside the one-sided original, is written as NAME_2, NAME_3, ...), faces in patch order (patch i = face i of the output),
 // each patch's object and group as `o` and `g` statements. Two-sided faces: only the front patches are written
 // (so the file has no duplicate faces) and their materials get `radwalk_two_sided 1`, so that reading the file adds
 // the back patches again (front patch i is face i; the back patches follow, as add_back_sides makes them). Names
