@@ -23,6 +23,7 @@ struct SceneOptions {
   bool strict = false;     // --strict: refuse what the readers and validation would repair
   double scale = 1;        // --scale S: coordinates times S (mesh/length_unit.h)
   std::string orient = "outward";  // --orient none|consistent|outward (mesh/orient_shells.h)
+  bool orient_given = false;  // --orient was given: it applies to a file of radwalk's patches too (mesh/validate.h)
   std::string open_shells = "auto";  // --open-shells auto|one-sided|two-sided (mesh/validate.h OpenShellSides)
   std::string unit;        // --unit mm|cm|m|in|ft: the unit of the file's coordinates ("" not given)
   std::vector<std::string> set_material;  // --set MATERIAL.Kd=r,g,b / MATERIAL.Ke=...: material overrides

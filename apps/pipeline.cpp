@@ -227,6 +227,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     preparation.rho_scale = options.rho_scale;
     preparation.tolerances.strict = options.strict;
     preparation.tolerances.orient = parse_orient_mode(options.orient);
+    preparation.tolerances.orient_given = options.orient_given;
     preparation.tolerances.open_shells = parse_open_shell_sides(options.open_shells);
     prepare_mesh(mesh, preparation);
   } catch (const MeshRefused& e) {

@@ -215,8 +215,10 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, boo
   cmd->add_option("--orient", o.orient,
                   "Orientation of the faces by shells: outward (faces agree with their neighbours, closed objects "
                   "face out, the enclosing room in), consistent (agree only, the file's majority), none (as the "
-                  "file has them)")
+                  "file has them). A .vtp or .obj radwalk wrote keeps the orientation its run gave its patches "
+                  "unless --orient is given")
       ->check(CLI::IsMember({"none", "consistent", "outward"}))
+      ->each([&o](const std::string&) { o.orient_given = true; })
       ->capture_default_str();
   cmd->add_option("--open-shells", o.open_shells,
                   "Faces of open shells (surfaces that enclose no volume: sheets, bottomless boxes): auto (two-sided "

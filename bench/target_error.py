@@ -7,10 +7,9 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
   patches, rays  - of the last step; steps - solves run;
   e_est          - the run's estimated total error (its JSON's error_estimate.total);
   e              - the measured relative error sqrt(sum A (B - B_pt)^2 / sum A B_pt^2), the path tracer's own
-                   noise taken out (sum A B_se_pt^2 subtracted);
-  e_sd           - the standard deviation of e from the path tracer's noise: the subtracted sum is an estimate,
-                   Var(sum A (d + n)^2 - sum A se^2) ~ sum A^2 (2 se^4 + 4 d^2 se^2) (n ~ N(0, se^2) per element,
-                   d^2 taken as max((B - B_pt)^2 - se^2, 0)), carried to e by de = d(e^2) / (2 e);
+                   noise taken out (sum A B_se_pt^2 subtracted), over the patches matched by centroid and normal;
+  e_sd           - the standard deviation of e from the path tracer's noise (both as scripts/patch_comparison.py
+                   defines and computes them, shared with bench/per_material.py and the realmesh tests);
   cpu            - user + system CPU seconds of the solve (all its steps).
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
@@ -20,7 +19,6 @@ already: --open-shells one-sided keeps them as they are); the script checks that
       --hand "--max-edge 100 --rays 1000" --hand "--max-edge 50 --rays 1000"
 """
 import argparse
-import csv
 import json
 import os
 import resource
@@ -29,7 +27,8 @@ import subprocess
 import sys
 import tempfile
 
-import numpy as np
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scripts"))
+import patch_comparison as pc  # noqa: E402  (the tables, their matching and the measured error)
 
 
 def cpu_of(cmd):
@@ -38,44 +37,6 @@ def cpu_of(cmd):
     code = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     return code, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
-
-
-def table(path):
-    rows = list(csv.DictReader(open(path)))
-    get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows])
-    return {k: get(k) for k in ("B", "B_se", "E", "rho")} | {
-        "area": np.array([float(r["area"]) for r in rows]),
-        "key": np.array([[float(r[k]) for k in ("cx", "cy", "cz", "nx", "ny", "nz")] for r in rows])}
-
-
-def matched(r, pt):
-    """The path tracer's rows matched to the run's patches by centroid and normal (rounded): the .vtp read back may
-    list the patches in another order (back patches, repaired faces) and drop a few (faces the reader repairs away,
-    e.g. slivers). Returns the run's rows that matched, the path tracer's rows in the same order, and how many of
-    the run's patches had no match."""
-    scale = np.abs(r["key"][:, :3]).max()
-    round_key = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
-    where = {k: i for i, k in enumerate(round_key(pt["key"]))}
-    order = np.array([where.get(k, -1) for k in round_key(r["key"])])
-    found = order >= 0
-    if len(set(order[found])) != int(found.sum()):
-        raise SystemExit("two of the run's patches match one of the path tracer's")
-    return ({k: v[found] for k, v in r.items()}, {k: v[order[found]] for k, v in pt.items()}, int((~found).sum()))
-
-
-def measured_error(run_csv, pt_csv):
-    r, pt, unmatched = matched(table(run_csv), table(pt_csv))
-    keep = (pt["E"].max(1) == 0)[:, None] & (pt["rho"] > 0) & (pt["B"] > 0)
-    W = np.repeat(pt["area"][:, None], 3, 1)[keep]
-    err2 = float((W * (r["B"] - pt["B"])[keep] ** 2).sum())
-    noise2 = float((W * pt["B_se"][keep] ** 2).sum())
-    size2 = float((W * pt["B"][keep] ** 2).sum())
-    se2 = pt["B_se"][keep] ** 2
-    d2 = np.maximum((r["B"] - pt["B"])[keep] ** 2 - se2, 0.0)
-    var_e2 = float((W ** 2 * (2 * se2 ** 2 + 4 * d2 * se2)).sum()) / size2 ** 2
-    e = np.sqrt(max(err2 - noise2, 0.0) / size2)
-    e_sd = np.sqrt(var_e2) / (2 * e) if e > 0 else np.sqrt(np.sqrt(var_e2))
-    return e, e_sd, np.sqrt(noise2 / size2), unmatched
 
 
 def main():
@@ -91,7 +52,7 @@ def main():
     p.add_argument("--hand", action="append", default=[], help="a fixed setting to compare (repeatable)")
     a = p.parse_args()
     scene_options = ["-q"] + shlex.split(a.scene_options)
-    runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",")] + a.hand
+    runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",") if t] + a.hand
     print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
     print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "e_sd", "pt_noise", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
@@ -110,7 +71,7 @@ def main():
                 e_est = summary["error_estimate"]["total"]["relative"]
                 subprocess.run([a.radwalk, "pathtrace", vtp, "--spp", str(a.spp), "--seed", str(1000 + seed), "--csv",
                                 pt_csv, "-q", "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-                e, e_sd, noise, unmatched = measured_error(run_csv, pt_csv)
+                e, e_sd, noise, unmatched = pc.measured_error(pc.read_table(run_csv), pc.read_table(pt_csv))
                 print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.2f%s" %
                       (options, seed, summary["patches"], rays, steps, e_est, e, e_sd, noise, cpu,
                        ("" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")") +

@@ -99,12 +99,17 @@ Scene patched_scene(std::function<Mesh()> read, const std::string& path, double 
 // Reads, validates and patches a scene file (read_scene, then patched_scene with the CLI's reading options: the
 // same parsers and order as --orient, --open-shells, --scale, --unit, --set and --rho-scale).
 Scene load(const std::filesystem::path& file, double max_edge, double max_area, bool strict, bool two_sided,
-           bool contact_cut, const std::string& orient, const std::string& open_shells, double scale,
+           bool contact_cut, const py::object& orient, const std::string& open_shells, double scale,
            const py::object& unit, const py::object& set, double rho_scale) {
   const std::string path = file.string();
   MeshPreparation preparation;
   preparation.tolerances.strict = strict;
-  preparation.tolerances.orient = parse_orient_mode(orient);
+  // None: the default (outward; a file of radwalk's patches as written keeps its run's orientation), as --orient
+  // left out; a name: that orientation, as --orient NAME given.
+  if (!orient.is_none() && !py::isinstance<py::str>(orient))
+    throw InputError("orient must be a str (outward, consistent, none) or None");
+  preparation.tolerances.orient_given = !orient.is_none();
+  preparation.tolerances.orient = parse_orient_mode(orient.is_none() ? "outward" : orient.cast<std::string>());
   preparation.tolerances.open_shells = parse_open_shell_sides(open_shells);
   if (!unit.is_none() && !py::isinstance<py::str>(unit)) throw InputError("unit must be a str (mm, cm, m, in, ft) or None");
   const LengthUnit length = checked_length_unit(unit.is_none() ? std::string() : unit.cast<std::string>(), scale);
@@ -465,7 +470,7 @@ set_radiometry_from_materials), so per-patch edits of rho or E made before are r
 
   m.def("load", &load, py::arg("path"), py::arg("max_edge") = 0.0, py::arg("max_area") = 0.0,
         py::arg("strict") = false, py::arg("two_sided") = false, py::arg("contact_cut") = true,
-        py::arg("orient") = "outward", py::arg("open_shells") = "auto", py::arg("scale") = 1.0,
+        py::arg("orient") = py::none(), py::arg("open_shells") = "auto", py::arg("scale") = 1.0,
         py::arg("unit") = py::none(), py::arg("set") = py::none(), py::arg("rho_scale") = 1.0,
         R"doc(Reads, validates and patches a scene (OBJ with MTL, PLY, STL, glTF/GLB, .vtp/.vtk): a Scene.
 
@@ -480,7 +485,8 @@ contact_cut: cut the faces that objects stand on along their footprints and cont
   splits faces; with neither, the input faces stay the patches, and solve_to_target_error cuts them before its own
   split.
 orient: "outward" (faces agree with their shells' neighbours, closed objects face out, the enclosing room in),
-  "consistent" or "none", as --orient.
+  "consistent" or "none", as --orient; None (the default) is "outward", except that a .vtp or .obj radwalk wrote
+  keeps the orientation its run gave its patches, as when --orient is left out.
 open_shells: "auto" (two-sided inside a closed room, one-sided in an open scene), "one-sided" or "two-sided", as
   --open-shells.
 scale: every coordinate times this before anything else (lengths, areas, max_edge and B in the scaled unit), as

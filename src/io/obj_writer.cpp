@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <ostream>
+#include <set>
 #include <vector>
 
 #include "core/atomic_write.h"
@@ -41,6 +42,21 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
   for (std::size_t i = 0; i < patches.size(); ++i)
     if (patches.two_sided(i)) two_sided[static_cast<std::size_t>(patches.material[i])] = true;
 
+  // The materials the patches use, each under a name of its own: validation's two-sided copy of a material keeps
+  // its name, and an OBJ reader takes the first definition of a name, so a later material of a name already
+  // written becomes NAME_2, NAME_3, ... (as the .vtp reader names materials that share a name); unused ones are
+  // left out.
+  std::vector<bool> used(patches.materials.size(), false);
+  for (std::size_t i = 0; i < patches.size(); ++i) used[static_cast<std::size_t>(patches.material[i])] = true;
+  std::vector<std::string> name_of(patches.materials.size());
+  std::set<std::string> taken;
+  for (std::size_t k = 0; k < patches.materials.size(); ++k) {
+    if (!used[k]) continue;
+    const std::string name = statement_name(patches.materials[k].name);
+    name_of[k] = name;
+    for (int n = 2; !taken.insert(name_of[k]).second; ++n) name_of[k] = name + "_" + std::to_string(n);
+  }
+
   // Both files are written completely before either replaces an old one (commit_together): a full disk leaves
   // the old pair, never a new .mtl beside an old .obj.
   PendingFile mtl_file(mtl.string()), obj_file(path);
@@ -48,8 +64,9 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
     out << "# radwalk patches of " << patches.source << "\n" << id_line
         << "# Kd = diffuse reflectance, Ke = emitted radiance\n";
     for (std::size_t k = 0; k < patches.materials.size(); ++k) {
+      if (!used[k]) continue;
       const Material& m = patches.materials[k];
-      out << "\nnewmtl " << statement_name(m.name) << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
+      out << "\nnewmtl " << name_of[k] << "\nKd " << rgb(m.Kd) << "\nKe " << rgb(m.Ke) << "\n";
       if (two_sided[k]) out << "radwalk_two_sided 1\n";
       if (m.illum >= 0) out << "illum " << m.illum << "\n";
       if (m.kind != BsdfKind::diffuse) {
@@ -62,6 +79,8 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
   });
   obj_file.write([&](std::ostream& out) {
     out << kObjRadwalkHeader << patches.source << ": " << patches.size() << " patches\n" << id_line;
+    // The faces are this run's patches, oriented and sided as it made them: radwalk's reader keeps them so.
+    out << kObjAsWrittenComment << ": faces oriented and sided as this run made them\n";
     out << "mtllib " << mtl.filename().string() << "\n";
     for (const Vec3& p : patches.points) out << "v " << num(p.x()) << ' ' << num(p.y()) << ' ' << num(p.z()) << '\n';
     int current = -1;
@@ -82,7 +101,7 @@ void write_obj(const std::string& path, const PatchSet& patches, const std::stri
       }
       if (patches.material[i] != current) {
         current = patches.material[i];
-        out << "usemtl " << statement_name(patches.materials[current].name) << '\n';
+        out << "usemtl " << name_of[static_cast<std::size_t>(current)] << '\n';
       }
       out << 'f';
       for (int k = 0; k < patches.corner_count(i); ++k) out << ' ' << patches.corners[i][k] + 1;

@@ -1,6 +1,7 @@
 #pragma once
-// Writes patches as OBJ + MTL so that they load back as the same scene: one material per input material
-// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters), faces in patch order (patch i = face i of the output),
+// Writes patches as OBJ + MTL so that they load back as the same scene: one material per material the patches use
+// (Kd = rho, Ke = E / pi, plus the non-diffuse parameters; a later material of a name already written, such as
+// validation's two-sided copy of a material beside the one-sided original, is written as NAME_2, NAME_3, ...), faces in patch order (patch i = face i of the output),
 // each patch's object and group as `o` and `g` statements. Two-sided faces: only the front patches are written
 // (so the file has no duplicate faces) and their materials get `radwalk_two_sided 1`, so that reading the file adds
 // the back patches again (front patch i is face i; the back patches follow, as add_back_sides makes them). Names
@@ -13,6 +14,11 @@
 // in the order of their lower patch: radwalk's OBJ reader honours them in a file whose first line is this writer's
 // "# radwalk patches of ..." (mesh/read_obj.h), so that the pair reads back as two one-sided faces instead of one
 // two-sided face; other readers skip them as comments.
+// Orientation and sides: after the first line (and the run id), the comment line kObjAsWrittenComment says that
+// the faces are this run's patches, oriented and sided as the run made them (the front patches' corner order, the
+// two-sided materials), so that radwalk's reader keeps their orientation instead of deriving it again
+// (Mesh::as_written, mesh/validate.h): the file reads back as the same patches facing the same way, as the .vtp
+// does. Without it the cut floor piece under a bottomless block would close the block's shell and be turned.
 #include <string>
 
 #include "patch/patch_set.h"

@@ -41,8 +41,9 @@ struct Mesh {
   // back to back on the same corners stay two one-sided faces (a floor piece cut along a footprint and the bottom
   // lying on it, patch/contact_pairs.h) instead of becoming one two-sided face (mesh/validate.h).
   std::vector<std::int32_t> source_contact_pair;
-  // The faces are a run's patches as radwalk wrote them (its own .vtp, mesh/read_vtk.h): that run oriented them and
-  // gave them their sides (the file's side field), so validation keeps both (mesh/validate.h, orient_faces).
+  // The faces are a run's patches as radwalk wrote them (its own .vtp, mesh/read_vtk.h, or .obj, mesh/read_obj.h):
+  // that run oriented them and gave them their sides (the .vtp's side field, the .obj's two-sided materials), so
+  // validation keeps both (mesh/validate.h, orient_faces).
   bool as_written = false;
 
   std::size_t face_count() const { return faces.size(); }

@@ -43,6 +43,7 @@ struct ObjScan {
   long ignored_elements = 0;  // `l` and `p` statements
   long first_ignored_line = 0;
   bool written_by_radwalk = false;  // the first line starts with kObjRadwalkHeader
+  bool as_written_line = false;     // a line starts with kObjAsWrittenComment
   struct PairLine {
     long line = 0;
     std::optional<long> a, b;  // the face numbers declared (1-based), when they are numbers
@@ -57,6 +58,10 @@ ObjScan scan_obj(const std::string& path, std::string_view text) {
   std::int32_t group = -1;
   for_each_line(text, [&](long line, std::string_view content) {
     if (line == 1 && content.substr(0, kObjRadwalkHeader.size()) == kObjRadwalkHeader) s.written_by_radwalk = true;
+    if (content.substr(0, kObjAsWrittenComment.size()) == kObjAsWrittenComment) {
+      s.as_written_line = true;
+      return;
+    }
     if (content.substr(0, kObjContactPairComment.size()) == kObjContactPairComment) {
       const auto numbers = split_tokens(content.substr(kObjContactPairComment.size()));
       ObjScan::PairLine pair;
@@ -373,6 +378,9 @@ Mesh read_obj_text(const std::string& path, std::string_view text, const MtlSour
     given.material = use.name;
     mesh.findings.push_back(given);
   }
+
+  // A run's patches as radwalk wrote them (read_obj.h): validation keeps their orientation and sides.
+  mesh.as_written = scan.written_by_radwalk && scan.as_written_line;
 
   if (scan.written_by_radwalk && !scan.contact_pairs.empty()) {
     // The contact pairs radwalk's writer names (read_obj.h): each face in one declaration at most.

@@ -33,6 +33,10 @@
 // corners back to back (mesh/validate.h) instead of making them one two-sided face. A declaration that is not two
 // different face numbers of the file, or names a face another declaration named, is not used (a warning finding
 // naming its line). In other files these lines are comments like any other.
+// Faces as written: in a file whose first line starts with kObjRadwalkHeader, a comment line that starts with
+// kObjAsWrittenComment (the writer puts it after its header) sets Mesh::as_written: the faces are a run's patches,
+// oriented and given their sides (`radwalk_two_sided 1` materials) by that run, so validation keeps both
+// (mesh/validate.h) and the file reads back face for face, facing as written. Elsewhere it is a comment.
 #include <functional>
 #include <string>
 #include <string_view>
@@ -44,6 +48,8 @@ namespace radwalk {
 // The first line of an OBJ radwalk wrote starts with this; its contact-pair lines with kObjContactPairComment.
 inline constexpr std::string_view kObjRadwalkHeader = "# radwalk patches of ";
 inline constexpr std::string_view kObjContactPairComment = "# radwalk_contact_pair";
+// The line that says the faces are oriented and sided as written (above).
+inline constexpr std::string_view kObjAsWrittenComment = "# radwalk_as_written";
 
 // Where the material libraries of an OBJ come from. exists(path) says whether a library of that (resolved)
 // path can be read: it decides how an mtllib statement is split (see above) and whether a library is "not

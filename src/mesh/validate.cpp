@@ -589,16 +589,22 @@ void check_materials(Mesh& mesh, FindingLog& log) {
 }
 
 // Step: orientation of the shells (orient_shells.h), reported as one warning for the flips (count, area, objects),
-// a note per open shell, a warning per non-orientable shell. A mesh as_written (radwalk's own .vtp) keeps its
-// orientation and sides under the defaults (outward as none, auto as one-sided: the back cells the file holds
-// already made their materials two-sided); --orient consistent and --open-shells two-sided still apply.
+// a note per open shell, a warning per non-orientable shell. A mesh as_written (radwalk's own .vtp or .obj) keeps
+// its orientation and sides under the defaults (orientation not given as none, auto as one-sided: the back cells
+// or `radwalk_two_sided` materials the file holds already made its two-sided faces); an orientation asked for
+// (orient_given, --orient outward or consistent) and --open-shells two-sided still apply, the former with a note.
 void orient_faces(Mesh& mesh, const ValidationTolerances& given, FindingLog& log) {
   // A run's patches as radwalk wrote them (Mesh::as_written) are oriented and sided as that run made them: the
-  // defaults (--orient outward, --open-shells auto) keep them (the cut pieces under a footprint would otherwise
-  // close the shells of the objects standing there and turn them).
+  // defaults keep them (the cut pieces under a footprint would otherwise close the shells of the objects standing
+  // there and turn them). A user who names an orientation gets it, told that it re-derives the run's.
   ValidationTolerances tol = given;
-  if (mesh.as_written && tol.orient == OrientMode::outward) tol.orient = OrientMode::none;
+  if (mesh.as_written && !tol.orient_given) tol.orient = OrientMode::none;
   if (mesh.as_written && tol.open_shells == OpenShellSides::automatic) tol.open_shells = OpenShellSides::one_sided;
+  if (mesh.as_written && tol.orient != OrientMode::none)
+    log.add_global("faces as written oriented again", Severity::note,
+                   "the faces are a run's patches as radwalk wrote them, oriented by that run; --orient " +
+                       std::string(orient_mode_name(tol.orient)) +
+                       " orients them again (leave --orient out, or give none, to keep them as written)");
   const OrientationResult r = orient_shells(mesh, tol.orient);
   auto where = [&](std::size_t f) {
     const std::int32_t g = mesh.face_group[f];

@@ -32,9 +32,10 @@
 //   normal's way, so that they do not overlap seen along it (the two triangles are its area as drawn); refused
 //   when neither diagonal gives such triangles.
 // Orientation (orient_shells.h, tolerances.orient): faces flipped to agree with their shells and closed shells
-//   turned outward (the room inward), except in a run's patches as radwalk wrote them (Mesh::as_written), which
-//   keep their orientation and sides under the defaults (outward, open shells auto): one warning with the count,
-//   area and objects; non-orientable shells a warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
+//   turned outward (the room inward), except in a run's patches as radwalk wrote them (Mesh::as_written: its own
+//   .vtp and .obj), which keep their orientation and sides under the defaults (orient not given, open shells auto;
+//   an orientation asked for, tolerances.orient_given, applies with a note "faces as written oriented again"):
+//   the flips are one warning with the count, area and objects; non-orientable shells a warning each; open shells (not emitters alone) a note each, suggesting two-sided faces (an open room, the
 //   Cornell box, is one: harmless where no light reaches the backs, which power_balance measures).
 // Warnings: slightly non-planar quad (planar_clean < nonplanarity <= planar_error); coplanar faces that overlap
 //   with positive area facing the same way (coplanar_overlaps.h: both faces and the shared area named; back to back
@@ -91,6 +92,9 @@ struct ValidationTolerances {
   double max_offset_ratio = 1e4;
   // Orientation of the shells (orient_shells.h): outward by default; the flips are one warning.
   OrientMode orient = OrientMode::outward;
+  // The orientation was asked for (--orient given), not left at its default: it then applies to a run's patches
+  // as radwalk wrote them (Mesh::as_written) too, with a note saying so; left at its default it keeps them.
+  bool orient_given = false;
   // The sides of open shells' faces (not emitters alone; --open-shells, OpenShellSides above).
   OpenShellSides open_shells = OpenShellSides::automatic;
   // Repairs (dropping zero-area faces, splitting bent or concave quads, repeated corners, duplicate faces) become

@@ -153,10 +153,9 @@ TEST_CASE("radwalk formfactors writes a Matrix Market file that solve reads back
 TEST_CASE("radwalk patch -o .obj writes a scene that loads back as the same patches", "[cli]") {
   const fs::path obj = scratch() / "cornell_patched.obj";
   const fs::path csv1 = scratch() / "patched_direct.csv", csv2 = scratch() / "patched_reloaded.csv";
-  // The plain split: with the contact cut (the default) the floor pieces under the blocks close the blocks' open
-  // shells in the written file, and --orient outward turns those hidden pieces to face down when it is read back
-  // (their B is 0 either way).
-  const Run r = run("patch " + source("meshes/cornell_box.obj") + " --max-edge 100 --no-contact-cut -o " +
+  // With the contact cut (the default): the floor pieces under the blocks close the blocks' open shells in the
+  // written file, and read back facing up as written (the file's "# radwalk_as_written" line).
+  const Run r = run("patch " + source("meshes/cornell_box.obj") + " --max-edge 100 -o " +
                     obj.string() + " --csv " + csv1.string());
   INFO(r.out);
   REQUIRE(r.exit_code == 0);
@@ -193,7 +192,7 @@ TEST_CASE("radwalk patch -o .obj writes a scene that loads back as the same patc
         CHECK(std::stod(x[k]) == Approx(std::stod(y[k])).margin(1e-9));
     }
   }
-  CHECK(rows == 328);
+  CHECK(rows == 360);
 }
 
 TEST_CASE("radwalk: no output overwrites an input or another output", "[cli]") {

@@ -304,24 +304,70 @@ TEST_CASE("radwalk: a scene cut along its contacts reads back from its .obj face
     std::string file, options;
     std::size_t patches;
   };
-  // Not the Cornell box as the .vtp above: its blocks have no bottom, so no pair, and the .obj records no
-  // orientation, so --orient outward turns the cut pieces under the blocks when it is read back (the .vtp keeps
-  // them as written; docs/patching.md).
-  for (const Scene& s : {Scene{write_cabinet_room(dir, "cabinet", false).string(), " --max-edge 0.4", 0}}) {
+  // The Cornell box's blocks have no bottom, so no pair, but the cut pieces under them close the blocks' shells
+  // in the written file: they read back facing up as written (the file's "# radwalk_as_written" line).
+  for (const Scene& s : {Scene{write_cabinet_room(dir, "cabinet", false).string(), " --max-edge 0.4", 0},
+                         Scene{source("meshes/cornell_box.obj"), " --max-edge 100", 360}}) {
     INFO(s.file);
     const Run first = run("patch " + s.file + s.options + " --contact-cut -o " + (dir / "cut.obj").string() +
                           " --csv " + (dir / "a.csv").string());
     INFO(first.out);
     REQUIRE(first.exit_code == 0);
-    REQUIRE(text_of(dir / "cut.obj").find("\n# radwalk_contact_pair ") != std::string::npos);
+    if (s.patches == 0) REQUIRE(text_of(dir / "cut.obj").find("\n# radwalk_contact_pair ") != std::string::npos);
     const Run again = run("patch " + (dir / "cut.obj").string() + " -o " + (dir / "b.obj").string() + " --csv " +
                           (dir / "b.csv").string() + " --json " + (dir / "b.json").string());
     INFO(again.out);
     REQUIRE(again.exit_code == 0);
     const Table a = read_csv(dir / "a.csv"), b = read_csv(dir / "b.csv");
+    if (s.patches > 0) REQUIRE(a.rows == s.patches);
     require_same_columns(a, b, columns);
     REQUIRE(text_of(dir / "b.json").find("duplicate face") == std::string::npos);
     REQUIRE(text_of(dir / "b.json").find("made two-sided") == std::string::npos);
+    REQUIRE(text_of(dir / "b.json").find("faces flipped") == std::string::npos);
   }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("radwalk: patch -o X.obj reads back facing as written with the solution of its .vtp", "[cli][formats]") {
+  // The Cornell box cut along the blocks' footprints (the default): the floor pieces under the bottomless blocks
+  // face up, into the blocks, whose shells they close. The .obj says its faces are oriented as written, so solving
+  // it gives the .vtp's patches (count, centroids, normals) and, with the same seed, its solution digit for digit.
+  // Control: --orient outward given orients the file again (with a note) and turns those pieces to face down.
+  const fs::path dir = scratch_dir("obj_as_written");
+  const std::string cornell = source("meshes/cornell_box.obj");
+  for (const std::string out : {"cut.obj", "cut.vtp"}) {
+    const Run r = run("patch " + cornell + " --max-edge 100 -o " + (dir / out).string() + " --csv " +
+                      (dir / (out + ".csv")).string());
+    INFO(r.out);
+    REQUIRE(r.exit_code == 0);
+  }
+  const Table written = read_csv(dir / "cut.obj.csv");
+  REQUIRE(written.rows == 360);
+  const std::string solve = " --rays 500 --seed 5 --csv ";
+  const Run from_obj = run("solve " + (dir / "cut.obj").string() + solve + (dir / "obj.csv").string() + " --json " +
+                           (dir / "obj.json").string());
+  INFO(from_obj.out);
+  REQUIRE(from_obj.exit_code == 0);
+  const Run from_vtp = run("solve " + (dir / "cut.vtp").string() + solve + (dir / "vtp.csv").string());
+  INFO(from_vtp.out);
+  REQUIRE(from_vtp.exit_code == 0);
+  const Table obj = read_csv(dir / "obj.csv"), vtp = read_csv(dir / "vtp.csv");
+  REQUIRE(obj.rows == 360);
+  require_same_columns(written, obj, {"area", "cx", "cy", "cz", "nx", "ny", "nz"});
+  require_same_columns(vtp, obj, kSolution);
+  REQUIRE(text_of(dir / "obj.json").find("faces flipped") == std::string::npos);
+
+  const Run again = run("patch " + (dir / "cut.obj").string() + " --orient outward -o " + (dir / "again.vtp").string() +
+                        " --csv " + (dir / "again.csv").string() + " --json " + (dir / "again.json").string());
+  INFO(again.out);
+  REQUIRE(again.exit_code == 0);
+  REQUIRE(text_of(dir / "again.json").find("faces as written oriented again") != std::string::npos);
+  REQUIRE(text_of(dir / "again.json").find("faces flipped") != std::string::npos);
+  const Table turned = read_csv(dir / "again.csv");
+  REQUIRE(turned.rows == 360);
+  std::size_t down = 0;
+  for (std::size_t i = 0; i < turned.rows; ++i)
+    down += turned.column.at("nz")[i] != written.column.at("nz")[i] && std::stod(turned.column.at("nz")[i]) < 0;
+  REQUIRE(down > 0);
   fs::remove_all(dir);
 }

@@ -5,8 +5,8 @@ Usage: run_furniture_target.py RADWALK SOURCE_DIR WORK_DIR
 
 `radwalk solve ROOM --target-error 0.02` (the defaults: the contact cut, each material's mean held within the target)
 writes its final patches; `radwalk pathtrace` of that .vtp averages the continuous radiosity over the same patches.
-Per material m, over its reflecting non-emitting patches the path tracer reads (matched by centroid and normal, as
-bench/target_error.py matches them), all channels together:
+Per material m, over its reflecting non-emitting patches the path tracer reads (matched by centroid and normal), all
+channels together (scripts/patch_comparison.py, material_means, shared with bench/per_material.py):
   d_m = mean_run / mean_pt - 1,
   sigma_m = sqrt(s_run^2 + s_pt^2) / mean_pt   (s_run: the run's B_se added as if fully correlated, a bound;
                                                 s_pt: the path tracer's, its patches independent).
@@ -41,34 +41,17 @@ def expect(condition, what):
 
 def per_material(radwalk, scene, work, name, options):
     """Solves with options, path traces the result; returns the run's JSON and {material: (d, sigma, s_pt_rel)}."""
-    import numpy as np
-    import target_error as te
+    import patch_comparison as pc
     vtp, run_csv, pt_csv, js = (os.path.join(work, name + x) for x in (".vtp", ".csv", "_pt.csv", ".json"))
     r = subprocess.run([radwalk, "solve", scene, "-q", "--seed", "1", "-o", vtp, "--csv", run_csv, "--json", js] +
                        options, capture_output=True, text=True)
     expect(r.returncode == 0, "%s: solve %s exits 0 (%d)" % (name, " ".join(options), r.returncode))
     subprocess.run([radwalk, "pathtrace", vtp, "--spp", SPP, "--seed", "1001", "--csv", pt_csv, "-q",
                     "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-    run, pt, unmatched = te.matched(te.table(run_csv), te.table(pt_csv))
-    import csv
-    rows = list(csv.DictReader(open(run_csv)))
-    key = te.table(run_csv)["key"]
-    scale = np.abs(key[:, :3]).max()
-    rk = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
-    pt_keys = set(rk(te.table(pt_csv)["key"]))
-    material = np.array([row["material"] for row in rows])[np.array([k in pt_keys for k in rk(key)])]
-    keep = (pt["E"].max(1) == 0) & (pt["rho"].max(1) > 0)
-    out = {}
-    for m in sorted(set(material[keep])):
-        idx = np.where(keep & (material == m))[0]
-        A = run["area"][idx][:, None]
-        S = 3 * float(A.sum())
-        mean = float((A * run["B"][idx]).sum()) / S
-        mean_pt = float((A * pt["B"][idx]).sum()) / S
-        s_run = float((A * run["B_se"][idx]).sum()) / S
-        s_pt = math.sqrt(float((A ** 2 * pt["B_se"][idx] ** 2).sum())) / S
-        out[m] = (mean / mean_pt - 1, math.sqrt(s_run ** 2 + s_pt ** 2) / mean_pt, s_pt / mean_pt)
-    print("%s: %d patches (%d not in the path tracer's reading)" % (name, len(rows), unmatched))
+    run, pt = pc.read_table(run_csv), pc.read_table(pt_csv)
+    _, _, unmatched = pc.matched(run, pt)
+    out = {m: (g.d, g.sigma, g.s_ref_rel) for m, g in sorted(pc.material_means(run, pt).items())}
+    print("%s: %d patches (%d not in the path tracer's reading)" % (name, len(run["row"]), unmatched))
     return json.load(open(js)), out
 
 
@@ -79,7 +62,7 @@ def main():
     except ImportError:
         print("SKIPPED: needs python3-numpy")
         return 77
-    sys.path.insert(0, os.path.join(source_dir, "bench"))
+    sys.path.insert(0, os.path.join(source_dir, "scripts"))
     os.makedirs(work, exist_ok=True)
     subprocess.run([sys.executable, os.path.join(source_dir, "tests/realmesh/make_furniture_room.py"), work],
                    check=True, stdout=subprocess.DEVNULL)

@@ -1,0 +1,108 @@
+"""Two radwalk patch tables compared patch by patch: a run's and the path tracer's on the run's own patches.
+
+The tables are the CSV files `radwalk solve --csv` and `radwalk pathtrace --csv` write (docs/units-and-formats.md:
+one row per patch, columns area, cx cy cz, nx ny nz, rho_*, E_*, material, B_*, B_se_*). The usual pair: a run
+writes its patches (-o run.vtp) and B (--csv run.csv); `radwalk pathtrace run.vtp --csv pt.csv --open-shells
+one-sided` averages the continuous radiosity over the same patches read back. Used by bench/target_error.py,
+bench/per_material.py and the realmesh test tests/realmesh/run_furniture_target.py; needs numpy.
+
+  read_table(path)        -> a table: dict of numpy arrays, one row per patch: B, B_se, E, rho (n x 3), area (n),
+                             key (n x 6: centroid, normal), material (n names), row (n: the CSV row, from 0).
+  matched(run, reference) -> (run rows, reference rows, unmatched): the reference's rows matched to the run's by
+                             centroid and normal (below), both as tables in the same order.
+  measured_error(run, reference) -> (e, e_sd, noise, unmatched): the relative error with the reference's noise
+                             taken out (below).
+  material_means(run, reference) -> {material: MaterialMean}, per material in order of first appearance (below).
+
+Matching: the reference read back may list the patches in another order (back patches, repaired faces) and drop a
+few (faces the reader repairs away, slivers), so rows are matched by their centroid (divided by the largest
+|coordinate| of the run's centroids) and normal, both rounded to 1e-6; a reference row matched twice is an error
+(ValueError). The run's rows that match nothing are left out and counted.
+
+Measured error, over the (patch, channel) values of the reflecting, non-emitting patches the reference sees
+(E = 0, rho > 0, B_ref > 0), A the patch area, se the reference's standard error:
+  e     = sqrt(max(sum A (B - B_ref)^2 - sum A se^2, 0) / sum A B_ref^2)   (the reference's own noise taken out),
+  e_sd  = the standard deviation of e from the reference's noise: the subtracted sum is an estimate,
+          Var(sum A (d + n)^2 - sum A se^2) ~ sum A^2 (2 se^4 + 4 d^2 se^2) (n ~ N(0, se^2) per value, d^2 taken as
+          max((B - B_ref)^2 - se^2, 0)), carried to e by de = d(e^2) / (2 e),
+  noise = sqrt(sum A se^2 / sum A B_ref^2), the reference's relative noise.
+
+Per material m, over its reflecting non-emitting patches (E_ref = 0 and rho_ref > 0 in some channel), all channels
+together:
+  mean      = sum_i A_i sum_c B_ic / (3 sum_i A_i)      (the run's; mean_ref likewise),
+  d         = mean / mean_ref - 1,
+  sigma     = sqrt(s_run^2 + s_ref^2) / mean_ref, s_run = sum_i A_i sum_c B_se_ic / (3 sum A) (the run's statistical
+              errors added as if fully correlated: a bound whatever their correlation), s_ref = sqrt(sum_i A_i^2
+              sum_c se_ic^2) / (3 sum A) (the reference's patches are independent),
+  sigma_ind = the same with the run's patches taken as independent (sqrt(sum A^2 B_se^2) / (3 sum A)),
+  s_ref_rel = s_ref / mean_ref.
+"""
+import collections
+import csv
+
+import numpy as np
+
+MaterialMean = collections.namedtuple("MaterialMean",
+                                      "elements mean mean_ref d sigma sigma_ind s_ref_rel")
+
+
+def read_table(path):
+    """The patch table of a radwalk CSV file (see the module's docstring)."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows]).reshape(len(rows), 3)
+    table = {k: get(k) for k in ("B", "B_se", "E", "rho")}
+    table["area"] = np.array([float(r["area"]) for r in rows])
+    table["key"] = np.array([[float(r[k]) for k in ("cx", "cy", "cz", "nx", "ny", "nz")] for r in rows]).reshape(-1, 6)
+    table["material"] = np.array([r.get("material", "") for r in rows], dtype=object)
+    table["row"] = np.arange(len(rows))
+    return table
+
+
+def matched(run, reference):
+    """(run's matched rows, reference's rows in the same order, count of the run's rows without a match)."""
+    scale = np.abs(run["key"][:, :3]).max() if len(run["key"]) else 1.0
+    round_key = lambda k: [tuple(x) for x in np.round(np.hstack([k[:, :3] / scale, k[:, 3:]]) * 1e6).astype(np.int64)]
+    where = {k: i for i, k in enumerate(round_key(reference["key"]))}
+    order = np.array([where.get(k, -1) for k in round_key(run["key"])], dtype=np.int64)
+    found = order >= 0
+    if len(set(order[found].tolist())) != int(found.sum()):
+        raise ValueError("two of the run's patches match one of the reference's")
+    return ({k: v[found] for k, v in run.items()}, {k: v[order[found]] for k, v in reference.items()},
+            int((~found).sum()))
+
+
+def measured_error(run, reference):
+    """(e, e_sd, noise, unmatched) of the run against the reference (see the module's docstring)."""
+    r, ref, unmatched = matched(run, reference)
+    keep = (ref["E"].max(1) == 0)[:, None] & (ref["rho"] > 0) & (ref["B"] > 0)
+    W = np.repeat(ref["area"][:, None], 3, 1)[keep]
+    diff = (r["B"] - ref["B"])[keep]
+    se2 = ref["B_se"][keep] ** 2
+    err2 = float((W * diff ** 2).sum())
+    noise2 = float((W * se2).sum())
+    size2 = float((W * ref["B"][keep] ** 2).sum())
+    d2 = np.maximum(diff ** 2 - se2, 0.0)
+    var_e2 = float((W ** 2 * (2 * se2 ** 2 + 4 * d2 * se2)).sum()) / size2 ** 2
+    e = np.sqrt(max(err2 - noise2, 0.0) / size2)
+    e_sd = np.sqrt(var_e2) / (2 * e) if e > 0 else np.sqrt(np.sqrt(var_e2))
+    return e, e_sd, np.sqrt(noise2 / size2), unmatched
+
+
+def material_means(run, reference):
+    """{material: MaterialMean} over the matched reflecting non-emitting patches (see the module's docstring)."""
+    r, ref, _ = matched(run, reference)
+    keep = (ref["E"].max(1) == 0) & (ref["rho"].max(1) > 0)
+    out = collections.OrderedDict()
+    for m in dict.fromkeys(r["material"][keep]):
+        idx = np.where(keep & (r["material"] == m))[0]
+        A = r["area"][idx][:, None]
+        S = 3 * float(A.sum())
+        mean = float((A * r["B"][idx]).sum()) / S
+        mean_ref = float((A * ref["B"][idx]).sum()) / S
+        s_run = float((A * r["B_se"][idx]).sum()) / S
+        s_ref = float(np.sqrt((A ** 2 * ref["B_se"][idx] ** 2).sum())) / S
+        s_ind = float(np.sqrt((A ** 2 * r["B_se"][idx] ** 2).sum())) / S
+        out[m] = MaterialMean(len(idx), mean, mean_ref, mean / mean_ref - 1, np.hypot(s_run, s_ref) / mean_ref,
+                              np.hypot(s_ind, s_ref) / mean_ref, s_ref / mean_ref)
+    return out
