@@ -29,6 +29,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   o.max_leaves = command.max_patches;
   o.max_seconds = command.max_seconds;
   o.directions = command.discretisation_directions;
+  o.split = command.hierarchical_split;
   if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
   const bool form_factors = command.hierarchical_transport == "form-factors";
   o.each = target_groups(command, form_factors);
@@ -40,7 +41,9 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
          percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " + std::to_string(s.seconds) +
          " s" + group_progress(s, o.each) +
          (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " leaves split, " +
-                                          std::to_string(s.next_rays_per_patch) + " rays a leaf"
+                                          std::to_string(s.next_rays_per_patch) + " rays a leaf" +
+                                          (r.band_splits > 0 ? " (" + std::to_string(r.band_splits) + " in bands)"
+                                                             : std::string())
                                     : std::string()));
   };
   TargetErrorRun run;
@@ -97,6 +100,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
     x["leaves"] = s.step.patches;
     x["rays"] = s.rays;
     x["estimate_seconds"] = s.estimate_seconds;
+    x["band_splits"] = s.band_splits;
     j["steps"].push_back(x);
   }
   const HierarchicalResult& hr = r.solution;
@@ -113,6 +117,10 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   hj["min_area"] = h.min_area;
   hj["points"] = h.points_side * h.points_side;
   hj["transport"] = command.hierarchical_transport;
+  hj["split"] = o.split;
+  long bands = 0;
+  for (std::size_t e = 0; e < hr.tree.size(); ++e) bands += hr.tree.split_kind[e] != SplitKind::regular;
+  hj["band_splits"] = bands;
   hj["rays"] = hr.rays;
   if (!form_factors) {
     hj["shadow_rays"] = hr.shadow_rays;

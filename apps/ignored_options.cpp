@@ -54,7 +54,8 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
      [](const SolveCommand& c) { return !hierarchical(c) || leaf_form_factors(c); },
      "for form factors, which --hierarchical uses only with --target-error and --hierarchical-transport "
      "form-factors"},
-    {{"--hierarchical-transport"}, [](const SolveCommand& c) { return hierarchical(c) && c.target_error > 0; },
+    {{"--hierarchical-transport", "--hierarchical-split"},
+     [](const SolveCommand& c) { return hierarchical(c) && c.target_error > 0; },
      "with --hierarchical --target-error"},
     {{"--hierarchical-points", "--hierarchical-replicates"},
      [](const SolveCommand& c) { return !leaf_form_factors(c); },

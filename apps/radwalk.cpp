@@ -665,6 +665,12 @@ int run_main(int argc, char** argv) {
                         "route) or rays (hierarchical stochastic Jacobi)")
       ->check(CLI::IsMember({"form-factors", "rays"}))
       ->capture_default_str();
+  solve_cmd->add_option("--hierarchical-split", solve.hierarchical_split,
+                        "Hierarchical --target-error: how leaves are split: regular (4 similar children) or adaptive "
+                        "(a quad cut into 4 bands across its long direction, or across the direction in which its "
+                        "radiosity varies, estimated for the leaves to split; docs/hierarchy.md, Band splits)")
+      ->check(CLI::IsMember({"regular", "adaptive"}))
+      ->capture_default_str();
   solve_cmd->add_option("--hierarchical-clusters", solve.hierarchical_clusters,
                         "Hierarchical: oriented clusters of patches that receive a distant shooter's rays as one and "
                         "spread them over their members by the cosine rule (docs/hierarchy.md, Clusters)")

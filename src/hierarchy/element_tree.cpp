@@ -24,6 +24,7 @@ ElementTree make_element_tree(const PatchSet& patches) {
   t.first_child.assign(n, -1);
   t.level.assign(n, 0);
   t.area.resize(n);
+  t.split_kind.assign(n, SplitKind::regular);
   for (std::size_t i = 0; i < n; ++i) {
     const int k = patches.corner_count(i);
     t.corner_count[i] = static_cast<std::int8_t>(k);
@@ -35,13 +36,27 @@ ElementTree make_element_tree(const PatchSet& patches) {
   return t;
 }
 
-ElementIndex ElementTree::split(std::size_t e) {
+ElementIndex ElementTree::split(std::size_t e, SplitKind kind) {
   RADWALK_CHECK(e < size());
   RADWALK_CHECK(first_child[e] < 0);
   const std::array<Vec3, 4> c = corner[e];
   const int k = corner_count[e];
+  RADWALK_CHECK(kind == SplitKind::regular || k == 4);
   std::array<std::array<Vec3, 4>, 4> child;
-  if (k == 4) {
+  if (kind != SplitKind::regular) {
+    // Bands: the cuts join a0 + t (a1 - a0) to b0 + t (b1 - b0), t = 1/4, 1/2, 3/4, each point a midpoint of
+    // midpoints (symmetric in the edge's ends, bit-identical with a neighbour's).
+    const bool b01 = kind == SplitKind::bands_01;
+    const Vec3 &a0 = c[0], &a1 = b01 ? c[1] : c[3], &b0 = b01 ? c[3] : c[1], &b1 = c[2];
+    const Vec3 pa2 = 0.5 * (a0 + a1), pb2 = 0.5 * (b0 + b1);
+    const Vec3 pa1 = 0.5 * (a0 + pa2), pa3 = 0.5 * (pa2 + a1), pb1 = 0.5 * (b0 + pb2), pb3 = 0.5 * (pb2 + b1);
+    const std::array<Vec3, 5> pa{a0, pa1, pa2, pa3, a1}, pb{b0, pb1, pb2, pb3, b1};
+    for (std::size_t q = 0; q < 4; ++q)
+      // Counter-clockwise as the parent: along a (c0 -> c1) then b back for bands_01; for bands_12 the a edge is
+      // c0 -> c3, which runs clockwise, so the child is (a_q, b_q, b_q+1, a_q+1).
+      child[q] = b01 ? std::array<Vec3, 4>{pa[q], pa[q + 1], pb[q + 1], pb[q]}
+                     : std::array<Vec3, 4>{pa[q], pb[q], pb[q + 1], pa[q + 1]};
+  } else if (k == 4) {
     const Vec3 m01 = 0.5 * (c[0] + c[1]), m12 = 0.5 * (c[1] + c[2]), m23 = 0.5 * (c[2] + c[3]),
                m30 = 0.5 * (c[3] + c[0]);
     const Vec3 m = 0.25 * (c[0] + c[1] + c[2] + c[3]);
@@ -62,6 +77,8 @@ ElementIndex ElementTree::split(std::size_t e) {
     area.push_back(element_area(child[q], k));
   }
   first_child[e] = first;
+  split_kind.resize(size(), SplitKind::regular);
+  split_kind[e] = kind;
   return first;
 }
 
@@ -129,7 +146,8 @@ int ElementTree::depth() const {
 std::size_t ElementTree::memory_bytes() const {
   return corner.capacity() * sizeof(corner[0]) + corner_count.capacity() + root.capacity() * sizeof(std::int32_t) +
          parent.capacity() * sizeof(ElementIndex) + first_child.capacity() * sizeof(ElementIndex) +
-         level.capacity() * sizeof(std::int16_t) + area.capacity() * sizeof(double);
+         level.capacity() * sizeof(std::int16_t) + area.capacity() * sizeof(double) +
+         split_kind.capacity() * sizeof(SplitKind);
 }
 
 Vec3 element_point(const ElementTree& tree, std::size_t e, double u1, double u2) {

@@ -11,6 +11,8 @@
 #include "hierarchy/direct_refinement.h"
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/leaf_patches.h"
+#include "hierarchy/leaf_variation.h"
+#include "hierarchy/split_kind.h"
 #include "solve/discretisation_error.h"
 #include "solve/refinement_marks.h"
 
@@ -36,7 +38,10 @@ ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& sol
       if (tree.area[static_cast<std::size_t>(e)] > largest && splittable(tree, static_cast<std::size_t>(e), solve))
         marked.push_back(e);
     if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > o.max_leaves) return tree;
-    for (const ElementIndex e : marked) tree.split(static_cast<std::size_t>(e));
+    for (const ElementIndex e : marked) {
+      const auto x = static_cast<std::size_t>(e);
+      tree.split(x, o.split == "adaptive" ? choose_split_kind(tree, x, 0, 0) : SplitKind::regular);
+    }
   }
 }
 
@@ -75,6 +80,8 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
   if (!o.each.empty() && !leaf_work)
     throw InputError("the hierarchical target error per " + o.each + " needs the form-factor transport: the rays "
                      "transport stores no F for the adjoint of a group's mean");
+  if (o.split != "regular" && o.split != "adaptive")
+    throw InputError("the hierarchical split must be regular or adaptive, got '" + o.split + "'");
   if (o.max_leaves < static_cast<long>(roots.size()))
     throw InputError("the leaf budget " + std::to_string(o.max_leaves) + " is below the scene's " +
                      std::to_string(roots.size()) + " patches");
@@ -216,6 +223,22 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
         st.next_rays_per_patch = next_rays;
       }
     }
+    // The kind of each split: regular, or from the marked leaves' directional variation (adaptive).
+    std::vector<SplitKind> kinds(split.size(), SplitKind::regular);
+    if (stop.empty() && o.split == "adaptive" && !split.empty()) {
+      const Timer kind_timer;
+      std::vector<ElementIndex> marked(split.size());
+      for (std::size_t i = 0; i < split.size(); ++i) marked[i] = h.leaves[split[i]];
+      const DirectionalVariation d = leaf_directional_variation(
+          roots, visibility, h.tree, h.leaves, h.B, marked, std::max(o.points_side, 4), o.directions, so.seed + 1);
+      for (std::size_t i = 0; i < split.size(); ++i) {
+        kinds[i] = choose_split_kind(h.tree, static_cast<std::size_t>(marked[i]), d.along_01[i], d.along_03[i]);
+        if (kinds[i] != SplitKind::regular) ++record.band_splits;
+      }
+      record.rays += d.rays;
+      record.estimate_seconds += kind_timer.seconds();
+      st.seconds += kind_timer.seconds();
+    }
     out.steps.push_back(record);
     if (on_step) on_step(record, s);
     if (!stop.empty()) {
@@ -230,7 +253,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       break;
     }
     tree = std::move(h.tree);
-    for (const std::size_t k : split) tree.split(static_cast<std::size_t>(h.leaves[k]));
+    for (std::size_t i = 0; i < split.size(); ++i) tree.split(static_cast<std::size_t>(h.leaves[split[i]]), kinds[i]);
     rays = next_rays;
   }
   out.seconds = run.seconds();

@@ -30,6 +30,8 @@
 //      share of the target, eta_l^2 (or c_l) <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh
 //      equidistributes the error, and far from the target the share is 1); where the statistical part is above its
 //      target, R grows by the plan's factor.
+// Split kind (options.split "adaptive"): before splitting, the leaves marked in step 4 get their directional variation
+// estimated (its rays are the step's) and each is split as hierarchy/split_kind.h chooses; the start splits by shape.
 // The stopping and the budgets are the uniform route's: e is judged on B_disc (the error of each leaf's average,
 // what the per-element benchmark measures), while the indicator that picks the leaves also weighs the variation
 // inside them (a leaf straddling a shadow line has a small B_disc but a large W2). max_leaves bounds the leaves;
@@ -70,12 +72,17 @@ struct HierarchicalTargetOptions {
   // uniform route, solve/target_error.h: the leaves with the largest shares of a group's error are split). Form-factor transport only:
   // the group means' errors need the adjoint of a stored F.
   std::string each;
+  // "regular": every split regular; "adaptive": each split's kind by hierarchy/split_kind.h, the start's by the
+  // shape alone and each step's from the directional variation (leaf_directional_variation, m = max(points_side,
+  // 4) per side, `directions` directions, seed the step's + 1) estimated for the leaves marked for splitting only.
+  std::string split = "regular";
 };
 
 // One step: the uniform route's record (patches = leaves, rays_per_patch = rays per leaf) and the rays traced in
 // all (the solve's, its shadow rays and the estimates').
 struct HierarchicalTargetStep {
   TargetErrorStep step;
+  long band_splits = 0;         // of step.split, those in bands (adaptive split)
   long rays = 0;
   double estimate_seconds = 0;  // of step.seconds, the estimates'
 };

@@ -39,4 +39,30 @@ LeafVariation leaf_variation(const PatchSet& roots, const Visibility& visibility
                              const std::vector<ElementIndex>& leaves, const PatchRgb& B, int points_side,
                              int directions, std::uint64_t seed);
 
+// The same variation split by direction on a quad leaf (docs/theory/hierarchical_radiosity.md, "Band splits"): the
+// M = m^2 points lie on the leaf's parametric grid, y_ij = the bilinear point of u = (i + xi) / m along c0 -> c1 and
+// v = (j + xi') / m along c0 -> c3 (i, j = 0 .. m-1, xi uniform jitter; a bilinear map, uniform in area on a
+// parallelogram). With gbar_q.j (the column mean of replicate q: over j at fixed i) and gbar_q.i. (the row mean),
+//   along_01 = sum_c rho_c^2 sum_i (gbar_0i. - gbar_0..)(gbar_1i. - gbar_1..) / (m - 1)   (the column means vary
+//              along c0 -> c1),
+//   along_03 = the same with the row means (vary along c0 -> c3),
+// the cross-replicate covariances of the two-way ANOVA's main effects: unbiased for the variance of the exact g's
+// column (row) means, times rho^2, with no noise term (the header's argument); summed over the channels. For
+// g(u, v) = a(u) + b(v), along_01 estimates Var(a) and along_03 Var(b); a linear variation of extent L along a
+// direction has variance proportional to L^2. Either may be < 0 where it is below the noise. elements: the leaves
+// to estimate (a subset of `leaves`, whose solution B is); a triangle gets 0, 0. Rays per quad: 2 m^2 (L + number
+// of emitters). Streams as leaf_variation's (the same points' stream, laid out on the grid).
+struct DirectionalVariation {
+  std::vector<double> along_01, along_03;  // per element of `elements`
+  long rays = 0;
+};
+
+DirectionalVariation leaf_directional_variation(const PatchSet& roots, const Visibility& visibility,
+                                                const ElementTree& tree, const std::vector<ElementIndex>& leaves,
+                                                const PatchRgb& B, const std::vector<ElementIndex>& elements,
+                                                int points_side, int directions, std::uint64_t seed);
+
+// The bilinear point (1 - v) ((1 - u) c0 + u c1) + v ((1 - u) c3 + u c2) of quad element e, (u, v) in [0, 1]^2.
+Vec3 element_bilinear_point(const ElementTree& tree, std::size_t e, double u, double v);
+
 }  // namespace radwalk

@@ -4,6 +4,8 @@
 // Deterministic properties: exact up to a stated rounding bound, no statistics.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/rng.h"
@@ -28,21 +30,30 @@ PatchSet two_faces() {
   return b.build();
 }
 
-// Splits random leaves of `tree` until it has at least `elements` elements.
-void grow(ElementTree& tree, std::size_t elements, std::uint64_t seed) {
+// Splits random leaves of `tree` until it has at least `elements` elements; with `bands`, each quad's split kind
+// is drawn among regular, bands_01 and bands_12.
+void grow(ElementTree& tree, std::size_t elements, std::uint64_t seed, bool bands = false) {
   Rng rng = stream(seed, StreamDomain::test, 11, 0);
   while (tree.size() < elements) {
-    const std::vector<ElementIndex> leaves = tree.leaves();
-    tree.split(static_cast<std::size_t>(leaves[rng.uniform_index(static_cast<std::uint32_t>(leaves.size()))]));
+    std::vector<ElementIndex> leaves = tree.leaves();
+    // With bands, mostly the quad's leaves (the triangle's leaves would soon outnumber them).
+    if (bands && rng.uniform() < 0.7)
+      leaves.erase(std::remove_if(leaves.begin(), leaves.end(),
+                                  [&](ElementIndex l) { return tree.corner_count[static_cast<std::size_t>(l)] != 4; }),
+                   leaves.end());
+    const auto e = static_cast<std::size_t>(leaves[rng.uniform_index(static_cast<std::uint32_t>(leaves.size()))]);
+    SplitKind kind = SplitKind::regular;
+    if (bands && tree.corner_count[e] == 4) {
+      const std::uint32_t draw = rng.uniform_index(3);
+      kind = draw == 1 ? SplitKind::bands_01 : (draw == 2 ? SplitKind::bands_12 : SplitKind::regular);
+    }
+    tree.split(e, kind);
   }
 }
 
-}  // namespace
-
-TEST_CASE("element tree: the four children tile their parent (areas, plane, point location)", "[hierarchy]") {
-  const PatchSet patches = two_faces();
-  ElementTree tree = make_element_tree(patches);
-  grow(tree, 400, 1);
+// The children of every split element tile it: areas add up, corners in its plane, and every uniform point of it
+// lies in the child that child_containing picks.
+void check_tiling(const PatchSet& patches, const ElementTree& tree) {
   Rng rng = stream(2, StreamDomain::test, 12, 0);
   for (std::size_t e = 0; e < tree.size(); ++e) {
     if (tree.is_leaf(e)) continue;
@@ -69,6 +80,20 @@ TEST_CASE("element tree: the four children tile their parent (areas, plane, poin
         inside = std::min(inside, (p1 - p0).cross(p - p0).dot(n) / (p1 - p0).norm());
       }
       CHECK(inside >= -1e-12);
+      // No other child holds it beyond rounding: the children's interiors are disjoint.
+      int holders = 0;
+      for (ElementIndex q = tree.first_child[e]; q < tree.first_child[e] + 4; ++q) {
+        const auto& cq = tree.corner[static_cast<std::size_t>(q)];
+        const int kq = tree.corner_count[static_cast<std::size_t>(q)];
+        double in_q = 1e300;
+        for (int a = 0; a < kq; ++a) {
+          const Vec3& p0 = cq[static_cast<std::size_t>(a)];
+          const Vec3& p1 = cq[static_cast<std::size_t>((a + 1) % kq)];
+          in_q = std::min(in_q, (p1 - p0).cross(p - p0).dot(n) / (p1 - p0).norm());
+        }
+        holders += in_q > 1e-12;
+      }
+      CHECK(holders <= 1);
     }
   }
   // The fraction of uniform points of a root that each child gets is its share of the area (a chi-square would
@@ -78,10 +103,84 @@ TEST_CASE("element tree: the four children tile their parent (areas, plane, poin
   CHECK(std::abs(leaf_area - patches.total_area()) <= 1e-12 * patches.total_area());
 }
 
+}  // namespace
+
+TEST_CASE("element tree: the four children tile their parent (areas, plane, point location)", "[hierarchy]") {
+  const PatchSet patches = two_faces();
+  ElementTree tree = make_element_tree(patches);
+  grow(tree, 400, 1);
+  check_tiling(patches, tree);
+}
+
+TEST_CASE("element tree: band splits tile their parent and are four times thinner across the cuts", "[hierarchy]") {
+  const PatchSet patches = two_faces();
+  ElementTree tree = make_element_tree(patches);
+  grow(tree, 600, 21, true);
+  long bands = 0;
+  for (std::size_t e = 0; e < tree.size(); ++e) bands += tree.split_kind[e] != SplitKind::regular;
+  long quads_split = 0;
+  for (std::size_t e = 0; e < tree.size(); ++e) quads_split += !tree.is_leaf(e) && tree.corner_count[e] == 4;
+  INFO("band splits " << bands << " of " << quads_split << " quad splits; kinds " << tree.split_kind.size());
+  REQUIRE(bands > 20);
+  check_tiling(patches, tree);
+  // A band child's corners: two on the edge c0 c1 (bands_01) at t = q/4 and (q+1)/4 of it.
+  ElementTree one = make_element_tree(patches);
+  const std::array<Vec3, 4> c = one.corner[0];
+  const ElementIndex first = one.split(0, SplitKind::bands_01);
+  for (int q = 0; q < 4; ++q) {
+    const auto& k = one.corner[static_cast<std::size_t>(first + q)];
+    CHECK((k[0] - (c[0] + 0.25 * q * (c[1] - c[0]))).norm() <= 1e-14);
+    CHECK((k[3] - (c[3] + 0.25 * q * (c[2] - c[3]))).norm() <= 1e-14);
+  }
+  // Triangles are not cut in bands.
+  CHECK_THROWS(one.split(1, SplitKind::bands_12));
+}
+
+TEST_CASE("element tree: a shared edge split in bands from either end has bit-identical points", "[hierarchy]") {
+  // Two quads of a tilted plane sharing the edge P Q, listed from opposite corners so that each runs along it in
+  // the other's reverse direction; coordinates whose midpoints round.
+  PatchBuilder b;
+  const int m = b.add_material("grey", Rgb::Constant(0.5));
+  const Vec3 o(0.1, 0.3, 0.7), u = Vec3(1, 0.3, 0.1).normalized(), w0 = Vec3(-0.2, 1, 0.4);
+  const Vec3 v = (w0 - w0.dot(u) * u).normalized();
+  const auto at = [&](double a, double c) { return Vec3(o + a * u + c * v); };
+  const Vec3 P = at(1.1, 0.1), Q = at(1.3, 1.7);
+  b.add_quad(at(0, 0), P, Q, at(0.1, 1.3), m);             // edge c1 c2 = P -> Q
+  b.add_quad(at(2.9, 1.9), Q, P, at(2.3, -0.2), m);        // edge c1 c2 = Q -> P
+  const PatchSet patches = b.build();
+  const auto on_edge = [&](const ElementTree& t, ElementIndex first) {
+    std::vector<std::array<double, 3>> points;
+    for (ElementIndex q = first; q < first + 4; ++q)
+      for (const Vec3& x : t.corner[static_cast<std::size_t>(q)])
+        if ((x - P).cross(Q - P).norm() <= 1e-9 * (Q - P).norm()) points.push_back({x.x(), x.y(), x.z()});
+    std::sort(points.begin(), points.end());
+    points.erase(std::unique(points.begin(), points.end()), points.end());
+    return points;
+  };
+  ElementTree tree = make_element_tree(patches);
+  const auto a = on_edge(tree, tree.split(0, SplitKind::bands_12));
+  const auto c = on_edge(tree, tree.split(1, SplitKind::bands_12));
+  REQUIRE(a.size() == 5);
+  CHECK(a == c);  // exact equality of the doubles
+  // Split twice regularly along the edge, the neighbour gets the same points as the bands.
+  ElementTree twice = make_element_tree(patches);
+  const ElementIndex f = twice.split(1);
+  std::vector<std::array<double, 3>> r;
+  for (ElementIndex q = f; q < f + 4; ++q) {
+    const auto g = on_edge(twice, twice.split(static_cast<std::size_t>(q)));
+    r.insert(r.end(), g.begin(), g.end());
+  }
+  std::sort(r.begin(), r.end());
+  r.erase(std::unique(r.begin(), r.end()), r.end());
+  CHECK(r == a);
+}
+
 TEST_CASE("push-pull: pushing gathered radiosity and pulling leaf radiosity conserve power exactly", "[hierarchy]") {
   const PatchSet patches = two_faces();
   ElementTree tree = make_element_tree(patches);
-  grow(tree, 1000, 3);
+  const bool bands = GENERATE(false, true);
+  INFO("band splits drawn: " << bands);
+  grow(tree, 1000, 3, bands);
   Rng rng = stream(4, StreamDomain::test, 13, 0);
   std::vector<Rgb> gathered(tree.size());
   for (Rgb& g : gathered) g = Rgb(rng.uniform(), rng.uniform(), 10 * rng.uniform());
