@@ -62,7 +62,7 @@ TargetErrorWork form_factor_work(std::uint64_t seed, double tol, int discretisat
 TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double target_error, long rays, long max_patches,
                                                  double max_seconds, double tol, std::uint64_t seed, int threads,
                                                  int discretisation_directions, const std::string& transport,
-                                                 const std::optional<std::string>& each) {
+                                                 const std::string& split, const std::optional<std::string>& each) {
   HierarchicalOptions h;
   h.seed = seed;
   HierarchicalTargetOptions o;
@@ -72,6 +72,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   o.max_seconds = max_seconds;
   o.directions = discretisation_directions;
   o.each = held_groups(each, transport == "form-factors");
+  o.split = split;
   if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
   HierarchicalTargetResult r;
   interruptible([&] {
@@ -114,6 +115,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
                                              double max_seconds, double tol, std::uint64_t seed,
                                              long long threads_arg, int discretisation_directions, bool hierarchical,
                                              const std::string& hierarchical_transport,
+                                             const std::string& hierarchical_split,
                                              const std::optional<std::string>& each) {
   const int threads = check_run(scene_arg, threads_arg);
   if (discretisation_directions < 1)
@@ -125,6 +127,10 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
                      "\"");
   if (!hierarchical && hierarchical_transport != "form-factors")
     throw InputError("hierarchical_transport applies only with hierarchical=True: remove it");
+  if (hierarchical_split != "regular" && hierarchical_split != "adaptive")
+    throw InputError("hierarchical_split must be \"regular\" or \"adaptive\", got \"" + hierarchical_split + "\"");
+  if (!hierarchical && hierarchical_split != "regular")
+    throw InputError("hierarchical_split applies only with hierarchical=True: remove it");
   if (hierarchical && tol != 1e-10 && hierarchical_transport == "rays")
     throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
                      "hierarchical solver shoots until the unshot power is below 1e-6 of the first shot's): remove it");
@@ -134,7 +140,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
   const Scene& scene = scene_arg.uncut_mesh ? cut : scene_arg;
   if (hierarchical) {
     return hierarchical_to_target_error(scene, target_error, rays, max_patches, max_seconds, tol, seed, threads,
-                                        discretisation_directions, hierarchical_transport, each);
+                                        discretisation_directions, hierarchical_transport, hierarchical_split, each);
   }
   TargetErrorOptions options;
   options.target = target_error;
@@ -214,7 +220,8 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
         py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
-        py::arg("hierarchical_transport") = "form-factors", py::arg("each") = py::none(),
+        py::arg("hierarchical_transport") = "form-factors", py::arg("hierarchical_split") = "regular",
+        py::arg("each") = py::none(),
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
 As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
@@ -239,7 +246,10 @@ leaves split in 4 where the discretisation part dominates and rays added where t
 the first step's rays per leaf, max_patches the budget of leaves; scene holds the leaves (each with its input
 face). hierarchical_transport (only with hierarchical=True): "form-factors" (default; each step's leaves solved as
 patches by the route above, form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi;
-form_factors an empty F, tol does not apply: InputError if given).)doc");
+form_factors an empty F, tol does not apply: InputError if given). hierarchical_split (only with hierarchical=True;
+the CLI's --hierarchical-split): "regular" (default; every leaf split in four quarters) or "adaptive" (a quad may be
+cut in four bands across the direction its light varies in, or across its length where it is long; docs/hierarchy.md
+"Band splits": opt-in, its estimate can be low).)doc");
 }
 
 }  // namespace radwalk::python

@@ -100,3 +100,23 @@ def test_hierarchical_equals_the_cli(tmp_path, transport):
         radwalk.solve_to_target_error(scene, 0.06, hierarchical_transport="rays")  # without hierarchical=True
     with pytest.raises(radwalk.InputError):
         radwalk.solve_to_target_error(scene, 0.06, hierarchical=True, hierarchical_transport="walks")
+
+
+def test_hierarchical_split_equals_the_cli(tmp_path):
+    """hierarchical_split="adaptive" is `--hierarchical-split adaptive`: the same steps, leaves and B on a seed;
+    unknown names and the option without hierarchical=True are refused."""
+    run_cli("solve", SCENE, "--hierarchical", "--target-error", 0.06, "--rays", 200, "--seed", 3,
+            "--hierarchical-split", "adaptive", "--csv", tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
+    scene = radwalk.load(SCENE)
+    r = radwalk.solve_to_target_error(scene, 0.06, rays=200, seed=3, hierarchical=True, hierarchical_split="adaptive")
+    cli = json.load(open(tmp_path / "cli.json"))
+    assert cli["hierarchy"]["split"] == "adaptive"
+    assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
+    assert cli["patches"] == len(r.scene)
+    rows = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True)
+    np.testing.assert_allclose(np.column_stack([rows["B_r"], rows["B_g"], rows["B_b"]]), np.asarray(r.result.B),
+                               rtol=1e-11, atol=0)
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical=True, hierarchical_split="bands")
+    with pytest.raises(radwalk.InputError):
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical_split="adaptive")  # without hierarchical=True
