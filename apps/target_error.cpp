@@ -39,14 +39,14 @@ TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary&
         {command.tol, command.discretisation_directions, command.scene.seed, attribute_shooters}, &estimates);
     // When the run holds each material's mean it computes the materials' means itself (step_group_errors, the
     // same numbers): reported after the run (report_held_materials), not computed twice a step.
-    const bool materials = target_groups(command, true) != "material";
+    const bool report_materials = target_groups(command, true) != "material";
     if (stage.solution.status == SolveStatus::converged) {
       const FormFactorError* statistical = estimates.statistical ? &*estimates.statistical : nullptr;
       error_line = report_statistical_error(p, stage.form_factors, stage.solution, estimates.solver_standard_error, statistical,
                                             estimates.statistical_seconds, summary);
       if (estimates.discretisation)
         error_line += "\n" + report_discretisation_error(p, *stage.problem, *estimates.discretisation,
-                                                         stage.solution, summary, stage.noise, materials);
+                                                         stage.solution, summary, stage.noise, report_materials);
     }
     return stage;
   };
