@@ -19,6 +19,8 @@ namespace {
 
 constexpr int kReplicates = 2;
 constexpr int kMaxSide = 8;
+constexpr int kMaxNearFieldSide = 16;
+constexpr int kPilotStream = 2 * kReplicates;  // streams 0, 1: the replicates; 2, 3: refined for the near field
 
 // The emitters, chosen in proportion to their power A_e sum_c E_ec.
 struct Emitters {
@@ -50,6 +52,7 @@ struct PatchShots {
   std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
   std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
+  int side = 0;             // the points per side used (more than the patch's own where the near field needed)
   long rays = 0;
 };
 
@@ -57,8 +60,9 @@ class Shooter {
  public:
   // B: the solution divided by `scale`; E is divided alike where it is used.
   Shooter(const PatchSet& ps, const Visibility& vis, const PatchRgb& B, double scale, std::uint64_t seed,
-          std::vector<int> side, int directions)
+          std::vector<int> side, int directions, bool near_field)
       : ps_(ps), vis_(vis), B_(B), scale_(scale), seed_(seed), side_(std::move(side)), L_(directions),
+        near_field_(near_field),
         eps_(ray_epsilon(ps)),
         emitters_(find_emitters(ps)) {}
 
@@ -66,7 +70,51 @@ class Shooter {
   // same streams (then the gathers are not traced again: their random numbers are drawn and dropped, so the points
   // and the shot directions are the same ones).
   void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr) const {
+    if (deltas) {  // the replay: the side the first shoot(j) used is in its deltas' count
+      const int side = int(std::lround(std::sqrt(double(deltas->size() / kReplicates))));
+      shoot(j, side, side != side_[j], out, deltas);
+    } else if (near_field_ && side_[j] < kMaxNearFieldSide && near_field_unresolved(j, out)) {
+      shoot(j, std::min(kMaxNearFieldSide, 2 * side_[j]), true, out, nullptr);
+    } else {
+      shoot(j, side_[j], false, out, nullptr);
+    }
+  }
+
+ private:
+  static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+
+  // The pilot of the near-field refinement (header): true when one of L cosine rays from each of j's own s_j x s_j
+  // stratified points (a stream of its own, so that the estimate's points do not decide their own number) reaches
+  // another patch closer than the points' spacing sqrt(A_j) / s_j.
+  bool near_field_unresolved(std::size_t j, PatchShots& out) const {
     const int side = side_[j], M = side * side;
+    const double spacing = std::sqrt(ps_.area[j]) / side;
+    const PatchPointSampler on_j(ps_, j);
+    const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
+    const Frame frame(ps_.normal[j]);
+    Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(kPilotStream));
+    std::vector<Ray> rays(std::size_t(M) * L_);
+    std::vector<Hit> hits(rays.size());
+    for (int a = 0; a < side; ++a)
+      for (int b = 0; b < side; ++b) {
+        const Vec3 y = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
+                                  std::min((b + rng.uniform()) / side, kBelowOne));
+        for (int l = 0; l < L_; ++l)
+          rays[std::size_t(a * side + b) * L_ + l] =
+              spawn_ray(offset, y, frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform())));
+      }
+    vis_.intersect(rays.data(), hits.data(), rays.size());
+    out.rays += long(rays.size());
+    for (const Hit& h : hits)
+      if (!h.missed() && std::size_t(h.patch) != j && h.t < spacing) return true;
+    return false;
+  }
+
+  // shoot(j) with side x side points a replicate; `near_field`: the points of the near-field refinement (header),
+  // drawn from streams of their own.
+  void shoot(std::size_t j, int side, bool near_field, PatchShots& out, const std::vector<Rgb>* deltas) const {
+    const int M = side * side;
+    out.side = side;
     const PatchPointSampler on_j(ps_, j);
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
@@ -75,7 +123,8 @@ class Shooter {
     std::vector<Hit> hits(rays.size());
     std::vector<Rgb> g(M);
     for (int r = 0; r < kReplicates; ++r) {
-      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r));
+      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j,
+                       std::uint64_t(r + (near_field ? kReplicates : 0)));
       for (int a = 0; a < side; ++a)
         for (int b = 0; b < side; ++b)
           y[a * side + b] = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
@@ -147,9 +196,6 @@ class Shooter {
     }
   }
 
- private:
-  static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
-
   // (B_h - E) of the patch hit on its front; 0 for an escape or a back hit.
   Rgb reflected(const Hit& h) const {
     if (h.missed() || !h.front) return Rgb::Zero();
@@ -184,6 +230,7 @@ class Shooter {
   std::uint64_t seed_;
   std::vector<int> side_;
   int L_;
+  bool near_field_;
   double eps_;
   Emitters emitters_;
 };
@@ -205,7 +252,8 @@ std::vector<int> point_sides(const PatchSet& patches, int side) {
 }  // namespace
 
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
-                                     int directions, std::uint64_t seed, int points, bool keep_deltas) {
+                                     int directions, std::uint64_t seed, int points, bool keep_deltas,
+                                     bool near_field) {
   const std::size_t N = patches.size();
   const auto n = static_cast<Eigen::Index>(N);
   RADWALK_CHECK_EQ(B.rows(), n);
@@ -215,12 +263,13 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   // Scale before squaring (core/moments.h): B near the largest double has squares beyond it.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
   const PatchRgb scaled = B / scale;
-  const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions);
+  const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions, near_field);
 
   FluctuationSource out;
   if (keep_deltas) out.deltas.resize(N);
   out.points = side * side;
   out.directions = directions;
+  out.sides.assign(N, 0);
   PatchRgb d[kReplicates] = {PatchRgb::Zero(n, 3), PatchRgb::Zero(n, 3)};
   PatchRgb units = PatchRgb::Zero(n, 3);  // sum over both replicates of the squared (direction, target) sums
   std::vector<Eigen::Triplet<float, std::int32_t>> entries;
@@ -244,7 +293,9 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           // Row next_row + q of F: run lengths of the sorted hits.
           std::vector<std::int32_t>& h = part[q].hits;
           std::sort(h.begin(), h.end());
-          const int side_q = sides[next_row + q];
+          const int side_q = part[q].side;
+          out.sides[next_row + q] = side_q;
+          if (side_q > 0 && side_q != sides[next_row + q]) ++out.near_field_patches;
           const double per_row = double(kReplicates) * side_q * side_q * directions;
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
@@ -284,7 +335,7 @@ std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Vi
   // The same scaling as fluctuation_source, so that the shots are the same numbers; multiplied back per patch.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
   const PatchRgb scaled = B / scale;
-  const Shooter shooter(patches, visibility, scaled, scale, seed, point_sides(patches, side), directions);
+  const Shooter shooter(patches, visibility, scaled, scale, seed, point_sides(patches, side), directions, true);
   std::vector<double> out(N, 0.0);
   parallel_for(N, [&](std::size_t j) {
     if (!(patches.rho[j].maxCoeff() > 0)) return;

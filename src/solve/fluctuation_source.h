@@ -25,7 +25,18 @@
 // shot along L further cosine directions v_l shared by the points: the patch k hit from y_m (front) gets
 //   rho_k delta_m A_j / (A_k M L).
 // Where all the points see the same patch the contributions cancel exactly (sum_m delta_m = 0), so only the near
-// geometry adds noise. d is the mean of the two replicates, and its variance the larger of two estimates:
+// geometry adds noise.
+//
+// The near field. A patch k closer to j than the spacing h_j = sqrt(A_j) / s_j of j's points sees j through a
+// point-to-patch factor F(y -> k) that varies within one stratum (near a shared corner it is largest within a few
+// times k's distance of the edge), while the fluctuation there can be large (a floor beside the wall under a light:
+// dark at the wall, bright a few mm out). Then whether one of j's s_j^2 points lands in the few mm that k sees
+// decides d_k, and the estimate is right only on average: on the spot-lit room's 2.5 mm wall band under the light,
+// four points a replicate on the 12.5 mm floor leaf beside it gave d = -0.43 +- 0.25 for a true -1.96 (the
+// variance above is given the points and misses the points' own spread). So patch j first gathers replicate 0 with
+// its s_j x s_j points; if any of those gather rays reaches another patch within h_j, its points are drawn again
+// (their own streams) with 2 s_j per side (at most 16) for both replicates, and only those are used: the pilot only
+// chooses the number of points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
 //                                             (given the points, the L shot directions of a patch j are
@@ -34,7 +45,8 @@
 // so that a small patch whose d rests on a few large shots from a large patch is not, by a chance agreement of
 // the two replicates, taken as known exactly.
 //
-// Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters).
+// Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters), plus
+// the pilot gather's M_j L where the near field made M_j 4 times the patch's own.
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
@@ -55,14 +67,18 @@ struct FluctuationSource {
   std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m (B / moment_scale(max B));
                                          // only when asked (keep_deltas), for weighted_fluctuation_shots
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
+  long near_field_patches = 0;  // patches whose points were refined for their near field (above)
+  std::vector<int> sides;       // s_j per patch: its points per side (0 where rho_j = 0: it shoots nothing)
   int directions = 0; // L
   long rays = 0;      // traced in all
 };
 
 // B: the discrete solution (N x 3, finite, >= 0). directions L >= 1; points M >= 2 on a patch of the median area
-// (rounded up to a square; larger patches get more, above).
+// (rounded up to a square; larger patches get more, above). near_field false: no near-field refinement (each patch
+// its own s_j; for comparisons).
 FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& visibility, const PatchRgb& B,
-                                     int directions, std::uint64_t seed, int points = 4, bool keep_deltas = false);
+                                     int directions, std::uint64_t seed, int points = 4, bool keep_deltas = false,
+                                     bool near_field = true);
 
 // The shots of fluctuation_source weighted by the receivers, summed per shooter (docs/theory/discretisation_error.md,
 // "Which patch causes the error: the shooter attribution"):

@@ -240,7 +240,7 @@ TEST_CASE("hierarchical target error: far from the target, leaves within their s
   const PatchSet roots = block_room();
   const EmbreeVisibility visibility(roots);
   HierarchicalTargetOptions o;
-  o.target = 0.01;
+  o.target = 0.005;
   o.max_steps = 2;
   o.rays_per_leaf = 200;
   o.start_leaves = 400;

@@ -13,7 +13,11 @@
 //    estimate must explain the error: the RMS of (true - estimated) is below the RMS of the true error.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <sstream>
+#include <utility>
 #include <vector>
 
 #include "formfactor/analytic_form_factors.h"
@@ -151,7 +155,8 @@ TEST_CASE("discretisation error: a measurement's M_disc is the sum of its patche
 // face (54 patches of area 0.0044, the median): the room's faces get s = 8 (64 points), the box's 4, so the rays
 // are 2 replicates x M x 3 L (cosine gather, shadow rays to the emitter, shot) summed over the patches. With 4
 // points everywhere (the large faces' dark spots under the box would then be hit by a point in about one run in
-// six) they would be 60 x 24 L.
+// six) they would be 60 x 24 L. That is without the near-field refinement; with it (the default) each patch adds
+// its pilot and may double its points per side.
 TEST_CASE("discretisation error: the fluctuation's points have one density over the scene") {
   PatchBuilder b;
   const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
@@ -164,7 +169,144 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   const EmbreeVisibility visibility(patches);
   const PatchRgb B = PatchRgb::Constant(60, 3, 0.5);
   const int L = 4;
-  const FluctuationSource source = fluctuation_source(patches, visibility, B, L, 7);
+  const FluctuationSource source = fluctuation_source(patches, visibility, B, L, 7, 4, false, false);
   CHECK(source.points == 4);
   CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
+  // With the near-field refinement (the default) every patch first traces a pilot of s_j^2 L rays, and those whose
+  // pilot reached another patch within their points' spacing use (2 s_j)^2 points.
+  const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7);
+  long rays = 0;
+  for (std::size_t j = 0; j < 60; ++j) {
+    const int own = j < 6 ? 8 : 2;
+    INFO("patch " << j << ": " << refined.sides[j] << " points a side");
+    CHECK((refined.sides[j] == own || refined.sides[j] == 2 * own));
+    rays += 2L * refined.sides[j] * refined.sides[j] * 3 * L + own * own * L;
+  }
+  CHECK(refined.rays == rays);
+  CHECK(refined.near_field_patches > 0);
+}
+
+// 4. The near field (solve/fluctuation_source.h): a unit room (rho 0.7, cells of 0.1) lit by a light set into the
+//    wall x = 0 just above the floor (y in [0.02, 0.1], z in [0.46, 0.54], E = 50: the spot-lit room at 1/500
+//    scale). The floor beside that wall is dark at the wall (it sees the light edge-on) and bright a few hundredths
+//    out; the wall's band K under the light (y < 0.005) sees mostly the floor within a few K heights of the wall, so
+//    the floor patch S beside it (x < 0.025), constant in the discrete solution, makes K read far too bright. The
+//    truth: the same room with S cut into 50 strips along x (K's B there is the average over K of what it gathers
+//    with S resolved), e_true = Bbar - B_h per coarse patch and d_true = (I - H) e_true (the exact equation
+//    Bbar = E + H Bbar + d). Over 40 seeds: S's points are refined (its pilot sees the wall within its spacing); the
+//    estimate of d_K covers d_true (at most 3 seeds off by more than 3 of its own standard errors: with a correct
+//    standard error and a normal estimate the chance of 4 or more is about 5e-6); and its squared error is smaller
+//    than without the refinement (the same seeds), one-sided at alpha 0.05.
+namespace {
+
+// The unit room with the light in the wall x = 0; the floor's cell S = [0, 0.025] x [0.46, 0.54] cut into `strips`
+// strips along x. Patches: K first (the wall x = 0, y in [0, 0.005], z in [0.46, 0.54]), then S's strips.
+Solved near_field_room(int strips) {
+  PatchBuilder b;
+  const int white = b.add_material("white", Rgb(0.7, 0.7, 0.7));
+  const int light = b.add_material("light", Rgb(0, 0, 0), Rgb(50, 50, 50));
+  // An axis-aligned rectangle of the plane p[f] = at, spanning [u0, u1] x [v0, v1] in the axes u = (f + 1) % 3,
+  // v = (f + 2) % 3, its normal +e_f (or -e_f when `flip`).
+  auto rect = [&](int f, double at, bool flip, double u0, double u1, double v0, double v1, int material) {
+    const int u = (f + 1) % 3, v = (f + 2) % 3;
+    std::array<Vec3, 4> q;
+    const double us[4] = {u0, u1, u1, u0}, vs[4] = {v0, v0, v1, v1};
+    for (int r = 0; r < 4; ++r) {
+      Vec3 p;
+      p[f] = at, p[u] = us[r], p[v] = vs[r];
+      q[flip ? 3 - r : r] = p;
+    }
+    b.add_quad(q[0], q[1], q[2], q[3], material);
+  };
+  // Cells of 0.1 elsewhere (as the spot-lit room's 50 mm patches), with the breaks around the light and S.
+  auto breaks = [](std::vector<double> extra) {
+    for (int t = 0; t <= 10; ++t) extra.push_back(t / 10.0);
+    std::sort(extra.begin(), extra.end());
+    extra.erase(std::unique(extra.begin(), extra.end()), extra.end());
+    return extra;
+  };
+  std::vector<double> z = breaks({0.46, 0.54});
+  z.erase(std::find(z.begin(), z.end(), 0.5));  // K, S and the light span [0.46, 0.54]
+  const std::vector<double> tenths = breaks({}), wall_y = breaks({0.005, 0.02}), floor_x = breaks({0.025});
+  auto is_mid = [&](std::size_t c) { return z[c] == 0.46; };
+  rect(0, 0, false, 0, 0.005, 0.46, 0.54, white);  // K (f = 0: u = y, v = z)
+  for (int s = 0; s < strips; ++s)                  // S (f = 1: u = z, v = x)
+    rect(1, 0, false, 0.46, 0.54, 0.025 * s / strips, 0.025 * (s + 1) / strips, white);
+  for (std::size_t a = 0; a + 1 < wall_y.size(); ++a)
+    for (std::size_t c = 0; c + 1 < z.size(); ++c) {
+      if (a == 0 && is_mid(c)) continue;  // K
+      rect(0, 0, false, wall_y[a], wall_y[a + 1], z[c], z[c + 1], wall_y[a] == 0.02 && is_mid(c) ? light : white);
+    }
+  for (std::size_t c = 0; c + 1 < z.size(); ++c)
+    for (std::size_t a = 0; a + 1 < floor_x.size(); ++a)
+      if (!(a == 0 && is_mid(c))) rect(1, 0, false, z[c], z[c + 1], floor_x[a], floor_x[a + 1], white);
+  for (std::size_t a = 0; a + 1 < tenths.size(); ++a)
+    for (std::size_t c = 0; c + 1 < tenths.size(); ++c) {
+      const double u0 = tenths[a], u1 = tenths[a + 1], v0 = tenths[c], v1 = tenths[c + 1];
+      rect(0, 1, true, u0, u1, v0, v1, white);   // x = 1
+      rect(1, 1, true, u0, u1, v0, v1, white);   // the ceiling y = 1
+      rect(2, 0, false, u0, u1, v0, v1, white);  // z = 0 (f = 2: u = x, v = y)
+      rect(2, 1, true, u0, u1, v0, v1, white);   // z = 1
+    }
+  Solved s;
+  s.patches = b.build();
+  const EmbreeVisibility visibility(s.patches);
+  AnalyticFormFactors ff = analytic_form_factors(s.patches, visibility);
+  s.problem = make_problem(s.patches, std::move(ff.form_factors.F));
+  s.B = solve_direct(s.problem).B;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("discretisation error: a small patch beside a large one sees its near field resolved") {
+  const int strips = 50;
+  const Solved coarse = near_field_room(1), fine = near_field_room(strips);
+  const auto N = static_cast<Eigen::Index>(coarse.patches.size());
+  REQUIRE(static_cast<Eigen::Index>(fine.patches.size()) == N + strips - 1);
+  // Bbar per coarse patch: S is the area average of its strips (patches 1 .. strips of fine); the others are the
+  // same patches, shifted by strips - 1.
+  Eigen::VectorXd e_true(N);
+  for (Eigen::Index i = 0; i < N; ++i) {
+    double Bbar = 0;
+    if (i == 1) {
+      for (int s = 1; s <= strips; ++s) Bbar += fine.B(s, 0) / strips;
+    } else {
+      Bbar = fine.B(i == 0 ? 0 : i + strips - 1, 0);
+    }
+    e_true[i] = Bbar - coarse.B(i, 0);
+  }
+  double He = 0;  // (H e_true)_K
+  for (SparseF::InnerIterator it(coarse.problem.F, 0); it; ++it) He += double(it.value()) * e_true[it.col()];
+  const double d_true = e_true[0] - coarse.problem.rho(0, 0) * He;
+  const EmbreeVisibility visibility(coarse.patches);
+  const int seeds = 40;
+  int off = 0;
+  std::vector<double> gain;  // per seed: the squared error of d_K without the refinement minus with it
+  std::ostringstream seen;
+  long refined = 0;
+  for (std::uint64_t seed = 1; seed <= seeds; ++seed) {
+    const FluctuationSource with = fluctuation_source(coarse.patches, visibility, coarse.B, 16, seed);
+    const FluctuationSource without =
+        fluctuation_source(coarse.patches, visibility, coarse.B, 16, seed, 4, false, false);
+    const double sd = std::sqrt(with.variance(0, 0));
+    off += std::abs(with.d(0, 0) - d_true) > 3 * sd;
+    gain.push_back(std::pow(without.d(0, 0) - d_true, 2) - std::pow(with.d(0, 0) - d_true, 2));
+    refined += with.sides[1] == 4;
+    CHECK(without.near_field_patches == 0);
+    seen << " " << with.d(0, 0) << " +- " << sd << " (" << without.d(0, 0) << ");";
+  }
+  double mean_gain = 0, spread = 0;
+  for (double g : gain) mean_gain += g / seeds;
+  for (double g : gain) spread += (g - mean_gain) * (g - mean_gain) / (seeds - 1);
+  const double se_gain = std::sqrt(spread / seeds);
+  INFO("K: B_h " << coarse.B(0, 0) << ", Bbar " << coarse.B(0, 0) + e_true[0] << ", d_true " << d_true
+                 << "; S refined on " << refined << " seeds; d_K (without the refinement):" << seen.str()
+                 << "; mean gain in squared error " << mean_gain << " +- " << se_gain);
+  CHECK(refined == seeds);
+  CHECK(off <= 3);
+  // One-sided z-test of the mean gain at alpha 0.05 (39 degrees of freedom: about the normal quantile). The squared
+  // errors are heavy-tailed (the unrefined estimate's occasional -5 to -6 for -2), so the test has little power at a
+  // smaller alpha: measured 1.09 +- 0.54 (z = 2.0).
+  CHECK(mean_gain > z_critical(0.1) * se_gain);
 }
