@@ -33,10 +33,10 @@
 // dark at the wall, bright a few mm out). Then whether one of j's s_j^2 points lands in the few mm that k sees
 // decides d_k, and the estimate is right only on average: on the spot-lit room's 2.5 mm wall band under the light,
 // four points a replicate on the 12.5 mm floor leaf beside it gave d = -0.43 +- 0.25 for a true -1.96 (the
-// variance above is given the points and misses the points' own spread). So patch j first gathers replicate 0 with
-// its s_j x s_j points; if any of those gather rays reaches another patch within h_j, its points are drawn again
-// (their own streams) with 2 s_j per side (at most 16) for both replicates, and only those are used: the pilot only
-// chooses the number of points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
+// variance above is given the points and misses the points' own spread). So patch j first traces a pilot: L
+// cosine rays from each of s_j x s_j stratified points of a stream of its own; if one reaches another patch within
+// h_j, both replicates use 2 s_j points per side (at most 16; streams of their own), else s_j. The pilot chooses
+// only the number of points, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
 //                                             (given the points, the L shot directions of a patch j are
