@@ -39,19 +39,25 @@ struct Solved {
   PatchRgb B;
 };
 
-// The unit cube room, k x k patches per face, rho 0.5; E on every patch (furnace) or on the face z = 1 only.
-Solved solved_cube(int k, bool furnace) {
+// The patches with their exact discrete solution (analytic F, the direct solver).
+Solved solved_exactly(PatchSet patches) {
   Solved s;
-  s.patches = test::unit_cube_room(k);
-  for (std::size_t i = 0; i < s.patches.size(); ++i) {
-    const bool ceiling = s.patches.centroid[i].z() > 1 - 1e-9;
-    s.patches.E[i] = furnace || ceiling ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
-  }
+  s.patches = std::move(patches);
   const EmbreeVisibility visibility(s.patches);
   AnalyticFormFactors ff = analytic_form_factors(s.patches, visibility);
   s.problem = make_problem(s.patches, std::move(ff.form_factors.F));
   s.B = solve_direct(s.problem).B;
   return s;
+}
+
+// The unit cube room, k x k patches per face, rho 0.5; E on every patch (furnace) or on the face z = 1 only.
+Solved solved_cube(int k, bool furnace) {
+  PatchSet patches = test::unit_cube_room(k);
+  for (std::size_t i = 0; i < patches.size(); ++i) {
+    const bool ceiling = patches.centroid[i].z() > 1 - 1e-9;
+    patches.E[i] = furnace || ceiling ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  }
+  return solved_exactly(std::move(patches));
 }
 
 }  // namespace
@@ -248,13 +254,7 @@ Solved near_field_room(int strips) {
       rect(2, 0, false, u0, u1, v0, v1, white);  // z = 0 (f = 2: u = x, v = y)
       rect(2, 1, true, u0, u1, v0, v1, white);   // z = 1
     }
-  Solved s;
-  s.patches = b.build();
-  const EmbreeVisibility visibility(s.patches);
-  AnalyticFormFactors ff = analytic_form_factors(s.patches, visibility);
-  s.problem = make_problem(s.patches, std::move(ff.form_factors.F));
-  s.B = solve_direct(s.problem).B;
-  return s;
+  return solved_exactly(b.build());
 }
 
 }  // namespace
