@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/check.h"
@@ -21,6 +22,18 @@ constexpr int kReplicates = 2;
 constexpr int kMaxSide = 8;
 constexpr int kMaxNearFieldSide = 16;
 constexpr int kPilotStream = 2 * kReplicates;  // streams 0, 1: the replicates; 2, 3: refined for the near field
+
+// Each patch's width: its area over its longest edge.
+std::vector<double> widths(const PatchSet& ps) {
+  std::vector<double> out(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) {
+    double longest = 0;
+    const int n = ps.corner_count(i);
+    for (int k = 0; k < n; ++k) longest = std::max(longest, (ps.corner(i, (k + 1) % n) - ps.corner(i, k)).norm());
+    out[i] = longest > 0 ? ps.area[i] / longest : 0.0;
+  }
+  return out;
+}
 
 // The emitters, chosen in proportion to their power A_e sum_c E_ec.
 struct Emitters {
@@ -64,7 +77,8 @@ class Shooter {
       : ps_(ps), vis_(vis), B_(B), scale_(scale), seed_(seed), side_(std::move(side)), L_(directions),
         near_field_(near_field),
         eps_(ray_epsilon(ps)),
-        emitters_(find_emitters(ps)) {}
+        emitters_(find_emitters(ps)),
+        width_(widths(ps)) {}
 
   // Patch j's contributions to d (both replicates). deltas: null, or the delta_m of an earlier shoot(j) with the
   // same streams (then the gathers are not traced again: their random numbers are drawn and dropped, so the points
@@ -73,20 +87,21 @@ class Shooter {
     if (deltas) {  // the replay: the side the first shoot(j) used is in its deltas' count
       const int side = int(std::lround(std::sqrt(double(deltas->size() / kReplicates))));
       shoot(j, side, side != side_[j], out, deltas);
-    } else if (near_field_ && side_[j] < kMaxNearFieldSide && near_field_unresolved(j, out)) {
-      shoot(j, std::min(kMaxNearFieldSide, 2 * side_[j]), true, out, nullptr);
     } else {
-      shoot(j, side_[j], false, out, nullptr);
+      const int near = near_field_ && side_[j] < kMaxNearFieldSide ? near_field_side(j, out) : 0;
+      shoot(j, near ? near : side_[j], near > 0, out, nullptr);
     }
   }
 
  private:
   static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
-  // The pilot of the near-field refinement (header): true when one of L cosine rays from each of j's own s_j x s_j
-  // stratified points (a stream of its own, so that the estimate's points do not decide their own number) reaches
-  // another patch closer than the points' spacing sqrt(A_j) / s_j.
-  bool near_field_unresolved(std::size_t j, PatchShots& out) const {
+  // The pilot of the near-field refinement (header): L cosine rays from each of j's own s_j x s_j stratified points
+  // (a stream of its own, so that the estimate's points do not decide their own number). Returns 0 when none
+  // reaches another patch closer than the points' spacing sqrt(A_j) / s_j; else the points per side that space them
+  // no wider than the thinnest patch k so reached (its width w_k = A_k / its longest edge), at least 2 s_j and at
+  // most kMaxNearFieldSide.
+  int near_field_side(std::size_t j, PatchShots& out) const {
     const int side = side_[j], M = side * side;
     const double spacing = std::sqrt(ps_.area[j]) / side;
     const PatchPointSampler on_j(ps_, j);
@@ -105,9 +120,12 @@ class Shooter {
       }
     vis_.intersect(rays.data(), hits.data(), rays.size());
     out.rays += long(rays.size());
+    double width = std::numeric_limits<double>::infinity();
     for (const Hit& h : hits)
-      if (!h.missed() && std::size_t(h.patch) != j && h.t < spacing) return true;
-    return false;
+      if (!h.missed() && std::size_t(h.patch) != j && h.t < spacing) width = std::min(width, width_[h.patch]);
+    if (!(width < std::numeric_limits<double>::infinity())) return 0;
+    const double wanted = std::ceil(std::sqrt(ps_.area[j]) / std::max(width, 1e-300));
+    return int(std::clamp(wanted, 2.0 * side, double(kMaxNearFieldSide)));
   }
 
   // shoot(j) with side x side points a replicate; `near_field`: the points of the near-field refinement (header),
@@ -233,6 +251,7 @@ class Shooter {
   bool near_field_;
   double eps_;
   Emitters emitters_;
+  std::vector<double> width_;  // per patch: area / longest edge (a rectangle's shorter side; half a triangle's height)
 };
 
 // The points per side s_j of each patch (header): s on a patch of the median area or smaller, round(s sqrt(A_j /

@@ -35,8 +35,9 @@
 // four points a replicate on the 12.5 mm floor leaf beside it gave d = -0.43 +- 0.25 for a true -1.96 (the
 // variance above is given the points and misses the points' own spread). So patch j first traces a pilot: L
 // cosine rays from each of s_j x s_j stratified points of a stream of its own; if one reaches another patch within
-// h_j, both replicates use 2 s_j points per side (at most 16; streams of their own), else s_j. The pilot chooses
-// only the number of points, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
+// h_j, both replicates use points spaced no wider than the thinnest patch so reached (its width: area over longest
+// edge), at least 2 s_j and at most 16 per side (streams of their own), else s_j. The pilot chooses only the number
+// of points, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
 //                                             (given the points, the L shot directions of a patch j are

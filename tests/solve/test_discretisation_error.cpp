@@ -185,7 +185,7 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   for (std::size_t j = 0; j < 60; ++j) {
     const int own = j < 6 ? 8 : 2;
     INFO("patch " << j << ": " << refined.sides[j] << " points a side");
-    CHECK((refined.sides[j] == own || refined.sides[j] == 2 * own));
+    CHECK((refined.sides[j] == own || (refined.sides[j] >= 2 * own && refined.sides[j] <= 16)));
     rays += 2L * refined.sides[j] * refined.sides[j] * 3 * L + own * own * L;
   }
   CHECK(refined.rays == rays);
@@ -292,7 +292,7 @@ TEST_CASE("discretisation error: a small patch beside a large one sees its near 
     const double sd = std::sqrt(with.variance(0, 0));
     off += std::abs(with.d(0, 0) - d_true) > 3 * sd;
     gain.push_back(std::pow(without.d(0, 0) - d_true, 2) - std::pow(with.d(0, 0) - d_true, 2));
-    refined += with.sides[1] == 4;
+    refined += with.sides[1] > 2;
     CHECK(without.near_field_patches == 0);
     seen << " " << with.d(0, 0) << " +- " << sd << " (" << without.d(0, 0) << ");";
   }
@@ -307,6 +307,6 @@ TEST_CASE("discretisation error: a small patch beside a large one sees its near 
   CHECK(off <= 3);
   // One-sided z-test of the mean gain at alpha 0.05 (39 degrees of freedom: about the normal quantile). The squared
   // errors are heavy-tailed (the unrefined estimate's occasional -5 to -6 for -2), so the test has little power at a
-  // smaller alpha: measured 1.09 +- 0.54 (z = 2.0).
+  // smaller alpha: measured 1.40 +- 0.55 (z = 2.6).
   CHECK(mean_gain > z_critical(0.1) * se_gain);
 }
