@@ -63,6 +63,7 @@ struct Scene {
   std::vector<std::string> groups;       // "object 'chair', group 'seat'" (what --response group:NAME matches)
   std::vector<std::string> group_names;  // the same groups as the user named them: "chair/seat", "chair", "seat"
   std::vector<std::string> warnings;  // validation's repairs and notices (the CLI's "radwalk: warning:" lines)
+  std::vector<std::string> notes;     // validation's notes (the CLI's "note:" lines: what was read as it was meant)
   std::vector<ContactRegion> contact_regions;  // of the objects standing on faces (patch/contact_patches.h)
   // contact_cut, contacts found and the input faces kept as patches: the validated mesh, so that a computation that
   // splits the patches itself (solve_to_target_error) cuts them first, as the CLI's --target-error does.

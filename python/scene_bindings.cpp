@@ -57,6 +57,7 @@ void take_patched(PatchedScene& patched, Scene& scene) {
   scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
   keep_used_groups(patched.mesh, scene);
   scene.warnings = patched.mesh.warnings;
+  scene.notes = grouped_lines(patched.mesh.findings, {Severity::note}, 10);
   scene.cut = patched.cut;
 }
 
@@ -376,6 +377,9 @@ Per material: set_material(name, rho=..., Ke=...), which acts as the same scene 
                     "Whether faces were cut along the footprints and lines of objects touching them (bool): "
                     "contact_cut and a split (max_edge or max_area).")
       .def_readonly("warnings", &Scene::warnings, "Validation's repairs and notices, a list of str, one line each (as the CLI's).")
+      .def_readonly("notes", &Scene::notes,
+                    "Validation's notes, a list of str, one line each (the CLI's \"note:\" lines: how the file was read, "
+                    "e.g. that an --orient given re-orients a file radwalk wrote).")
       .def_readonly("groups", &Scene::group_names,
                     "Group names (a list of str), indexed by Scene.group: the groups that hold a patch, each as the file names it: "
                     "'desk' (an OBJ object or a group alone), 'desk/top' (group 'top' within object 'desk').")

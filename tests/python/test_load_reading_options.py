@@ -193,3 +193,18 @@ def test_set_overrides_a_material_as_the_cli_does(tmp_path):
     table = [k for k, m in enumerate(scene.materials) if m.name == "table"]
     rho = scene.rho[numpy.isin(scene.material, table)]
     assert rho.shape[0] == 4 and (rho == [0.25, 0.5, 0.125]).all()
+
+
+def test_notes_say_when_an_orient_given_reorients_a_file_radwalk_wrote(tmp_path):
+    """A .obj written by radwalk reads back as written; with orient given, Scene.notes says that it orients the
+    faces again (the CLI's note), and without it says nothing of the kind."""
+    obj = tmp_path / "room.obj"
+    write_obj(obj)
+    written = tmp_path / "patches.obj"
+    run_cli("patch", obj, "--max-edge", "150", "-o", written)
+    note = "orients them again"  # the note "faces as written oriented again"
+    again = radwalk.load(str(written), orient="outward")
+    assert any(note in n for n in again.notes), again.notes
+    kept = radwalk.load(str(written))
+    assert not any(note in n for n in kept.notes), kept.notes
+    assert len(kept) == len(again)
