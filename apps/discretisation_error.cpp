@@ -34,12 +34,14 @@ std::string report_discretisation_error(const PatchSet& patches, const Radiosity
   j["discretisation"] = {
       {"relative", disc},
       {"points_per_patch", error.points},
+      {"near_field_patches", error.near_field_patches},
       {"directions_per_point", error.directions},
       {"rays", error.rays},
       {"sweeps", error.sweeps},
       {"form_factors", error.own_form_factors ? "the estimate's own rays" : "the solved F"},
       {"method", "the within-patch fluctuation of a one-bounce gather, shot with common random numbers: e = (I - H)^-1 d, "
-                 "B_disc = sqrt(e^2 + Var(e)) (docs/theory/discretisation_error.md)"}};
+                 "B_disc the root mean square of e given its estimate, with a prior fitted over the patches "
+                 "(docs/theory/discretisation_error.md)"}};
   j["total"] = {{"relative", total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
   summary.add_timing("discretisation_error", error.seconds);
   std::string line = "estimated error e = " + percent(total) + " (statistical " + percent(stat) + ", discretisation " +

@@ -76,7 +76,8 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
       {"directions_per_point", command.discretisation_directions},
       {"form_factors", "the estimate's own rays"},
       {"method", "the within-patch fluctuation of a one-bounce gather on the leaves as patches, shot with common "
-                 "random numbers: e = (I - H)^-1 d, B_disc = sqrt(e^2 + Var(e)) (docs/theory/discretisation_error.md)"}};
+                 "random numbers: e = (I - H)^-1 d, B_disc the root mean square of e given its estimate, with a prior "
+                 "fitted over the leaves (docs/theory/discretisation_error.md)"}};
   e["total"] = {{"relative", last.total}, {"combination", "B_err = sqrt(B_se^2 + B_disc^2)"}};
   run.error_line = "estimated error e = " + percent(last.total) + " (statistical " + percent(last.statistical) +
                    ", discretisation " + percent(last.discretisation) +

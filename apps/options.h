@@ -117,9 +117,9 @@ struct SolveCommand {
   // --hierarchical --target-error: how each step's leaves are solved: "rays" (the hierarchical stochastic Jacobi)
   // or "form-factors" (the leaves as patches, the uniform route's traced F and solver; hierarchical_target_error.h)
   std::string hierarchical_transport = "form-factors";
-  // --hierarchical --target-error: "regular" 4-way splits, or "adaptive": quads cut in bands where their shape or the
-  // direction of the radiosity's variation inside them asks for it (hierarchy/split_kind.h)
-  std::string hierarchical_split = "regular";
+  // --hierarchical --target-error: "adaptive" (the default): quads cut in bands where their shape or the direction of
+  // the radiosity's variation inside them asks for it (hierarchy/split_kind.h), or "regular" 4-way splits
+  std::string hierarchical_split = "adaptive";
   double hierarchical_cluster_ratio = 0.25;  // a cluster receives only where its radius <= ratio x the distance
   // --progressive DIR: ParaView series of the iterates (iterative solvers) or of the estimate after 1, 2, 4, ...
   // batches of walks (random-walk)

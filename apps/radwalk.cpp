@@ -666,9 +666,10 @@ int run_main(int argc, char** argv) {
       ->check(CLI::IsMember({"form-factors", "rays"}))
       ->capture_default_str();
   solve_cmd->add_option("--hierarchical-split", solve.hierarchical_split,
-                        "Hierarchical --target-error: how leaves are split: regular (4 similar children) or adaptive "
-                        "(a quad cut into 4 bands across its long direction, or across the direction in which its "
-                        "radiosity varies, estimated for the leaves to split; docs/hierarchy.md, Band splits)")
+                        "Hierarchical --target-error: how leaves are split: adaptive (a quad cut into 4 bands across "
+                        "its long direction, or across the direction in which its radiosity varies, estimated for the "
+                        "leaves to split; else in 4 quarters; docs/hierarchy.md, Band splits) or regular (always 4 "
+                        "similar children)")
       ->check(CLI::IsMember({"regular", "adaptive"}))
       ->capture_default_str();
   solve_cmd->add_option("--hierarchical-clusters", solve.hierarchical_clusters,

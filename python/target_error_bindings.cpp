@@ -115,7 +115,7 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
                                              double max_seconds, double tol, std::uint64_t seed,
                                              long long threads_arg, int discretisation_directions, bool hierarchical,
                                              const std::string& hierarchical_transport,
-                                             const std::string& hierarchical_split,
+                                             const std::optional<std::string>& hierarchical_split_arg,
                                              const std::optional<std::string>& each) {
   const int threads = check_run(scene_arg, threads_arg);
   if (discretisation_directions < 1)
@@ -127,9 +127,10 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
                      "\"");
   if (!hierarchical && hierarchical_transport != "form-factors")
     throw InputError("hierarchical_transport applies only with hierarchical=True: remove it");
+  const std::string hierarchical_split = hierarchical_split_arg.value_or("adaptive");
   if (hierarchical_split != "regular" && hierarchical_split != "adaptive")
     throw InputError("hierarchical_split must be \"regular\" or \"adaptive\", got \"" + hierarchical_split + "\"");
-  if (!hierarchical && hierarchical_split != "regular")
+  if (!hierarchical && hierarchical_split_arg)
     throw InputError("hierarchical_split applies only with hierarchical=True: remove it");
   if (hierarchical && tol != 1e-10 && hierarchical_transport == "rays")
     throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
@@ -220,7 +221,7 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
         py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
-        py::arg("hierarchical_transport") = "form-factors", py::arg("hierarchical_split") = "regular",
+        py::arg("hierarchical_transport") = "form-factors", py::arg("hierarchical_split") = py::none(),
         py::arg("each") = py::none(),
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
@@ -247,9 +248,9 @@ the first step's rays per leaf, max_patches the budget of leaves; scene holds th
 face). hierarchical_transport (only with hierarchical=True): "form-factors" (default; each step's leaves solved as
 patches by the route above, form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi;
 form_factors an empty F, tol does not apply: InputError if given). hierarchical_split (only with hierarchical=True;
-the CLI's --hierarchical-split): "regular" (default; every leaf split in four quarters) or "adaptive" (a quad may be
-cut in four bands across the direction its light varies in, or across its length where it is long; docs/hierarchy.md
-"Band splits": opt-in, its estimate can be low).)doc");
+the CLI's --hierarchical-split): "adaptive" (the default: a quad may be cut in four bands across the direction its
+light varies in, or across its length where it is long; docs/hierarchy.md "Band splits") or "regular" (every leaf
+split in four quarters).)doc");
 }
 
 }  // namespace radwalk::python

@@ -59,6 +59,7 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   DiscretisationError out;
   out.points = source.points;
   out.directions = source.directions;
+  out.near_field_patches = source.near_field_patches;
   out.rays = source.rays;
   // H from the stored F, or from the estimate's own shot rays when the solver stored none.
   out.own_form_factors = p.F.nonZeros() == 0 && source.F.nonZeros() > 0;

@@ -25,6 +25,7 @@ struct DiscretisationError {
   PatchRgb standard_error;  // B_disc (above)
   int points = 0;           // per patch and replicate (fluctuation_source.h)
   int directions = 0;       // per point and kind
+  long near_field_patches = 0;  // patches given more points for their near field (fluctuation_source.h)
   long rays = 0;
   long sweeps = 0;
   Rgb prior_relative = Rgb::Zero();  // t_c: the prior's relative scale of e, from all the patches
