@@ -97,10 +97,10 @@ class Shooter {
   static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
   // The pilot of the near-field refinement (header): L cosine rays from each of j's own s_j x s_j stratified points
-  // (a stream of its own, so that the estimate's points do not decide their own number). Returns 0 when none
-  // reaches another patch closer than the points' spacing sqrt(A_j) / s_j; else the points per side that space them
-  // no wider than the thinnest patch k so reached (its width w_k = A_k / its longest edge), at least 2 s_j and at
-  // most kMaxNearFieldSide.
+  // (a stream of its own, so that the estimate's points do not decide their own number). The points per side that
+  // space them no wider than the thinnest patch k that a pilot ray reaches closer than their spacing sqrt(A_j) / s_j
+  // (k's width w_k = A_k / its longest edge), ceil(sqrt(A_j) / w_k) at most kMaxNearFieldSide, where that is more
+  // than s_j; else 0 (no such patch, or none thinner than the spacing: the points resolve what k sees).
   int near_field_side(std::size_t j, PatchShots& out) const {
     const int side = side_[j], M = side * side;
     const double spacing = std::sqrt(ps_.area[j]) / side;
@@ -124,8 +124,8 @@ class Shooter {
     for (const Hit& h : hits)
       if (!h.missed() && std::size_t(h.patch) != j && h.t < spacing) width = std::min(width, width_[h.patch]);
     if (!(width < std::numeric_limits<double>::infinity())) return 0;
-    const double wanted = std::ceil(std::sqrt(ps_.area[j]) / std::max(width, 1e-300));
-    return int(std::clamp(wanted, 2.0 * side, double(kMaxNearFieldSide)));
+    const double wanted = std::min(double(kMaxNearFieldSide), std::ceil(std::sqrt(ps_.area[j]) / std::max(width, 1e-300)));
+    return wanted > side ? int(wanted) : 0;
   }
 
   // shoot(j) with side x side points a replicate; `near_field`: the points of the near-field refinement (header),

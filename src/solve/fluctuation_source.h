@@ -35,8 +35,8 @@
 // four points a replicate on the 12.5 mm floor leaf beside it gave d = -0.43 +- 0.25 for a true -1.96 (the
 // variance above is given the points and misses the points' own spread). So patch j first traces a pilot: L
 // cosine rays from each of s_j x s_j stratified points of a stream of its own; if one reaches another patch within
-// h_j, both replicates use points spaced no wider than the thinnest patch so reached (its width: area over longest
-// edge), at least 2 s_j and at most 16 per side (streams of their own), else s_j. The pilot chooses only the number
+// h_j that is thinner than h_j (its width: area over longest edge), both replicates use points spaced no wider than
+// the thinnest such patch (at most 16 per side; streams of their own), else s_j. The pilot chooses only the number
 // of points, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
@@ -47,7 +47,7 @@
 // the two replicates, taken as known exactly.
 //
 // Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters), plus
-// the pilot gather's M_j L where the near field made M_j 4 times the patch's own.
+// the pilot's s_j^2 L (M_j the near field's count where it asked for more points).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
