@@ -19,9 +19,16 @@ done
 
 work=$(mktemp -d "${TMPDIR:-/tmp}/radwalk_xvfb_test.XXXXXX")
 cleanup() {  # anything a failing case left: the recorded servers and fake pvpythons
+  # Only a pid that is still one of those: an ended one's number may by now belong to another process (pid_max is
+  # often 32768, and a busy machine wraps it within seconds), e.g. the X server of a render test running beside this.
   for f in "$work"/record.*; do
     [ -f "$f" ] || continue
-    while read -r pid; do kill -KILL "$pid" 2>/dev/null; done <"$f"
+    while read -r pid; do
+      cmd=$(tr '\0' ' ' <"/proc/$pid/cmdline" 2>/dev/null) || continue
+      case "$cmd" in
+        Xvfb* | */Xvfb* | *"$work/bin/pvpython"* | "sleep 600"*) kill -KILL "$pid" 2>/dev/null ;;
+      esac
+    done <"$f"
   done
   rm -rf "$work"
 }
