@@ -234,7 +234,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
     // Every finding, grouped by kind: the warnings (unless --quiet), then the errors, then one summary line.
     const std::vector<Finding>& all = e.findings();
     for (const std::string& w : validation_lines(all, 10)) warn_scene(summary, w);
-    for (const std::string& n : grouped_lines(all, {Severity::note}, 10)) note("note: " + n);
+    for (const std::string& n : validation_notes(all, 10)) note("note: " + n);
     // One error is its own one-line refusal; several are listed, then counted in one line.
     const std::vector<std::string> errors = grouped_lines(all, {Severity::error}, 10);
     std::string message = e.what();
@@ -265,7 +265,7 @@ Mesh read_validated_mesh(const SceneOptions& options, RunSummary& summary, RankI
   summary.json()["closed_shell"] = g_scene.closed_shell;
   summary.add_timing("load", timer.seconds());
   for (const std::string& w : mesh.warnings) warn_scene(summary, w);
-  for (const std::string& n : grouped_lines(mesh.findings, {Severity::note}, 10)) note("note: " + n);
+  for (const std::string& n : validation_notes(mesh.findings, 10)) note("note: " + n);
   record_findings(mesh.findings, summary);
   summary.json()["seed"] = options.seed;
   summary.json()["threads"] = options.threads;

@@ -57,7 +57,7 @@ void take_patched(PatchedScene& patched, Scene& scene) {
   scene.group = patch_groups(patched.mesh, scene.patches);  // through the input face of every (repaired) face
   keep_used_groups(patched.mesh, scene);
   scene.warnings = patched.mesh.warnings;
-  scene.notes = grouped_lines(patched.mesh.findings, {Severity::note}, 10);
+  scene.notes = validation_notes(patched.mesh.findings, 10);
   scene.cut = patched.cut;
 }
 

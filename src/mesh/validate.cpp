@@ -850,6 +850,10 @@ std::vector<std::string> validation_lines(const std::vector<Finding>& findings, 
   return grouped_lines(findings, {Severity::repair, Severity::warning}, per_kind);
 }
 
+std::vector<std::string> validation_notes(const std::vector<Finding>& findings, std::size_t per_kind) {
+  return grouped_lines(findings, {Severity::note}, per_kind);
+}
+
 void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances) {
   // Lines a reader wrote directly into mesh.warnings become findings. A second validation starts again from
   // the reader's findings (validation is idempotent).

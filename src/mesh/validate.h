@@ -111,5 +111,7 @@ void validate_mesh(Mesh& mesh, const ValidationTolerances& tolerances = {});
 // The repairs and warnings among `findings` as lines grouped by kind, at most per_kind of each and then
 // "FILE: KIND: N more (T in all)" (finding.h grouped_lines).
 std::vector<std::string> validation_lines(const std::vector<Finding>& findings, std::size_t per_kind);
+// The notes among `findings` (how the file was read, e.g. a file radwalk wrote oriented again), grouped as above.
+std::vector<std::string> validation_notes(const std::vector<Finding>& findings, std::size_t per_kind);
 
 }  // namespace radwalk

@@ -96,6 +96,12 @@ class Shooter {
  private:
   static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
+  // A uniform point of stratum (a, b) of patch j's side x side parametric grid. (The two draws are arguments of one
+  // call, so their order is the compiler's, as it always was here: sequencing them would change every estimate.)
+  static Vec3 stratified_point(const PatchPointSampler& on_j, int a, int b, int side, Rng& rng) {
+    return on_j.point(std::min((a + rng.uniform()) / side, kBelowOne), std::min((b + rng.uniform()) / side, kBelowOne));
+  }
+
   // The pilot of the near-field refinement (header): L cosine rays from each of j's own s_j x s_j stratified points
   // (a stream of its own, so that the estimate's points do not decide their own number). The points per side that
   // space them no wider than the thinnest patch k that a pilot ray reaches closer than their spacing sqrt(A_j) / s_j
@@ -112,8 +118,7 @@ class Shooter {
     std::vector<Hit> hits(rays.size());
     for (int a = 0; a < side; ++a)
       for (int b = 0; b < side; ++b) {
-        const Vec3 y = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
-                                  std::min((b + rng.uniform()) / side, kBelowOne));
+        const Vec3 y = stratified_point(on_j, a, b, side, rng);
         for (int l = 0; l < L_; ++l)
           rays[std::size_t(a * side + b) * L_ + l] =
               spawn_ray(offset, y, frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform())));
@@ -145,8 +150,7 @@ class Shooter {
                        std::uint64_t(r + (near_field ? kReplicates : 0)));
       for (int a = 0; a < side; ++a)
         for (int b = 0; b < side; ++b)
-          y[a * side + b] = on_j.point(std::min((a + rng.uniform()) / side, kBelowOne),
-                                       std::min((b + rng.uniform()) / side, kBelowOne));
+          y[a * side + b] = stratified_point(on_j, a, b, side, rng);
       Rgb mean = Rgb::Zero();
       if (deltas) {
         for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform();
