@@ -55,8 +55,10 @@ inline std::vector<Ray> incoherent_rays(const PatchSet& ps, std::size_t n, std::
   parallel_for(n, [&](std::size_t k) {
     Rng rng = stream(seed, StreamDomain::benchmark, k);
     const std::size_t i = rng.uniform_index(std::uint32_t(ps.size()));
-    const Vec3 p = sample_patch_point(ps, i, rng.uniform(), rng.uniform());
-    const Vec3 w = Frame(ps.normal[i]).to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+    const double s1 = rng.uniform(), s2 = rng.uniform();  // each draw its own declarator: sequenced on any compiler
+    const Vec3 p = sample_patch_point(ps, i, s1, s2);
+    const double d1 = rng.uniform(), d2 = rng.uniform();
+    const Vec3 w = Frame(ps.normal[i]).to_world(sample_cosine_hemisphere(d1, d2));
     rays[k] = spawn_ray(ps, i, p, w, eps);
   });
   return rays;

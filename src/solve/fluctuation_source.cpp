@@ -96,10 +96,20 @@ class Shooter {
  private:
   static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
 
-  // A uniform point of stratum (a, b) of patch j's side x side parametric grid. (The two draws are arguments of one
-  // call, so their order is the compiler's, as it always was here: sequencing them would change every estimate.)
+  // A uniform point of stratum (a, b) of patch j's side x side parametric grid. The second coordinate is drawn
+  // first, each in its own statement, so that every compiler draws the same points (as arguments of one call the
+  // two draws' order was the compiler's; GCC's, kept here, draws the second first).
   static Vec3 stratified_point(const PatchPointSampler& on_j, int a, int b, int side, Rng& rng) {
-    return on_j.point(std::min((a + rng.uniform()) / side, kBelowOne), std::min((b + rng.uniform()) / side, kBelowOne));
+    const double v = std::min((b + rng.uniform()) / side, kBelowOne);
+    const double u = std::min((a + rng.uniform()) / side, kBelowOne);
+    return on_j.point(u, v);
+  }
+
+  // A cosine-distributed direction about `frame`'s normal; the draws sequenced as stratified_point's (second first).
+  static Vec3 cosine_direction(const Frame& frame, Rng& rng) {
+    const double u2 = rng.uniform();
+    const double u1 = rng.uniform();
+    return frame.to_world(sample_cosine_hemisphere(u1, u2));
   }
 
   // The pilot of the near-field refinement (header): L cosine rays from each of j's own s_j x s_j stratified points
@@ -121,7 +131,7 @@ class Shooter {
         const Vec3 y = stratified_point(on_j, a, b, side, rng);
         for (int l = 0; l < L_; ++l)
           rays[std::size_t(a * side + b) * L_ + l] =
-              spawn_ray(offset, y, frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform())));
+              spawn_ray(offset, y, cosine_direction(frame, rng));
       }
     vis_.intersect(rays.data(), hits.data(), rays.size());
     out.rays += long(rays.size());
@@ -159,7 +169,7 @@ class Shooter {
       } else {
         // The gather g_m: L shared cosine directions (the reflected part) ...
         for (int l = 0; l < L_; ++l) {
-          const Vec3 w = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+          const Vec3 w = cosine_direction(frame, rng);
           for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
         }
         vis_.intersect(rays.data(), hits.data(), rays.size());
@@ -173,7 +183,9 @@ class Shooter {
           for (int l = 0; l < L_; ++l) {
             const std::size_t k = emitters_.choice.sample(rng.uniform());
             const std::size_t e = emitters_.patch[k];
-            const Vec3 z = PatchPointSampler(ps_, e).point(rng.uniform(), rng.uniform());
+            const double z2 = rng.uniform();  // sequenced as stratified_point's (second first)
+            const double z1 = rng.uniform();
+            const Vec3 z = PatchPointSampler(ps_, e).point(z1, z2);
             const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
             for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
             out.rays += M;
@@ -184,7 +196,7 @@ class Shooter {
       }
       // The fluctuation delta_m, shot along L shared directions.
       for (int l = 0; l < L_; ++l) {
-        const Vec3 v = frame.to_world(sample_cosine_hemisphere(rng.uniform(), rng.uniform()));
+        const Vec3 v = cosine_direction(frame, rng);
         for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], v);
       }
       vis_.intersect(rays.data(), hits.data(), rays.size());
