@@ -22,6 +22,7 @@ constexpr int kReplicates = 2;
 constexpr int kMaxSide = 8;
 constexpr int kMaxNearFieldSide = 16;
 constexpr int kPilotStream = 2 * kReplicates;  // streams 0, 1: the replicates; 2, 3: refined for the near field
+constexpr int kNearFieldShotFactor = 4;        // a near-field patch shoots its fluctuation along 4 L directions
 
 // Each patch's width: its area over its longest edge.
 std::vector<double> widths(const PatchSet& ps) {
@@ -66,6 +67,7 @@ struct PatchShots {
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
   std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
   int side = 0;             // the points per side used (more than the patch's own where the near field needed)
+  int shot_directions = 0;  // the shot directions used (more than L where the near field needed)
   long rays = 0;
 };
 
@@ -147,12 +149,14 @@ class Shooter {
   // drawn from streams of their own.
   void shoot(std::size_t j, int side, bool near_field, PatchShots& out, const std::vector<Rgb>* deltas) const {
     const int M = side * side;
+    const int Ls = near_field ? kNearFieldShotFactor * L_ : L_;
     out.side = side;
+    out.shot_directions = Ls;
     const PatchPointSampler on_j(ps_, j);
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
     std::vector<Vec3> y(M);
-    std::vector<Ray> rays(std::size_t(M) * L_);
+    std::vector<Ray> rays(std::size_t(M) * Ls);
     std::vector<Hit> hits(rays.size());
     std::vector<Rgb> g(M);
     for (int r = 0; r < kReplicates; ++r) {
@@ -172,8 +176,8 @@ class Shooter {
           const Vec3 w = cosine_direction(frame, rng);
           for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
         }
-        vis_.intersect(rays.data(), hits.data(), rays.size());
-        out.rays += long(rays.size());
+        vis_.intersect(rays.data(), hits.data(), std::size_t(M) * L_);
+        out.rays += long(M) * L_;
         for (int m = 0; m < M; ++m) {
           g[m] = Rgb::Zero();
           for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
@@ -195,19 +199,19 @@ class Shooter {
         mean /= M;
       }
       // The fluctuation delta_m, shot along L shared directions.
-      for (int l = 0; l < L_; ++l) {
+      for (int l = 0; l < Ls; ++l) {
         const Vec3 v = cosine_direction(frame, rng);
-        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], v);
+        for (int m = 0; m < M; ++m) rays[std::size_t(m) * Ls + l] = spawn_ray(offset, y[m], v);
       }
       vis_.intersect(rays.data(), hits.data(), rays.size());
       out.rays += long(rays.size());
-      const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
+      const double share = ps_.area[j] / (double(M) * Ls) * double(M) / (M - 1);
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m) {
         const Rgb delta = deltas ? (*deltas)[std::size_t(r) * M + m] : Rgb(ps_.rho[j] * (g[m] - mean));
         if (!deltas) out.deltas.push_back(delta);
-        for (int l = 0; l < L_; ++l) {
-          const Hit& h = hits[std::size_t(m) * L_ + l];
+        for (int l = 0; l < Ls; ++l) {
+          const Hit& h = hits[std::size_t(m) * Ls + l];
           if (h.missed() || !h.front) continue;
           const auto k = static_cast<std::size_t>(h.patch);
           out.hits.push_back(h.patch);
@@ -331,7 +335,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           const int side_q = part[q].side;
           out.sides[next_row + q] = side_q;
           if (side_q > 0 && side_q != sides[next_row + q]) ++out.near_field_patches;
-          const double per_row = double(kReplicates) * side_q * side_q * directions;
+          const double per_row = double(kReplicates) * side_q * side_q * part[q].shot_directions;
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
             while (b < h.size() && h[b] == h[a]) ++b;

@@ -22,7 +22,8 @@
 // all the points (common random numbers: where the points see the same thing, their g agree exactly); F(y -> e)
 // is the exact unoccluded point-to-polygon factor, so the emitted part has noise only where z is hidden; then
 //   delta_m = rho_j (g_m - mean_m g_m) M / (M - 1)      (the sample-covariance correction of centring on M points),
-// shot along L further cosine directions v_l shared by the points: the patch k hit from y_m (front) gets
+// shot along L further cosine directions v_l shared by the points (L' in the near field, below): the patch k hit
+// from y_m (front) gets
 //   rho_k delta_m A_j / (A_k M L).
 // Where all the points see the same patch the contributions cancel exactly (sum_m delta_m = 0), so only the near
 // geometry adds noise.
@@ -36,8 +37,11 @@
 // variance above is given the points and misses the points' own spread). So patch j first traces a pilot: L
 // cosine rays from each of s_j x s_j stratified points of a stream of its own; if one reaches another patch within
 // h_j that is thinner than h_j (its width: area over longest edge), both replicates use points spaced no wider than
-// the thinnest such patch (at most 16 per side; streams of their own), else s_j. The pilot chooses only the number
-// of points, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
+// the thinnest such patch (at most 16 per side; streams of their own) and shoot along L' = 4 L directions, else s_j
+// and L: a thin patch k beside j is reached only by the shots of j's few points nearest to it, whose directions
+// alone decide d_k (on the spot-lit room's 0.6 mm wall leaves in the floor's corner under the light, d = -1.7 +- 1.7
+// with L for a true -2.5, which the empirical-Bayes B_disc of discretisation_error.h shrinks to 0.2). The pilot
+// chooses only the number of points and directions, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
 //                                             (given the points, the L shot directions of a patch j are
@@ -46,8 +50,8 @@
 // so that a small patch whose d rests on a few large shots from a large patch is not, by a chance agreement of
 // the two replicates, taken as known exactly.
 //
-// Rays per patch: 2 replicates x M_j points x (2 L cosine rays + L shadow rays when the scene has emitters), plus
-// the pilot's s_j^2 L (M_j the near field's count where it asked for more points).
+// Rays per patch: 2 replicates x M_j points x (L gather + L' shot cosine rays + L shadow rays when the scene has
+// emitters), plus the pilot's s_j^2 L (M_j and L' the near field's where it asked for more, else s_j^2 and L).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
@@ -64,7 +68,7 @@ struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
   PatchRgb replicate[2];  // N x 3 each: d^(0), d^(1), the two independent replicates (d = their mean)
   PatchRgb variance;  // N x 3: the variance of that estimate
-  SparseF F;          // N x N: the shot rays' form factors (2 M L rays per row), for scenes solved without a stored F
+  SparseF F;          // N x N: the shot rays' form factors (2 M_j L' rays in row j), for scenes solved without a stored F
   std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m (B / moment_scale(max B));
                                          // only when asked (keep_deltas), for weighted_fluctuation_shots
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
@@ -89,8 +93,8 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
 // the same arguments with keep_deltas (checked): its delta_m are shot again along the same directions from the same
 // points (the same streams; the gathers are not traced again), so the shots are the same ones bit for bit and
 // sum_j a_j = sum_r sum_{k,c} w^(r)_kc d^(r)_kc up to rounding. Patch j's sum is formed by j alone (its shots in
-// their own order): reproducible for any thread count. Rays: the shot rays only, a third of the source's (a half
-// without emitters).
+// their own order): reproducible for any thread count. Rays: the shot rays only (a third of a patch's in the
+// source, a half without emitters; two thirds on a near-field patch).
 std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
                                                const PatchRgb& B, const FluctuationSource& source,
                                                const PatchRgb (&weights)[2], int directions, std::uint64_t seed,

@@ -162,7 +162,7 @@ TEST_CASE("discretisation error: a measurement's M_disc is the sum of its patche
 // are 2 replicates x M x 3 L (cosine gather, shadow rays to the emitter, shot) summed over the patches. With 4
 // points everywhere (the large faces' dark spots under the box would then be hit by a point in about one run in
 // six) they would be 60 x 24 L. That is without the near-field refinement; with it (the default) each patch adds
-// its pilot and may double its points per side.
+// its pilot and may take more points per side and shot directions.
 TEST_CASE("discretisation error: the fluctuation's points have one density over the scene") {
   PatchBuilder b;
   const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
@@ -180,14 +180,15 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
   // With the near-field refinement (the default) every patch first traces a pilot of s_j^2 L rays, and those whose
   // pilot reached a thinner patch within their points' spacing use more points (here: the room's faces, whose
-  // spacing 1/8 exceeds the box's patches' width 0.067; at most 16 a side).
+  // spacing 1/8 exceeds the box's patches' width 0.067; at most 16 a side) and shoot along 4 L directions.
   const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7);
   long rays = 0;
   for (std::size_t j = 0; j < 60; ++j) {
     const int own = j < 6 ? 8 : 2;
     INFO("patch " << j << ": " << refined.sides[j] << " points a side");
     CHECK((refined.sides[j] == own || (refined.sides[j] > own && refined.sides[j] <= 16)));
-    rays += 2L * refined.sides[j] * refined.sides[j] * 3 * L + own * own * L;
+    const int shot = refined.sides[j] > own ? 4 * L : L;
+    rays += 2L * refined.sides[j] * refined.sides[j] * (2 * L + shot) + own * own * L;
   }
   CHECK(refined.rays == rays);
   CHECK(refined.near_field_patches > 0);
