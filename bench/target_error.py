@@ -47,6 +47,7 @@ def main():
     p.add_argument("--scene-options", default="", help="options for every command (--unit, --scale, ...)")
     p.add_argument("--targets", default="0.03,0.01")
     p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--first-seed", type=int, default=1, help="the seeds are first-seed .. first-seed + seeds - 1")
     p.add_argument("--spp", type=int, default=2048)
     p.add_argument("--run", default="", help="more options of the --target-error runs (--max-patches, ...)")
     p.add_argument("--hand", action="append", default=[], help="a fixed setting to compare (repeatable)")
@@ -57,7 +58,7 @@ def main():
     print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e", "e_sd", "pt_noise", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
         for options in runs:
-            for seed in range(1, a.seeds + 1):
+            for seed in range(a.first_seed, a.first_seed + a.seeds):
                 vtp, run_csv, js, pt_csv = (os.path.join(tmp, n) for n in ("run.vtp", "run.csv", "run.json", "pt.csv"))
                 code, cpu = cpu_of([a.radwalk, "solve", a.scene, "--seed", str(seed), "-o", vtp, "--csv", run_csv,
                                     "--json", js] + scene_options + shlex.split(options))
