@@ -146,7 +146,7 @@ class Shooter {
   }
 
   // shoot(j) with side x side points a replicate; `near_field`: the points of the near-field refinement (header),
-  // drawn from streams of their own.
+  // drawn from streams of their own, and their fluctuation shot along 4 L directions.
   void shoot(std::size_t j, int side, bool near_field, PatchShots& out, const std::vector<Rgb>* deltas) const {
     const int M = side * side;
     const int Ls = near_field ? kNearFieldShotFactor * L_ : L_;
@@ -198,7 +198,7 @@ class Shooter {
         for (int m = 0; m < M; ++m) mean += g[m] /= L_;
         mean /= M;
       }
-      // The fluctuation delta_m, shot along L shared directions.
+      // The fluctuation delta_m, shot along Ls shared directions (L, or L' = 4 L in the near field).
       for (int l = 0; l < Ls; ++l) {
         const Vec3 v = cosine_direction(frame, rng);
         for (int m = 0; m < M; ++m) rays[std::size_t(m) * Ls + l] = spawn_ray(offset, y[m], v);
