@@ -30,7 +30,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   o.max_seconds = command.max_seconds;
   o.directions = command.discretisation_directions;
   o.split = command.hierarchical_split;
-  if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kHierarchicalStartLeaves;
   const bool form_factors = command.hierarchical_transport == "form-factors";
   o.each = target_groups(command, form_factors);
   const EmbreeVisibility visibility(roots);

@@ -73,7 +73,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   o.directions = discretisation_directions;
   o.each = held_groups(each, transport == "form-factors");
   o.split = split;
-  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kDefaultStartPatches;
+  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kHierarchicalStartLeaves;
   HierarchicalTargetResult r;
   interruptible([&] {
     ThreadLimit limit(threads);

@@ -25,24 +25,60 @@ bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOption
   return tree.is_leaf(e) && tree.level[e] < solve.max_level && tree.area[e] / 4 >= solve.min_area;
 }
 
-// The starting tree: rounds of splitting every leaf above 2 A / start_leaves, each round only if the leaves stay
-// within max_leaves (3 more per split).
-ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& solve, const HierarchicalTargetOptions& o) {
+// The longest side of element e: a quad's larger extent (split_kind.h, quad_extents), a triangle's longest edge.
+double longest_extent(const ElementTree& tree, std::size_t e) {
+  if (tree.corner_count[e] == 4) {
+    const auto [L01, L03] = quad_extents(tree, e);
+    return std::max(L01, L03);
+  }
+  const auto& c = tree.corner[e];
+  return std::max({(c[1] - c[0]).norm(), (c[2] - c[1]).norm(), (c[0] - c[2]).norm()});
+}
+
+// Rounds of splitting every leaf longer than L, each round only if the leaves stay within max_leaves (3 more per
+// split). With bands allowed, a quad longer than L one way only and more than twice as long as wide is cut in bands
+// across its length (bands at most twice as long as wide), as uniform patching cuts a strip; else in quarters.
+ElementTree split_to_extent(const PatchSet& roots, const HierarchicalOptions& solve, long max_leaves, double L,
+                            bool bands) {
   ElementTree tree = make_element_tree(roots);
-  if (o.start_leaves == 0) return tree;
-  const double largest = 2 * roots.total_area() / double(o.start_leaves);
   for (;;) {
     const std::vector<ElementIndex> leaves = tree.leaves();
     std::vector<ElementIndex> marked;
-    for (const ElementIndex e : leaves)
-      if (tree.area[static_cast<std::size_t>(e)] > largest && splittable(tree, static_cast<std::size_t>(e), solve))
-        marked.push_back(e);
-    if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > o.max_leaves) return tree;
+    for (const ElementIndex e : leaves) {
+      const auto x = static_cast<std::size_t>(e);
+      if (longest_extent(tree, x) > L && splittable(tree, x, solve)) marked.push_back(e);
+    }
+    if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > max_leaves) return tree;
     for (const ElementIndex e : marked) {
       const auto x = static_cast<std::size_t>(e);
-      tree.split(x, o.split == "adaptive" ? choose_split_kind(tree, x, 0, 0) : SplitKind::regular);
+      SplitKind kind = SplitKind::regular;
+      if (bands && tree.corner_count[x] == 4) {
+        const auto [L01, L03] = quad_extents(tree, x);
+        if (L03 <= L && L01 > 2 * L03) kind = SplitKind::bands_01;
+        if (L01 <= L && L03 > 2 * L01) kind = SplitKind::bands_12;
+      }
+      tree.split(x, kind);
     }
   }
+}
+
+// The starting tree (header): split_to_extent at the largest L whose tree has at least roots + start_leaves leaves,
+// found by bisection in log L between 1e-4 times the roots' longest edge and that edge.
+ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& solve, const HierarchicalTargetOptions& o) {
+  if (o.start_leaves == 0) return make_element_tree(roots);
+  const std::size_t wanted = roots.size() + o.start_leaves;
+  double longest = 0;
+  for (std::size_t i = 0; i < roots.size(); ++i) {
+    const int n = roots.corner_count(i);
+    for (int k = 0; k < n; ++k) longest = std::max(longest, (roots.corner(i, (k + 1) % n) - roots.corner(i, k)).norm());
+  }
+  const bool bands = o.split == "adaptive";
+  double lo = 1e-4 * longest, hi = longest;
+  for (int it = 0; it < 30; ++it) {
+    const double mid = std::sqrt(lo * hi);
+    (split_to_extent(roots, solve, o.max_leaves, mid, bands).leaves().size() >= wanted ? lo : hi) = mid;
+  }
+  return split_to_extent(roots, solve, o.max_leaves, lo, bands);
 }
 
 // The leaf rows to split (solve/refinement_marks.h): by eta_l^2 and by the shooter shares (when estimated), each

@@ -31,7 +31,8 @@
 //      equidistributes the error, and far from the target the share is 1); where the statistical part is above its
 //      target, R grows by the plan's factor.
 // Split kind (options.split "adaptive"): before splitting, the leaves marked in step 4 get their directional variation
-// estimated (its rays are the step's) and each is split as hierarchy/split_kind.h chooses; the start splits by shape.
+// estimated (its rays are the step's) and each is split as hierarchy/split_kind.h chooses; the start splits by edge
+// length (below).
 // The stopping and the budgets are the uniform route's: e is judged on B_disc (the error of each leaf's average,
 // what the per-element benchmark measures), while the indicator that picks the leaves also weighs the variation
 // inside them (a leaf straddling a shadow line has a small B_disc but a large W2). max_leaves bounds the leaves;
@@ -39,8 +40,13 @@
 // pass max_seconds (0: none); at most max_steps solves. When a budget stops the run first, `reached` is false and
 // stop_reason names it ("max-leaves", "max-seconds", "max-steps", "rays"); the last solution (the most accurate)
 // is kept with its own estimates.
-// start_leaves > 0: before the first step every leaf larger than 2 A / start_leaves (A the roots' total area) is
-// split, again until none is, within max_leaves (the uniform route's start of about 500 patches).
+// start_leaves > 0: before the first step every leaf longer than L is split, again until none is, within max_leaves,
+// L the largest length that gives at least (roots + start_leaves) leaves; with the adaptive split a quad more than
+// twice as long as wide is cut in bands across its length (as uniform patching by edge length cuts a strip). By
+// edge length rather than by area, and relative to the roots: a start of 500 by area in quarters put 64 leaves on
+// each wall of the Cornell box where the boxes needed them (about 3 x uniform patching's elements at equal error,
+// against 1.4-1.6 x), and on the spot-lit room it stopped once at 1.22 x its estimate; a fixed count below the input
+// faces (the furniture room's 341) would leave its large faces whole (docs/hierarchy.md, "A start by edge length").
 //
 // Transport. Step 1 above is the hierarchy's own ("rays": hierarchical stochastic Jacobi) unless a leaf solver
 // `leaf_work` is given ("form factors"): then step 1 turns the current leaves into patches (leaf_patches.h, leaf k =
@@ -59,6 +65,10 @@
 
 namespace radwalk {
 
+// The start of `--hierarchical --target-error` given no patching (no --max-edge or --max-area; Python: a Scene
+// loaded without them): the roots and about 200 leaves more, by edge length (start_leaves below).
+inline constexpr std::size_t kHierarchicalStartLeaves = 200;
+
 struct HierarchicalTargetOptions {
   double target = 0.01;      // E, in (0, 1)
   long rays_per_leaf = 1000;  // R of the first step (>= 1)
@@ -72,8 +82,8 @@ struct HierarchicalTargetOptions {
   // uniform route, solve/target_error.h: the leaves with the largest shares of a group's error are split). Form-factor transport only:
   // the group means' errors need the adjoint of a stored F.
   std::string each;
-  // "regular": every split regular; "adaptive": each split's kind by hierarchy/split_kind.h, the start's by the
-  // shape alone and each step's from the directional variation (leaf_directional_variation, m = max(points_side,
+  // "regular": every split regular; "adaptive": each split's kind by hierarchy/split_kind.h, the start's by edge
+  // length (start_leaves) and each step's from the directional variation (leaf_directional_variation, m = max(points_side,
   // 4) per side, `directions` directions, seed the step's + 1) estimated for the leaves marked for splitting only.
   std::string split = "regular";
 };
