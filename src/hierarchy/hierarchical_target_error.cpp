@@ -38,9 +38,8 @@ double longest_extent(const ElementTree& tree, std::size_t e) {
 // Rounds of splitting every leaf longer than L, each round only if the leaves stay within max_leaves (3 more per
 // split). With bands allowed, a quad longer than L one way only and more than twice as long as wide is cut in bands
 // across its length (bands at most twice as long as wide), as uniform patching cuts a strip; else in quarters.
-ElementTree split_to_extent(const PatchSet& roots, const HierarchicalOptions& solve, long max_leaves, double L,
-                            bool bands) {
-  ElementTree tree = make_element_tree(roots);
+// tree: the unsplit trees of the roots (a copy, split here).
+ElementTree split_to_extent(ElementTree tree, const HierarchicalOptions& solve, long max_leaves, double L, bool bands) {
   for (;;) {
     const std::vector<ElementIndex> leaves = tree.leaves();
     std::vector<ElementIndex> marked;
@@ -63,22 +62,20 @@ ElementTree split_to_extent(const PatchSet& roots, const HierarchicalOptions& so
 }
 
 // The starting tree (header): split_to_extent at the largest L whose tree has at least roots + start_leaves leaves,
-// found by bisection in log L between 1e-4 times the roots' longest edge and that edge.
+// found by bisection in log L between 1e-4 times the roots' longest extent and that extent (where nothing is split).
 ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& solve, const HierarchicalTargetOptions& o) {
-  if (o.start_leaves == 0) return make_element_tree(roots);
+  const ElementTree unsplit = make_element_tree(roots);
+  if (o.start_leaves == 0) return unsplit;
   const std::size_t wanted = roots.size() + o.start_leaves;
   double longest = 0;
-  for (std::size_t i = 0; i < roots.size(); ++i) {
-    const int n = roots.corner_count(i);
-    for (int k = 0; k < n; ++k) longest = std::max(longest, (roots.corner(i, (k + 1) % n) - roots.corner(i, k)).norm());
-  }
+  for (const ElementIndex e : unsplit.leaves()) longest = std::max(longest, longest_extent(unsplit, std::size_t(e)));
   const bool bands = o.split == "adaptive";
   double lo = 1e-4 * longest, hi = longest;
   for (int it = 0; it < 30; ++it) {
     const double mid = std::sqrt(lo * hi);
-    (split_to_extent(roots, solve, o.max_leaves, mid, bands).leaves().size() >= wanted ? lo : hi) = mid;
+    (split_to_extent(unsplit, solve, o.max_leaves, mid, bands).leaves().size() >= wanted ? lo : hi) = mid;
   }
-  return split_to_extent(roots, solve, o.max_leaves, lo, bands);
+  return split_to_extent(unsplit, solve, o.max_leaves, lo, bands);
 }
 
 // The leaf rows to split (solve/refinement_marks.h): by eta_l^2 and by the shooter shares (when estimated), each
