@@ -273,3 +273,36 @@ TEST_CASE("hierarchical target error: far from the target, leaves within their s
   CHECK(first.split == above);
   CHECK(above < positive);
 }
+
+// The start (hierarchical_target_error.h, start_leaves): every leaf longer than L split, L the largest that gives
+// at least the roots and start_leaves more. Deterministic: the first step's leaves number at least that many, and
+// no leaf keeps more than half the longest root edge (the largest roots were split). A start that split nothing,
+// or too little, fails the count.
+TEST_CASE("hierarchical target error: the start splits by edge length to the roots and start_leaves more",
+          "[hierarchy][target_error]") {
+  const PatchSet roots = block_room();
+  const EmbreeVisibility visibility(roots);
+  HierarchicalTargetOptions o;
+  o.target = 0.001;  // out of reach: one step (max_steps) on the starting tree
+  o.max_steps = 1;
+  o.rays_per_leaf = 50;
+  o.start_leaves = 120;
+  o.directions = 2;
+  o.split = "adaptive";
+  const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 29); };
+  const HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, solve_options(7), o, {}, work);
+  REQUIRE(r.steps.size() == 1);
+  const ElementTree& tree = r.solution.tree;
+  INFO(roots.size() << " roots, " << r.solution.leaves.size() << " leaves");
+  CHECK(r.solution.leaves.size() >= roots.size() + o.start_leaves);
+  double longest_root = 0, longest_leaf = 0;
+  for (std::size_t i = 0; i < roots.size(); ++i)
+    for (int k = 0; k < roots.corner_count(i); ++k)
+      longest_root = std::max(longest_root, (roots.corner(i, (k + 1) % roots.corner_count(i)) - roots.corner(i, k)).norm());
+  for (const ElementIndex e : r.solution.leaves)
+    for (int k = 0; k < tree.corner_count[std::size_t(e)]; ++k) {
+      const auto& c = tree.corner[std::size_t(e)];
+      longest_leaf = std::max(longest_leaf, (c[(k + 1) % tree.corner_count[std::size_t(e)]] - c[k]).norm());
+    }
+  CHECK(longest_leaf <= 0.5 * longest_root + 1e-9);
+}
