@@ -85,18 +85,24 @@ double t_critical(double alpha, double nu) {
   return z + (z3 + z) / (4 * nu) + (5 * z5 + 16 * z3 + 3 * z) / (96 * nu * nu);
 }
 
+// A target out of reach and one step (max_steps): a single solve on the starting tree of start_leaves.
+HierarchicalTargetOptions one_step_on_the_start(long rays_per_leaf, std::size_t start_leaves, int directions) {
+  HierarchicalTargetOptions o;
+  o.target = 0.001;
+  o.max_steps = 1;
+  o.rays_per_leaf = rays_per_leaf;
+  o.start_leaves = start_leaves;
+  o.directions = directions;
+  return o;
+}
+
 }  // namespace
 
 TEST_CASE("hierarchical target error: the two transports give the same leaves' B within their errors",
           "[hierarchy][target_error]") {
   const PatchSet roots = block_room();
   const EmbreeVisibility visibility(roots);
-  HierarchicalTargetOptions o;
-  o.target = 0.001;   // out of reach: one step (max_steps) on the starting tree
-  o.max_steps = 1;
-  o.rays_per_leaf = 2000;
-  o.start_leaves = 150;
-  o.directions = 4;
+  const HierarchicalTargetOptions o = one_step_on_the_start(2000, 150, 4);
   HierarchicalOptions h = solve_options(5);
   h.replicates = 40;
   const HierarchicalTargetResult rays = solve_hierarchical_to_target_error(roots, visibility, h, o);
@@ -282,12 +288,7 @@ TEST_CASE("hierarchical target error: the start splits by edge length to the roo
           "[hierarchy][target_error]") {
   const PatchSet roots = block_room();
   const EmbreeVisibility visibility(roots);
-  HierarchicalTargetOptions o;
-  o.target = 0.001;  // out of reach: one step (max_steps) on the starting tree
-  o.max_steps = 1;
-  o.rays_per_leaf = 50;
-  o.start_leaves = 120;
-  o.directions = 2;
+  HierarchicalTargetOptions o = one_step_on_the_start(50, 120, 2);
   o.split = "adaptive";
   const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 29); };
   const HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, solve_options(7), o, {}, work);
