@@ -12,6 +12,8 @@ bench/per_material.py and the realmesh test tests/realmesh/run_furniture_target.
                              centroid and normal (below), both as tables in the same order.
   measured_error(run, reference) -> (e, e_sd, noise, unmatched): the relative error with the reference's noise
                              taken out (below).
+  measured_discretisation_error(run, reference) -> (e_disc, e_stat): e with the run's own stated statistical
+                             error taken out as well (below).
   material_means(run, reference) -> {material: MaterialMean}, per material in order of first appearance (below).
 
 Matching: the reference read back may list the patches in another order (back patches, repaired faces) and drop a
@@ -26,6 +28,13 @@ Measured error, over the (patch, channel) values of the reflecting, non-emitting
           Var(sum A (d + n)^2 - sum A se^2) ~ sum A^2 (2 se^4 + 4 d^2 se^2) (n ~ N(0, se^2) per value, d^2 taken as
           max((B - B_ref)^2 - se^2, 0)), carried to e by de = d(e^2) / (2 e),
   noise = sqrt(sum A se^2 / sum A B_ref^2), the reference's relative noise.
+Its discretisation part, over the same values, s the run's own B_se:
+  e_stat = sqrt(sum A s^2 / sum A B_ref^2), the run's stated statistical error,
+  e_disc = sqrt(max(e^2 - e_stat^2, 0)): B - B_ref = (discretisation bias) + (run's noise) + (reference's noise),
+           the two noises independent, zero-mean and independent of the bias, so E[sum A (B - B_ref)^2] = sum A
+           bias^2 + sum A s_true^2 + sum A se_true^2; both stated variances are unbiased estimates of the true ones
+           (their coverage: docs/accuracy.md), so e_disc estimates the relative L2 norm of the bias alone. This is
+           what "at equal discretisation error" compares: a run with fewer rays a patch is not charged for its noise.
 
 Per material m, over its reflecting non-emitting patches (E_ref = 0 and rho_ref > 0 in some channel), all channels
 together:
@@ -87,6 +96,17 @@ def measured_error(run, reference):
     e = np.sqrt(max(err2 - noise2, 0.0) / size2)
     e_sd = np.sqrt(var_e2) / (2 * e) if e > 0 else np.sqrt(np.sqrt(var_e2))
     return e, e_sd, np.sqrt(noise2 / size2), unmatched
+
+
+def measured_discretisation_error(run, reference):
+    """(e_disc, e_stat) of the run against the reference (see the module's docstring)."""
+    r, ref, _ = matched(run, reference)
+    keep = (ref["E"].max(1) == 0)[:, None] & (ref["rho"] > 0) & (ref["B"] > 0)
+    W = np.repeat(ref["area"][:, None], 3, 1)[keep]
+    size2 = float((W * ref["B"][keep] ** 2).sum())
+    e_stat2 = float((W * r["B_se"][keep] ** 2).sum()) / size2
+    e = measured_error(run, reference)[0]
+    return np.sqrt(max(e * e - e_stat2, 0.0)), np.sqrt(e_stat2)
 
 
 def material_means(run, reference):
