@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
+#include "hierarchy/start_by_edge_length.h"
 #include "solve/discretisation_error.h"
 #include "visibility/embree_visibility.h"
 
@@ -30,7 +31,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
   o.max_seconds = command.max_seconds;
   o.directions = command.discretisation_directions;
   o.split = command.hierarchical_split;
-  if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kHierarchicalStartLeaves;
+  if (command.scene.max_edge == 0 && command.scene.max_area == 0) o.start_leaves = kStartMoreElements;
   const bool form_factors = command.hierarchical_transport == "form-factors";
   o.each = target_groups(command, form_factors);
   const EmbreeVisibility visibility(roots);

@@ -13,6 +13,7 @@
 #include "formfactor/emitter_form_factors.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
+#include "hierarchy/start_by_edge_length.h"
 #include "interruptible.h"
 #include "solve/target_error.h"
 #include "solve/target_error_stage.h"
@@ -73,7 +74,7 @@ TargetErrorPyResult hierarchical_to_target_error(const Scene& scene, double targ
   o.directions = discretisation_directions;
   o.each = held_groups(each, transport == "form-factors");
   o.split = split;
-  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kHierarchicalStartLeaves;
+  if (scene.max_edge == 0 && scene.max_area == 0) o.start_leaves = kStartMoreElements;
   HierarchicalTargetResult r;
   interruptible([&] {
     ThreadLimit limit(threads);

@@ -13,6 +13,7 @@
 #include "hierarchy/leaf_patches.h"
 #include "hierarchy/leaf_variation.h"
 #include "hierarchy/split_kind.h"
+#include "hierarchy/start_by_edge_length.h"
 #include "solve/discretisation_error.h"
 #include "solve/refinement_marks.h"
 
@@ -20,63 +21,6 @@ namespace radwalk {
 namespace {
 
 constexpr int kMaxPointsSide = 64;  // 4096 direct-light points per leaf at most
-
-bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& solve) {
-  return tree.is_leaf(e) && tree.level[e] < solve.max_level && tree.area[e] / 4 >= solve.min_area;
-}
-
-// The longest side of element e: a quad's larger extent (split_kind.h, quad_extents), a triangle's longest edge.
-double longest_extent(const ElementTree& tree, std::size_t e) {
-  if (tree.corner_count[e] == 4) {
-    const auto [L01, L03] = quad_extents(tree, e);
-    return std::max(L01, L03);
-  }
-  const auto& c = tree.corner[e];
-  return std::max({(c[1] - c[0]).norm(), (c[2] - c[1]).norm(), (c[0] - c[2]).norm()});
-}
-
-// Rounds of splitting every leaf longer than L, each round only if the leaves stay within max_leaves (3 more per
-// split). With bands allowed, a quad longer than L one way only and more than twice as long as wide is cut in bands
-// across its length (bands at most twice as long as wide), as uniform patching cuts a strip; else in quarters.
-// tree: the unsplit trees of the roots (a copy, split here).
-ElementTree split_to_extent(ElementTree tree, const HierarchicalOptions& solve, long max_leaves, double L, bool bands) {
-  for (;;) {
-    const std::vector<ElementIndex> leaves = tree.leaves();
-    std::vector<ElementIndex> marked;
-    for (const ElementIndex e : leaves) {
-      const auto x = static_cast<std::size_t>(e);
-      if (longest_extent(tree, x) > L && splittable(tree, x, solve)) marked.push_back(e);
-    }
-    if (marked.empty() || static_cast<long>(leaves.size() + 3 * marked.size()) > max_leaves) return tree;
-    for (const ElementIndex e : marked) {
-      const auto x = static_cast<std::size_t>(e);
-      SplitKind kind = SplitKind::regular;
-      if (bands && tree.corner_count[x] == 4) {
-        const auto [L01, L03] = quad_extents(tree, x);
-        if (L03 <= L && L01 > 2 * L03) kind = SplitKind::bands_01;
-        if (L01 <= L && L03 > 2 * L01) kind = SplitKind::bands_12;
-      }
-      tree.split(x, kind);
-    }
-  }
-}
-
-// The starting tree (header): split_to_extent at the largest L whose tree has at least roots + start_leaves leaves,
-// found by bisection in log L between 1e-4 times the roots' longest extent and that extent (where nothing is split).
-ElementTree split_to_start(const PatchSet& roots, const HierarchicalOptions& solve, const HierarchicalTargetOptions& o) {
-  const ElementTree unsplit = make_element_tree(roots);
-  if (o.start_leaves == 0) return unsplit;
-  const std::size_t wanted = roots.size() + o.start_leaves;
-  double longest = 0;
-  for (const ElementIndex e : unsplit.leaves()) longest = std::max(longest, longest_extent(unsplit, std::size_t(e)));
-  const bool bands = o.split == "adaptive";
-  double lo = 1e-4 * longest, hi = longest;
-  for (int it = 0; it < 30; ++it) {
-    const double mid = std::sqrt(lo * hi);
-    (split_to_extent(unsplit, solve, o.max_leaves, mid, bands).leaves().size() >= wanted ? lo : hi) = mid;
-  }
-  return split_to_extent(unsplit, solve, o.max_leaves, lo, bands);
-}
 
 // The leaf rows to split (solve/refinement_marks.h): by eta_l^2 and by the shooter shares (when estimated), each
 // until its marked leaves hold `fraction` of its sum or the next is at most `floor`, at most `room` leaves, only
@@ -120,7 +64,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
                      std::to_string(roots.size()) + " patches");
   const Timer run;
   HierarchicalTargetResult out;
-  ElementTree tree = split_to_start(roots, solve, o);
+  ElementTree tree = start_by_edge_length(roots, o.start_leaves, o.max_leaves, o.split == "adaptive", solve);
   long rays = o.rays_per_leaf;
   const std::size_t emitters = std::max<std::size_t>(1, emitter_roots(roots).size());
   for (int s = 0;; ++s) {

@@ -40,13 +40,9 @@
 // pass max_seconds (0: none); at most max_steps solves. When a budget stops the run first, `reached` is false and
 // stop_reason names it ("max-leaves", "max-seconds", "max-steps", "rays"); the last solution (the most accurate)
 // is kept with its own estimates.
-// start_leaves > 0: before the first step every leaf longer than L is split, again until none is, within max_leaves,
-// L the largest length that gives at least (roots + start_leaves) leaves; with the adaptive split a quad more than
-// twice as long as wide is cut in bands across its length (as uniform patching by edge length cuts a strip). By
-// edge length rather than by area, and relative to the roots: a start of 500 by area in quarters put 64 leaves on
-// each wall of the Cornell box where the boxes needed them (about 3 x uniform patching's elements at equal error,
-// against 1.4-1.6 x), and on the spot-lit room it stopped once at 1.22 x its estimate; a fixed count below the input
-// faces (the furniture room's 341) would leave its large faces whole (docs/hierarchy.md, "A start by edge length").
+// start_leaves > 0: before the first step the trees are split by edge length to the roots and about start_leaves
+// leaves more, within max_leaves, with bands where the split is adaptive (hierarchy/start_by_edge_length.h: the
+// uniform route starts alike).
 //
 // Transport. Step 1 above is the hierarchy's own ("rays": hierarchical stochastic Jacobi) unless a leaf solver
 // `leaf_work` is given ("form factors"): then step 1 turns the current leaves into patches (leaf_patches.h, leaf k =
@@ -64,10 +60,6 @@
 #include "solve/target_error.h"
 
 namespace radwalk {
-
-// The start of `--hierarchical --target-error` given no patching (no --max-edge or --max-area; Python: a Scene
-// loaded without them): the roots and about 200 leaves more, by edge length (start_leaves below).
-inline constexpr std::size_t kHierarchicalStartLeaves = 200;
 
 struct HierarchicalTargetOptions {
   double target = 0.01;      // E, in (0, 1)

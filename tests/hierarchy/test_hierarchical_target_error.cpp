@@ -280,7 +280,7 @@ TEST_CASE("hierarchical target error: far from the target, leaves within their s
   CHECK(above < positive);
 }
 
-// The start (hierarchical_target_error.h, start_leaves): every leaf longer than L split, L the largest that gives
+// The start (hierarchy/start_by_edge_length.h, start_leaves): every leaf longer than L split, L the largest that gives
 // at least the roots and start_leaves more. Deterministic: the first step's leaves number at least that many, and
 // no leaf keeps more than half the longest root edge (the largest roots were split). A start that split nothing,
 // or too little, fails the count.
