@@ -50,6 +50,8 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
   if (o.rays_per_leaf < 1) throw InputError("the target error's rays per leaf must be >= 1");
   if (!(o.max_seconds >= 0)) throw InputError("the target error's time budget must be >= 0 seconds");
   if (o.max_steps < 1) throw InputError("the target error's steps must be >= 1");
+  if (!(o.bulk > 0 && o.bulk <= 1))
+    throw InputError("the hierarchical target error's bulk parameter must be in (0, 1], got " + std::to_string(o.bulk));
   if (o.directions < 1 || o.points_side < 2)
     throw InputError("the hierarchical target error's estimate needs directions >= 1 and points per side >= 2");
   if (!o.each.empty() && o.each != "material" && o.each != "object" && o.each != "group")
@@ -147,7 +149,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       bool refine = plan.refine;
       if (plan.refine) {
         // The largest eta_l^2 (and the largest shooter shares, where estimated: solve/refinement_marks.h) first
-        // until they hold the plan's share of their sums.
+        // until they hold the plan's share of their sums, at most theta (o.bulk: Doerfler's marking, header).
         // A leaf already within its equal share of the discretisation target, eta_l^2 <= t_d^2 sum_l A_l |B_l|^2 / N
         // (t_d = 0.7 E, the plan's; N the leaves now), is never split: the optimal mesh equidistributes eta_l^2, and
         // when the plan's share is 1 (e_d far above the target) the rule alone would split every leaf, however
@@ -169,7 +171,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
                               ? leaves.area[k] * ind.B_disc.row(static_cast<Eigen::Index>(k)).square().sum()
                               : 0.0;
         }
-        split = leaves_to_split(h.tree, h.leaves, receiver, shooter, plan.split_fraction, share,
+        split = leaves_to_split(h.tree, h.leaves, receiver, shooter, std::min(plan.split_fraction, o.bulk), share,
                                 static_cast<std::size_t>(std::max(0L, o.max_leaves - leaves_now)) / 3, solve);
       }
       if (!groups.empty()) {

@@ -16,7 +16,9 @@
 //     at a family-wise significance of 1e-3 over the leaves (Sidak), one channel (the room is grey).
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <string>
 
 #include "core/error.h"
@@ -234,15 +236,22 @@ TEST_CASE("hierarchical target error: options out of range are refused", "[hiera
   refused([](HierarchicalTargetOptions& o) { o.rays_per_leaf = 0; });
   refused([](HierarchicalTargetOptions& o) { o.max_leaves = 3; });
   refused([](HierarchicalTargetOptions& o) { o.points_side = 1; });
+  refused([](HierarchicalTargetOptions& o) { o.bulk = 0; });
+  refused([](HierarchicalTargetOptions& o) { o.bulk = 1.5; });
 }
 
-// With the estimated discretisation part at the target or above, the plan's share is 1 (solve/target_error.h): the
-// split must still leave alone the leaves within their equal share of the target, eta_l^2 <= 0.49 E^2 sum A B^2 /
-// N. Step 0 is recomputed from a run stopped after it (the same seed: the same tree, B, B_disc and W2), and the
-// split after it must be exactly the leaves above that share, fewer than those with eta_l^2 > 0 (which the rule
-// without the share split).
-TEST_CASE("hierarchical target error: far from the target, leaves within their share are not split",
-          "[hierarchy][target_error]") {
+// Step 0 of a run far from its target on the block room (target 0.005, 400 start leaves), and what the split
+// after it is measured against: the leaves' eta_l^2 recomputed from a run stopped after step 0 (the same seed: the
+// same tree, B, B_disc and W2) and the equal share 0.49 E^2 sum A B^2 / N.
+struct FarFromTarget {
+  TargetErrorStep first;     // step 0 of the two-step run
+  TargetErrorPlan plan;      // its plan
+  std::vector<double> eta2;  // its leaves' receiver shares
+  std::vector<bool> splittable;
+  double share = 0;
+};
+
+FarFromTarget far_from_target(double bulk) {
   const PatchSet roots = block_room();
   const EmbreeVisibility visibility(roots);
   HierarchicalTargetOptions o;
@@ -251,33 +260,72 @@ TEST_CASE("hierarchical target error: far from the target, leaves within their s
   o.rays_per_leaf = 200;
   o.start_leaves = 400;
   o.directions = 4;
+  o.bulk = bulk;
   const HierarchicalOptions h = solve_options(6);
   const TargetErrorWork work = [](const PatchSet& p, long r, int) { return form_factor_step(p, r, 23); };
   const HierarchicalTargetResult r = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
   o.max_steps = 1;
   const HierarchicalTargetResult r0 = solve_hierarchical_to_target_error(roots, visibility, h, o, {}, work);
   REQUIRE(r.steps.size() == 2);
-  const TargetErrorStep& first = r.steps[0].step;
-  const TargetErrorPlan plan = plan_target_error_step(first.statistical, first.discretisation, o.target,
-                                                      first.rays_per_patch);
-  REQUIRE(plan.refine);
-  REQUIRE(plan.split_fraction == 1.0);
+  FarFromTarget f;
+  f.first = r.steps[0].step;
+  f.plan = plan_target_error_step(f.first.statistical, f.first.discretisation, o.target, f.first.rays_per_patch);
   const HierarchicalResult& s0 = r0.solution;
-  REQUIRE(s0.leaves.size() == first.patches);
-  const LeafErrorIndicator ind = leaf_error_indicator(roots, visibility, s0.tree, s0.leaves, s0.B, r0.B_disc,
-                                                      o.directions, o.points_side, h.seed);
+  REQUIRE(s0.leaves.size() == f.first.patches);
+  f.eta2 = leaf_error_indicator(roots, visibility, s0.tree, s0.leaves, s0.B, r0.B_disc, o.directions, o.points_side,
+                                h.seed)
+               .eta2;
   const PatchSet leaves = leaf_patches(roots, s0.tree, s0.leaves);
   double norm = 0;
   for (std::size_t k = 0; k < leaves.size(); ++k)
     if (!(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any())
       norm += leaves.area[k] * s0.B.row(static_cast<Eigen::Index>(k)).square().sum();
-  const double share = 0.49 * o.target * o.target * norm / double(leaves.size());
+  f.share = 0.49 * o.target * o.target * norm / double(leaves.size());
+  for (const ElementIndex e : s0.leaves)
+    f.splittable.push_back(s0.tree.level[std::size_t(e)] < h.max_level && s0.tree.area[std::size_t(e)] / 4 >= h.min_area);
+  return f;
+}
+
+// With the estimated discretisation part at the target or above, the plan's share is 1 (solve/target_error.h):
+// uncapped (bulk 1), the split must still leave alone the leaves within their equal share of the target, and be
+// exactly the leaves above it, fewer than those with eta_l^2 > 0 (which the rule without the share split).
+TEST_CASE("hierarchical target error: far from the target, leaves within their share are not split",
+          "[hierarchy][target_error]") {
+  const FarFromTarget f = far_from_target(1.0);
+  REQUIRE(f.plan.refine);
+  REQUIRE(f.plan.split_fraction == 1.0);
   std::size_t above = 0, positive = 0;
-  for (const double e2 : ind.eta2) above += e2 > share, positive += e2 > 0;
-  INFO("leaves " << first.patches << ", e_d " << first.discretisation << ": split " << first.split
+  for (const double e2 : f.eta2) above += e2 > f.share, positive += e2 > 0;
+  INFO("leaves " << f.first.patches << ", e_d " << f.first.discretisation << ": split " << f.first.split
                  << ", above the share " << above << ", eta^2 > 0 " << positive);
-  CHECK(first.split == above);
+  CHECK(f.first.split == above);
   CHECK(above < positive);
+}
+
+// Doerfler's marking (hierarchical_target_error.h, bulk): the same step with theta = 0.7 splits the fewest leaves,
+// largest eta_l^2 first, that hold 0.7 of sum eta_l^2 (none within the share), fewer than the uncapped rule's.
+TEST_CASE("hierarchical target error: far from the target, a step splits the fewest leaves holding theta of the "
+          "error", "[hierarchy][target_error]") {
+  const FarFromTarget f = far_from_target(0.7);
+  REQUIRE(f.plan.split_fraction == 1.0);
+  double total = 0, above = 0;
+  for (const double e2 : f.eta2) total += std::max(e2, 0.0), above += e2 > f.share;
+  std::vector<std::size_t> order(f.eta2.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return f.eta2[a] > f.eta2[b]; });
+  std::size_t expected = 0;
+  double held = 0;
+  for (const std::size_t k : order) {
+    if (!(f.eta2[k] > f.share) || held >= 0.7 * total) break;
+    if (!f.splittable[k]) continue;
+    ++expected;
+    held += f.eta2[k];
+  }
+  INFO("leaves " << f.first.patches << ": split " << f.first.split << ", expected " << expected << ", above the share "
+                 << above);
+  CHECK(f.first.split == expected);
+  CHECK(double(expected) < above);
+  CHECK(held >= 0.7 * total);  // theta was reached before the share stopped the marks: the cap is what bound
 }
 
 // The start (hierarchy/start_by_edge_length.h, start_leaves): every leaf longer than L split, L the largest that gives
