@@ -42,19 +42,9 @@
 // pass max_seconds (0: none); at most max_steps solves. When a budget stops the run first, `reached` is false and
 // stop_reason names it ("max-leaves", "max-seconds", "max-steps", "rays"); the last solution (the most accurate)
 // is kept with its own estimates.
-// The bulk parameter theta: Doerfler's marking (Doerfler 1996; with theta small enough it gives meshes of
-// quasi-optimal size, Cascon, Kreuzer, Nochetto and Siebert 2008) splits the fewest elements holding theta of the
-// summed indicator and re-estimates. Uncapped (the plan's share 1 whenever e_d >= 1.2 t_d) a step split every leaf
-// above the equal share: on the spot-lit room, whose error sits in a few mm-sized wall leaves at the floor beside
-// the light, a step from 2,776 leaves split 1,074 and the 6,000-leaf budget ran out at 2.3 % (seed 3); with theta =
-// 0.7 the four seeds reach 1 % with 1,114-1,198 leaves in 7-9 steps, and the Cornell box takes 436-601 leaves for
-// 0.01 where it took 727-847 (docs/hierarchy.md, "Doerfler's marking"). The groups' plans (options.each) are not
-// capped: they hold each group's mean, whose error is spread over the group.
-inline constexpr double kBulkFraction = 0.7;
-
 // start_leaves > 0: before the first step the trees are split by edge length to the roots and about start_leaves
-// leaves more, within max_leaves, with bands where the split is adaptive (hierarchy/start_by_edge_length.h: the
-// uniform route starts alike).
+// leaves more, within max_leaves, with bands where the split is adaptive (hierarchy/start_by_edge_length.h; the
+// uniform route starts by area, solve/target_error.h).
 //
 // Transport. Step 1 above is the hierarchy's own ("rays": hierarchical stochastic Jacobi) unless a leaf solver
 // `leaf_work` is given ("form factors"): then step 1 turns the current leaves into patches (leaf_patches.h, leaf k =
@@ -72,6 +62,17 @@ inline constexpr double kBulkFraction = 0.7;
 #include "solve/target_error.h"
 
 namespace radwalk {
+
+// The bulk parameter theta: Doerfler's marking (Doerfler 1996; with theta small enough it gives meshes of
+// quasi-optimal size, Cascon, Kreuzer, Nochetto and Siebert 2008) splits the fewest elements holding theta of
+// the summed indicator and re-estimates. Uncapped (the plan's share is 1 whenever e_d >= sqrt(2) t_d) a step
+// split every leaf above the equal share: on the spot-lit room, whose error sits in a few mm-sized wall
+// leaves at the floor beside the light, a step from 2,776 leaves split 1,074 and the 6,000-leaf budget ran
+// out at 2.3 % (seed 3); with theta = 0.7 the four seeds reach 1 % with 1,114-1,198 leaves in 7-9 steps, and
+// the Cornell box takes 439-601 leaves for 0.01 where it took 727-847 (docs/hierarchy.md, "Doerfler's
+// marking"). The groups' plans (options.each) are not capped: they hold each group's mean, whose error is
+// spread over the group.
+inline constexpr double kBulkFraction = 0.7;
 
 struct HierarchicalTargetOptions {
   double target = 0.01;      // E, in (0, 1)
