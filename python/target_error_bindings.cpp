@@ -245,7 +245,8 @@ changed. The GIL is released during the whole run. Raises radwalk.InputError for
 hierarchical=True: as `radwalk solve SCENE --hierarchical --target-error TARGET_ERROR` (src/hierarchy/
 hierarchical_target_error.h, docs/hierarchy.md): the element trees of the patches (of a scene loaded without
 max_edge or max_area: first split by edge length to about 200 leaves more than its patches, as the CLI's) are
-refined by the estimate, leaves split in 4 where the discretisation part dominates and rays added where the statistical part does; rays is
+refined by the estimate, leaves split where the discretisation part dominates (each step the fewest leaves that
+hold 70 % of the estimated error: Doerfler's marking) and rays added where the statistical part does; rays is
 the first step's rays per leaf, max_patches the budget of leaves; scene holds the leaves (each with its input
 face). hierarchical_transport (only with hierarchical=True): "form-factors" (default; each step's leaves solved as
 patches by the route above, form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi;
