@@ -81,31 +81,40 @@ def matched(run, reference):
             int((~found).sum()))
 
 
-def measured_error(run, reference):
-    """(e, e_sd, noise, unmatched) of the run against the reference (see the module's docstring)."""
+def _counted_values(run, reference):
+    """(W, B, B_ref, s, se, unmatched) over the matched (patch, channel) values the errors count (reflecting,
+    non-emitting, B_ref > 0): W the patch area, s the run's B_se, se the reference's."""
     r, ref, unmatched = matched(run, reference)
     keep = (ref["E"].max(1) == 0)[:, None] & (ref["rho"] > 0) & (ref["B"] > 0)
     W = np.repeat(ref["area"][:, None], 3, 1)[keep]
-    diff = (r["B"] - ref["B"])[keep]
-    se2 = ref["B_se"][keep] ** 2
+    return W, r["B"][keep], ref["B"][keep], r["B_se"][keep], ref["B_se"][keep], unmatched
+
+
+def _reference_noise_out(W, B, B_ref, se):
+    """(e, e_sd, noise) over counted values (see the module's docstring)."""
+    diff = B - B_ref
+    se2 = se ** 2
     err2 = float((W * diff ** 2).sum())
     noise2 = float((W * se2).sum())
-    size2 = float((W * ref["B"][keep] ** 2).sum())
+    size2 = float((W * B_ref ** 2).sum())
     d2 = np.maximum(diff ** 2 - se2, 0.0)
     var_e2 = float((W ** 2 * (2 * se2 ** 2 + 4 * d2 * se2)).sum()) / size2 ** 2
     e = np.sqrt(max(err2 - noise2, 0.0) / size2)
     e_sd = np.sqrt(var_e2) / (2 * e) if e > 0 else np.sqrt(np.sqrt(var_e2))
-    return e, e_sd, np.sqrt(noise2 / size2), unmatched
+    return e, e_sd, np.sqrt(noise2 / size2)
+
+
+def measured_error(run, reference):
+    """(e, e_sd, noise, unmatched) of the run against the reference (see the module's docstring)."""
+    W, B, B_ref, _, se, unmatched = _counted_values(run, reference)
+    return _reference_noise_out(W, B, B_ref, se) + (unmatched,)
 
 
 def measured_discretisation_error(run, reference):
     """(e_disc, e_stat) of the run against the reference (see the module's docstring)."""
-    r, ref, _ = matched(run, reference)
-    keep = (ref["E"].max(1) == 0)[:, None] & (ref["rho"] > 0) & (ref["B"] > 0)
-    W = np.repeat(ref["area"][:, None], 3, 1)[keep]
-    size2 = float((W * ref["B"][keep] ** 2).sum())
-    e_stat2 = float((W * r["B_se"][keep] ** 2).sum()) / size2
-    e = measured_error(run, reference)[0]
+    W, B, B_ref, s, se, _ = _counted_values(run, reference)
+    e = _reference_noise_out(W, B, B_ref, se)[0]
+    e_stat2 = float((W * s ** 2).sum()) / float((W * B_ref ** 2).sum())
     return np.sqrt(max(e * e - e_stat2, 0.0)), np.sqrt(e_stat2)
 
 

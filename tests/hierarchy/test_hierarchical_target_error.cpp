@@ -30,6 +30,7 @@
 #include "hierarchy/estimate_refinement.h"
 #include "hierarchy/hierarchical_target_error.h"
 #include "hierarchy/leaf_patches.h"
+#include "hierarchy/start_by_edge_length.h"
 #include "pathtrace/patch_average.h"
 #include "patch/patch_builder.h"
 #include "support/box_scenes.h"
@@ -282,7 +283,7 @@ FarFromTarget far_from_target(double bulk) {
       norm += leaves.area[k] * s0.B.row(static_cast<Eigen::Index>(k)).square().sum();
   f.share = 0.49 * o.target * o.target * norm / double(leaves.size());
   for (const ElementIndex e : s0.leaves)
-    f.splittable.push_back(s0.tree.level[std::size_t(e)] < h.max_level && s0.tree.area[std::size_t(e)] / 4 >= h.min_area);
+    f.splittable.push_back(splittable(s0.tree, std::size_t(e), h));
   return f;
 }
 
