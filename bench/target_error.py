@@ -13,6 +13,7 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
   e_stat         - the run's own stated statistical error over the same values (its B_se);
   e_disc         - the measured discretisation error sqrt(max(e^2 - e_stat^2, 0)): the run's noise taken out too,
                    so that runs with different rays a patch compare at equal discretisation error;
+  e_disc_sd      - its standard deviation from the path tracer's noise;
   cpu            - user + system CPU seconds of the solve (all its steps).
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
@@ -58,8 +59,9 @@ def main():
     scene_options = ["-q"] + shlex.split(a.scene_options)
     runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",") if t] + a.hand
     print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
-    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s %8s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est", "e",
-                                                             "e_sd", "pt_noise", "e_stat", "e_disc", "cpu_s"))
+    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s %8s %9s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est",
+                                                                  "e", "e_sd", "pt_noise", "e_stat", "e_disc",
+                                                                  "e_disc_sd", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
         for options in runs:
             for seed in range(a.first_seed, a.first_seed + a.seeds):
@@ -78,9 +80,10 @@ def main():
                                 pt_csv, "-q", "--open-shells", "one-sided"], check=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
                 run_table, pt_table = pc.read_table(run_csv), pc.read_table(pt_csv)
                 e, e_sd, noise, unmatched = pc.measured_error(run_table, pt_table)
-                e_disc, e_stat = pc.measured_discretisation_error(run_table, pt_table)
-                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %8.2f%s" %
-                      (options, seed, summary["patches"], rays, steps, e_est, e, e_sd, noise, e_stat, e_disc, cpu,
+                e_disc, e_disc_sd, e_stat = pc.measured_discretisation_error(run_table, pt_table)
+                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %9.4f %8.2f%s" %
+                      (options, seed, summary["patches"], rays, steps, e_est, e, e_sd, noise, e_stat, e_disc,
+                       e_disc_sd, cpu,
                        ("" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")") +
                        ("" if unmatched == 0 else "  (%d patches not in the path tracer's reading, left out)" % unmatched)))
                 sys.stdout.flush()

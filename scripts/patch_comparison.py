@@ -12,8 +12,8 @@ bench/per_material.py and the realmesh test tests/realmesh/run_furniture_target.
                              centroid and normal (below), both as tables in the same order.
   measured_error(run, reference) -> (e, e_sd, noise, unmatched): the relative error with the reference's noise
                              taken out (below).
-  measured_discretisation_error(run, reference) -> (e_disc, e_stat): e with the run's own stated statistical
-                             error taken out as well (below).
+  measured_discretisation_error(run, reference) -> (e_disc, e_disc_sd, e_stat): e with the run's own stated
+                             statistical error taken out as well (below).
   material_means(run, reference) -> {material: MaterialMean}, per material in order of first appearance (below).
 
 Matching: the reference read back may list the patches in another order (back patches, repaired faces) and drop a
@@ -35,6 +35,8 @@ Its discretisation part, over the same values, s the run's own B_se:
            bias^2 + sum A s_true^2 + sum A se_true^2; both stated variances are unbiased estimates of the true ones
            (their coverage: docs/accuracy.md), so e_disc estimates the relative L2 norm of the bias alone. This is
            what "at equal discretisation error" compares: a run with fewer rays a patch is not charged for its noise.
+  e_disc_sd = e e_sd / e_disc (sqrt(2 e e_sd) at e_disc = 0): the standard deviation of e_disc from the reference's
+           noise, carried from e^2's as e_sd is (d(e_disc^2) = d(e^2)); the run's stated B_se is taken as exact.
 
 Per material m, over its reflecting non-emitting patches (E_ref = 0 and rho_ref > 0 in some channel), all channels
 together:
@@ -111,11 +113,13 @@ def measured_error(run, reference):
 
 
 def measured_discretisation_error(run, reference):
-    """(e_disc, e_stat) of the run against the reference (see the module's docstring)."""
+    """(e_disc, e_disc_sd, e_stat) of the run against the reference (see the module's docstring)."""
     W, B, B_ref, s, se, _ = _counted_values(run, reference)
-    e = _reference_noise_out(W, B, B_ref, se)[0]
+    e, e_sd, _ = _reference_noise_out(W, B, B_ref, se)
     e_stat2 = float((W * s ** 2).sum()) / float((W * B_ref ** 2).sum())
-    return np.sqrt(max(e * e - e_stat2, 0.0)), np.sqrt(e_stat2)
+    e_disc = np.sqrt(max(e * e - e_stat2, 0.0))
+    e_disc_sd = e * e_sd / e_disc if e_disc > 0 else np.sqrt(2 * e * e_sd)
+    return e_disc, e_disc_sd, np.sqrt(e_stat2)
 
 
 def material_means(run, reference):

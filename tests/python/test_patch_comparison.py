@@ -30,7 +30,7 @@ def test_the_discretisation_error_estimates_the_bias_alone():
     run = table(truth + bias + rng.normal(0, s, (n, 3)), np.full((n, 3), s), n)
     reference = table(truth + rng.normal(0, se, (n, 3)), np.full((n, 3), se), n)
 
-    e_disc, e_stat = pc.measured_discretisation_error(run, reference)
+    e_disc, _, e_stat = pc.measured_discretisation_error(run, reference)
     size2 = float((reference["B"] ** 2).sum())
     expected = float((bias ** 2).sum()) / size2
     sigma2 = s * s + se * se
