@@ -40,7 +40,7 @@ TargetErrorRun run_hierarchical_target_error(const SolveCommand& command, const 
     note("target error step " + std::to_string(step) + " (hierarchical): " + std::to_string(s.patches) + " leaves, " +
          std::to_string(s.rays_per_patch) + " rays a leaf: estimated error " + percent(s.total) + " (statistical " +
          percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " + std::to_string(s.seconds) +
-         " s" + group_progress(s, o.each) +
+         " s" + group_progress(s, o.each, o.target) +
          (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " leaves split, " +
                                           std::to_string(s.next_rays_per_patch) + " rays a leaf" +
                                           (r.band_splits > 0 ? " (" + std::to_string(r.band_splits) + " in bands)"

@@ -17,7 +17,8 @@ struct Rule {
 
 bool random_walk(const SolveCommand& c) { return c.solver == "random-walk"; }
 bool hierarchical(const SolveCommand& c) { return c.hierarchical; }
-// --hierarchical --target-error --hierarchical-transport form-factors: the leaves solved by the traced F.
+// --target-error on the hierarchical route (`hierarchical` is set by then: apps/options.h, target_route) with
+// --hierarchical-transport form-factors: the leaves solved by the traced F.
 bool leaf_form_factors(const SolveCommand& c) {
   return c.hierarchical && c.target_error > 0 && c.hierarchical_transport == "form-factors";
 }
@@ -32,7 +33,7 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
      "by the iterative solvers: --solver jacobi, gauss-seidel, southwell, or auto above 2000 patches"},
     {{"--hierarchical-tol", "--hierarchical-levels", "--hierarchical-min-area", "--hierarchical-points",
       "--hierarchical-rays", "--hierarchical-replicates", "--hierarchical-refine", "--hierarchical-clusters"},
-     hierarchical, "with --hierarchical"},
+     hierarchical, "with --hierarchical, or --target-error on its default route, the hierarchical one"},
     {{"--hierarchical-cluster-ratio"},
      [](const SolveCommand& c) { return hierarchical(c) && c.hierarchical_clusters == "on"; },
      "with --hierarchical --hierarchical-clusters on"},
@@ -53,10 +54,10 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
       "--analytic", "--analytic-cutoff", "--analytic-cutoff-rays", "--visibility-samples", "--normalise-rows"},
      [](const SolveCommand& c) { return !hierarchical(c) || leaf_form_factors(c); },
      "for form factors, which --hierarchical uses only with --target-error and --hierarchical-transport "
-     "form-factors"},
+     "form-factors (the default)"},
     {{"--hierarchical-transport", "--hierarchical-split"},
      [](const SolveCommand& c) { return hierarchical(c) && c.target_error > 0; },
-     "with --hierarchical --target-error"},
+     "with --target-error on its default route, the hierarchical one"},
     {{"--hierarchical-points", "--hierarchical-replicates"},
      [](const SolveCommand& c) { return !leaf_form_factors(c); },
      "by the hierarchical stochastic Jacobi (--hierarchical-transport rays): with form-factors the direct light is "
@@ -68,6 +69,9 @@ const std::vector<Rule<SolveCommand>> kSolveRules = {
      [](const SolveCommand& c) { return !(c.target_error > 0); },
      "without --target-error (with --hierarchical it refines by the estimate and chooses the rays itself: --rays "
      "sets the first step's rays per leaf, --max-patches the budget of leaves)"},
+    {{"--hierarchical-clusters", "--hierarchical-cluster-ratio"},
+     [](const SolveCommand& c) { return !(c.target_error > 0); },
+     "without --target-error, whose steps solve the leaves unclustered"},
     {{"--min-rays"}, [](const SolveCommand& c) { return c.ff.rays_per_area > 0; }, "with --rays-per-area"},
     {{"--refine-steps", "--refine-floor", "--refine-noise"}, [](const SolveCommand& c) { return c.refine > 0; },
      "with --refine"},

@@ -93,6 +93,10 @@ struct SolveCommand {
   // most E; 0: off. The steps stop at max_patches or after max_seconds (0: no limit).
   double target_error = 0;
   double max_seconds = 0;
+  // --target-route hierarchical|uniform: how --target-error refines. "hierarchical" (the default) splits the leaves
+  // of an element tree per input face (hierarchy/hierarchical_target_error.h; it sets `hierarchical`, below, before
+  // the options are checked); "uniform" splits the patches themselves (solve/target_error.h).
+  std::string target_route = "hierarchical";
   // --target-each material|object|group|none: also each group's mean within E; "": the default, material
   // wherever the route can hold it (not the hierarchy's rays transport, which stores no F), else none.
   std::string target_each;

@@ -168,6 +168,17 @@ void refuse_inapplicable(const CLI::App* cmd, const Command& command) {
   if (!message.empty()) throw InputError(message);
 }
 
+// --target-error takes the hierarchical route unless --target-route uniform: `hierarchical` is set for the route's
+// checks and solve. --hierarchical with --target-route uniform is a contradiction, refused.
+void choose_target_route(SolveCommand& c) {
+  if (!(c.target_error > 0)) return;
+  if (c.target_route == "uniform" && c.hierarchical)
+    throw InputError("--hierarchical and --target-route uniform contradict each other: --target-error takes the "
+                     "hierarchical route by default (give --hierarchical or neither) or splits the patches "
+                     "themselves with --target-route uniform");
+  if (c.target_route == "hierarchical") c.hierarchical = true;
+}
+
 void add_scene_options(CLI::App* cmd, SceneOptions& o, bool patching = true, bool outputs = true) {
   cmd->add_flag("-q,--quiet", g_quiet,
                 "No progress, notes or scene warnings on stderr (the scene's repairs and warnings are counted in "
@@ -593,9 +604,15 @@ int run_main(int argc, char** argv) {
                    "Accuracy on request: solve in steps, adding rays where the statistical error dominates and "
                    "splitting patches where the discretisation error does, until the estimated total error (area-"
                    "weighted RMS relative over the reflecting patches, docs/accuracy.md) is at most E (e.g. 0.01), "
-                   "or --max-patches / --max-seconds stop it (exit code 1); with --hierarchical it splits leaf elements "
-                   "instead of patches (--rays: the first step's rays per leaf)")
+                   "or --max-patches / --max-seconds stop it (exit code 1); by default it splits the leaf elements "
+                   "of a tree per input face (--rays: the first step's rays per leaf), see --target-route")
       ->check(CLI::Range(1e-6, 0.999999));
+  solve_cmd->add_option("--target-route", solve.target_route,
+                        "--target-error: hierarchical (an element tree per input face, its leaves split where the "
+                        "estimate says, docs/hierarchy.md) or uniform (the patches themselves split, docs/accuracy.md)")
+      ->check(CLI::IsMember({"hierarchical", "uniform"}))
+      ->needs(target)
+      ->capture_default_str();
   solve_cmd->add_option("--target-each", solve.target_each,
                         "--target-error: also hold the mean radiosity of each material (or object, group) within E, "
                         "with its own estimated error (per-patch errors of one material are correlated, so its mean can "
@@ -1015,7 +1032,10 @@ int run_main(int argc, char** argv) {
 
   try {
     if (*ff_cmd) refuse_inapplicable(ff_cmd, ff);
-    if (*solve_cmd) refuse_inapplicable(solve_cmd, solve);
+    if (*solve_cmd) {
+      choose_target_route(solve);
+      refuse_inapplicable(solve_cmd, solve);
+    }
     if (*compare_cmd) refuse_inapplicable(compare_cmd, compare);
     if (*pt_cmd) refuse_inapplicable(pt_cmd, pt);
     if (*measure_cmd) refuse_inapplicable(measure_cmd, measure);

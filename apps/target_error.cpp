@@ -19,10 +19,11 @@ std::string target_groups(const SolveCommand& command, bool can_hold) {
   return command.target_each == "none" ? "" : command.target_each;
 }
 
-std::string group_progress(const TargetErrorStep& s, const std::string& each) {
+std::string group_progress(const TargetErrorStep& s, const std::string& each, double target) {
   if (s.groups == 0) return {};
-  return "; " + std::to_string(s.groups_within) + " of " + std::to_string(s.groups) + " " + each +
-         "s within (largest: " + s.worst_group + " " + percent(s.worst_group_total) + ")";
+  return "; " + std::to_string(s.groups_within) + " of " + std::to_string(s.groups) + " " + each + "s within " +
+         percent(kGroupTargetFraction * target) + " (largest: " + s.worst_group + " " + percent(s.worst_group_total) +
+         ")";
 }
 
 TargetErrorWork form_factor_target_work(const SolveCommand& command, RunSummary& summary, std::string& error_line,
@@ -75,7 +76,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
          std::to_string(s.rays_per_patch) + " rays a patch: estimated error " + percent(s.total) + " (statistical " +
          percent(s.statistical) + ", discretisation " + percent(s.discretisation) + "), " +
          std::to_string(s.seconds) + " s" +
-         group_progress(s, options.each) +
+         group_progress(s, options.each, options.target) +
          (s.next_rays_per_patch > 0 ? "; next: " + std::to_string(s.split) + " patches split, " +
                                           std::to_string(s.next_rays_per_patch) + " rays a patch"
                                     : std::string()));
@@ -83,6 +84,7 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
   run.result = solve_to_target_error(std::move(patches), work, options, report);
   const TargetErrorResult& r = run.result;
   auto& j = summary.json()["target_error"];
+  j["route"] = "uniform";
   j["target"] = options.target;
   j["max_patches"] = options.max_patches;
   j["max_seconds"] = options.max_seconds;

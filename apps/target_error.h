@@ -26,9 +26,9 @@ TargetErrorRun run_target_error(const SolveCommand& command, PatchSet patches, R
 // group is left for the route to refuse).
 std::string target_groups(const SolveCommand& command, bool can_hold);
 
-// The part of a step's progress line about the groups ("; 17 of 18 materials within (largest: sofa 2.3 %)"),
-// "" without groups.
-std::string group_progress(const TargetErrorStep& step, const std::string& each);
+// The part of a step's progress line about the groups ("; 17 of 18 materials within 1.6 % (largest: sofa 2.3 %)":
+// within kGroupTargetFraction x the run's target), "" without groups.
+std::string group_progress(const TargetErrorStep& step, const std::string& each, double target);
 
 // One step's work of that route on given patches with given rays per patch: F traced (the first step's through
 // obtain_form_factors when first_obtains, else trace_form_factors, which reports nothing), then the step shared with

@@ -127,12 +127,12 @@ TargetErrorPyResult solve_to_target_error_py(const Scene& scene_arg, double targ
     throw InputError("hierarchical_transport must be \"form-factors\" or \"rays\", got \"" + hierarchical_transport +
                      "\"");
   if (!hierarchical && hierarchical_transport != "form-factors")
-    throw InputError("hierarchical_transport applies only with hierarchical=True: remove it");
+    throw InputError("hierarchical_transport applies only with hierarchical=True (the default): remove it");
   const std::string hierarchical_split = hierarchical_split_arg.value_or("adaptive");
   if (hierarchical_split != "regular" && hierarchical_split != "adaptive")
     throw InputError("hierarchical_split must be \"regular\" or \"adaptive\", got \"" + hierarchical_split + "\"");
   if (!hierarchical && hierarchical_split_arg)
-    throw InputError("hierarchical_split applies only with hierarchical=True: remove it");
+    throw InputError("hierarchical_split applies only with hierarchical=True (the default): remove it");
   if (hierarchical && tol != 1e-10 && hierarchical_transport == "rays")
     throw InputError("tol does not apply with hierarchical=True and hierarchical_transport=\"rays\" (the "
                      "hierarchical solver shoots until the unshot power is below 1e-6 of the first shot's): remove it");
@@ -221,39 +221,42 @@ target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps"
   m.def("solve_to_target_error", &solve_to_target_error_py, py::arg("scene"), py::arg("target_error"),
         py::arg("rays") = 1000, py::arg("max_patches") = 20000, py::arg("max_seconds") = 0.0,
         py::arg("tol") = 1e-10, py::arg("seed") = 1, py::arg("threads") = 0,
-        py::arg("discretisation_directions") = 16, py::arg("hierarchical") = false,
+        py::arg("discretisation_directions") = 16, py::arg("hierarchical") = true,
         py::arg("hierarchical_transport") = "form-factors", py::arg("hierarchical_split") = py::none(),
         py::arg("each") = py::none(),
         R"doc(Accuracy on request: solve in steps until the estimated total error is at most target_error: a TargetErrorResult.
 
 As `radwalk solve SCENE --target-error TARGET_ERROR --rays RAYS --max-patches MAX_PATCHES --max-seconds
-MAX_SECONDS --seed SEED` (src/solve/target_error.h, docs/accuracy.md "Accuracy on request"): target_error is the
-area-weighted RMS relative total error over the reflecting patches (dimensionless, e.g. 0.01); each step traces
-F by the recommended route with its rays per patch (rays: the first step's), solves with the automatic solver and
-estimates B_se and B_disc; where the statistical part dominates the next step has more rays, where the
-discretisation part dominates the patches with the largest B_disc are split in 4. A scene loaded without max_edge
-or max_area starts from about 500 patches (every patch above twice the mean area of 500 split in 4), as the CLI
-given no --max-edge or --max-area; its faces are first cut along the contacts when it was loaded with
-contact_cut=True (the default), as the CLI's --target-error does. each (the CLI's --target-each): also hold each
-"material" (the default, None), "object" or "group" mean within the target, with its own estimated error (the
-patches of one material have correlated errors, so its mean can be off by more than the per-patch RMS); "none":
-the per-patch target alone (hierarchical_transport="rays" holds none by default and refuses a group). max_patches bounds the patches,
-max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it first,
-reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is not
-changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.
+MAX_SECONDS --seed SEED` (docs/accuracy.md "Accuracy on request"): target_error is the area-weighted RMS relative
+total error over the reflecting patches (dimensionless, e.g. 0.01); each step solves with its rays per patch (or
+leaf; rays: the first step's) and estimates B_se and B_disc; where the statistical part dominates the next step
+has more rays, where the discretisation part dominates the elements with the largest estimated error are split.
+Its faces are first cut along the contacts when the scene was loaded with contact_cut=True (the default), as the
+CLI's --target-error does. each (the CLI's --target-each): also hold each "material" (the default, None), "object"
+or "group" mean within the target, with its own estimated error (the patches of one material have correlated
+errors, so its mean can be off by more than the per-patch RMS); "none": the per-patch target alone
+(hierarchical_transport="rays" holds none by default and refuses a group). max_patches bounds the patches
+(leaves), max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it
+first, reached is False (the CLI exits 1) and the last, most accurate, solution is returned. The scene passed in is
+not changed. The GIL is released during the whole run. Raises radwalk.InputError for options out of range.
 
-hierarchical=True: as `radwalk solve SCENE --hierarchical --target-error TARGET_ERROR` (src/hierarchy/
-hierarchical_target_error.h, docs/hierarchy.md): the element trees of the patches (of a scene loaded without
-max_edge or max_area: first split by edge length to about 200 leaves more than its patches, as the CLI's) are
-refined by the estimate, leaves split where the discretisation part dominates (each step the fewest leaves that
-hold 70 % of the estimated error: Doerfler's marking) and rays added where the statistical part does; rays is
-the first step's rays per leaf, max_patches the budget of leaves; scene holds the leaves (each with its input
-face). hierarchical_transport (only with hierarchical=True): "form-factors" (default; each step's leaves solved as
-patches by the route above, form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi;
-form_factors an empty F, tol does not apply: InputError if given). hierarchical_split (only with hierarchical=True;
-the CLI's --hierarchical-split): "adaptive" (the default: a quad may be cut in four bands across the direction its
-light varies in, or across its length where it is long; docs/hierarchy.md "Band splits") or "regular" (every leaf
-split in four quarters).)doc");
+hierarchical=True (the default; the CLI's default route, src/hierarchy/hierarchical_target_error.h,
+docs/hierarchy.md): the element trees of the patches (of a scene loaded without max_edge or max_area: first split
+by edge length to about 200 leaves more than its patches, as the CLI's) are refined by the estimate, leaves split
+where the discretisation part dominates (each step the fewest leaves that hold 70 % of the estimated error:
+Doerfler's marking) and rays added where the statistical part does; rays is the first step's rays per leaf,
+max_patches the budget of leaves; scene holds the leaves (each with its input face). hierarchical_transport:
+"form-factors" (default; each step's leaves solved as patches: F traced by the recommended route, the automatic
+solver; form_factors the last step's F) or "rays" (hierarchical stochastic Jacobi; form_factors an empty F, tol
+does not apply: InputError if given). hierarchical_split (the CLI's --hierarchical-split): "adaptive" (the default:
+a quad may be cut in four bands across the direction its light varies in, or across its length where it is long;
+docs/hierarchy.md "Band splits") or "regular" (every leaf split in four quarters).
+
+hierarchical=False (the CLI's --target-route uniform, src/solve/target_error.h): the patches themselves are split
+in 4 where the discretisation part dominates; a scene loaded without max_edge or max_area starts from about 500
+patches (every patch above twice the mean area of 500 split in 4); hierarchical_transport and hierarchical_split
+are refused. It does not reach 2 % where light grazes a wall next to a light (docs/accuracy.md, "Where the uniform
+route fails").)doc");
 }
 
 }  // namespace radwalk::python

@@ -96,12 +96,13 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
   const std::shared_ptr<const RadiosityProblem> problem =
       stage.problem ? stage.problem
                     : std::make_shared<const RadiosityProblem>(make_problem(patches, SparseF(stage.form_factors.F)));
+  const double E_g = kGroupTargetFraction * E;
   std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), *problem, B, B_se,
-                                                         stage.source, stage.source_sd, E, stage.noise);
+                                                         stage.source, stage.source_sd, E_g, stage.noise);
   for (const GroupMeanError& g : groups) {
     if (!g.counted) continue;
     ++record.groups;
-    if (g.total <= E) ++record.groups_within;
+    if (g.total <= E_g) ++record.groups_within;
     if (record.worst_group.empty() || g.total > record.worst_group_total) {
       record.worst_group = g.name;
       record.worst_group_total = g.total;
@@ -114,16 +115,17 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
                                    std::vector<bool>& split, const std::vector<bool>& eligible) {
   GroupTargetPlan out;
   out.next_rays = rays;
+  const double E_g = kGroupTargetFraction * E;
   for (const GroupMeanError& g : groups) {
-    if (!g.counted || g.total <= E) continue;
-    const TargetErrorPlan own = plan_target_error_step(g.statistical, g.discretisation, E, rays);
+    if (!g.counted || g.total <= E_g) continue;
+    const TargetErrorPlan own = plan_target_error_step(g.statistical, g.discretisation, E_g, rays);
     out.next_rays = std::max(out.next_rays, own.next_rays);
     if (!own.refine) continue;
     out.refine = true;
     // The shares add up to the error itself (not its square); a split is taken to halve a patch's share (as the
     // global rule takes it to halve a contribution: first order would quarter it, a patch across a shadow line only
-    // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E the plan's target.
-    const double fraction = std::min(1.0, 2 * (1 - 0.7 * E / g.discretisation));
+    // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E_g the plan's target.
+    const double fraction = std::min(1.0, 2 * (1 - 0.7 * E_g / g.discretisation));
     RADWALK_CHECK_EQ(g.share.size(), split.size());
     out.marked += mark_largest(g.share, fraction, 0.0, eligible, room - out.marked, split);
   }

@@ -36,11 +36,11 @@ TEST_CASE("radwalk solve --hierarchical-transport: recorded, and refused where i
     CHECK(r.exit_code != 0);
     CHECK(r.out.find(message) != std::string::npos);
   };
-  // Without --target-error (or without --hierarchical) there is no step whose leaves it could solve.
-  refused("--hierarchical --hierarchical-transport rays",
-          "--hierarchical-transport does not apply here (used only with --hierarchical --target-error)");
-  refused("--target-error 0.1 --hierarchical-transport form-factors",
-          "--hierarchical-transport does not apply here (used only with --hierarchical --target-error)");
+  // Without --target-error (or on its uniform route) there is no step whose leaves it could solve.
+  const std::string only = "--hierarchical-transport does not apply here (used only with --target-error on its "
+                           "default route, the hierarchical one)";
+  refused("--hierarchical --hierarchical-transport rays", only);
+  refused("--target-error 0.1 --target-route uniform --hierarchical-transport form-factors", only);
   // The stochastic Jacobi's own options mean nothing to the form-factor transport.
   refused("--hierarchical --target-error 0.1 --hierarchical-points 64",
           "--hierarchical-points does not apply here (used only by the hierarchical stochastic Jacobi");

@@ -1,7 +1,8 @@
-// `radwalk solve --target-error E` end to end (apps/target_error.h, docs/accuracy.md "Accuracy on request"): a
-// reachable target is reached, its steps are in the JSON and the final estimate is at most E; a patch budget too
-// small stops it with exit 1, one line saying what was reached, and the files of the last solution written; the
-// options it chooses itself are refused with exit 2.
+// `radwalk solve --target-error E` end to end (apps/target_error.h, apps/hierarchical_target_error.h,
+// docs/accuracy.md "Accuracy on request"): the hierarchical route by default, the uniform one with --target-route
+// uniform; a reachable target is reached, its steps are in the JSON and the final estimate is at most E; a patch
+// budget too small stops it with exit 1, one line saying what was reached, and the files of the last solution
+// written; the options it chooses itself are refused with exit 2.
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -16,15 +17,17 @@
 
 namespace fs = std::filesystem;
 
-TEST_CASE("solve --target-error reaches a reachable target and lists its steps", "[cli][target_error]") {
+TEST_CASE("solve --target-error --target-route uniform reaches a reachable target and lists its steps",
+          "[cli][target_error]") {
   const fs::path dir = scratch_dir("target_error");
-  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 200 --rays 300";
+  const std::string scene = source("meshes/cornell_box.obj") + " --max-edge 200 --rays 300 --target-route uniform";
   const fs::path json = dir / "t.json", csv = dir / "t.csv";
   const Run r = run("solve " + scene + " --target-error 0.02 --json " + json.string() + " --csv " + csv.string());
   INFO(r.out);
   REQUIRE(r.exit_code == 0);
   const nlohmann::json j = nlohmann::json::parse(file_text(json));
   const auto& t = j.at("target_error");
+  CHECK(t.at("route") == "uniform");
   CHECK(t.at("reached").get<bool>());
   CHECK(t.at("stop_reason") == "target reached");
   REQUIRE(t.at("steps").size() >= 2);  // 125 patches of at most 200 mm (the floor cut along the blocks): 2.8 %
@@ -59,24 +62,51 @@ TEST_CASE("solve --target-error stopped by its patch budget exits 1 with one lin
           "[cli][target_error]") {
   const fs::path dir = scratch_dir("target_error_budget");
   const fs::path vtp = dir / "b.vtp";
-  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --rays 300 --target-error 0.005 --max-patches 90 -o " +
-                    vtp.string());
+  const Run r = run("solve " + source("meshes/cornell_box.obj") +
+                    " --target-route uniform --rays 300 --target-error 0.005 --max-patches 90 -o " + vtp.string());
   INFO(r.out);
   CHECK(r.exit_code == 1);
   CHECK(r.out.find("radwalk: target error 0.5 % not reached (max-patches stopped it after") != std::string::npos);
   CHECK(fs::exists(vtp));
 }
 
+// Refused with exit 2 and one line, on either route: the options it chooses itself, clusters (its steps solve the
+// leaves unclustered), --hierarchical with --target-route uniform, and the route's own options without
+// --target-error or on the other route.
 TEST_CASE("solve --target-error refuses the options it chooses itself", "[cli][target_error]") {
-  const std::string scene = source("meshes/cornell_box.obj") + " --target-error 0.05 ";
-  for (const std::string extra : {"--solver jacobi", "--refine 0.1", "--rays-per-area 1e-3"}) {
-    const Run r = run("solve " + scene + extra);
-    INFO(extra << "\n" << r.out);
+  const std::string box = source("meshes/cornell_box.obj"), scene = box + " --target-error 0.05 ";
+  for (const std::string route : {"", "--target-route uniform "})
+    for (const std::string extra : {"--solver jacobi", "--refine 0.1", "--rays-per-area 1e-3", "--hierarchical-clusters on"}) {
+      const Run r = run("solve " + scene + route + extra);
+      INFO(route << extra << "\n" << r.out);
+      CHECK(r.exit_code == 2);
+      CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+    }
+  for (const std::string& bad : {box + " --max-seconds 10", box + " --target-route uniform",
+                                scene + "--target-route uniform --hierarchical",
+                                scene + "--target-route uniform --hierarchical-transport rays",
+                                scene + "--target-route uniform --hierarchical-split regular",
+                                scene + "--target-route flat"}) {
+    const Run r = run("solve " + bad);
+    INFO(bad << "\n" << r.out);
     CHECK(r.exit_code == 2);
     CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
   }
-  const Run r = run("solve " + source("meshes/cornell_box.obj") + " --max-seconds 10");
-  CHECK(r.exit_code == 2);
+}
+
+// The default route is the hierarchy's: the same leaves and B as --hierarchical says it explicitly.
+TEST_CASE("solve --target-error takes the hierarchical route by default", "[cli][target_error]") {
+  const fs::path dir = scratch_dir("target_error_route");
+  const std::string scene = source("meshes/cornell_box.obj") + " --target-error 0.06 --rays 200 --discretisation-directions 4";
+  const fs::path by_default = dir / "d.csv", explicitly = dir / "h.csv", json = dir / "d.json";
+  const Run d = run("solve " + scene + " --csv " + by_default.string() + " --json " + json.string());
+  INFO(d.out);
+  REQUIRE(d.exit_code == 0);
+  CHECK(nlohmann::json::parse(file_text(json)).at("target_error").at("route") == "hierarchical");
+  const Run h = run("solve " + scene + " --hierarchical --target-route hierarchical --csv " + explicitly.string());
+  INFO(h.out);
+  REQUIRE(h.exit_code == 0);
+  CHECK(csv_without_run_id(file_text(by_default)) == csv_without_run_id(file_text(explicitly)));  // run_id: the command
 }
 
 // Through the hierarchy: the steps (leaves, rays a leaf, rays, the three errors, seconds) in the JSON, the last
@@ -168,7 +198,8 @@ std::string box_by_a_wall(const fs::path& dir, double gap) {
 // with the hierarchy's rays transport (which keeps none by default).
 TEST_CASE("solve --target-error holds each material's mean within the target", "[cli][target_error]") {
   const fs::path dir = scratch_dir("target_error_each");
-  const std::string box = box_by_a_wall(dir, 0.02), scene = box + " --target-error 0.028";
+  const std::string box = box_by_a_wall(dir, 0.02), scene = box + " --target-error 0.028 --target-route uniform";
+  const std::string hierarchical = box + " --target-error 0.028";
   const fs::path json = dir / "t.json";
   const Run r = run("solve " + scene + " --json " + json.string());
   INFO(r.out);
@@ -190,8 +221,9 @@ TEST_CASE("solve --target-error holds each material's mean within the target", "
     CHECK(g.at("total").get<double>() >= std::abs(g.at("estimate").get<double>()));
   }
 
-  // Through the hierarchy (the form-factor transport, its default) alike; its rays transport holds none by default.
-  const Run h = run("solve " + scene + " --hierarchical --json " + json.string());
+  // Through the hierarchy (the default route; the form-factor transport, its default) alike; its rays transport
+  // holds none by default.
+  const Run h = run("solve " + hierarchical + " --json " + json.string());
   INFO(h.out);
   REQUIRE(h.exit_code == 0);
   const nlohmann::json hj = nlohmann::json::parse(file_text(json));
@@ -211,8 +243,8 @@ TEST_CASE("solve --target-error holds each material's mean within the target", "
   CHECK(n.at("target_error").at("steps").size() == 1);
   CHECK_FALSE(n.at("target_error").contains("groups"));
 
-  for (const std::string bad : {" --target-each colour", " --hierarchical --hierarchical-transport rays --target-each material"}) {
-    const Run b = run("solve " + scene + bad);
+  for (const std::string& bad : {scene + " --target-each colour", hierarchical + " --hierarchical-transport rays --target-each material"}) {
+    const Run b = run("solve " + bad);
     INFO(bad << "\n" << b.out);
     CHECK(b.exit_code == 2);
     CHECK(std::count(b.out.begin(), b.out.end(), '\n') == 1);

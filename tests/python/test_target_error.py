@@ -1,5 +1,6 @@
-"""radwalk.solve_to_target_error against `radwalk solve --target-error`: the same start (about 500 patches for a
-scene loaded without max_edge or max_area), the same steps, patches and B on the same seed."""
+"""radwalk.solve_to_target_error against `radwalk solve --target-error`: the hierarchical route by default on both,
+the uniform one with hierarchical=False and --target-route uniform (the same start: about 500 patches for a scene
+loaded without max_edge or max_area); the same steps, patches and B on the same seed."""
 import json
 
 import numpy as np
@@ -12,13 +13,13 @@ SCENE = mesh("cornell_box.obj")
 
 
 def test_solve_to_target_error_equals_the_cli(tmp_path):
-    run_cli("solve", SCENE, "--target-error", 0.03, "--seed", 2, "--csv", tmp_path / "cli.csv",
-            "--json", tmp_path / "cli.json")
+    run_cli("solve", SCENE, "--target-error", 0.03, "--target-route", "uniform", "--seed", 2, "--csv",
+            tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
     scene = radwalk.load(SCENE)
-    r = radwalk.solve_to_target_error(scene, 0.03, seed=2)
+    r = radwalk.solve_to_target_error(scene, 0.03, seed=2, hierarchical=False)
     assert len(scene) == 37  # the scene passed in is not changed
     cli = json.load(open(tmp_path / "cli.json"))
-    assert r.reached and cli["target_error"]["reached"]
+    assert r.reached and cli["target_error"]["reached"] and cli["target_error"]["route"] == "uniform"
     assert cli["patches"] == len(r.scene) > 37  # started from about 500 patches, not the input faces
     assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
     rows = np.genfromtxt(tmp_path / "cli.csv", delimiter=",", names=True)
@@ -44,9 +45,10 @@ def test_each_material_or_none():
         radwalk.solve_to_target_error(scene, 0.2, hierarchical=True, hierarchical_transport="rays", each="material")
 
 
-def test_a_scene_with_its_own_patching_starts_there():
+@pytest.mark.parametrize("hierarchical", [True, False])
+def test_a_scene_with_its_own_patching_starts_there(hierarchical):
     scene = radwalk.load(SCENE, max_edge=200)
-    r = radwalk.solve_to_target_error(scene, 0.2, seed=1)
+    r = radwalk.solve_to_target_error(scene, 0.2, seed=1, hierarchical=hierarchical)
     assert r.steps[0]["patches"] == len(scene)
 
 
@@ -79,13 +81,12 @@ def test_the_contact_cut_comes_before_its_own_split(tmp_path):
 
 @pytest.mark.parametrize("transport", ["form-factors", "rays"])
 def test_hierarchical_equals_the_cli(tmp_path, transport):
-    """hierarchical=True is `radwalk solve --hierarchical --target-error`: the same steps, leaves and B on a seed,
-    with either transport."""
-    run_cli("solve", SCENE, "--hierarchical", "--target-error", 0.06, "--rays", 200, "--seed", 3,
+    """hierarchical=True (the default) is `radwalk solve --target-error` (its default route): the same steps, leaves
+    and B on a seed, with either transport."""
+    run_cli("solve", SCENE, "--target-error", 0.06, "--rays", 200, "--seed", 3,
             "--hierarchical-transport", transport, "--csv", tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
     scene = radwalk.load(SCENE)
-    r = radwalk.solve_to_target_error(scene, 0.06, rays=200, seed=3, hierarchical=True,
-                                      hierarchical_transport=transport)
+    r = radwalk.solve_to_target_error(scene, 0.06, rays=200, seed=3, hierarchical_transport=transport)
     cli = json.load(open(tmp_path / "cli.json"))
     assert r.reached and cli["target_error"]["reached"]
     assert [s["patches"] for s in cli["target_error"]["steps"]] == [s["patches"] for s in r.steps]
@@ -97,14 +98,14 @@ def test_hierarchical_equals_the_cli(tmp_path, transport):
     with pytest.raises(radwalk.InputError):
         radwalk.solve_to_target_error(scene, 0.06, tol=1e-6, hierarchical=True, hierarchical_transport="rays")
     with pytest.raises(radwalk.InputError):
-        radwalk.solve_to_target_error(scene, 0.06, hierarchical_transport="rays")  # without hierarchical=True
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical=False, hierarchical_transport="rays")
     with pytest.raises(radwalk.InputError):
         radwalk.solve_to_target_error(scene, 0.06, hierarchical=True, hierarchical_transport="walks")
 
 
 def test_hierarchical_split_equals_the_cli(tmp_path):
     """hierarchical_split="adaptive" is `--hierarchical-split adaptive`: the same steps, leaves and B on a seed;
-    unknown names and the option without hierarchical=True are refused."""
+    unknown names and the option with hierarchical=False are refused."""
     run_cli("solve", SCENE, "--hierarchical", "--target-error", 0.06, "--rays", 200, "--seed", 3,
             "--hierarchical-split", "adaptive", "--csv", tmp_path / "cli.csv", "--json", tmp_path / "cli.json")
     scene = radwalk.load(SCENE)
@@ -119,4 +120,4 @@ def test_hierarchical_split_equals_the_cli(tmp_path):
     with pytest.raises(radwalk.InputError):
         radwalk.solve_to_target_error(scene, 0.06, hierarchical=True, hierarchical_split="bands")
     with pytest.raises(radwalk.InputError):
-        radwalk.solve_to_target_error(scene, 0.06, hierarchical_split="adaptive")  # without hierarchical=True
+        radwalk.solve_to_target_error(scene, 0.06, hierarchical=False, hierarchical_split="adaptive")
