@@ -614,9 +614,9 @@ int run_main(int argc, char** argv) {
       ->needs(target)
       ->capture_default_str();
   solve_cmd->add_option("--target-each", solve.target_each,
-                        "--target-error: also hold the mean radiosity of each material (or object, group) within E, "
-                        "with its own estimated error (per-patch errors of one material are correlated, so its mean can "
-                        "be off by more than E); none: the per-patch RMS only. Default: material, except with "
+                        "--target-error: also hold the mean radiosity of each material (or object, group) within 0.8 E "
+                        "(a margin for its estimate's own error), with its own estimated error (per-patch errors of one "
+                        "material are correlated, so its mean can be off by more than E); none: the per-patch RMS only. Default: material, except with "
                         "--hierarchical-transport rays, which cannot hold it (none)")
       ->check(CLI::IsMember({"material", "object", "group", "none"}))
       ->needs(target);

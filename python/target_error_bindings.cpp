@@ -233,7 +233,7 @@ leaf; rays: the first step's) and estimates B_se and B_disc; where the statistic
 has more rays, where the discretisation part dominates the elements with the largest estimated error are split.
 Its faces are first cut along the contacts when the scene was loaded with contact_cut=True (the default), as the
 CLI's --target-error does. each (the CLI's --target-each): also hold each "material" (the default, None), "object"
-or "group" mean within the target, with its own estimated error (the patches of one material have correlated
+or "group" mean within 0.8 x target_error (a margin for its estimate's own error), with its own estimated error (the patches of one material have correlated
 errors, so its mean can be off by more than the per-patch RMS); "none": the per-patch target alone
 (hierarchical_transport="rays" holds none by default and refuses a group). max_patches bounds the patches
 (leaves), max_seconds (0: none) the run's time. The same seed gives the CLI's patches and B. When a budget stops it

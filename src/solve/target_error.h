@@ -20,7 +20,7 @@
 // Groups (TargetErrorOptions::each: "material", "object" or "group"): the run also needs each group's mean within
 // the target, total_g <= E_g = kGroupTargetFraction E for every counted group g (solve/group_mean_error.h: the
 // per-patch errors of one material are correlated, so a mean can be off by several times the per-patch RMS; E_g
-// below E because a mean's estimate has been measured up to 1.24 times too small, below). A group above E_g gets the
+// below E because a mean's estimate has been measured up to 1.3 times too small, below). A group above E_g gets the
 // plan above from its own parts (stat_g, disc_g) and target E_g: its rays are the larger of the two plans', and where it refines, its
 // patches with the largest shares of its error are split (solve/group_mean_error.h: its own and those exchanging
 // light with it) until they hold a share of their sum (plan_group_targets below) (added to the global marks; the budget goes first
@@ -51,8 +51,8 @@ double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb
 // E_g / E, the target of each group's mean as a fraction of the run's target: a mean's estimated error is accurate
 // to about a quarter, and a run that stops once a mean's estimate is at E leaves it at E: on the furniture room at
 // E = 2 % the sofa's mean read +1.99 % against the path tracer for 1.88 % estimated, the wood's +1.72 % for 1.65 %
-// and, held to 1.82 %, +1.97 % for 1.59 % (measured / estimated up to 1.24: docs/accuracy.md, "Each material's
-// mean"). Held to 0.8 E, the largest measured was 0.88 of the criterion max(2 %, 2.5 sigma).
+// and, held to 1.82 %, +1.97 % for 1.59 % (measured / estimated up to 1.3: docs/accuracy.md, "A material's
+// mean held to 0.8 E"). Held to 0.8 E, the largest measured was 0.88 of the criterion max(2 %, 2.5 sigma).
 inline constexpr double kGroupTargetFraction = 0.8;
 
 // The starting patch count of a run given no patching (no --max-edge or --max-area; Python: a Scene loaded
