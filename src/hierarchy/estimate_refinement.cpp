@@ -149,7 +149,7 @@ EstimateRefinementResult refine_by_estimate(const PatchSet& roots, const Visibil
       if (o.max_leaves > 0 && leaves + 3 > o.max_leaves) break;
       if (!(ind.eta2[k] > 0)) break;
       const auto e = static_cast<std::size_t>(h.leaves[k]);
-      if (tree.level[e] >= solve.max_level || tree.area[e] / 4 < solve.min_area) continue;
+      if (!splittable(tree, e, solve)) continue;
       tree.split(e);
       held += ind.eta2[k];
       leaves += 3;

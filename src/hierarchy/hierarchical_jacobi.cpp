@@ -70,6 +70,14 @@ void check_options(const HierarchicalOptions& o) {
 
 }  // namespace
 
+bool within_depth(const ElementTree& tree, std::size_t e, const HierarchicalOptions& options) {
+  return tree.level[e] < options.max_level && tree.area[e] / 4 >= options.min_area;
+}
+
+bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& options) {
+  return tree.is_leaf(e) && within_depth(tree, e, options);
+}
+
 HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility,
                                       const HierarchicalOptions& options) {
   return solve_hierarchical(roots, visibility, make_element_tree(roots), options);
@@ -247,8 +255,7 @@ HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& v
             e = static_cast<std::size_t>(tree.child_containing(e, dep.point, normal));
           while (options.transport_oracle) {
             const double T = transfer(tree, centre, l, e, n_l, normal, dep.cap);
-            if (!(T > result.epsilon) || tree.level[e] >= options.max_level || tree.area[e] / 4 < options.min_area)
-              break;
+            if (!(T > result.epsilon) || !within_depth(tree, e, options)) break;
             if (tree.is_leaf(e)) {
               split(e, r, gathered);
               for (std::size_t x = centre.size(); x < tree.size(); ++x) centre.push_back(centre_of(tree, x));

@@ -81,6 +81,13 @@ struct HierarchicalResult {
   double seconds = 0;
 };
 
+// Whether the options' depth bounds allow children below element e: e above max_level and its quarters of at least
+// min_area. The oracles descend, and every refinement splits, only where this holds.
+bool within_depth(const ElementTree& tree, std::size_t e, const HierarchicalOptions& options);
+
+// Whether element e may be split now: a leaf within_depth.
+bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& options);
+
 // roots: the input patches (their tree is made here); visibility over roots. Throws InputError on options out of
 // range (tol <= 0 or not finite, replicates < 2, particles < 1, max_level < 0, points_side < 1).
 HierarchicalResult solve_hierarchical(const PatchSet& roots, const Visibility& visibility,

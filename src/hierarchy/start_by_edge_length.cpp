@@ -45,10 +45,6 @@ ElementTree split_to_extent(ElementTree tree, const HierarchicalOptions& solve, 
 
 }  // namespace
 
-bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& solve) {
-  return tree.is_leaf(e) && tree.level[e] < solve.max_level && tree.area[e] / 4 >= solve.min_area;
-}
-
 ElementTree start_by_edge_length(const PatchSet& roots, std::size_t more, long max_leaves, bool bands,
                                  const HierarchicalOptions& solve) {
   const ElementTree unsplit = make_element_tree(roots);

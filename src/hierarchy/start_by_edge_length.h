@@ -26,9 +26,6 @@ namespace radwalk {
 // `more` of the default start: the roots and about 200 elements more.
 inline constexpr std::size_t kStartMoreElements = 200;
 
-// Whether the options let element e be split: a leaf above max_level whose quarters keep min_area.
-bool splittable(const ElementTree& tree, std::size_t e, const HierarchicalOptions& solve);
-
 // The element trees of `roots` split as above (more = 0: unsplit), within max_leaves and the options' depth.
 ElementTree start_by_edge_length(const PatchSet& roots, std::size_t more, long max_leaves, bool bands,
                                  const HierarchicalOptions& solve);
