@@ -18,7 +18,9 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
 scaled: --scene-options go to the solves only), one-sided (the .vtp holds the back patches the solve made
-already: --open-shells one-sided keeps them as they are); the script checks that the patches agree. Example:
+already: --open-shells one-sided keeps them as they are); the script checks that the patches agree. The target
+runs take --target-error's default route (the hierarchical one); --run "--target-route uniform" measures the other.
+Example:
   python3 bench/target_error.py --targets 0.03,0.01 --seeds 3 --spp 2048 \\
       --hand "--max-edge 100 --rays 1000" --hand "--max-edge 50 --rays 1000"
 """
