@@ -426,10 +426,13 @@ int run_solve(const SolveCommand& command) {
     const TargetErrorStep& last = target->result.steps.back();
     std::fprintf(stderr,
                  "radwalk: target error %s not reached (%s stopped it after %zu steps): the answer written has an "
-                 "estimated error of %s with %zu %s and %ld rays a %s\n",
+                 "estimated error of %s with %zu %s and %ld rays a %s%s\n",
                  percent(command.target_error).c_str(), target->result.stop_reason.c_str(), target->result.steps.size(),
                  percent(last.total).c_str(), last.patches, command.hierarchical ? "leaves" : "patches",
-                 last.rays_per_patch, command.hierarchical ? "leaf" : "patch");
+                 last.rays_per_patch, command.hierarchical ? "leaf" : "patch",
+                 command.hierarchical ? ""
+                                      : "; the default route (without --target-route uniform) splits elements only "
+                                        "where the estimate asks (docs/accuracy.md, \"Where the uniform route fails\")");
     return 1;
   }
   if (solution.status == SolveStatus::converged) return 0;

@@ -67,6 +67,8 @@ TEST_CASE("solve --target-error stopped by its patch budget exits 1 with one lin
   INFO(r.out);
   CHECK(r.exit_code == 1);
   CHECK(r.out.find("radwalk: target error 0.5 % not reached (max-patches stopped it after") != std::string::npos);
+  CHECK(r.out.find("; the default route (without --target-route uniform) splits elements only where") !=
+        std::string::npos);
   CHECK(fs::exists(vtp));
 }
 
