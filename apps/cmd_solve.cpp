@@ -430,9 +430,12 @@ int run_solve(const SolveCommand& command) {
                  percent(command.target_error).c_str(), target->result.stop_reason.c_str(), target->result.steps.size(),
                  percent(last.total).c_str(), last.patches, command.hierarchical ? "leaves" : "patches",
                  last.rays_per_patch, command.hierarchical ? "leaf" : "patch",
-                 command.hierarchical ? ""
-                                      : "; the default route (without --target-route uniform) splits elements only "
-                                        "where the estimate asks (docs/accuracy.md, \"Where the uniform route fails\")");
+                 !command.hierarchical ? "; the default route (without --target-route uniform) splits elements only "
+                                         "where the estimate asks (docs/accuracy.md, \"Where the uniform route fails\")"
+                 : target->result.stop_reason == "depth"
+                     ? "; no leaf it would split is above --hierarchical-levels and of at least 4 x "
+                       "--hierarchical-min-area"
+                     : "");
     return 1;
   }
   if (solution.status == SolveStatus::converged) return 0;

@@ -189,7 +189,8 @@ scene: a Scene of the last step's patches (each keeps its input face, group and 
 FormFactors; result: their Result (B, B_se, B_disc, B_err; metadata holds the CLI's JSON "target_error" object);
 steps: one dict per step (patches, rays_per_patch, statistical, discretisation, total: relative errors; seconds;
 split, next_rays_per_patch: what the next step changed); reached: whether the estimated total error is at most the
-target; stop_reason: "target reached", "max-patches", "max-seconds", "max-steps", "rays" or "solver".)doc")
+target; stop_reason: "target reached", "max-patches", "depth" (hierarchical: no leaf to split within the depth bounds),
+"max-seconds", "max-steps", "rays" or "solver".)doc")
       .def_readonly("scene", &TargetErrorPyResult::scene, "The Scene of the last step's patches, N of them.")
       .def_readonly("form_factors", &TargetErrorPyResult::form_factors, "The FormFactors of those patches, (N, N).")
       .def_readonly("result", &TargetErrorPyResult::result,

@@ -189,7 +189,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
       }
       const bool more_rays = next_rays > rays;
       if (refine && split.empty() && !more_rays) {
-        stop = "max-leaves";
+        stop = (o.max_leaves - leaves_now) / 3 > 0 ? "depth" : "max-leaves";
       } else if (!refine && !more_rays) {
         stop = "rays";
       } else if (o.max_seconds > 0) {

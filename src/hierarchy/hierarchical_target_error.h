@@ -40,8 +40,9 @@
 // inside them (a leaf straddling a shadow line has a small B_disc but a large W2). max_leaves bounds the leaves;
 // no step is started when the elapsed time plus the last step's time scaled by (leaves' R') / (leaves R) would
 // pass max_seconds (0: none); at most max_steps solves. When a budget stops the run first, `reached` is false and
-// stop_reason names it ("max-leaves", "max-seconds", "max-steps", "rays"); the last solution (the most accurate)
-// is kept with its own estimates.
+// stop_reason names it ("max-leaves", "max-seconds", "max-steps", "rays"), or "depth" when the budget had room but
+// no leaf the plan marked may be split (HierarchicalOptions' max_level and min_area: within_depth); the last
+// solution (the most accurate) is kept with its own estimates.
 // start_leaves > 0: before the first step the trees are split by edge length to the roots and about start_leaves
 // leaves more, within max_leaves, with bands where the split is adaptive (hierarchy/start_by_edge_length.h; the
 // uniform route starts by area, solve/target_error.h).
@@ -109,7 +110,7 @@ struct HierarchicalTargetResult {
   std::vector<HierarchicalTargetStep> steps;
   std::vector<GroupMeanError> groups;  // the last step's, with `each` (else empty)
   bool reached = false;
-  std::string stop_reason;      // "target reached", "max-leaves", "max-seconds", "max-steps", "rays", "solver"
+  std::string stop_reason;      // "target reached", "max-leaves", "depth", "max-seconds", "max-steps", "rays", "solver"
   double seconds = 0;
   // With form factors: the last step's stage on its leaves as patches (F and the solver's Solution, with B_se and
   // B_disc); empty F and default Solution with rays.

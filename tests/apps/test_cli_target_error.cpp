@@ -147,6 +147,12 @@ TEST_CASE("solve --hierarchical --target-error: the leaf budget exits 1, the opt
   CHECK(b.out.find("radwalk: target error 0.5 % not reached (max-") != std::string::npos);
   CHECK(b.out.find(" leaves and ") != std::string::npos);  // the rays a leaf depend on when the time budget stops it
   CHECK(b.out.find(" rays a leaf") != std::string::npos);
+  // The depth bounds, not the budget, stop a run whose marked leaves cannot be split: said so.
+  const Run d = run("solve " + scene + "--discretisation-directions 2 --hierarchical-levels 0");
+  INFO(d.out);
+  CHECK(d.exit_code == 1);
+  CHECK(d.out.find("not reached (depth stopped it after") != std::string::npos);
+  CHECK(d.out.find("no leaf it would split is above --hierarchical-levels") != std::string::npos);
   for (const std::string extra : {"--hierarchical-tol 0.01", "--hierarchical-rays 1000", "--hierarchical-refine estimate",
                                   "--hierarchical-max-leaves 100", "--solver jacobi", "--rays-per-area 1e-3"}) {
     const Run r = run("solve " + scene + extra);
