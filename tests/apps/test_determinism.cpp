@@ -1,4 +1,4 @@
-// Determinism across thread counts (issue 12, docs/reliability.md "Determinism"): every output file of every
+// Determinism across thread counts (docs/reliability.md "Determinism"): every output file of every
 // command is the same byte for byte with --threads 1 and --threads 2, except the documented fields that record how
 // a run went rather than what it computed, which are removed before the comparison:
 //   JSON: arguments, threads, timings_s, peak_memory_bytes, every key naming seconds or a rate per second
@@ -126,6 +126,15 @@ TEST_CASE("every output of every command is the same with 1 and 2 threads", "[de
       {"solve-ray-kernel", "solve " + scene + "--solver random-walk --kernel ray --walks-per-patch 20 " + outs, 3},
       {"solve-refine", "solve " + scene + "--refine 0.5 --refine-steps 1 " + outs, 3},
       {"solve-progressive", "solve " + scene + "--solver jacobi --progressive OUT/series " + outs, 3},
+      {"solve-hierarchical", "solve " + scene + "--hierarchical --hierarchical-rays 20000 " + outs, 3},
+      {"solve-target-hierarchical",
+       "solve " + scene + "--target-error 0.05 --rays 200 --discretisation-directions 4 " + outs, 3},
+      {"solve-target-rays",
+       "solve " + scene + "--target-error 0.2 --rays 100 --hierarchical-transport rays --discretisation-directions 4 " +
+           outs, 3},
+      {"solve-target-uniform",
+       "solve " + scene + "--target-error 0.05 --target-route uniform --rays 200 --discretisation-directions 4 " + outs,
+       3},
       {"compare", "compare " + scene + "--walks-per-patch 10 --runs 2 -o OUT/c.vtp --csv OUT/c.csv --json OUT/c.json",
        3},
       {"pathtrace", "pathtrace " + scene + "--spp 4 --width 24 --height 16 --image OUT/i.png " + outs, 4},
