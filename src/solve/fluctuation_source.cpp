@@ -9,6 +9,7 @@
 #include "core/discrete_distribution.h"
 #include "core/moments.h"
 #include "core/parallel.h"
+#include "core/progress.h"
 #include "core/rng.h"
 #include "core/sampling.h"
 #include "formfactor/point_polygon_form_factor.h"
@@ -316,6 +317,8 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   constexpr std::size_t kChunk = 64;
   const std::size_t chunks = (N + kChunk - 1) / kChunk;
   std::size_t next_row = 0;
+  // Its rays can outnumber the form factors' (the near field's), so it reports as they do (core/progress.h).
+  Progress progress("discretisation error estimate", N);
   ordered_reduce(
       chunks, 2 * std::size_t(std::max(1, active_threads())),
       [&](std::size_t c) {
@@ -326,6 +329,7 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
       },
       [&](std::vector<PatchShots> part) {
         // Chunks arrive in order: part[q] is patch next_row + q.
+        progress.advance(part.size());
         for (std::size_t q = 0; q < part.size(); ++q) {
           for (const Shot& s : part[q].shots) d[s.replicate].row(s.target) += (s.value * scale).transpose();
           for (const Shot& s : part[q].units) units.row(s.target) += (s.value * (scale * scale)).transpose();
@@ -376,13 +380,16 @@ std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Vi
   const PatchRgb scaled = B / scale;
   const Shooter shooter(patches, visibility, scaled, scale, seed, point_sides(patches, side), directions, true);
   std::vector<double> out(N, 0.0);
+  Progress progress("discretisation error's shooters", N);
   parallel_for(N, [&](std::size_t j) {
-    if (!(patches.rho[j].maxCoeff() > 0)) return;
-    PatchShots shots;
-    shooter.shoot(j, shots, &source.deltas[j]);
-    double sum = 0;
-    for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
-    out[j] = sum * scale;
+    if (patches.rho[j].maxCoeff() > 0) {
+      PatchShots shots;
+      shooter.shoot(j, shots, &source.deltas[j]);
+      double sum = 0;
+      for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
+      out[j] = sum * scale;
+    }
+    progress.advance(1);
   }, 16);
   return out;
 }
