@@ -44,6 +44,8 @@ ProgressOutput ProgressOutput::standard() {
     if (end != s && *end == '\0' && std::isfinite(v) && v > 0) interval = v;
   }
   ProgressOutput o = lines(interval);
+  static const std::shared_ptr<ProgressSilence> process_silence = std::make_shared<ProgressSilence>();
+  o.silence = process_silence;
   o.enabled = g_enabled;
   o.in_place = ::isatty(STDERR_FILENO) != 0;
   if (o.in_place) {
@@ -64,6 +66,12 @@ Progress::Progress(std::string label, std::size_t total, ProgressOutput output)
   if (!output_.write) output_.write = write_stderr;
   start_ = output_.clock();
   next_report_ = start_ + output_.first_s;
+  if (output_.silence) {  // one first interval after the last line of any stage sharing the silence
+    double last = std::numeric_limits<double>::quiet_NaN();
+    output_.silence->last_line.compare_exchange_strong(last, start_);  // the first stage: its own start
+    last = output_.silence->last_line.load();
+    next_report_ = std::min(start_ + output_.first_s, std::max(last + output_.first_s, start_));
+  }
   uncaught_ = std::uncaught_exceptions();
 }
 
@@ -99,6 +107,8 @@ std::string Progress::format_duration(double seconds) {
 }
 
 std::string Progress::format(const std::string& label, std::size_t done, std::size_t total, double elapsed) {
+  if (total == kUnknownTotal)
+    return label + ": " + std::to_string(done) + " so far, " + format_duration(elapsed) + " elapsed";
   const double fraction = total > 0 ? std::min(1.0, double(done) / double(total)) : 1.0;
   const int percent = static_cast<int>(std::floor(100 * fraction));
   std::string text = label + " " + std::to_string(percent) + "% (" + std::to_string(done) + "/" +
@@ -120,6 +130,7 @@ void Progress::report(const std::string& text, bool last) {
     output_.write(line + "\n");
   }
   reported_ = true;
+  if (output_.silence) output_.silence->last_line = now();
 }
 
 void Progress::advance(std::size_t done_items) {

@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "core/error.h"
+#include "solve/iteration_progress.h"
 
 namespace radwalk {
 namespace {
@@ -121,9 +122,12 @@ BlockSolution solve_scaled(const RadiosityProblem& p, const RowBlock& Z, double 
   double best = (R.abs().colwise().maxCoeff() / target.max(1e-300)).maxCoeff();  // worst column, in targets
   int slow_cycles = 0;
   long iterations = 0;
+  // Progress in the worst column's residual relative to its target's scale (solve/iteration_progress.h).
+  IterationProgress progress(std::string(what) + ", GMRES iterations", tolerance, 10000);
   for (;;) {
     const RowArray now = R.abs().colwise().maxCoeff();
     if (!now.allFinite()) throw InputError(std::string(what) + ": the block GMRES broke down (not finite)");
+    progress.update(iterations, tolerance * (now / target.max(1e-300)).maxCoeff());
     if ((now <= target).all()) break;
     if (iterations >= 10000)
       throw InputError(std::string(what) + " did not converge in 10,000 GMRES iterations");

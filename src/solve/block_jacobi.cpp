@@ -7,8 +7,14 @@
 #include "core/distributed.h"
 #include "core/error.h"
 #include "formfactor/form_factor_rows.h"
+#include "solve/iteration_progress.h"
 
 namespace radwalk {
+namespace {
+
+constexpr long kMaxBlockSweeps = 10000;
+
+}  // namespace
 
 BlockSolution solve_block_jacobi(const RadiosityProblem& p, const RowBlock& Z, double tolerance, const char* what) {
   const Eigen::Index N = static_cast<Eigen::Index>(p.size());
@@ -20,6 +26,8 @@ BlockSolution solve_block_jacobi(const RadiosityProblem& p, const RowBlock& Z, d
   RowBlock next(N, columns);
   Eigen::Array<double, 1, Eigen::Dynamic> gathered(columns), rho_row(columns), updated(columns);
   const distributed::Range mine = own_rows(p.row_blocks, static_cast<std::size_t>(N));
+  // The change falls about geometrically: the sweeps left are estimated from its rate (solve/iteration_progress.h).
+  IterationProgress progress(std::string(what) + ", sweeps", tolerance, kMaxBlockSweeps);
   for (;;) {
     double change = 0, size = 0;
     for (auto i = static_cast<Eigen::Index>(mine.begin); i < static_cast<Eigen::Index>(mine.end); ++i) {
@@ -37,8 +45,9 @@ BlockSolution solve_block_jacobi(const RadiosityProblem& p, const RowBlock& Z, d
     change = distributed::max_over_ranks(change);
     size = distributed::max_over_ranks(size);
     ++out.sweeps;
+    progress.update(out.sweeps, size > 0 ? change / size : 0.0);
     if (!(change > tolerance * size)) break;
-    if (out.sweeps >= 10000)
+    if (out.sweeps >= kMaxBlockSweeps)
       throw InputError(std::string(what) + " did not converge in 10,000 sweeps (spectral radius of diag(rho) F near 1)");
   }
   return out;

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/moments.h"
 #include "formfactor/form_factor_noise.h"
+#include "solve/iteration_progress.h"
 
 namespace radwalk {
 
@@ -51,6 +52,7 @@ PatchRgb adjoint_weights(const RadiosityProblem& p, const Eigen::VectorXd& W, lo
   // Psi = W + F^T (rho Psi), all channels at once; F^T applied by scattering F's rows.
   PatchRgb psi(N, 3), next(N, 3);
   for (int c = 0; c < 3; ++c) psi.col(c) = W.array();
+  IterationProgress progress("error estimate: an adjoint's sweeps", 1e-10, 100000);
   for (;;) {
     for (int c = 0; c < 3; ++c) next.col(c) = W.array();
     for (Eigen::Index i = 0; i < N; ++i) {
@@ -59,6 +61,7 @@ PatchRgb adjoint_weights(const RadiosityProblem& p, const Eigen::VectorXd& W, lo
     }
     ++sweeps;
     const double change = (next - psi).abs().maxCoeff(), size = next.abs().maxCoeff();
+    progress.update(sweeps, size > 0 ? change / size : 0.0);
     psi.swap(next);
     if (!(change > 1e-10 * size)) break;
     if (sweeps >= 100000)

@@ -4,7 +4,8 @@
 // The relative residual falls about geometrically, so after k iterations at residual r_k, from r_a at iteration
 // a (the first one reported), the total is estimated at the rate observed so far:
 //     total = a + (k - a) * log(r_a / tol) / log(r_a / r_k),
-// kept between k and the budget (the budget itself until the residual has fallen below r_a).
+// kept between k and the budget; until the residual has fallen below r_a there is none (Progress::kUnknownTotal:
+// the reports count the iterations), and at the budget the budget.
 #include <string>
 
 #include "core/progress.h"

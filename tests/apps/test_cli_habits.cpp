@@ -173,6 +173,15 @@ TEST_CASE("radwalk: progress lines when stderr is a file, none for quick stages 
   CHECK(read_text(err).find("form factors done") == std::string::npos);
   CHECK(read_text(err).find("radwalk: form factors ") == std::string::npos);
 
+  // The error estimate's block solves (solve/block_jacobi.h) report as iterations: about 0.1 s of sweeps here,
+  // 5-6 s each on a city block of 139,808 patches, where they printed nothing; every 2 ms shows their lines.
+  REQUIRE(run_with_stderr("RADWALK_PROGRESS_INTERVAL=0.002", args, err) == 0);
+  const std::string estimate = read_text(err);
+  INFO(estimate);
+  const std::string label = "radwalk: error estimate: the propagation of the form factors' noise, sweeps";
+  CHECK(std::regex_search(estimate, std::regex(label + R"( [0-9]+% \([0-9]+/[0-9]+\), [0-9.]+ s elapsed)")));
+  CHECK(estimate.find(label + " done in ") != std::string::npos);
+
   // -q silences progress whatever the interval.
   REQUIRE(run_with_stderr("RADWALK_PROGRESS_INTERVAL=0.05", args + " -q", err) == 0);
   CHECK(read_text(err).find("form factors") == std::string::npos);

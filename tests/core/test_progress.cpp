@@ -1,6 +1,7 @@
 // Progress reports: plain lines at a fixed interval when stderr is not a terminal, nothing for quick stages,
 // redrawn in place on a terminal, silent when disabled. A fake clock and a captured output replace time and stderr.
 #include <catch2/catch.hpp>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -128,4 +129,43 @@ TEST_CASE("progress: a stage ended by an exception prints no done line", "[progr
   }
   REQUIRE(out.written.size() == 1);
   CHECK(out.written[0].find("done") == std::string::npos);
+}
+
+TEST_CASE("progress: stages sharing their silence report one interval after the last line of any of them",
+          "[progress]") {
+  FakeOutput out;
+  ProgressOutput a_out = out.lines(5), b_out = out.lines(5), c_out = out.lines(5), alone = out.lines(5);
+  const auto silence = std::make_shared<ProgressSilence>();
+  a_out.silence = b_out.silence = c_out.silence = silence;
+  {
+    Progress a("form factors", 4, a_out);  // starts at 100, the silence's origin
+    for (int k = 0; k < 4; ++k) {
+      out.t += 1;
+      a.advance(1);
+    }
+  }  // 4 s: too short to report on its own
+  CHECK(out.written.empty());
+  {
+    Progress lone("alone", 4, alone);  // not sharing: its own first interval, from 104
+    out.t += 1.5;                      // 105.5: 5.5 s of silence, 1.5 s of its own
+    lone.advance(1);
+    CHECK(out.written.empty());
+  }
+  Progress b("error propagation", 10, b_out);  // starts at 105.5, 5.5 s after the origin: due at once
+  out.t += 0.5;
+  b.advance(1);
+  REQUIRE(out.written.size() == 1);
+  CHECK(out.written[0] == "radwalk: error propagation 10% (1/10), 0.5 s elapsed, about 4.5 s left\n");
+  b.advance(9);
+  b.finish();  // 106: the done line, the last line
+  REQUIRE(out.written.size() == 2);
+  out.t += 3;
+  Progress c("discretisation error estimate", 10, c_out);  // 109: due at 111, 5 s after the last line
+  out.t += 1.5;
+  c.advance(1);
+  CHECK(out.written.size() == 2);
+  out.t += 0.6;  // 111.1
+  c.advance(1);
+  REQUIRE(out.written.size() == 3);
+  CHECK(out.written[2] == "radwalk: discretisation error estimate 20% (2/10), 2.1 s elapsed, about 8.4 s left\n");
 }
