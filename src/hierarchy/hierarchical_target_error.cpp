@@ -180,7 +180,8 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
           eligible[k] = splittable(h.tree, static_cast<std::size_t>(h.leaves[k]), solve);
         for (const std::size_t k : split) marks[k] = true;
         const long room = std::max(0L, (o.max_leaves - leaves_now) / 3 - static_cast<long>(split.size()));
-        const GroupTargetPlan own = plan_group_targets(groups, E, rays, static_cast<std::size_t>(room), marks, eligible);
+        const GroupTargetPlan own = plan_group_targets(groups, E, rays, static_cast<std::size_t>(room), marks, eligible,
+                                                         true);
         next_rays = std::max(next_rays, own.next_rays);
         refine = refine || own.refine;
         split.clear();

@@ -112,7 +112,7 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
 }
 
 GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, double E, long rays, std::size_t room,
-                                   std::vector<bool>& split, const std::vector<bool>& eligible) {
+                                   std::vector<bool>& split, const std::vector<bool>& eligible, bool equal_share_floor) {
   GroupTargetPlan out;
   out.next_rays = rays;
   const double E_g = kGroupTargetFraction * E;
@@ -127,7 +127,10 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
     // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E_g the plan's target.
     const double fraction = std::min(1.0, 2 * (1 - 0.7 * E_g / g.discretisation));
     RADWALK_CHECK_EQ(g.share.size(), split.size());
-    out.marked += mark_largest(g.share, fraction, 0.0, eligible, room - out.marked, split);
+    // equal_share_floor: the floor t_d / N (header); none where no share is above it.
+    double floor = equal_share_floor ? 0.7 * E_g / double(split.size()) : 0.0;
+    if (!(*std::max_element(g.share.begin(), g.share.end()) > floor)) floor = 0;
+    out.marked += mark_largest(g.share, fraction, floor, eligible, room - out.marked, split);
   }
   return out;
 }

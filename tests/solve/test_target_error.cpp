@@ -222,3 +222,30 @@ TEST_CASE("target error: a material whose mean is off is refined where its error
   o.each = "colour";
   CHECK_THROWS_AS(solve_to_target_error(cube, work, o), InputError);
 }
+
+// The groups' marks with the equal-share floor (the hierarchical route's): a mean at 7 % (E = 2 %, E_g = 1.6 %,
+// f = 1) whose shares are 4 of 0.015 and 96 of 1e-5 (N = 100 patches; t_d / N = 0.7 x 0.016 / 100 = 1.12e-4). The
+// ranking alone marks every patch with a share; with the floor only the 4 above t_d / N. Where no share is above the
+// floor (100 shares of 1e-5), the ranking alone. A shares' sum of 0.06 with a floor of 1.12e-4 cannot mark a patch of
+// share 1e-5 unless the floor is dropped: each case can fail.
+TEST_CASE("target error: a group's marks skip the shares within their equal part of its target with the floor") {
+  GroupMeanError g;
+  g.name = "sofa";
+  g.counted = true;
+  g.discretisation = g.total = 0.07;
+  g.share.assign(100, 1e-5);
+  for (int k = 0; k < 4; ++k) g.share[std::size_t(10 * k)] = 0.015;
+  const std::vector<GroupMeanError> groups{g};
+  std::vector<bool> plain(100, false), floored(100, false);
+  const GroupTargetPlan a = plan_group_targets(groups, 0.02, 1000, 1000, plain);
+  CHECK(a.refine);
+  CHECK(a.marked == 100);
+  const GroupTargetPlan b = plan_group_targets(groups, 0.02, 1000, 1000, floored, {}, true);
+  CHECK(b.refine);
+  REQUIRE(b.marked == 4);
+  for (int k = 0; k < 4; ++k) CHECK(floored[std::size_t(10 * k)]);
+  std::vector<GroupMeanError> even{g};
+  even[0].share.assign(100, 1e-5);
+  std::vector<bool> spread(100, false);
+  CHECK(plan_group_targets(even, 0.02, 1000, 1000, spread, {}, true).marked == 100);
+}
