@@ -22,7 +22,7 @@ std::string target_groups(const SolveCommand& command, bool can_hold) {
 std::string group_progress(const TargetErrorStep& s, const std::string& each, double target) {
   if (s.groups == 0) return {};
   return "; " + std::to_string(s.groups_within) + " of " + std::to_string(s.groups) + " " + each + "s within " +
-         percent(kGroupTargetFraction * target) + " (largest: " + s.worst_group + " " + percent(s.worst_group_total) +
+         percent(group_target(target)) + " (largest: " + s.worst_group + " " + percent(s.worst_group_total) +
          ")";
 }
 

@@ -96,9 +96,10 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
   const std::shared_ptr<const RadiosityProblem> problem =
       stage.problem ? stage.problem
                     : std::make_shared<const RadiosityProblem>(make_problem(patches, SparseF(stage.form_factors.F)));
-  const double E_g = kGroupTargetFraction * E;
+  const double E_g = group_target(E);
+  // The shares of every group that plan_group_targets may split for: above E_g, or near it (disc_g > 0.8 E_g).
   std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), *problem, B, B_se,
-                                                         stage.source, stage.source_sd, E_g, stage.noise);
+                                                         stage.source, stage.source_sd, 0.8 * E_g, stage.noise);
   for (const GroupMeanError& g : groups) {
     if (!g.counted) continue;
     ++record.groups;
@@ -115,9 +116,13 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
                                    std::vector<bool>& split, const std::vector<bool>& eligible, bool equal_share_floor) {
   GroupTargetPlan out;
   out.next_rays = rays;
-  const double E_g = kGroupTargetFraction * E;
+  const double E_g = group_target(E);
+  // Whether the next step splits in any case (the caller's marks, or a group above E_g): then the groups within E_g
+  // are planned too, and those whose discretisation part is above 0.8 E_g (where the plan refines) are split now.
+  bool splits_anyway = std::find(split.begin(), split.end(), true) != split.end();
+  for (const GroupMeanError& g : groups) splits_anyway = splits_anyway || (g.counted && g.total > E_g);
   for (const GroupMeanError& g : groups) {
-    if (!g.counted || g.total <= E_g) continue;
+    if (!g.counted || (g.total <= E_g && !splits_anyway)) continue;
     const TargetErrorPlan own = plan_target_error_step(g.statistical, g.discretisation, E_g, rays);
     out.next_rays = std::max(out.next_rays, own.next_rays);
     if (!own.refine) continue;

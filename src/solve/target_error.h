@@ -24,7 +24,10 @@
 // plan above from its own parts (stat_g, disc_g) and target E_g: its rays are the larger of the two plans', and where it refines, its
 // patches with the largest shares of its error are split (solve/group_mean_error.h: its own and those exchanging
 // light with it) until they hold a share of their sum (plan_group_targets below) (added to the global marks; the budget goes first
-// to the global marks, then to the groups in the order of their first patches).
+// to the global marks, then to the groups in the order of their first patches). When the step splits in any case,
+// a group within E_g whose discretisation part is above 0.8 E_g (where its plan refines) is split for as well: its
+// estimate's own noise (about 12 % of a mean's error, docs/accuracy.md) would put it above E_g at a later step
+// about as often as not, and each step traces every patch again.
 // Budgets: never more than max_patches (the largest contributions split first, as many as fit); no step started
 // when the elapsed time plus the last step's time scaled by the rays the next traces (N' R' / (N R)) would pass
 // max_seconds (0: no limit); at most max_steps solves. When a budget stops the run first, `reached` is false and
@@ -54,6 +57,9 @@ double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb
 // and, held to 1.82 %, +1.97 % for 1.59 % (measured / estimated up to 1.3: docs/accuracy.md, "A material's
 // mean held to 0.8 E"). Held to 0.8 E, the largest measured was 0.88 of the criterion max(2 %, 2.5 sigma).
 inline constexpr double kGroupTargetFraction = 0.8;
+
+// E_g = kGroupTargetFraction E: the target of each group's mean for a run's target E.
+inline constexpr double group_target(double E) { return kGroupTargetFraction * E; }
 
 // The starting patch count of a run given no patching (no --max-edge or --max-area; Python: a Scene loaded
 // without max_edge or max_area): about 500 patches, where the Cornell box's estimated error is near 2 %.
@@ -133,16 +139,16 @@ TargetErrorPlan plan_target_error_step(double statistical, double discretisation
 
 // A step's errors of each group's mean (solve/group_mean_error.h, the groups of `each`; none when it is "") for the
 // solution B, B_se of `patches` and the stage's F, discretisation source and noise model, with their shares kept
-// for the groups above E_g = kGroupTargetFraction E; records in `record` the counted groups, how many are within
-// E_g and the worst. InputError when the stage
-// gave no source. Shared by the uniform steps and the hierarchy's (form-factor transport).
+// for the groups above 0.8 E_g (E_g = kGroupTargetFraction E: those plan_group_targets may split for); records in
+// `record` the counted groups, how many are within E_g and the worst. InputError when the stage gave no source. Shared by the uniform steps and the hierarchy's (form-factor transport).
 std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const TargetErrorStage& stage, const PatchRgb& B,
                                               const PatchRgb& B_se, const std::string& each, double E,
                                               TargetErrorStep& record);
 
 // The groups' share of the plan (the rule above), for the uniform patches and the hierarchy's leaves alike: for
-// each counted group above E_g = kGroupTargetFraction E, its own plan (plan_target_error_step of stat_g, disc_g at
-// target E_g); next_rays the largest of them (rays when none asks for more); where one refines, the patches
+// each counted group above E_g = kGroupTargetFraction E, and when the step splits in any case (`split` already holds
+// a mark, or a group is above E_g) for every counted group, its own plan (plan_target_error_step of stat_g, disc_g
+// at target E_g: it refines where disc_g > 0.8 E_g, and asks no more rays of a group within E_g); next_rays the largest of them (rays when none asks for more); where one refines, the patches
 // (leaves) with the largest shares of its error (GroupMeanError::share, which must be kept) are marked in `split`
 // until the marked ones (already marked ones included) hold the fraction f = min(1, 2 (1 - 0.7 E_g / disc_g)) of
 // the sum of its shares (the shares add up to the error, not to its square, and a split is taken to halve a share:

@@ -8,6 +8,7 @@
 // non-emitting patches.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <thread>
@@ -248,4 +249,38 @@ TEST_CASE("target error: a group's marks skip the shares within their equal part
   even[0].share.assign(100, 1e-5);
   std::vector<bool> spread(100, false);
   CHECK(plan_group_targets(even, 0.02, 1000, 1000, spread, {}, true).marked == 100);
+}
+
+// A group within its target E_g but near it (disc_g 0.9 E_g, where its plan refines) is split for when the step
+// splits in any case (another group above E_g, or the caller's marks), and not otherwise: E = 2 %, E_g = 1.6 %,
+// the wood at 1.44 % (f = 2 (1 - 0.7 / 0.9) = 0.444 of its 10 equal shares: 5 marked), the sofa at 7 % on other
+// patches. Alone, or with the sofa within E_g, the wood gets no mark.
+TEST_CASE("target error: a group near its target is split for when the step splits anyway") {
+  GroupMeanError sofa, wood;
+  sofa.name = "sofa";
+  wood.name = "wood";
+  sofa.counted = wood.counted = true;
+  sofa.discretisation = sofa.total = 0.07;
+  wood.discretisation = wood.total = 0.9 * 0.016;
+  sofa.share.assign(20, 0.0);
+  wood.share.assign(20, 0.0);
+  for (int k = 0; k < 10; ++k) {
+    sofa.share[std::size_t(k)] = 0.007;
+    wood.share[std::size_t(10 + k)] = 0.00144;
+  }
+  std::vector<bool> marks(20, false);
+  const GroupTargetPlan both = plan_group_targets({sofa, wood}, 0.02, 1000, 1000, marks);
+  CHECK(both.refine);
+  CHECK(both.next_rays == 1000);
+  CHECK(std::count(marks.begin(), marks.begin() + 10, true) == 10);
+  CHECK(std::count(marks.begin() + 10, marks.end(), true) == 5);  // 0.444 x 10 shares, rounded up by the ranking
+  std::vector<bool> alone(20, false);
+  CHECK_FALSE(plan_group_targets({wood}, 0.02, 1000, 1000, alone).refine);
+  CHECK(std::count(alone.begin(), alone.end(), true) == 0);
+  std::vector<bool> given(20, false);
+  given[0] = true;  // the caller's (global) mark: the step splits anyway
+  CHECK(plan_group_targets({wood}, 0.02, 1000, 1000, given).marked == 5);
+  sofa.total = sofa.discretisation = 0.015;  // within E_g: no step from the groups
+  std::vector<bool> within(20, false);
+  CHECK_FALSE(plan_group_targets({sofa, wood}, 0.02, 1000, 1000, within).refine);
 }
