@@ -14,8 +14,9 @@
 // longer than that first interval (a stage whose only work item is long). The stages of a run share their silence
 // (ProgressSilence): a stage's first report is due one first interval after the last line any of them printed (or
 // after the first stage's start), not after its own start, so that a run of stages each too short to report alone
-// (a city block's form factors, solve and error propagation, 4-5 s each) still prints a line every few seconds. Reports are made by advance() (and
-// finish()), in whichever thread gets there first: nothing is printed while no work item completes.
+// still prints a line every few seconds (a target step on a 139,808-patch city block: form factors 4 s, a solve
+// 1 s, an error propagation 5 s; 12 s without a line before). Reports are made by advance() (and finish()), in
+// whichever thread gets there first: nothing is printed while no work item completes.
 #include <atomic>
 #include <cstddef>
 #include <functional>
