@@ -12,6 +12,8 @@
 namespace radwalk {
 namespace {
 
+constexpr long kMaxBlockGmresIterations = 10000;
+
 using RowArray = Eigen::Array<double, 1, Eigen::Dynamic>;
 
 // The splitting A = M - U, M = D - L, per column (rho of the column's channel), over F's raw compressed rows.
@@ -123,13 +125,13 @@ BlockSolution solve_scaled(const RadiosityProblem& p, const RowBlock& Z, double 
   int slow_cycles = 0;
   long iterations = 0;
   // Progress in the worst column's residual relative to its target's scale (solve/iteration_progress.h).
-  IterationProgress progress(std::string(what) + ", GMRES iterations", tolerance, 10000);
+  IterationProgress progress(std::string(what) + ", GMRES iterations", tolerance, kMaxBlockGmresIterations);
   for (;;) {
     const RowArray now = R.abs().colwise().maxCoeff();
     if (!now.allFinite()) throw InputError(std::string(what) + ": the block GMRES broke down (not finite)");
     progress.update(iterations, tolerance * (now / target.max(1e-300)).maxCoeff());
     if ((now <= target).all()) break;
-    if (iterations >= 10000)
+    if (iterations >= kMaxBlockGmresIterations)
       throw InputError(std::string(what) + " did not converge in 10,000 GMRES iterations");
     const RowArray beta = R.matrix().colwise().norm().array();
     for (Eigen::Index k = 0; k < K; ++k) V[0].col(k) = beta(k) > 0 ? (R.col(k) / beta(k)).eval() : R.col(k) * 0.0;

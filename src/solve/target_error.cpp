@@ -74,9 +74,9 @@ double relative_error(const PatchSet& patches, const PatchRgb& B, const PatchRgb
 
 TargetErrorPlan plan_target_error_step(double statistical, double discretisation, double E, long rays) {
   TargetErrorPlan plan;
-  plan.refine = discretisation > 0.8 * E;
-  const double t_d = plan.refine ? 0.7 * E : discretisation;
-  const double t_s = plan.refine ? 0.7 * E : std::sqrt(E * E - discretisation * discretisation);
+  plan.refine = discretisation > kRefineAbove * E;
+  const double t_d = plan.refine ? kPlanTarget * E : discretisation;
+  const double t_s = plan.refine ? kPlanTarget * E : std::sqrt(E * E - discretisation * discretisation);
   plan.next_rays = rays;
   if (statistical > t_s) {
     const double factor = std::max(1.25, 1.1 * (statistical / t_s) * (statistical / t_s));
@@ -99,7 +99,7 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
   const double E_g = group_target(E);
   // The shares of every group that plan_group_targets may split for: above E_g, or near it (disc_g > 0.8 E_g).
   std::vector<GroupMeanError> groups = group_mean_errors(patches, group_patches(patches, each), *problem, B, B_se,
-                                                         stage.source, stage.source_sd, 0.8 * E_g, stage.noise);
+                                                         stage.source, stage.source_sd, kRefineAbove * E_g, stage.noise);
   for (const GroupMeanError& g : groups) {
     if (!g.counted) continue;
     ++record.groups;
@@ -130,10 +130,10 @@ GroupTargetPlan plan_group_targets(const std::vector<GroupMeanError>& groups, do
     // The shares add up to the error itself (not its square); a split is taken to halve a patch's share (as the
     // global rule takes it to halve a contribution: first order would quarter it, a patch across a shadow line only
     // halves it), so the marked shares f must satisfy f e_d / 2 >= e_d - t_d, t_d = 0.7 E_g the plan's target.
-    const double fraction = std::min(1.0, 2 * (1 - 0.7 * E_g / g.discretisation));
+    const double fraction = std::min(1.0, 2 * (1 - kPlanTarget * E_g / g.discretisation));
     RADWALK_CHECK_EQ(g.share.size(), split.size());
     // equal_share_floor: the floor t_d / N (header); none where no share is above it.
-    double floor = equal_share_floor ? 0.7 * E_g / double(split.size()) : 0.0;
+    double floor = equal_share_floor ? kPlanTarget * E_g / double(split.size()) : 0.0;
     if (!(*std::max_element(g.share.begin(), g.share.end()) > floor)) floor = 0;
     out.marked += mark_largest(g.share, fraction, floor, eligible, room - out.marked, split);
   }

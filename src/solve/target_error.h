@@ -61,6 +61,11 @@ inline constexpr double kGroupTargetFraction = 0.8;
 // E_g = kGroupTargetFraction E: the target of each group's mean for a run's target E.
 inline constexpr double group_target(double E) { return kGroupTargetFraction * E; }
 
+// The plan's two fractions of a target T (plan_target_error_step, the rules above): it refines where the
+// discretisation part is above kRefineAbove T, and then aims both parts at kPlanTarget T.
+inline constexpr double kRefineAbove = 0.8;
+inline constexpr double kPlanTarget = 0.7;
+
 // The starting patch count of a run given no patching (no --max-edge or --max-area; Python: a Scene loaded
 // without max_edge or max_area): about 500 patches, where the Cornell box's estimated error is near 2 %.
 inline constexpr std::size_t kDefaultStartPatches = 500;
@@ -139,8 +144,9 @@ TargetErrorPlan plan_target_error_step(double statistical, double discretisation
 
 // A step's errors of each group's mean (solve/group_mean_error.h, the groups of `each`; none when it is "") for the
 // solution B, B_se of `patches` and the stage's F, discretisation source and noise model, with their shares kept
-// for the groups above 0.8 E_g (E_g = kGroupTargetFraction E: those plan_group_targets may split for); records in
-// `record` the counted groups, how many are within E_g and the worst. InputError when the stage gave no source. Shared by the uniform steps and the hierarchy's (form-factor transport).
+// for the groups above kRefineAbove E_g (E_g = kGroupTargetFraction E: those plan_group_targets may split for);
+// records in `record` the counted groups, how many are within E_g and the worst. InputError when the stage gave no
+// source. Shared by the uniform steps and the hierarchy's (form-factor transport).
 std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const TargetErrorStage& stage, const PatchRgb& B,
                                               const PatchRgb& B_se, const std::string& each, double E,
                                               TargetErrorStep& record);
@@ -148,8 +154,8 @@ std::vector<GroupMeanError> step_group_errors(const PatchSet& patches, const Tar
 // The groups' share of the plan (the rule above), for the uniform patches and the hierarchy's leaves alike: for
 // each counted group above E_g = kGroupTargetFraction E, and when the step splits in any case (`split` already holds
 // a mark, or a group is above E_g) for every counted group, its own plan (plan_target_error_step of stat_g, disc_g
-// at target E_g: it refines where disc_g > 0.8 E_g, and asks no more rays of a group within E_g); next_rays the largest of them (rays when none asks for more); where one refines, the patches
-// (leaves) with the largest shares of its error (GroupMeanError::share, which must be kept) are marked in `split`
+// at target E_g: it refines where disc_g > 0.8 E_g, and asks no more rays of a group within E_g); next_rays the
+// largest of them (rays when none asks for more); where one refines, the patches (leaves) with the largest shares of its error (GroupMeanError::share, which must be kept) are marked in `split`
 // until the marked ones (already marked ones included) hold the fraction f = min(1, 2 (1 - 0.7 E_g / disc_g)) of
 // the sum of its shares (the shares add up to the error, not to its square, and a split is taken to halve a share:
 // f disc_g / 2 >= disc_g - 0.7 E_g),
