@@ -2,8 +2,9 @@
 """Per material: a run's area-weighted mean B against the path tracer's on the run's own elements.
 
 `radwalk solve SCENE OPTIONS` writes its final elements (.vtp, CSV with each element's material); the reference
-is `radwalk pathtrace` of that .vtp with --spp N (as bench/target_error.py). Per material m, over its reflecting
-non-emitting elements the path tracer sees, all channels together (scripts/patch_comparison.py, material_means):
+is `radwalk pathtrace` of that .vtp with --spp N (as bench/target_error.py). Per material m, over each table's own
+reflecting non-emitting elements (the path tracer may split the .vtp's faces otherwise; a material's mean does not
+depend on the tiling), all channels together (scripts/patch_comparison.py, material_means):
   mean   = sum_i A_i sum_c B_ic / sum_i A_i            (the run's, and the path tracer's likewise)
   d      = mean_run / mean_pt - 1
   sigma  = sqrt(s_run^2 + s_pt^2) / mean_pt,  s_run = sum_i A_i sum_c B_se_ic / (3 sum A) (the run's statistical

@@ -23,7 +23,6 @@ constexpr int kReplicates = 2;
 constexpr int kMaxSide = 8;
 constexpr int kMaxNearFieldSide = 16;
 constexpr int kPilotStream = 2 * kReplicates;  // streams 0, 1: the replicates; 2, 3: refined for the near field
-constexpr int kNearFieldShotFactor = 4;        // a near-field patch shoots its fluctuation along 4 L directions
 
 // Each patch's width: its area over its longest edge.
 std::vector<double> widths(const PatchSet& ps) {
@@ -66,10 +65,18 @@ struct PatchShots {
   std::vector<Shot> shots;
   std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
-  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
-  int side = 0;             // the points per side used (more than the patch's own where the near field needed)
-  int shot_directions = 0;  // the shot directions used (more than L where the near field needed)
+  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m, then the near field's (scaled as B)
+  std::vector<std::int32_t> near_targets;  // the thin patches of the near field, ascending (empty: none)
+  int side = 0;             // the points per side: the near field's where it has targets, else s_j
+  long direction_shots = 0;  // the rays shot along shared directions (2 s_j^2 L): the denominator of the F row
+  long replay_rays = 0;      // the rays a replay traces (the direction shots and the near targets' shadow rays)
   long rays = 0;
+};
+
+// The near field of a patch found by its pilot (header): the points per side that resolve it, and its thin targets.
+struct NearField {
+  int side = 0;
+  std::vector<std::int32_t> targets;
 };
 
 class Shooter {
@@ -83,17 +90,30 @@ class Shooter {
         emitters_(find_emitters(ps)),
         width_(widths(ps)) {}
 
-  // Patch j's contributions to d (both replicates). deltas: null, or the delta_m of an earlier shoot(j) with the
-  // same streams (then the gathers are not traced again: their random numbers are drawn and dropped, so the points
-  // and the shot directions are the same ones).
-  void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr) const {
-    if (deltas) {  // the replay: the side the first shoot(j) used is in its deltas' count
-      const int side = int(std::lround(std::sqrt(double(deltas->size() / kReplicates))));
-      shoot(j, side, side != side_[j], out, deltas);
-    } else {
-      const int near = near_field_ && side_[j] < kMaxNearFieldSide ? near_field_side(j, out) : 0;
-      shoot(j, near ? near : side_[j], near > 0, out, nullptr);
+  // Patch j's contributions to d (both replicates). deltas: null, or the deltas and near targets an earlier
+  // shoot(j) kept (then the gathers are not traced again: their random numbers are drawn and dropped, so the points,
+  // the shot directions and the near targets' points are the same ones).
+  void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr,
+             const std::vector<std::int32_t>* near_targets = nullptr) const {
+    const int own = side_[j];
+    out.side = own;
+    if (deltas) {
+      const std::size_t coarse = std::size_t(kReplicates) * std::size_t(own) * std::size_t(own);
+      RADWALK_CHECK(deltas->size() >= coarse);
+      static const std::vector<std::int32_t> kNone;
+      const std::vector<std::int32_t>& targets = near_targets ? *near_targets : kNone;
+      shoot_points(j, own, targets, out, deltas->data());
+      if (deltas->size() > coarse) {
+        const int near = int(std::lround(std::sqrt(double((deltas->size() - coarse) / kReplicates))));
+        shoot_near_targets(j, near, targets, out, deltas->data() + coarse);
+      }
+      return;
     }
+    NearField near;
+    if (near_field_ && own < kMaxNearFieldSide) near = near_field(j, out);
+    shoot_points(j, own, near.targets, out, nullptr);
+    if (!near.targets.empty()) shoot_near_targets(j, near.side, near.targets, out, nullptr);
+    out.near_targets = std::move(near.targets);
   }
 
  private:
@@ -115,12 +135,13 @@ class Shooter {
     return frame.to_world(sample_cosine_hemisphere(u1, u2));
   }
 
-  // The pilot of the near-field refinement (header): L cosine rays from each of j's own s_j x s_j stratified points
-  // (a stream of its own, so that the estimate's points do not decide their own number). The points per side that
-  // space them no wider than the thinnest patch k that a pilot ray reaches closer than their spacing sqrt(A_j) / s_j
-  // (k's width w_k = A_k / its longest edge), ceil(sqrt(A_j) / w_k) at most kMaxNearFieldSide, where that is more
-  // than s_j; else 0 (no such patch, or none thinner than the spacing: the points resolve what k sees).
-  int near_field_side(std::size_t j, PatchShots& out) const {
+  // The pilot of the near field (header): L cosine rays from each of j's own s_j x s_j stratified points (a stream
+  // of its own, so that the estimate's points do not decide their own number). Its targets: the patches k (front
+  // hit, rho_k > 0) that a pilot ray reaches closer than the points' spacing sqrt(A_j) / s_j and that are thinner
+  // than it (k's width w_k = A_k / its longest edge); its side: the points per side that space them no wider than
+  // the thinnest target, ceil(sqrt(A_j) / w_min), at most kMaxNearFieldSide (more than s_j, since w_min < the
+  // spacing). No target: no near field.
+  NearField near_field(std::size_t j, PatchShots& out) const {
     const int side = side_[j], M = side * side;
     const double spacing = std::sqrt(ps_.area[j]) / side;
     const PatchPointSampler on_j(ps_, j);
@@ -133,94 +154,116 @@ class Shooter {
       for (int b = 0; b < side; ++b) {
         const Vec3 y = stratified_point(on_j, a, b, side, rng);
         for (int l = 0; l < L_; ++l)
-          rays[std::size_t(a * side + b) * L_ + l] =
-              spawn_ray(offset, y, cosine_direction(frame, rng));
+          rays[std::size_t(a * side + b) * L_ + l] = spawn_ray(offset, y, cosine_direction(frame, rng));
       }
     vis_.intersect(rays.data(), hits.data(), rays.size());
     out.rays += long(rays.size());
+    NearField near;
     double width = std::numeric_limits<double>::infinity();
-    for (const Hit& h : hits)
-      if (!h.missed() && std::size_t(h.patch) != j && h.t < spacing) width = std::min(width, width_[h.patch]);
-    if (!(width < std::numeric_limits<double>::infinity())) return 0;
-    const double wanted = std::min(double(kMaxNearFieldSide), std::ceil(std::sqrt(ps_.area[j]) / std::max(width, 1e-300)));
-    return wanted > side ? int(wanted) : 0;
+    for (const Hit& h : hits) {
+      if (h.missed() || !h.front || std::size_t(h.patch) == j || !(h.t < spacing)) continue;
+      const auto k = static_cast<std::size_t>(h.patch);
+      if (!(width_[k] < spacing) || !(ps_.rho[k].maxCoeff() > 0)) continue;
+      near.targets.push_back(h.patch);
+      width = std::min(width, width_[k]);
+    }
+    if (near.targets.empty()) return near;
+    std::sort(near.targets.begin(), near.targets.end());
+    near.targets.erase(std::unique(near.targets.begin(), near.targets.end()), near.targets.end());
+    near.side = int(std::min(double(kMaxNearFieldSide), std::ceil(std::sqrt(ps_.area[j]) / std::max(width, 1e-300))));
+    return near;
   }
 
-  // shoot(j) with side x side points a replicate; `near_field`: the points of the near-field refinement (header),
-  // drawn from streams of their own, and their fluctuation shot along 4 L directions.
-  void shoot(std::size_t j, int side, bool near_field, PatchShots& out, const std::vector<Rgb>* deltas) const {
+  // The side x side points of replicate r's stream `rng` (into y) and their fluctuation delta_m = rho_j (g_m - mean
+  // g) (into delta): g_m gathered along L shared cosine directions and L shared emitter points (header), or, when
+  // `given` is set, delta taken from it and the gathers' random numbers drawn and dropped. New deltas are kept in
+  // out.deltas.
+  void fluctuation_at_points(std::size_t j, int side, Rng& rng, std::vector<Vec3>& y, std::vector<Rgb>& delta,
+                             PatchShots& out, const Rgb* given) const {
     const int M = side * side;
-    const int Ls = near_field ? kNearFieldShotFactor * L_ : L_;
-    out.side = side;
-    out.shot_directions = Ls;
     const PatchPointSampler on_j(ps_, j);
+    y.resize(std::size_t(M));
+    delta.resize(std::size_t(M));
+    for (int a = 0; a < side; ++a)
+      for (int b = 0; b < side; ++b) y[std::size_t(a * side + b)] = stratified_point(on_j, a, b, side, rng);
+    if (given) {
+      for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform();
+      if (!emitters_.patch.empty())
+        for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform(), rng.uniform();
+      std::copy(given, given + M, delta.begin());
+      return;
+    }
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
-    std::vector<Vec3> y(M);
-    std::vector<Ray> rays(std::size_t(M) * Ls);
+    std::vector<Ray> rays(std::size_t(M) * L_);
     std::vector<Hit> hits(rays.size());
-    std::vector<Rgb> g(M);
-    for (int r = 0; r < kReplicates; ++r) {
-      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j,
-                       std::uint64_t(r + (near_field ? kReplicates : 0)));
-      for (int a = 0; a < side; ++a)
-        for (int b = 0; b < side; ++b)
-          y[a * side + b] = stratified_point(on_j, a, b, side, rng);
-      Rgb mean = Rgb::Zero();
-      if (deltas) {
-        for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform();
-        if (!emitters_.patch.empty())
-          for (int l = 0; l < L_; ++l) rng.uniform(), rng.uniform(), rng.uniform();
-      } else {
-        // The gather g_m: L shared cosine directions (the reflected part) ...
-        for (int l = 0; l < L_; ++l) {
-          const Vec3 w = cosine_direction(frame, rng);
-          for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[m], w);
-        }
-        vis_.intersect(rays.data(), hits.data(), std::size_t(M) * L_);
-        out.rays += long(M) * L_;
-        for (int m = 0; m < M; ++m) {
-          g[m] = Rgb::Zero();
-          for (int l = 0; l < L_; ++l) g[m] += reflected(hits[std::size_t(m) * L_ + l]);
-        }
-        // ... and L shared emitter points (the emitted part).
-        if (!emitters_.patch.empty()) {
-          for (int l = 0; l < L_; ++l) {
-            const std::size_t k = emitters_.choice.sample(rng.uniform());
-            const std::size_t e = emitters_.patch[k];
-            const double z2 = rng.uniform();  // sequenced as stratified_point's (second first)
-            const double z1 = rng.uniform();
-            const Vec3 z = PatchPointSampler(ps_, e).point(z1, z2);
-            const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
-            for (int m = 0; m < M; ++m) g[m] += visible_factor(j, offset, y[m], e, z) * weighted;
-            out.rays += M;
-          }
-        }
-        for (int m = 0; m < M; ++m) mean += g[m] /= L_;
-        mean /= M;
+    std::vector<Rgb> g(std::size_t(M), Rgb::Zero());
+    // The gather g_m: L shared cosine directions (the reflected part) ...
+    for (int l = 0; l < L_; ++l) {
+      const Vec3 w = cosine_direction(frame, rng);
+      for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[std::size_t(m)], w);
+    }
+    vis_.intersect(rays.data(), hits.data(), rays.size());
+    out.rays += long(rays.size());
+    for (int m = 0; m < M; ++m)
+      for (int l = 0; l < L_; ++l) g[std::size_t(m)] += reflected(hits[std::size_t(m) * L_ + l]);
+    // ... and L shared emitter points (the emitted part).
+    if (!emitters_.patch.empty()) {
+      for (int l = 0; l < L_; ++l) {
+        const std::size_t k = emitters_.choice.sample(rng.uniform());
+        const std::size_t e = emitters_.patch[k];
+        const double z2 = rng.uniform();  // sequenced as stratified_point's (second first)
+        const double z1 = rng.uniform();
+        const Vec3 z = PatchPointSampler(ps_, e).point(z1, z2);
+        const Rgb weighted = ps_.E[e] / (scale_ * emitters_.choice.pmf(k));
+        for (int m = 0; m < M; ++m) g[std::size_t(m)] += visible_factor(j, offset, y[std::size_t(m)], e, z) * weighted;
+        out.rays += M;
       }
-      // The fluctuation delta_m, shot along Ls shared directions (L, or L' = 4 L in the near field).
-      for (int l = 0; l < Ls; ++l) {
+    }
+    Rgb mean = Rgb::Zero();
+    for (Rgb& gm : g) mean += gm /= L_;
+    mean /= M;
+    for (int m = 0; m < M; ++m) {
+      delta[std::size_t(m)] = ps_.rho[j] * (g[std::size_t(m)] - mean);
+      out.deltas.push_back(delta[std::size_t(m)]);
+    }
+  }
+
+  // Patch j's own side x side points (streams r = 0, 1) shoot their fluctuation along L shared directions to every
+  // patch they hit on its front, except the near field's targets `skip` (ascending), which shoot_near_targets
+  // reaches instead; the rays still count in the row's F estimate (out.hits).
+  void shoot_points(std::size_t j, int side, const std::vector<std::int32_t>& skip, PatchShots& out,
+                    const Rgb* given) const {
+    const int M = side * side;
+    const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
+    const Frame frame(ps_.normal[j]);
+    std::vector<Vec3> y;
+    std::vector<Rgb> delta;
+    std::vector<Ray> rays(std::size_t(M) * L_);
+    std::vector<Hit> hits(rays.size());
+    const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
+    for (int r = 0; r < kReplicates; ++r) {
+      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r));
+      fluctuation_at_points(j, side, rng, y, delta, out, given ? given + std::size_t(r) * M : nullptr);
+      for (int l = 0; l < L_; ++l) {
         const Vec3 v = cosine_direction(frame, rng);
-        for (int m = 0; m < M; ++m) rays[std::size_t(m) * Ls + l] = spawn_ray(offset, y[m], v);
+        for (int m = 0; m < M; ++m) rays[std::size_t(m) * L_ + l] = spawn_ray(offset, y[std::size_t(m)], v);
       }
       vis_.intersect(rays.data(), hits.data(), rays.size());
       out.rays += long(rays.size());
-      const double share = ps_.area[j] / (double(M) * Ls) * double(M) / (M - 1);
+      out.direction_shots += long(rays.size());
+      out.replay_rays += long(rays.size());
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
-      for (int m = 0; m < M; ++m) {
-        const Rgb delta = deltas ? (*deltas)[std::size_t(r) * M + m] : Rgb(ps_.rho[j] * (g[m] - mean));
-        if (!deltas) out.deltas.push_back(delta);
-        for (int l = 0; l < Ls; ++l) {
-          const Hit& h = hits[std::size_t(m) * Ls + l];
+      for (int m = 0; m < M; ++m)
+        for (int l = 0; l < L_; ++l) {
+          const Hit& h = hits[std::size_t(m) * L_ + l];
           if (h.missed() || !h.front) continue;
           const auto k = static_cast<std::size_t>(h.patch);
           out.hits.push_back(h.patch);
-          if (!(ps_.rho[k].maxCoeff() > 0)) continue;
-          out.shots.push_back({h.patch, r, (share / ps_.area[k]) * ps_.rho[k] * delta});
+          if (!(ps_.rho[k].maxCoeff() > 0) || std::binary_search(skip.begin(), skip.end(), h.patch)) continue;
+          out.shots.push_back({h.patch, r, (share / ps_.area[k]) * ps_.rho[k] * delta[std::size_t(m)]});
           unit.push_back({std::int64_t(l) * std::int64_t(ps_.size()) + h.patch, out.shots.back().value});
         }
-      }
       // Given the points, the L shot directions are independent, and along one direction the points' shots that
       // reach one target are summed (they cancel where the points see the same place): each (direction, target)
       // sum is one independent term of d's variance.
@@ -231,6 +274,47 @@ class Shooter {
         for (; b < unit.size() && unit[b].first == unit[a].first; ++b) sum += unit[b].second;
         out.units.push_back({std::int32_t(unit[a].first % std::int64_t(ps_.size())), r, sum.square()});
         a = b;
+      }
+    }
+  }
+
+  // The near field's side x side points (streams r + 2) reach each target k exactly (header): replicate r's share
+  // of d_k is sum_m rho_k delta_m A_j F_vis(y_m -> k) / (A_k (M - 1)), F_vis the visible point-to-patch factor
+  // estimated from one uniform point of k (visible_factor: exact where nothing hides it). Its variance given the
+  // replicate, for the units: the strata paired along their second coordinate ((a, 2 b), (a, 2 b + 1)), M / (2 P)
+  // sum over the P pairs of the squared difference of their terms (the collapsed-strata estimate of a stratified
+  // sum's variance: a pair's difference holds both strata's spreads, and where the terms vary smoothly little of
+  // their trend).
+  void shoot_near_targets(std::size_t j, int side, const std::vector<std::int32_t>& targets, PatchShots& out,
+                          const Rgb* given) const {
+    const int M = side * side;
+    out.side = side;
+    const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
+    std::vector<Vec3> y;
+    std::vector<Rgb> delta, term(static_cast<std::size_t>(M));
+    for (int r = 0; r < kReplicates; ++r) {
+      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r + kReplicates));
+      fluctuation_at_points(j, side, rng, y, delta, out, given ? given + std::size_t(r) * M : nullptr);
+      for (const std::int32_t target : targets) {
+        const auto k = static_cast<std::size_t>(target);
+        const PatchPointSampler on_k(ps_, k);
+        const Rgb weight = ps_.rho[k] * (ps_.area[j] / (ps_.area[k] * (M - 1)));
+        Rgb sum = Rgb::Zero();
+        for (int m = 0; m < M; ++m) {
+          const double z2 = rng.uniform();  // sequenced as stratified_point's (second first)
+          const double z1 = rng.uniform();
+          const Vec3 z = on_k.point(z1, z2);
+          sum += term[std::size_t(m)] = weight * delta[std::size_t(m)] * visible_factor(j, offset, y[std::size_t(m)], k, z);
+        }
+        out.rays += M;
+        out.replay_rays += M;
+        Rgb pairs = Rgb::Zero();
+        int count = 0;
+        for (int a = 0; a < side; ++a)
+          for (int b = 0; b + 1 < side; b += 2, ++count)
+            pairs += (term[std::size_t(a * side + b)] - term[std::size_t(a * side + b + 1)]).square();
+        out.shots.push_back({target, r, sum});
+        out.units.push_back({target, r, pairs * (double(M) / (2.0 * count))});
       }
     }
   }
@@ -306,7 +390,10 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
   const Shooter shooter(patches, visibility, scaled, scale, seed, sides, directions, near_field);
 
   FluctuationSource out;
-  if (keep_deltas) out.deltas.resize(N);
+  if (keep_deltas) {
+    out.deltas.resize(N);
+    out.near_targets.resize(N);
+  }
   out.points = side * side;
   out.directions = directions;
   out.sides.assign(N, 0);
@@ -338,8 +425,8 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           std::sort(h.begin(), h.end());
           const int side_q = part[q].side;
           out.sides[next_row + q] = side_q;
-          if (side_q > 0 && side_q != sides[next_row + q]) ++out.near_field_patches;
-          const double per_row = double(kReplicates) * side_q * side_q * part[q].shot_directions;
+          if (!part[q].near_targets.empty()) ++out.near_field_patches;
+          const double per_row = double(part[q].direction_shots);
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
             while (b < h.size() && h[b] == h[a]) ++b;
@@ -347,7 +434,11 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
             a = b;
           }
           out.rays += part[q].rays;
-          if (keep_deltas) out.deltas[next_row + q] = std::move(part[q].deltas);
+          out.shot_rays += part[q].replay_rays;
+          if (keep_deltas) {
+            out.deltas[next_row + q] = std::move(part[q].deltas);
+            out.near_targets[next_row + q] = std::move(part[q].near_targets);
+          }
         }
         next_row += part.size();
       });
@@ -374,6 +465,7 @@ std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Vi
   RADWALK_CHECK_EQ(weights[1].rows(), n);
   RADWALK_CHECK(directions >= 1 && points >= 2);
   RADWALK_CHECK_EQ(source.deltas.size(), N);
+  RADWALK_CHECK_EQ(source.near_targets.size(), N);
   const int side = std::max(2, int(std::ceil(std::sqrt(double(points)))));
   // The same scaling as fluctuation_source, so that the shots are the same numbers; multiplied back per patch.
   const double scale = moment_scale(N ? B.abs().maxCoeff() : 0.0);
@@ -384,7 +476,7 @@ std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Vi
   parallel_for(N, [&](std::size_t j) {
     if (patches.rho[j].maxCoeff() > 0) {
       PatchShots shots;
-      shooter.shoot(j, shots, &source.deltas[j]);
+      shooter.shoot(j, shots, &source.deltas[j], &source.near_targets[j]);
       double sum = 0;
       for (const Shot& s : shots.shots) sum += (weights[s.replicate].row(s.target).transpose() * s.value).sum();
       out[j] = sum * scale;

@@ -34,24 +34,35 @@
 // dark at the wall, bright a few mm out). Then whether one of j's s_j^2 points lands in the few mm that k sees
 // decides d_k, and the estimate is right only on average: on the spot-lit room's 2.5 mm wall band under the light,
 // four points a replicate on the 12.5 mm floor leaf beside it gave d = -0.43 +- 0.25 for a true -1.96 (the
-// variance above is given the points and misses the points' own spread). So patch j first traces a pilot: L
-// cosine rays from each of s_j x s_j stratified points of a stream of its own; if one reaches another patch within
-// h_j that is thinner than h_j (its width: area over longest edge), both replicates use points spaced no wider than
-// the thinnest such patch (at most 16 per side; streams of their own) and shoot along L' = 4 L directions, else s_j
-// and L: a thin patch k beside j is reached only by the shots of j's few points nearest to it, whose directions
-// alone decide d_k (on the spot-lit room's 0.6 mm wall leaves in the floor's corner under the light, d = -1.7 +- 1.7
-// with L for a true -2.5, which the empirical-Bayes B_disc of discretisation_error.h shrinks to 0.2). The pilot
-// chooses only the number of points and directions, not the points, so d stays unbiased; its rays are counted. d is the mean of the two replicates, and its variance the larger of two estimates:
+// variance above is given the points and misses the points' own spread); and a thin patch k beside j is reached only
+// by the shots of j's few points nearest to it, whose directions alone decide d_k (on the spot-lit room's 0.6 mm
+// wall leaves in the floor's corner under the light, d = -1.7 +- 1.7 with L for a true -2.5, which the
+// empirical-Bayes B_disc of discretisation_error.h shrinks to 0.2). So patch j first traces a pilot: L cosine rays
+// from each of s_j x s_j stratified points of a stream of its own. Its near targets T_j are the patches k (front,
+// rho_k > 0) a pilot ray reaches within h_j that are thinner than h_j (width: area over longest edge). When there
+// are any, j's own points shoot as above to every other patch, and T_j is reached from a second set of points per
+// replicate (streams of their own), spaced no wider than the thinnest target (n_j = ceil(sqrt(A_j) / w_min) per
+// side, at most 16), each with its own gather and fluctuation delta'_m (centred on those points), through the
+// visible point-to-patch factor instead of shots:
+//   d_k += rho_k delta'_m A_j F_vis(y'_m -> k) / (A_k (M' - 1))      for k in T_j, M' = n_j^2,
+// F_vis = F(y -> k) - A_k G(y, z) (1 - V(y, z)) from one uniform point z of k (exact where nothing hides z), so
+// neither the points' luck nor the directions' decide d_k. Both sets estimate their own targets' shares without
+// bias (the pilot chooses only the targets and the points' number, not the points). Replicate r's variance for a
+// near target: the strata paired along their second coordinate, M' / (2 P) sum over the P pairs of their terms'
+// squared difference (the collapsed-strata estimate of a stratified sum's variance). d is the mean of the two
+// replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
-//   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2
+//   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2 (+ the near targets' terms)
 //                                             (given the points, the L shot directions of a patch j are
 //                                             independent; along one direction the points' shots to k are summed,
 //                                             as they cancel where the points see the same place),
 // so that a small patch whose d rests on a few large shots from a large patch is not, by a chance agreement of
-// the two replicates, taken as known exactly.
+// the two replicates, taken as known exactly. (The near field's second set replaced refining all of j's points and
+// shooting along 4 L directions, which cost twice to three times the rays for the same targets.)
 //
-// Rays per patch: 2 replicates x M_j points x (L gather + L' shot cosine rays + L shadow rays when the scene has
-// emitters), plus the pilot's s_j^2 L (M_j and L' the near field's where it asked for more, else s_j^2 and L).
+// Rays per patch: 2 replicates x M_j points x (L gather + L shot cosine rays + L shadow rays when the scene has
+// emitters), plus the pilot's s_j^2 L, plus with near targets 2 x M' x (L gather + L emitter shadow rays + |T_j|
+// shadow rays to the targets).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
@@ -68,12 +79,15 @@ struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
   PatchRgb replicate[2];  // N x 3 each: d^(0), d^(1), the two independent replicates (d = their mean)
   PatchRgb variance;  // N x 3: the variance of that estimate
-  SparseF F;          // N x N: the shot rays' form factors (2 M_j L' rays in row j), for scenes solved without a stored F
-  std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m (B / moment_scale(max B));
-                                         // only when asked (keep_deltas), for weighted_fluctuation_shots
+  SparseF F;          // N x N: the shot rays' form factors (2 M_j L rays in row j), for scenes solved without a stored F
+  std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m, then the near field's
+                                         // delta'_m at 2 M_j + r M' + m (B / moment_scale(max B)); only when asked
+                                         // (keep_deltas), for weighted_fluctuation_shots
+  std::vector<std::vector<std::int32_t>> near_targets;  // per patch, T_j ascending (with keep_deltas)
+  long shot_rays = 0;  // the rays weighted_fluctuation_shots traces again: the shots and the targets' shadow rays
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
-  long near_field_patches = 0;  // patches whose points were refined for their near field (above)
-  std::vector<int> sides;       // s_j per patch: its points per side (0 where rho_j = 0: it shoots nothing)
+  long near_field_patches = 0;  // patches with near targets (above)
+  std::vector<int> sides;       // per patch: n_j where it has near targets, else s_j (0 where rho_j = 0)
   int directions = 0; // L
   long rays = 0;      // traced in all
 };
@@ -88,13 +102,15 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
 // The shots of fluctuation_source weighted by the receivers, summed per shooter (docs/theory/discretisation_error.md,
 // "Which patch causes the error: the shooter attribution"):
 //   a_j = sum_r sum_{shots s of j in replicate r} sum_c w^(r)_{k(s) c} s_c,
-// where s is one shot rho_k delta_m A_j / (A_k M L) of patch j to the patch k it hits (the terms whose sum over j is
+// where s is one shot rho_k delta_m A_j / (A_k M L) of patch j to the patch k it hits, or one near target's share
+// of replicate r (above) (the terms whose sum over j is
 // d^(r)_k), and w^(r) (N x 3, finite) the receivers' weights for replicate r's shots. source: fluctuation_source of
 // the same arguments with keep_deltas (checked): its delta_m are shot again along the same directions from the same
-// points (the same streams; the gathers are not traced again), so the shots are the same ones bit for bit and
+// points, and the near targets reached again through the same points of theirs (the same streams; the gathers are
+// not traced again), so the shots are the same ones bit for bit and
 // sum_j a_j = sum_r sum_{k,c} w^(r)_kc d^(r)_kc up to rounding. Patch j's sum is formed by j alone (its shots in
-// their own order): reproducible for any thread count. Rays: the shot rays only (a third of a patch's in the
-// source, a half without emitters; two thirds on a near-field patch).
+// their own order): reproducible for any thread count. Rays: the shot rays and the near targets' shadow rays
+// (FluctuationSource::shot_rays).
 std::vector<double> weighted_fluctuation_shots(const PatchSet& patches, const Visibility& visibility,
                                                const PatchRgb& B, const FluctuationSource& source,
                                                const PatchRgb (&weights)[2], int directions, std::uint64_t seed,

@@ -58,8 +58,7 @@ ShooterAttribution shooter_attribution(const PatchSet& patches, const Visibility
   // Replicate r's shots weighted by the other replicate's adjoint, halved.
   PatchRgb weights[2] = {psi.middleCols(3, 3) / 2, psi.middleCols(0, 3) / 2};
   out.share = weighted_fluctuation_shots(patches, visibility, B, source, weights, directions, seed);
-  for (std::size_t j = 0; j < patches.size(); ++j)
-    out.rays += static_cast<long>(source.deltas[j].size()) * directions;  // the shot rays: M_j L per replicate
+  out.rays += source.shot_rays;  // traced again: the shots and the near targets' shadow rays
   for (Eigen::Index i = 0; i < N; ++i)
     out.total += patches.area[static_cast<std::size_t>(i)] * (e.X.row(i).segment(0, 3) * e.X.row(i).segment(3, 3)).sum();
   out.seconds = timer.seconds();

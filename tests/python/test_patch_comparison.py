@@ -39,3 +39,30 @@ def test_the_discretisation_error_estimates_the_bias_alone():
     assert abs(e_disc ** 2 - expected) <= 3.29 * sd, (e_disc ** 2, expected, sd)
     e = pc.measured_error(run, reference)[0]
     assert e ** 2 - expected > 3.29 * sd  # the run's noise is in e: the test above can tell the two apart
+
+
+def test_a_materials_mean_needs_no_matching_patches():
+    """The same surface tiled otherwise by the reference (two unit patches against four of area 0.5, no centroid in
+    common): the means are the area averages of each table's own patches, exactly; an emitter and a black patch are
+    left out of both, and the reference's noise enters s_ref = sqrt(sum A^2 se^2) / (3 sum A)."""
+    run = table(np.array([[1.0] * 3, [3.0] * 3]), np.full((2, 3), 0.1), 2)
+    reference = table(np.array([[1.0] * 3, [1.0] * 3, [3.0] * 3, [3.3] * 3]), np.full((4, 3), 0.2), 4)
+    reference["area"] = np.full(4, 0.5)
+    reference["key"][:, 0] += 0.25  # no reference centroid equals a run's
+    for t in (run, reference):  # an emitter and a black patch of the same material: counted in neither
+        t["B"] = np.vstack([t["B"], [[9.0] * 3, [5.0] * 3]])
+        t["B_se"] = np.vstack([t["B_se"], np.zeros((2, 3))])
+        t["E"] = np.vstack([t["E"], [[1.0] * 3, [0.0] * 3]])
+        t["rho"] = np.vstack([t["rho"], [[0.5] * 3, [0.0] * 3]])
+        t["area"] = np.append(t["area"], [1.0, 1.0])
+        t["material"] = np.append(t["material"], ["m", "m"]).astype(object)
+        t["key"] = np.vstack([t["key"], [[100.0, 0, 0, 0, 0, 1], [101.0, 0, 0, 0, 0, 1]]])
+        t["row"] = np.arange(len(t["B"]))
+    assert pc.matched(run, reference)[2] == 2  # the two unit patches; the emitter and the black one match
+    g = pc.material_means(run, reference)["m"]
+    assert g.elements == 2
+    assert abs(g.mean - 2.0) < 1e-12 and abs(g.mean_ref - 2.075) < 1e-12
+    assert abs(g.d - (2.0 / 2.075 - 1)) < 1e-12
+    s_ref = np.sqrt(4 * 3 * (0.5 * 0.2) ** 2) / (3 * 2.0)
+    assert abs(g.s_ref_rel - s_ref / 2.075) < 1e-12
+    assert abs(g.sigma - np.hypot(0.1, s_ref) / 2.075) < 1e-12

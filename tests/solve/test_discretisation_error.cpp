@@ -178,19 +178,25 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   const FluctuationSource source = fluctuation_source(patches, visibility, B, L, 7, 4, false, false);
   CHECK(source.points == 4);
   CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
-  // With the near-field refinement (the default) every patch first traces a pilot of s_j^2 L rays, and those whose
-  // pilot reached a thinner patch within their points' spacing use more points (here: the room's faces, whose
-  // spacing 1/8 exceeds the box's patches' width 0.067; at most 16 a side) and shoot along 4 L directions.
-  const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7);
-  long rays = 0;
+  // With the near field (the default) every patch first traces a pilot of s_j^2 L rays, and those whose pilot
+  // reached thinner patches within their points' spacing (here: the room's faces, whose spacing 1/8 exceeds the box's
+  // patches' width 0.067) reach those targets from a second set of n_j^2 points a replicate (n_j up to 16 a side)
+  // with their own gathers (2 L rays each, the cosine gather and the shadow rays to the emitter) and one shadow ray
+  // per target.
+  const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7, 4, true);
+  long rays = 0, near = 0;
   for (std::size_t j = 0; j < 60; ++j) {
     const int own = j < 6 ? 8 : 2;
-    INFO("patch " << j << ": " << refined.sides[j] << " points a side");
-    CHECK((refined.sides[j] == own || (refined.sides[j] > own && refined.sides[j] <= 16)));
-    const int shot = refined.sides[j] > own ? 4 * L : L;
-    rays += 2L * refined.sides[j] * refined.sides[j] * (2 * L + shot) + own * own * L;
+    const long targets = long(refined.near_targets[j].size());
+    INFO("patch " << j << ": " << refined.sides[j] << " points a side, " << targets << " near targets");
+    CHECK((targets == 0 ? refined.sides[j] == own : (refined.sides[j] > own && refined.sides[j] <= 16)));
+    CHECK(std::is_sorted(refined.near_targets[j].begin(), refined.near_targets[j].end()));
+    const long n2 = long(refined.sides[j]) * refined.sides[j];
+    rays += 2L * own * own * 3 * L + own * own * L + (targets > 0 ? 2 * n2 * (2 * L + targets) : 0);
+    near += targets > 0;
   }
   CHECK(refined.rays == rays);
+  CHECK(refined.near_field_patches == near);
   CHECK(refined.near_field_patches > 0);
 }
 
@@ -201,7 +207,7 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
 //    the floor patch S beside it (x < 0.025), constant in the discrete solution, makes K read far too bright. The
 //    truth: the same room with S cut into 50 strips along x (K's B there is the average over K of what it gathers
 //    with S resolved), e_true = Bbar - B_h per coarse patch and d_true = (I - H) e_true (the exact equation
-//    Bbar = E + H Bbar + d). Over 40 seeds: S's points are refined (its pilot sees the wall within its spacing); the
+//    Bbar = E + H Bbar + d). Over 40 seeds: S has a near field (its pilot sees the wall within its spacing); the
 //    estimate of d_K covers d_true (at most 3 seeds off by more than 3 of its own standard errors: with a correct
 //    standard error and a normal estimate the chance of 4 or more is about 5e-6); and its squared error is smaller
 //    than without the refinement (the same seeds), one-sided at alpha 0.05.
