@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <limits>
 #include <map>
+#include <set>
 #include <optional>
 #include <string_view>
 #include <cctype>
@@ -382,6 +383,29 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
   mesh.as_written = written_by_radwalk(data, field("patch"), field("face"));
   const std::vector<std::int32_t> pair_of = declared_contact_pairs(data, mesh.as_written, field("contact_pair"), side);
 
+  // A back cell is read as its front's back (below), which holds only where the backs are tiled as their fronts
+  // are; a hierarchical run refines the two sides of a two-sided face apart, so its backs may not be: said, once.
+  std::optional<std::pair<long, std::size_t>> unmatched_back;  // (count, first cell)
+  if (side) {
+    const auto corner_set = [&](const SurfaceData::Cell& c) {
+      std::vector<std::int32_t> ids;
+      const std::vector<std::int32_t> cell(data.ids.begin() + std::ptrdiff_t(c.begin),
+                                           data.ids.begin() + std::ptrdiff_t(c.end));
+      for (const std::int32_t p : without_straight_corners(cell, points))
+        ids.push_back(vertex_of[static_cast<std::size_t>(p)]);
+      std::sort(ids.begin(), ids.end());
+      return ids;
+    };
+    std::set<std::vector<std::int32_t>> fronts;
+    for (const SurfaceData::Cell& c : data.surface)
+      if (!c.strip && (*side)[c.index] != 1) fronts.insert(corner_set(c));
+    long unmatched = 0;
+    std::size_t first = 0;
+    for (const SurfaceData::Cell& c : data.surface)
+      if (!c.strip && (*side)[c.index] == 1 && !fronts.count(corner_set(c)) && unmatched++ == 0) first = c.index;
+    if (unmatched > 0) unmatched_back = std::make_pair(unmatched, first);
+  }
+
   PolygonFaces faces(mesh, options.strict);
   std::int32_t face = 0;
   auto add_cell = [&](std::size_t cell, const std::vector<std::int32_t>& point_ids) {
@@ -420,6 +444,15 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
       else
         add_cell(c.index, {ids[t + 1], ids[t], ids[t + 2]});
     }
+  }
+  if (unmatched_back) {  // after the cells, so that the materials keep the order of their first cells
+    const std::size_t first = unmatched_back->second;
+    mesh.findings.push_back(mesh.finding_of(
+        static_cast<long>(first), 0, material_for(first), group_for(first), "back cells tiled otherwise",
+        Severity::warning,
+        std::to_string(unmatched_back->first) + " back cells (side 1) are not the backs of front cells (a "
+        "hierarchical run refines the two sides of a two-sided face apart): read with the fronts' cells on both "
+        "sides, so these cells and their values are not used"));
   }
   return mesh;
 }

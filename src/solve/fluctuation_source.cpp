@@ -65,10 +65,10 @@ struct PatchShots {
   std::vector<Shot> shots;
   std::vector<Shot> units;  // per replicate, shot direction and target: the square of the direction's sum
   std::vector<std::int32_t> hits;  // targets of every shot ray that hit a front (the row's F estimate)
-  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m, then the near field's (scaled as B)
+  std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
   std::vector<std::int32_t> near_targets;  // the thin patches of the near field, ascending (empty: none)
-  int side = 0;             // the points per side: the near field's where it has targets, else s_j
-  long direction_shots = 0;  // the rays shot along shared directions (2 s_j^2 L): the denominator of the F row
+  int side = 0;             // the points per side: the near field's n_j where it has targets, else s_j
+  long direction_shots = 0;  // the rays shot along shared directions (2 M L): the denominator of the F row
   long replay_rays = 0;      // the rays a replay traces (the direction shots and the near targets' shadow rays)
   long rays = 0;
 };
@@ -95,25 +95,23 @@ class Shooter {
   // the shot directions and the near targets' points are the same ones).
   void shoot(std::size_t j, PatchShots& out, const std::vector<Rgb>* deltas = nullptr,
              const std::vector<std::int32_t>* near_targets = nullptr) const {
-    const int own = side_[j];
-    out.side = own;
-    if (deltas) {
-      const std::size_t coarse = std::size_t(kReplicates) * std::size_t(own) * std::size_t(own);
-      RADWALK_CHECK(deltas->size() >= coarse);
-      static const std::vector<std::int32_t> kNone;
-      const std::vector<std::int32_t>& targets = near_targets ? *near_targets : kNone;
-      shoot_points(j, own, targets, out, deltas->data());
-      if (deltas->size() > coarse) {
-        const int near = int(std::lround(std::sqrt(double((deltas->size() - coarse) / kReplicates))));
-        shoot_near_targets(j, near, targets, out, deltas->data() + coarse);
-      }
-      return;
-    }
+    PointSet points;
+    points.side = side_[j];
     NearField near;
-    if (near_field_ && own < kMaxNearFieldSide) near = near_field(j, out);
-    shoot_points(j, own, near.targets, out, nullptr);
-    if (!near.targets.empty()) shoot_near_targets(j, near.side, near.targets, out, nullptr);
-    out.near_targets = std::move(near.targets);
+    if (deltas) {  // the replay: the side the first shoot(j) used is in its deltas' count
+      points.side = int(std::lround(std::sqrt(double(deltas->size() / kReplicates))));
+      if (points.side != side_[j] && near_targets) near.targets = *near_targets;
+    } else if (near_field_ && side_[j] < kMaxNearFieldSide) {
+      near = near_field(j, out);
+      if (!near.targets.empty()) points.side = near.side;
+    }
+    if (!near.targets.empty()) {
+      points.stream = kReplicates;
+      points.exact = &near.targets;
+    }
+    out.side = points.side;
+    shoot_points(j, points, out, deltas ? deltas->data() : nullptr);
+    if (!deltas) out.near_targets = std::move(near.targets);
   }
 
  private:
@@ -229,21 +227,34 @@ class Shooter {
     }
   }
 
-  // Patch j's own side x side points (streams r = 0, 1) shoot their fluctuation along L shared directions to every
-  // patch they hit on its front, except the near field's targets `skip` (ascending), which shoot_near_targets
-  // reaches instead; the rays still count in the row's F estimate (out.hits).
-  void shoot_points(std::size_t j, int side, const std::vector<std::int32_t>& skip, PatchShots& out,
-                    const Rgb* given) const {
-    const int M = side * side;
+  // The points a patch shoots from (header): its own s_j per side from streams 0, 1; where it has near targets, the
+  // near field's n_j per side from streams 2, 3, which reach those targets exactly (`exact`) and no shot counts for
+  // them.
+  struct PointSet {
+    int side = 0;
+    int stream = 0;
+    const std::vector<std::int32_t>* exact = nullptr;  // the near targets, ascending
+  };
+
+  // The set's points shoot their fluctuation along L shared directions to the patches they hit on their front
+  // (except the near targets; every front hit counts in the row's F estimate), and reach the `exact` targets
+  // through the visible point-to-patch factor: replicate r's share of d_k for such a target is sum_m rho_k delta_m
+  // A_j F_vis(y_m -> k) / (A_k (M - 1)), F_vis estimated from one uniform point of k (visible_factor: exact where
+  // nothing hides it),
+  // its variance given the replicate collapsed_strata_variance of the points' terms.
+  void shoot_points(std::size_t j, const PointSet& set, PatchShots& out, const Rgb* given) const {
+    static const std::vector<std::int32_t> kNone;
+    const std::vector<std::int32_t>& skip = set.exact ? *set.exact : kNone;
+    const int side = set.side, M = side * side;
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
     std::vector<Vec3> y;
-    std::vector<Rgb> delta;
+    std::vector<Rgb> delta, term(static_cast<std::size_t>(M));
     std::vector<Ray> rays(std::size_t(M) * L_);
     std::vector<Hit> hits(rays.size());
     const double share = ps_.area[j] / (double(M) * L_) * double(M) / (M - 1);
     for (int r = 0; r < kReplicates; ++r) {
-      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r));
+      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r + set.stream));
       fluctuation_at_points(j, side, rng, y, delta, out, given ? given + std::size_t(r) * M : nullptr);
       for (int l = 0; l < L_; ++l) {
         const Vec3 v = cosine_direction(frame, rng);
@@ -251,8 +262,8 @@ class Shooter {
       }
       vis_.intersect(rays.data(), hits.data(), rays.size());
       out.rays += long(rays.size());
-      out.direction_shots += long(rays.size());
       out.replay_rays += long(rays.size());
+      out.direction_shots += long(rays.size());
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m)
         for (int l = 0; l < L_; ++l) {
@@ -275,27 +286,8 @@ class Shooter {
         out.units.push_back({std::int32_t(unit[a].first % std::int64_t(ps_.size())), r, sum.square()});
         a = b;
       }
-    }
-  }
-
-  // The near field's side x side points (streams r + 2) reach each target k exactly (header): replicate r's share
-  // of d_k is sum_m rho_k delta_m A_j F_vis(y_m -> k) / (A_k (M - 1)), F_vis the visible point-to-patch factor
-  // estimated from one uniform point of k (visible_factor: exact where nothing hides it). Its variance given the
-  // replicate, for the units: the strata paired along their second coordinate ((a, 2 b), (a, 2 b + 1)), M / (2 P)
-  // sum over the P pairs of the squared difference of their terms (the collapsed-strata estimate of a stratified
-  // sum's variance: a pair's difference holds both strata's spreads, and where the terms vary smoothly little of
-  // their trend).
-  void shoot_near_targets(std::size_t j, int side, const std::vector<std::int32_t>& targets, PatchShots& out,
-                          const Rgb* given) const {
-    const int M = side * side;
-    out.side = side;
-    const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
-    std::vector<Vec3> y;
-    std::vector<Rgb> delta, term(static_cast<std::size_t>(M));
-    for (int r = 0; r < kReplicates; ++r) {
-      Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(r + kReplicates));
-      fluctuation_at_points(j, side, rng, y, delta, out, given ? given + std::size_t(r) * M : nullptr);
-      for (const std::int32_t target : targets) {
+      if (!set.exact) continue;
+      for (const std::int32_t target : *set.exact) {
         const auto k = static_cast<std::size_t>(target);
         const PatchPointSampler on_k(ps_, k);
         const Rgb weight = ps_.rho[k] * (ps_.area[j] / (ps_.area[k] * (M - 1)));
@@ -304,19 +296,31 @@ class Shooter {
           const double z2 = rng.uniform();  // sequenced as stratified_point's (second first)
           const double z1 = rng.uniform();
           const Vec3 z = on_k.point(z1, z2);
-          sum += term[std::size_t(m)] = weight * delta[std::size_t(m)] * visible_factor(j, offset, y[std::size_t(m)], k, z);
+          term[std::size_t(m)] = weight * delta[std::size_t(m)] * visible_factor(j, offset, y[std::size_t(m)], k, z);
+          sum += term[std::size_t(m)];
         }
         out.rays += M;
         out.replay_rays += M;
-        Rgb pairs = Rgb::Zero();
-        int count = 0;
-        for (int a = 0; a < side; ++a)
-          for (int b = 0; b + 1 < side; b += 2, ++count)
-            pairs += (term[std::size_t(a * side + b)] - term[std::size_t(a * side + b + 1)]).square();
         out.shots.push_back({target, r, sum});
-        out.units.push_back({target, r, pairs * (double(M) / (2.0 * count))});
+        out.units.push_back({target, r, collapsed_strata_variance(term, side)});
       }
     }
+  }
+
+  // The variance of the stratified sum of `term` (one value per stratum of a side x side grid, row a * side + b) by
+  // collapsed strata: neighbouring strata paired, M / (2 P) sum over the P pairs of their squared difference, which
+  // holds both strata's spreads and, where the terms have a trend, its step between them. A near target's terms fall
+  // steeply toward it (F_vis), so the strata are paired both ways, along b and along a, and the smaller sum is taken
+  // per channel: the pairs that run along the target's edge see the least of that trend.
+  static Rgb collapsed_strata_variance(const std::vector<Rgb>& term, int side) {
+    Rgb along_b = Rgb::Zero(), along_a = Rgb::Zero();
+    int pairs = 0;
+    for (int a = 0; a < side; ++a)
+      for (int b = 0; b + 1 < side; b += 2, ++pairs) {
+        along_b += (term[std::size_t(a * side + b)] - term[std::size_t(a * side + b + 1)]).square();
+        along_a += (term[std::size_t(b * side + a)] - term[std::size_t((b + 1) * side + a)]).square();
+      }
+    return along_b.min(along_a) * (double(side) * side / (2.0 * pairs));
   }
 
   // (B_h - E) of the patch hit on its front; 0 for an escape or a back hit.

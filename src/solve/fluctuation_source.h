@@ -40,29 +40,30 @@
 // empirical-Bayes B_disc of discretisation_error.h shrinks to 0.2). So patch j first traces a pilot: L cosine rays
 // from each of s_j x s_j stratified points of a stream of its own. Its near targets T_j are the patches k (front,
 // rho_k > 0) a pilot ray reaches within h_j that are thinner than h_j (width: area over longest edge). When there
-// are any, j's own points shoot as above to every other patch, and T_j is reached from a second set of points per
-// replicate (streams of their own), spaced no wider than the thinnest target (n_j = ceil(sqrt(A_j) / w_min) per
-// side, at most 16), each with its own gather and fluctuation delta'_m (centred on those points), through the
-// visible point-to-patch factor instead of shots:
-//   d_k += rho_k delta'_m A_j F_vis(y'_m -> k) / (A_k (M' - 1))      for k in T_j, M' = n_j^2,
+// are any, both replicates use points spaced no wider than the thinnest target (n_j = ceil(sqrt(A_j) / w_min) per
+// side, at most 16; streams of their own), shoot as above to every patch but the targets (a near-field patch is
+// where the fluctuation is steep, and its many points keep the shots to the rest of the scene quiet too: from its
+// own 2 x 2 points alone, the spot-lit room's hierarchy took up to 1.5 times the leaves for 1 %), and reach each
+// target through the visible point-to-patch factor instead of shots:
+//   d_k += rho_k delta_m A_j F_vis(y_m -> k) / (A_k (M - 1))      for k in T_j, M = n_j^2,
 // F_vis = F(y -> k) - A_k G(y, z) (1 - V(y, z)) from one uniform point z of k (exact where nothing hides z), so
-// neither the points' luck nor the directions' decide d_k. Both sets estimate their own targets' shares without
-// bias (the pilot chooses only the targets and the points' number, not the points). Replicate r's variance for a
-// near target: the strata paired along their second coordinate, M' / (2 P) sum over the P pairs of their terms'
-// squared difference (the collapsed-strata estimate of a stratified sum's variance). d is the mean of the two
-// replicates, and its variance the larger of two estimates:
+// neither the points' luck nor the directions' decide d_k. Unbiased as the shots are (the pilot chooses only the
+// targets and the points' number, not the points). Replicate r's variance for a near target: the strata paired
+// with a neighbour, M / (2 P) sum over the P pairs of their terms' squared difference (the collapsed-strata estimate
+// of a stratified sum's variance), paired along each coordinate in turn and the smaller taken (the terms fall
+// steeply toward the target; pairs along its edge see the least of that trend).
+// d is the mean of the two replicates, and its variance the larger of two estimates:
 //   (d_k^(0) - d_k^(1))^2 / 4                 (the replicates: every source of noise, but one degree of freedom),
 //   (1/4) sum_{r, j, l} (sum_m shot_{j,m,l -> k}^(r))^2 (+ the near targets' terms)
 //                                             (given the points, the L shot directions of a patch j are
 //                                             independent; along one direction the points' shots to k are summed,
 //                                             as they cancel where the points see the same place),
 // so that a small patch whose d rests on a few large shots from a large patch is not, by a chance agreement of
-// the two replicates, taken as known exactly. (The near field's second set replaced refining all of j's points and
-// shooting along 4 L directions, which cost twice to three times the rays for the same targets.)
+// the two replicates, taken as known exactly. (Reaching the targets exactly replaced shooting along 4 L directions
+// from the near field's points, which cost about twice the rays.)
 //
 // Rays per patch: 2 replicates x M_j points x (L gather + L shot cosine rays + L shadow rays when the scene has
-// emitters), plus the pilot's s_j^2 L, plus with near targets 2 x M' x (L gather + L emitter shadow rays + |T_j|
-// shadow rays to the targets).
+// emitters), plus the pilot's s_j^2 L, plus with near targets |T_j| shadow rays per point (M_j = n_j^2 there).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>
@@ -79,15 +80,14 @@ struct FluctuationSource {
   PatchRgb d;         // N x 3: the estimate of d_k (W per unit length squared, as B)
   PatchRgb replicate[2];  // N x 3 each: d^(0), d^(1), the two independent replicates (d = their mean)
   PatchRgb variance;  // N x 3: the variance of that estimate
-  SparseF F;          // N x N: the shot rays' form factors (2 M_j L rays in row j), for scenes solved without a stored F
-  std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m, then the near field's
-                                         // delta'_m at 2 M_j + r M' + m (B / moment_scale(max B)); only when asked
-                                         // (keep_deltas), for weighted_fluctuation_shots
+  SparseF F;          // N x N: the shot rays' form factors (2 M_j L rays in row j), for scenes without a stored F
+  std::vector<std::vector<Rgb>> deltas;  // per patch, delta_m of replicate r at r M_j + m (B / moment_scale(max
+                                         // B)); only when asked (keep_deltas), for weighted_fluctuation_shots
   std::vector<std::vector<std::int32_t>> near_targets;  // per patch, T_j ascending (with keep_deltas)
   long shot_rays = 0;  // the rays weighted_fluctuation_shots traces again: the shots and the targets' shadow rays
   int points = 0;     // M per patch of the median area and replicate (more on larger patches, above)
   long near_field_patches = 0;  // patches with near targets (above)
-  std::vector<int> sides;       // per patch: n_j where it has near targets, else s_j (0 where rho_j = 0)
+  std::vector<int> sides;       // per patch: its points per side, n_j where it has near targets (0 where rho_j = 0)
   int directions = 0; // L
   long rays = 0;      // traced in all
 };

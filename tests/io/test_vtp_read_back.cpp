@@ -204,3 +204,41 @@ TEST_CASE("vtk .vtp reader: back-to-back duplicates of another program's file, o
     REQUIRE(m.materials[static_cast<std::size_t>(m.face_material[0])].two_sided);
   }
 }
+
+TEST_CASE("vtk .vtp reader: back cells tiled otherwise than their fronts are read as the fronts' backs and said",
+          "[io][vtp]") {
+  // A two-sided face (one quad) whose back is one reversed quad, or two halves (as a hierarchical run, which refines
+  // the two sides apart, writes it): both read back as the one two-sided face; only the halves are said, once,
+  // naming how many back cells are not used.
+  for (const bool halves : {false, true}) {
+    INFO((halves ? "back in two halves" : "back as the front's reversed copy"));
+    PatchBuilder b;
+    const int board = b.add_material("board", Rgb(0.5, 0.5, 0.5));
+    const int lamp = b.add_material("lamp", Rgb::Zero(), Rgb::Constant(1));
+    b.add_quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, board);
+    if (halves) {
+      b.add_quad({0, 0, 0}, {0, 1, 0}, {0.5, 1, 0}, {0.5, 0, 0}, board);
+      b.add_quad({0.5, 0, 0}, {0.5, 1, 0}, {1, 1, 0}, {1, 0, 0}, board);
+    } else {
+      b.add_quad({0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}, board);
+    }
+    b.add_quad({0, 0, 2}, {0, 1, 2}, {1, 1, 2}, {1, 0, 2}, lamp);
+    PatchSet patches = b.build();
+    const std::size_t n = patches.size();
+    patches.face.assign(n, 0);
+    patches.face[n - 1] = 1;
+    patches.side.assign(n, Side::back);
+    patches.side[0] = Side::front;
+    patches.side[n - 1] = Side::one_sided;
+    patches.materials[static_cast<std::size_t>(board)].two_sided = true;
+    const auto path = temp_file("radwalk_back_tiling.vtp");
+    write_vtp(path, patches, patch_fields(patches));
+    const Mesh back = read_vtk_polydata(path);
+    std::filesystem::remove(path);
+    REQUIRE(back.face_count() == 2);  // the board (its back cells stand for nothing of their own) and the lamp
+    REQUIRE(back.materials[static_cast<std::size_t>(back.face_material[0])].two_sided);
+    REQUIRE(count_of(back, "back cells tiled otherwise") == (halves ? 1u : 0u));
+    for (const Finding& f : back.findings)
+      if (f.kind == "back cells tiled otherwise") REQUIRE_THAT(f.message, Catch::Contains("2 back cells"));
+  }
+}

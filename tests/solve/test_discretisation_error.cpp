@@ -180,9 +180,8 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
   // With the near field (the default) every patch first traces a pilot of s_j^2 L rays, and those whose pilot
   // reached thinner patches within their points' spacing (here: the room's faces, whose spacing 1/8 exceeds the box's
-  // patches' width 0.067) reach those targets from a second set of n_j^2 points a replicate (n_j up to 16 a side)
-  // with their own gathers (2 L rays each, the cosine gather and the shadow rays to the emitter) and one shadow ray
-  // per target.
+  // patches' width 0.067) shoot from n_j^2 points a replicate instead (n_j up to 16 a side), each with its gather
+  // (2 L rays: the cosine gather and the shadow rays to the emitter), L shots and one shadow ray per near target.
   const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7, 4, true);
   long rays = 0, near = 0;
   for (std::size_t j = 0; j < 60; ++j) {
@@ -192,7 +191,7 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
     CHECK((targets == 0 ? refined.sides[j] == own : (refined.sides[j] > own && refined.sides[j] <= 16)));
     CHECK(std::is_sorted(refined.near_targets[j].begin(), refined.near_targets[j].end()));
     const long n2 = long(refined.sides[j]) * refined.sides[j];
-    rays += 2L * own * own * 3 * L + own * own * L + (targets > 0 ? 2 * n2 * (2 * L + targets) : 0);
+    rays += own * own * L + (targets > 0 ? 2 * n2 * (3 * L + targets) : 2L * own * own * 3 * L);
     near += targets > 0;
   }
   CHECK(refined.rays == rays);
