@@ -384,7 +384,8 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
   const std::vector<std::int32_t> pair_of = declared_contact_pairs(data, mesh.as_written, field("contact_pair"), side);
 
   // A back cell is read as its front's back (below), which holds only where the backs are tiled as their fronts
-  // are; a hierarchical run refines the two sides of a two-sided face apart, so its backs may not be: said, once.
+  // are; a hierarchical run refines the two sides of a two-sided face apart, and the contact cut cuts only the side
+  // an object touches, so a run's backs may not be: said, once.
   std::optional<std::pair<long, std::size_t>> unmatched_back;  // (count, first cell)
   if (side) {
     const auto corner_set = [&](const SurfaceData::Cell& c) {
@@ -450,9 +451,10 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
     mesh.findings.push_back(mesh.finding_of(
         static_cast<long>(first), 0, material_for(first), group_for(first), "back cells tiled otherwise",
         Severity::warning,
-        std::to_string(unmatched_back->first) + " back cells (side 1) are not the backs of front cells (a "
-        "hierarchical run refines the two sides of a two-sided face apart): read with the fronts' cells on both "
-        "sides, so these cells and their values are not used"));
+        std::to_string(unmatched_back->first) + " back cells (side 1) are not the backs of front cells (the two "
+        "sides of a two-sided face were patched apart: a hierarchical run refines them apart, the contact cut cuts "
+        "the side an object touches): read with the fronts' cells on both sides, so these cells and their values "
+        "are not used"));
   }
   return mesh;
 }
