@@ -34,6 +34,7 @@
 #include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "mesh/read_scene.h"
+#include "patch/patch_builder.h"
 #include "patch/patching.h"
 #include "solve/block_jacobi.h"
 #include "solve/direct_solver.h"
@@ -71,6 +72,24 @@ Solved solved_cube(int k, bool furnace) {
   return s;
 }
 
+// The unit room (one patch a face, the ceiling emitting) with a box of side 0.2 on its floor in 3 x 3 patches a
+// face: the room's faces have near targets (the box's patches, 0.067 wide, within their points' spacing of 1/8).
+Solved solved_room_with_box() {
+  Solved s;
+  PatchBuilder b;
+  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
+  test::add_box(b, Vec3(0.4, 0, 0.4), Vec3(0.6, 0.2, 0.6), 3, false, m);
+  s.patches = b.build();
+  for (std::size_t i = 0; i < s.patches.size(); ++i)
+    s.patches.E[i] = s.patches.centroid[i].y() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  const EmbreeVisibility visibility(s.patches);
+  AnalyticFormFactors ff = analytic_form_factors(s.patches, visibility);
+  s.problem = make_problem(s.patches, std::move(ff.form_factors.F));
+  s.B = solve_direct(s.problem).B;
+  return s;
+}
+
 double sum_of(const std::vector<double>& v) {
   double s = 0;
   for (const double x : v) s += x;
@@ -80,7 +99,11 @@ double sum_of(const std::vector<double>& v) {
 }  // namespace
 
 TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense LU of both replicates), for any thread count") {
-  const Solved s = solved_cube(3, false);
+  // The cube in 3 x 3 patches a face, and a room whose faces reach their near targets through F_vis (the replay of
+  // those terms must give the same numbers as the source's).
+  const bool with_box = GENERATE(false, true);
+  INFO((with_box ? "the room with a box" : "the cube"));
+  const Solved s = with_box ? solved_room_with_box() : solved_cube(3, false);
   const EmbreeVisibility visibility(s.patches);
   const auto N = static_cast<Eigen::Index>(s.patches.size());
   const int L = 16;
@@ -89,6 +112,7 @@ TEST_CASE("shooter attribution: the shares sum to sum_i A_i e0_i . e1_i (dense L
   discretisation_error(s.patches, visibility, s.problem, s.B, L, seed, &a);
   REQUIRE(a.share.size() == s.patches.size());
   const FluctuationSource source = fluctuation_source(s.patches, visibility, s.B, L, seed);
+  CHECK((source.near_field_patches > 0) == with_box);
   const Eigen::MatrixXd F = Eigen::MatrixXd(s.problem.F.cast<double>());
   double expected = 0, size = 0;
   for (int c = 0; c < 3; ++c) {
