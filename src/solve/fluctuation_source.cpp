@@ -240,8 +240,7 @@ class Shooter {
   // (except the near targets; every front hit counts in the row's F estimate), and reach the `exact` targets
   // through the visible point-to-patch factor: replicate r's share of d_k for such a target is sum_m rho_k delta_m
   // A_j F_vis(y_m -> k) / (A_k (M - 1)), F_vis estimated from one uniform point of k (visible_factor: exact where
-  // nothing hides it),
-  // its variance given the replicate collapsed_strata_variance of the points' terms.
+  // nothing hides it), its variance given the replicate collapsed_strata_variance of the points' terms.
   void shoot_points(std::size_t j, const PointSet& set, PatchShots& out, const Rgb* given) const {
     static const std::vector<std::int32_t> kNone;
     const std::vector<std::int32_t>& skip = set.exact ? *set.exact : kNone;
