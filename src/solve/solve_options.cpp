@@ -15,6 +15,8 @@ void check_options(const SolveOptions& options) {
     throw InputError("solver tolerance " + number_text(options.tol) + " must be finite and > 0");
   if (options.max_iterations < 0)
     throw InputError("max-iterations " + std::to_string(options.max_iterations) + " must be >= 0");
+  if (options.auto_direct_max_patches < 0)
+    throw InputError("auto_direct_max_patches " + std::to_string(options.auto_direct_max_patches) + " must be >= 0");
 }
 
 }  // namespace radwalk

@@ -5,15 +5,6 @@
 
 namespace radwalk {
 
-// Measured with bench_solvers (synthetic F with 1000 rays per patch, tol 1e-10, 2 shared cores):
-//   N      dense LU          Gauss-Seidel
-//   1000   0.13 s   32 MB    0.010 s (22 sweeps)
-//   2000   0.90 s  124 MB    0.025 s
-//   4000   7.5 s   489 MB    0.18 s
-// The direct solve is exact, robust near radius 1 and gives the condition number; it stays under about a second
-// and 130 MB up to 2000 patches, and grows as N^3 in time and N^2 in memory beyond. Gauss-Seidel above.
-const long kAutoDirectMaxPatches = 2000;
-
 Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options) {
   check_options(options);
   const std::string& name = options.solver;
@@ -42,15 +33,16 @@ Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options)
     throw InputError("unknown solver '" + name + "' (expected auto, direct, jacobi, gauss-seidel, southwell or gmres)");
 
   const long n = long(p.size());
-  const bool use_direct = n <= kAutoDirectMaxPatches;
+  const long direct_max = options.auto_direct_max_patches;
+  const bool use_direct = n <= direct_max;
   const bool krylov = options.auto_iterative == "gmres";
   if (!krylov && options.auto_iterative != "gauss-seidel")
     throw InputError("auto_iterative must be gauss-seidel or gmres (got '" + options.auto_iterative + "')");
   Solution s = use_direct ? whole(direct, options) : krylov ? whole(gmres, options) : solve_gauss_seidel(p, options);
   const std::string why = use_direct ? "auto chose direct: " + std::to_string(n) + " patches <= " +
-                                       std::to_string(kAutoDirectMaxPatches) + ", where the exact LU solve costs under about a second. "
+                                       std::to_string(direct_max) + ", where the exact LU solve costs under about a second. "
                                  : "auto chose " + options.auto_iterative + ": " + std::to_string(n) + " patches > " +
-                                       std::to_string(kAutoDirectMaxPatches) +
+                                       std::to_string(direct_max) +
                                        ", where LU grows as N^3 in time and N^2 in memory. ";
   s.message = why + s.message;
   s.info["auto"] = 1;

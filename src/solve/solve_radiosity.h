@@ -5,7 +5,8 @@
 //   "gauss-seidel"  gauss_seidel.h
 //   "southwell"     southwell.h
 //   "gmres"         gmres.h           (restarted GMRES, Gauss-Seidel preconditioned)
-//   "auto"          the direct solve where it fits (N <= kAutoDirectMaxPatches), Gauss-Seidel otherwise; the
+//   "auto"          the direct solve where it fits (N <= SolveOptions::auto_direct_max_patches, by default
+//                   kAutoDirectMaxPatches), SolveOptions::auto_iterative otherwise; the
 //                   Solution's message starts with the choice and the reason.
 #include "solve/direct_solver.h"
 #include "solve/gauss_seidel.h"
@@ -17,9 +18,6 @@
 #include "solve/southwell.h"
 
 namespace radwalk {
-
-// Largest N for which "auto" picks the direct solver (measured: dense LU stays under about a second up to there; see solve_radiosity.cpp).
-extern const long kAutoDirectMaxPatches;
 
 // Throws InputError for an unknown solver name, bad options or a bad problem.
 Solution solve_radiosity(const RadiosityProblem& p, const SolveOptions& options = {});

@@ -19,6 +19,8 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
   const RadiosityProblem& problem = *stage.problem;
   SolveOptions solve;
   solve.tol = options.tol;
+  solve.auto_direct_max_patches = kTargetStageDirectMaxPatches;
+  solve.auto_iterative = "gmres";
   solve.max_iterations = default_max_iterations(solve.solver, patches.size());
   stage.solution = solve_radiosity(problem, solve);
   if (stage.solution.status != SolveStatus::converged) return stage;
