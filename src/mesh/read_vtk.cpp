@@ -400,11 +400,11 @@ Mesh read_vtk_polydata_bytes(const std::string& path, std::string_view bytes, bo
     std::set<std::vector<std::int32_t>> fronts;
     for (const SurfaceData::Cell& c : data.surface)
       if (!c.strip && (*side)[c.index] != 1) fronts.insert(corner_set(c));
-    long unmatched = 0;
-    std::size_t first = 0;
-    for (const SurfaceData::Cell& c : data.surface)
-      if (!c.strip && (*side)[c.index] == 1 && !fronts.count(corner_set(c)) && unmatched++ == 0) first = c.index;
-    if (unmatched > 0) unmatched_back = std::make_pair(unmatched, first);
+    for (const SurfaceData::Cell& c : data.surface) {
+      if (c.strip || (*side)[c.index] != 1 || fronts.count(corner_set(c))) continue;
+      if (!unmatched_back) unmatched_back = std::make_pair(0L, c.index);
+      ++unmatched_back->first;
+    }
   }
 
   PolygonFaces faces(mesh, options.strict);

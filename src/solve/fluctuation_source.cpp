@@ -68,8 +68,6 @@ struct PatchShots {
   std::vector<Rgb> deltas;  // delta_m of replicate r at r M + m (scaled as B)
   std::vector<std::int32_t> near_targets;  // the thin patches of the near field, ascending (empty: none)
   int side = 0;             // the points per side: the near field's n_j where it has targets, else s_j
-  long direction_shots = 0;  // the rays shot along shared directions (2 M L): the denominator of the F row
-  long replay_rays = 0;      // the rays a replay traces (the direction shots and the near targets' shadow rays)
   long rays = 0;
 };
 
@@ -261,8 +259,6 @@ class Shooter {
       }
       vis_.intersect(rays.data(), hits.data(), rays.size());
       out.rays += long(rays.size());
-      out.replay_rays += long(rays.size());
-      out.direction_shots += long(rays.size());
       std::vector<std::pair<std::int64_t, Rgb>> unit;  // (direction l, target) and the shot's value
       for (int m = 0; m < M; ++m)
         for (int l = 0; l < L_; ++l) {
@@ -299,7 +295,6 @@ class Shooter {
           sum += term[std::size_t(m)];
         }
         out.rays += M;
-        out.replay_rays += M;
         out.shots.push_back({target, r, sum});
         out.units.push_back({target, r, collapsed_strata_variance(term, side)});
       }
@@ -429,7 +424,11 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
           const int side_q = part[q].side;
           out.sides[next_row + q] = side_q;
           if (!part[q].near_targets.empty()) ++out.near_field_patches;
-          const double per_row = double(part[q].direction_shots);
+          // The row's shots: 2 M L rays (M = side^2); a replay traces them again and M shadow rays per near target
+          // and replicate.
+          const long M = long(side_q) * side_q;
+          const double per_row = double(kReplicates) * double(M) * directions;
+          out.shot_rays += kReplicates * M * (directions + long(part[q].near_targets.size()));
           for (std::size_t a = 0; a < h.size();) {
             std::size_t b = a;
             while (b < h.size() && h[b] == h[a]) ++b;
@@ -437,7 +436,6 @@ FluctuationSource fluctuation_source(const PatchSet& patches, const Visibility& 
             a = b;
           }
           out.rays += part[q].rays;
-          out.shot_rays += part[q].replay_rays;
           if (keep_deltas) {
             out.deltas[next_row + q] = std::move(part[q].deltas);
             out.near_targets[next_row + q] = std::move(part[q].near_targets);

@@ -33,20 +33,20 @@ struct TargetErrorStageEstimates {
   std::optional<DiscretisationError> discretisation;
 };
 
-// The problem of `patches` with a copy of F, kept as stage.problem (the stage keeps form_factors, with its record
-// of how F was traced, for the caller's per-patch diagnostics), solved by the automatic solver to options.tol within
-// default_max_iterations, directly up to kTargetStageDirectMaxPatches and by GMRES above; when it converged, B_se = the solver's own error combined with F's noise
-// (add_form_factor_error, solve/form_factor_error.h) and B_disc = the discretisation error of B
-// (discretisation_error, solve/discretisation_error.h) with options.discretisation_directions and options.seed,
-// with its source d and d's standard deviation in stage.source and stage.source_sd, and B_se's model in stage.noise
-// (F's row noise, when F records its tracing, and the solver's own: the groups' means' first-order statistical part).
-// `visibility` is of `patches`. estimates, if given, receives what the estimates measured.
 // The direct solve's limit in a stage: a run solves again at every step, so the dense LU only where it costs about a
 // tenth of a second (kAutoDirectMaxPatches is where it costs about a second), and GMRES above (Gauss-Seidel
 // preconditioned: robust near radius 1, as the LU is). On the furniture room (`--target-error 0.02 --seed 2`) the
 // LU took 1.2 s of the last step's 3.0 s at 1,971 leaves, GMRES 0.02 s, with the same leaves and errors.
 inline constexpr long kTargetStageDirectMaxPatches = 1000;
 
+// The problem of `patches` with a copy of F, kept as stage.problem (the stage keeps form_factors, with its record
+// of how F was traced, for the caller's per-patch diagnostics), solved by the automatic solver to options.tol within
+// default_max_iterations, directly up to kTargetStageDirectMaxPatches and by GMRES above; when it converged, B_se =
+// the solver's own error combined with F's noise (add_form_factor_error, solve/form_factor_error.h) and B_disc = the discretisation error of B
+// (discretisation_error, solve/discretisation_error.h) with options.discretisation_directions and options.seed,
+// with its source d and d's standard deviation in stage.source and stage.source_sd, and B_se's model in stage.noise
+// (F's row noise, when F records its tracing, and the solver's own: the groups' means' first-order statistical part).
+// `visibility` is of `patches`. estimates, if given, receives what the estimates measured.
 TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibility& visibility,
                                           FormFactors form_factors, const TargetErrorStageOptions& options,
                                           TargetErrorStageEstimates* estimates = nullptr);

@@ -164,13 +164,7 @@ TEST_CASE("discretisation error: a measurement's M_disc is the sum of its patche
 // six) they would be 60 x 24 L. That is without the near-field refinement; with it (the default) each patch adds
 // its pilot and may take more points per side and shot directions.
 TEST_CASE("discretisation error: the fluctuation's points have one density over the scene") {
-  PatchBuilder b;
-  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
-  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
-  test::add_box(b, Vec3(0.4, 0, 0.4), Vec3(0.6, 0.2, 0.6), 3, false, m);
-  PatchSet patches = b.build();
-  for (std::size_t i = 0; i < patches.size(); ++i)
-    patches.E[i] = patches.centroid[i].y() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  const PatchSet patches = test::room_with_box_on_floor();
   REQUIRE(patches.size() == 60);
   const EmbreeVisibility visibility(patches);
   const PatchRgb B = PatchRgb::Constant(60, 3, 0.5);

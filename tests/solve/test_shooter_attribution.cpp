@@ -34,7 +34,6 @@
 #include "formfactor/analytic_form_factors.h"
 #include "formfactor/emitter_form_factors.h"
 #include "mesh/read_scene.h"
-#include "patch/patch_builder.h"
 #include "patch/patching.h"
 #include "solve/block_jacobi.h"
 #include "solve/direct_solver.h"
@@ -72,17 +71,10 @@ Solved solved_cube(int k, bool furnace) {
   return s;
 }
 
-// The unit room (one patch a face, the ceiling emitting) with a box of side 0.2 on its floor in 3 x 3 patches a
-// face: the room's faces have near targets (the box's patches, 0.067 wide, within their points' spacing of 1/8).
+// The room with a box on its floor (support/box_scenes.h): its faces have near targets.
 Solved solved_room_with_box() {
   Solved s;
-  PatchBuilder b;
-  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
-  test::add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
-  test::add_box(b, Vec3(0.4, 0, 0.4), Vec3(0.6, 0.2, 0.6), 3, false, m);
-  s.patches = b.build();
-  for (std::size_t i = 0; i < s.patches.size(); ++i)
-    s.patches.E[i] = s.patches.centroid[i].y() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  s.patches = test::room_with_box_on_floor();
   const EmbreeVisibility visibility(s.patches);
   AnalyticFormFactors ff = analytic_form_factors(s.patches, visibility);
   s.problem = make_problem(s.patches, std::move(ff.form_factors.F));

@@ -50,6 +50,20 @@ inline PatchSet unit_cube_room(int k, bool with_triangles = false) {
   return b.build();
 }
 
+// The unit cube room (one inward patch a face, rho 0.5, the ceiling y = 1 emitting E = 1) with a box of side 0.2
+// standing on its floor, 3 x 3 patches a face (60 patches): the room's faces have the box's patches, 0.067 wide,
+// within their fluctuation points' spacing of 1/8 (solve/fluctuation_source.h's near field).
+inline PatchSet room_with_box_on_floor() {
+  PatchBuilder b;
+  const int m = b.add_material("white", Rgb(0.5, 0.5, 0.5));
+  add_box(b, Vec3(0, 0, 0), Vec3(1, 1, 1), 1, true, m);
+  add_box(b, Vec3(0.4, 0, 0.4), Vec3(0.6, 0.2, 0.6), 3, false, m);
+  PatchSet patches = b.build();
+  for (std::size_t i = 0; i < patches.size(); ++i)
+    patches.E[i] = patches.centroid[i].y() > 1 - 1e-9 ? Rgb(1, 1, 1) : Rgb(0, 0, 0);
+  return patches;
+}
+
 // The closed box [0,1]^3, k x k inward patches per wall, and a thin square panel at x = 0.5 over y, z in
 // [0.25, 0.75], m x m patches, its front facing -x. Materials: 0 the walls, 1 the wall x = 0, 2 the wall x = 1,
 // 3 the panel (two-sided when panel_two_sided); then add_back_sides(patches, all_two_sided).
