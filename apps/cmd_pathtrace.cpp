@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "apps/finite_outputs.h"
 #include "apps/options.h"
@@ -15,7 +16,9 @@
 #include "apps/scene_camera.h"
 #include "core/atomic_write.h"
 #include "core/error.h"
+#include "core/format_number.h"
 #include "core/image.h"
+#include "core/moments.h"
 #include "core/parallel.h"
 #include "core/timer.h"
 #include "io/exr_writer.h"
@@ -41,6 +44,37 @@ void write_image(const std::string& path, const RenderResult& r, const std::stri
     note("wrote " + se + " (per-pixel standard error)");
   }
   note("wrote " + path);
+}
+
+// The patches whose B_se cannot be trusted (core/moments.h: VOV above kVovReliable on some channel): counted in
+// the JSON's solution.vov, and one note naming the worst. Such a patch's samples are ruled by a few rare bright
+// paths: this run caught some, so its B_se is itself uncertain, and a run that misses them states too small an
+// error there (docs/path-tracer.md, "How far to trust B_se"). A patch whose samples all agree has VOV 0.
+void report_standard_error_reliability(const PatchSet& patches, const Solution& s, RunSummary& summary) {
+  if (!s.vov.size()) return;
+  long unreliable = 0;
+  double worst = 0;
+  Eigen::Index worst_row = -1;
+  for (Eigen::Index r = 0; r < s.vov.rows(); ++r) {
+    const double v = s.vov.row(r).maxCoeff();
+    if (v > kVovReliable) ++unreliable;
+    if (v > worst) worst = v, worst_row = r;
+  }
+  summary.json()["solution"]["vov"] = {{"reliable_below", kVovReliable},
+                                       {"unreliable_patches", unreliable},
+                                       {"max", worst},
+                                       {"max_patch", worst_row}};
+  if (unreliable == 0) return;
+  const auto i = static_cast<std::size_t>(worst_row);
+  std::string names;
+  for (const auto& [kind, name] : {std::pair{"object", &patches.object_of(i)}, std::pair{"group", &patches.group_of(i)},
+                                   std::pair{"material", &patches.material_of(i)}})
+    if (!name->empty()) names += std::string(", ") + kind + " '" + *name + "'";
+  note("path tracer: on " + std::to_string(unreliable) + " of " + std::to_string(patches.size()) +
+       " patches the variance of the variance is above " + format_number(kVovReliable) + " (largest " +
+       format_number(worst, 3) + ", patch " + std::to_string(worst_row) + ", input face " +
+       std::to_string(patches.face[i]) + names + "): a few rare bright paths rule their samples, so their B_se is "
+       "itself uncertain (field B_vov); more samples (--spp) settle it");
 }
 
 }  // namespace
@@ -123,9 +157,11 @@ int run_pathtrace(const PathtraceCommand& command) {
                                estimate, summary);
     std::fprintf(report_stream(), "%s: %s, %.2f s\n", s.method.c_str(), s.message.c_str(), s.seconds);
     summary.json()["solution"] = solution_json(s);
+    report_standard_error_reliability(patches, s, summary);
     report_power_balance(patches, s.B, s.B_se, trace_ray_fates(patches, command.scene.seed), summary);
     std::vector<CellField> fields = {rgb_field("B", s.B), rgb_field("B_se", s.B_se)};
     if (s.var.size()) fields.push_back(with_csv_name(rgb_field("B_var", s.var), "var"));  // CSV: var_*
+    if (s.vov.size()) fields.push_back(with_csv_name(rgb_field("B_vov", s.vov), "vov"));  // CSV: vov_*
     VtpMetadata metadata = solution_metadata(s, patches);
     metadata.set_text("integrator", command.integrator);
     metadata.set_integer(light ? "particles_per_patch" : "spp", command.spp);

@@ -97,6 +97,7 @@ py::object to_meshio(const py::object& self, const Scene& scene) {
   if (r.solution.var.size()) fields.emplace_back("B_var", np.attr("array")(rgb_view(r.solution.var, self)));
   if (r.solution.var_theory.size())
     fields.emplace_back("B_var_theory", np.attr("array")(rgb_view(r.solution.var_theory, self)));
+  if (r.solution.vov.size()) fields.emplace_back("B_vov", np.attr("array")(rgb_view(r.solution.vov, self)));
   // Copies of the scene's rho and E (the views' base is the result, so they are copied at once).
   fields.emplace_back("rho", np.attr("array")(view(p.rho.data()->data(), n, 3, self, false, sizeof(Rgb))));
   fields.emplace_back("E", np.attr("array")(view(p.E.data()->data(), n, 3, self, false, sizeof(Rgb))));

@@ -124,6 +124,11 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
           "Sample variance per walk or particle (N, 3) float64, (W per unit length squared)^2; None where not "
           "computed.")
       .def_property_readonly(
+          "vov", [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.vov); },
+          "Variance of the variance (N, 3) float64, dimensionless: the estimated relative variance of var's "
+          "estimate (MCNP's VOV); B_se is reliable where it is below 0.1 (docs/path-tracer.md); the path "
+          "tracer's, None elsewhere.")
+      .def_property_readonly(
           "var_theory",
           [](py::object self) { return rgb_or_none(self, self.cast<const Result&>().solution.var_theory); },
           "Exact per-walk variance (N, 3) float64, (W per unit length squared)^2; None unless theory=True.")
@@ -166,10 +171,11 @@ fields: the per-patch fields of the CLI's CSV and .vtp for write_csv / write_vtp
             }
             if (s.var.size()) d["B_var"] = py::make_tuple(rgb_view(s.var, self), "var");
             if (s.var_theory.size()) d["B_var_theory"] = py::make_tuple(rgb_view(s.var_theory, self), "var_theory");
+            if (s.vov.size()) d["B_vov"] = py::make_tuple(rgb_view(s.vov, self), "vov");
             return d;
           },
           "The CLI's per-patch fields of this result as write_csv takes them (dict str -> (N, 3) float64 view, "
-          "or (view, csv name)): B, B_se, B_disc, B_err, B_var, B_var_theory where computed.")
+          "or (view, csv name)): B, B_se, B_disc, B_err, B_var, B_var_theory, B_vov where computed.")
       .def("__repr__", [](const Result& r) {
         return "<radwalk.Result " + r.solution.method + ": " + to_string(r.solution.status) + ", " +
                std::to_string(r.solution.B.rows()) + " patches>";

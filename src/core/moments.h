@@ -21,6 +21,19 @@
 //                                 = the chunk's first sample (shifted-data algorithm: no division per sample, no
 //                                 cancellation when K is a typical value; all-equal samples give M2 = 0 exactly);
 //                                 moments() converts: mean = K + S1 / n, M2 = max(0, S2 - S1^2 / n).
+//   CentralMoments4               n, mean and the central sums M2, M3, M4 (M_k = sum (x - mean)^k) per channel, for
+//                                 the variance of the variance: of(x, count) from a block of stored samples by two
+//                                 passes (no cancellation), merge(b) combines blocks (Pebay 2008, with
+//                                 d = mean_b - mean_a, n = n_a + n_b):
+//                                   M2 = M2_a + M2_b + d^2 n_a n_b / n
+//                                   M3 = M3_a + M3_b + d^3 n_a n_b (n_a - n_b) / n^2 + 3 d (n_a M2_b - n_b M2_a) / n
+//                                   M4 = M4_a + M4_b + d^4 n_a n_b (n_a^2 - n_a n_b + n_b^2) / n^3
+//                                        + 6 d^2 (n_a^2 M2_b + n_b^2 M2_a) / n^2 + 4 d (n_a M3_b - n_b M3_a) / n;
+//                                 blocks merged in a fixed order give the same bits for any thread count.
+//                                 vov() = M4 / M2^2 - 1 / n: MCNP's VOV, the estimated relative variance of the
+//                                 estimated variance of the mean (0 where M2 = 0); a confidence interval from the
+//                                 sample variance is trusted only where it is below kVovReliable = 0.1 (MCNP's
+//                                 statistical checks, X-5 Monte Carlo Team 2003, vol. I ch. 2 sec. VI).
 //   sample_moments(x)             two passes over stored samples: mean, var and the fourth central moment
 //                                 mu4 = (1/n) sum (x - mean)^4 (for the variance z-test of the tests).
 //
@@ -128,6 +141,50 @@ inline double moment_scale(double largest) {
   std::frexp(largest, &exponent);
   return std::ldexp(1.0, exponent - 1);
 }
+
+inline constexpr double kVovReliable = 0.1;
+
+struct CentralMoments4 {
+  long n = 0;
+  Rgb mean = Rgb::Zero(), M2 = Rgb::Zero(), M3 = Rgb::Zero(), M4 = Rgb::Zero();
+
+  static CentralMoments4 of(const Rgb* x, std::size_t count) {
+    CentralMoments4 m;
+    if (count == 0) return m;
+    m.n = static_cast<long>(count);
+    for (std::size_t i = 0; i < count; ++i) m.mean += x[i];
+    m.mean /= static_cast<double>(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      const Rgb d = x[i] - m.mean, d2 = d * d;
+      m.M2 += d2;
+      m.M3 += d2 * d;
+      m.M4 += d2 * d2;
+    }
+    return m;
+  }
+  void merge(const CentralMoments4& b) {
+    if (b.n == 0) return;
+    if (n == 0) {
+      *this = b;
+      return;
+    }
+    const double na = static_cast<double>(n), nb = static_cast<double>(b.n), nn = na + nb;
+    const Rgb d = b.mean - mean, d2 = d * d;
+    M4 += b.M4 + d2 * d2 * (na * nb * (na * na - na * nb + nb * nb) / (nn * nn * nn)) +
+          6.0 * d2 * (na * na * b.M2 + nb * nb * M2) / (nn * nn) + 4.0 * d * (na * b.M3 - nb * M3) / nn;
+    M3 += b.M3 + d2 * d * (na * nb * (na - nb) / (nn * nn)) + 3.0 * d * (na * b.M2 - nb * M2) / nn;
+    M2 += b.M2 + d2 * (na * nb / nn);
+    mean += d * (nb / nn);
+    n += b.n;
+  }
+  // Divided by M2 twice (not by M2^2) so that tiny samples do not underflow the square.
+  Rgb vov() const {
+    Rgb v = Rgb::Zero();
+    for (int c = 0; c < 3; ++c)
+      if (M2[c] > 0) v[c] = std::max(0.0, M4[c] / M2[c] / M2[c] - 1.0 / static_cast<double>(n));
+    return v;
+  }
+};
 
 struct SampleMoments {
   double mean = 0, var = 0, mu4 = 0;

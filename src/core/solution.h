@@ -29,6 +29,8 @@ struct Solution {
                             // equivalent); empty when not estimated
   PatchRgb var;             // per-walk (per-sample) variance (Monte Carlo methods); empty otherwise
   PatchRgb var_theory;      // exact per-walk variance where computable; empty otherwise
+  PatchRgb vov;             // variance of the variance (core/moments.h CentralMoments4::vov: how far B_se can be
+                            // trusted, reliable below kVovReliable): the path tracer's; empty otherwise
   long iterations = 0;      // sweeps or shots (deterministic)
   double residual = std::numeric_limits<double>::quiet_NaN();  // ||B - E - rho F B|| / ||E||, max over channels
   std::vector<double> residual_history;

@@ -127,7 +127,7 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
     // With the form-factor transport only (checked above): the stage holds F and the source.
     std::vector<GroupMeanError> groups =
         solved ? step_group_errors(leaves, stage, h.B, h.B_se, o.each, E, st) : std::vector<GroupMeanError>();
-    record.rays = h.rays + h.shadow_rays + ind.rays;
+    record.rays = h.rays + h.shadow_rays + ind.rays + stage.estimate_rays;
     record.estimate_seconds = estimate_timer->seconds();
     st.seconds = timer.seconds();
 

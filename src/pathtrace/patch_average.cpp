@@ -34,6 +34,7 @@ constexpr std::size_t kWaveItems = std::size_t(1) << 15;
 struct Partial {
   Rgb sum = Rgb::Zero();    // sum of rho E_irr_hat
   Rgb sum2 = Rgb::Zero();   // sum of its squares
+  CentralMoments4 shape;    // its central moments, for the variance of the variance
 };
 
 // One item of a task: samples [s0, s1) of patch i, the task's samples first .. first + s1 - s0 - 1.
@@ -111,10 +112,11 @@ void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const
     const std::size_t b = items[k].first, e = b + static_cast<std::size_t>(items[k].s1 - items[k].s0);
     Partial& p = out[k];
     for (std::size_t w = b; w < e; ++w) {
-      const Rgb y = Y[w] * inverse_scale;  // exact: a power of two
-      p.sum += y;
-      p.sum2 += y * y;
+      Y[w] *= inverse_scale;  // exact: a power of two
+      p.sum += Y[w];
+      p.sum2 += Y[w] * Y[w];
     }
+    p.shape = CentralMoments4::of(Y.data() + b, e - b);
   }
 }
 }  // namespace
@@ -142,6 +144,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const std::size_t wave_tasks = std::max<std::size_t>(1, kWaveItems / per_task);
   const double inverse_scale = 1 / moment_scale(patches.max_emission());
   std::vector<Rgb> sum(n, Rgb::Zero()), sum2(n, Rgb::Zero());
+  std::vector<CentralMoments4> shape(n);
   std::vector<Partial> parts;
   PathCounters total;
   // Over MPI each rank traces a block of each wave's tasks (their own streams), then all share the wave's items'
@@ -196,6 +199,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
     for (std::size_t k = i0; k < i1; ++k) {
       sum[k / blocks] += parts[k - i0].sum;
       sum2[k / blocks] += parts[k - i0].sum2;
+      shape[k / blocks].merge(parts[k - i0].shape);
     }
     for (const PathCounters& c : task_counters) total.add(c);
   }
@@ -208,6 +212,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   sol.B.resize(static_cast<Eigen::Index>(n), 3);
   sol.B_se.resize(static_cast<Eigen::Index>(n), 3);
   sol.var.resize(static_cast<Eigen::Index>(n), 3);
+  sol.vov.resize(static_cast<Eigen::Index>(n), 3);
   const double scale = 1 / inverse_scale;
   const double m = static_cast<double>(options.spp);
   for (std::size_t i = 0; i < n; ++i) {
@@ -216,6 +221,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
     sol.B.row(r) = (patches.E[i] + mean * scale).transpose();
     sol.var.row(r) = (var * scale * scale).transpose();
     sol.B_se.row(r) = ((var / m).sqrt() * scale).transpose();
+    sol.vov.row(r) = shape[i].vov().transpose();  // scale-free
   }
   sol.status = SolveStatus::converged;
   sol.walks = static_cast<long>(n) * options.spp;

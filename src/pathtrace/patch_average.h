@@ -5,8 +5,11 @@
 // in W/m^2 (radiosity; a Lambertian patch's outgoing radiance is B_i / pi). One sample of patch i takes x
 // uniform on the patch (pdf 1/A_i, SurfaceGeometry::sample_point) and estimates E_irr(x) with PathIntegrator::irradiance
 // (a cosine-sampled direction scores pi L_in; NEE/MIS add light samples), so Y = E_i + rho_i E_irr_hat(x) has
-// mean B_i. The Solution gives B (mean of spp samples), var (per-sample variance, unbiased) and
-// B_se = sqrt(var / spp) per patch and channel.
+// mean B_i. The Solution gives B (mean of spp samples), var (per-sample variance, unbiased),
+// B_se = sqrt(var / spp) and vov (the variance of the variance, core/moments.h CentralMoments4) per patch and channel.
+// B_se is the sample standard deviation of the mean, honest only once the samples' tail is sampled: where rare paths
+// carry much of the variance (a small bright reflector seen by few directions) it understates the error, and vov
+// above kVovReliable says so (docs/path-tracer.md, "How far to trust B_se").
 //
 // Random streams: sample s of patch i uses the stream (seed, patch_average, i, s) (core/rng.h); the result is bit-identical for any thread count.
 // rho_i is the patch's Kd whatever its material: on non-diffuse scenes (is_diffuse_scene false) the paths still

@@ -102,6 +102,9 @@ struct TargetErrorStage {
   // B_se's model (F's row noise and the solver's own error): the groups' statistical parts first-order instead of
   // the bound (solve/group_mean_error.h; empty: the bound).
   GroupNoiseModel noise;
+  // The rays the estimates traced beyond F's: the calibration of F's noise and the discretisation estimate (with
+  // the shooter attribution's).
+  long estimate_rays = 0;
 };
 using TargetErrorWork = std::function<TargetErrorStage(const PatchSet& patches, long rays, int step)>;
 

@@ -30,7 +30,10 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
       add_form_factor_error(patches, visibility, stage.form_factors, problem, stage.solution);
   const double seconds = timer.seconds();
   // B_se's model for the groups' means (solve/group_mean_error.h): F's row noise, measured above, and the solver's own.
-  if (statistical) stage.noise.gather_standard_error = statistical->gather_standard_error;
+  if (statistical) {
+    stage.noise.gather_standard_error = statistical->gather_standard_error;
+    stage.estimate_rays += statistical->calibration.rays;
+  }
   stage.noise.solver_standard_error = own;
   std::optional<DiscretisationError> discretisation;
   if (options.discretisation_directions > 0) {
@@ -39,6 +42,7 @@ TargetErrorStage solve_target_error_stage(const PatchSet& patches, const Visibil
                                           options.discretisation_directions, options.seed,
                                           options.attribute_shooters ? &attribution : nullptr);
     stage.shooter_share = std::move(attribution.share);
+    stage.estimate_rays += discretisation->rays;
     stage.solution.B_disc = discretisation->standard_error;
     stage.source = discretisation->source;
     stage.source_sd = discretisation->source_sd;

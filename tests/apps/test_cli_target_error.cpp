@@ -111,7 +111,7 @@ TEST_CASE("solve --target-error takes the hierarchical route by default", "[cli]
   CHECK(csv_without_run_id(file_text(by_default)) == csv_without_run_id(file_text(explicitly)));  // run_id: the command
 }
 
-// Through the hierarchy: the steps (leaves, rays a leaf, rays, the three errors, seconds) in the JSON, the last
+// Through the hierarchy: the steps (leaves, rays a leaf, all their rays, the three errors, seconds) in the JSON, the last
 // estimate at most E, one CSV row per leaf, the summary line's estimate (the step lines are notes, silenced by the
 // runner's --quiet); a leaf budget too small exits 1 with one
 // line; the options the route chooses itself refused with exit 2 and one line.
@@ -130,7 +130,12 @@ TEST_CASE("solve --hierarchical --target-error reaches a reachable target and li
   const auto& last = t.at("steps").back();
   CHECK(last.at("total").get<double>() <= 0.06);
   CHECK(last.at("total").get<double>() == Approx(j.at("error_estimate").at("total").at("relative").get<double>()));
-  CHECK(last.at("rays").get<long>() > 0);
+  // All the last step's rays: F's (rays a leaf x leaves) and its estimates' (no split after it, so no band split's).
+  const auto& estimates = j.at("error_estimate");
+  CHECK(last.at("rays").get<long>() ==
+        last.at("rays_per_patch").get<long>() * last.at("leaves").get<long>() +
+            estimates.at("discretisation").at("rays").get<long>() +
+            estimates.at("statistical").at("calibration_rays").get<long>());
   CHECK(j.at("patches").get<std::size_t>() == last.at("leaves").get<std::size_t>());
   CHECK(j.at("hierarchy").at("leaves").get<std::size_t>() == last.at("leaves").get<std::size_t>());
   const std::string rows = file_text(csv);

@@ -3,6 +3,9 @@
 // tracing of the samples (paths in lockstep, rays in packets) against samples traced one ray at a time.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <tuple>
+
 #include "core/moments.h"
 #include "core/parallel.h"
 #include "pathtrace/facet_geometry.h"
@@ -145,6 +148,7 @@ TEST_CASE("patch averages are bit-identical for 1 and 2 threads", "[pathtrace]")
   }
   CHECK((one.B == two.B).all());
   CHECK((one.B_se == two.B_se).all());
+  CHECK((one.vov == two.vov).all());
   CHECK(one.steps == two.steps);
 }
 
@@ -184,4 +188,41 @@ TEST_CASE("patch averages traced in batches equal their samples traced one ray a
       CHECK(s.info.at("rays") == static_cast<double>(counters.rays));
       CHECK(s.steps == counters.vertices);
     }
+}
+
+TEST_CASE("the variance of the variance flags a small light found by chance, not the same light sampled",
+          "[pathtrace]") {
+  // A 3 cm cube lamp in the middle of a 1 m box (walls rho 0.3). Implicit (BSDF sampling only): a wall point's
+  // cosine-sampled path finds the lamp with probability p ~ 1e-3 (its solid angle ~ 0.004 sr at 0.5-0.7 m, times
+  // cos / pi, a little more over the bounces), so with 2000 samples a wall patch's irradiance rests on K ~ Poisson(2)
+  // bright samples and VOV ~ 1 / K: above kVovReliable = 0.1 whenever 1 <= K <= 9 (P ~ 0.86), and B_se is the
+  // spread of those few hits. NEE samples the lamp at every sample (bounded scores: the lamp touches nothing), so its
+  // VOV is of order (kurtosis - 1) / n ~ 1e-3. Fixed seed; the property checked is the majority, not one patch.
+  PatchBuilder b;
+  const int wall = b.add_material("wall", Rgb::Constant(0.3));
+  const int lamp = b.add_material("lamp", Rgb::Zero(), Rgb::Constant(2e4));
+  test::add_cube_outward(b, Vec3(0.485, 0.485, 0.485), 0.03, lamp);
+  const PatchSet p = test::closed_box(Vec3(1, 1, 1), 3, b, [&](int, int, int) { return wall; });
+  const EmbreeVisibility vis(p);
+  const auto flagged = [&](IntegratorKind kind) {
+    const Solution s = estimate_patch_averages(p, vis, options_for(kind, 2000, 106));
+    REQUIRE(s.vov.rows() == static_cast<Eigen::Index>(p.size()));
+    long walls = 0, count = 0;
+    double largest = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      if ((p.E[i] > 0).any()) continue;
+      ++walls;
+      const double v = s.vov.row(static_cast<Eigen::Index>(i)).maxCoeff();
+      count += v > kVovReliable;
+      largest = std::max(largest, v);
+    }
+    return std::tuple{count, walls, largest};
+  };
+  const auto [implicit_flagged, walls, implicit_largest] = flagged(IntegratorKind::implicit);
+  const auto [nee_flagged, walls_nee, nee_largest] = flagged(IntegratorKind::nee);
+  INFO("implicit: " << implicit_flagged << " of " << walls << " flagged, largest " << implicit_largest
+                    << "; NEE: " << nee_flagged << ", largest " << nee_largest);
+  CHECK(implicit_flagged * 2 > walls);
+  CHECK(nee_flagged == 0);
+  CHECK(nee_largest < 0.01);
 }

@@ -63,7 +63,9 @@ def test_pathtrace_averages_equal_the_cli(scene, tmp_path):
     run_cli("pathtrace", SCENE, "--max-edge", MAX_EDGE, "--spp", 16, "--seed", SEED, "--csv", tmp_path / "cli.csv")
     result = radwalk.pathtrace(scene, spp=16, seed=SEED)
     radwalk.write_csv(tmp_path / "py.csv", scene, result.averages.fields)
-    assert same_bytes(tmp_path / "cli.csv", tmp_path / "py.csv")
+    assert same_bytes(tmp_path / "cli.csv", tmp_path / "py.csv")  # vov_* columns included
+    vov = result.averages.vov
+    assert vov.shape == result.averages.B.shape and (vov >= 0).all() and (vov > 0).any()
 
 
 def test_F_read_back_from_matrix_market_solves_the_same(scene, ff, tmp_path):
