@@ -151,14 +151,15 @@ HierarchicalTargetResult solve_hierarchical_to_target_error(
         // The largest eta_l^2 (and the largest shooter shares, where estimated: solve/refinement_marks.h) first
         // until they hold the plan's share of their sums, at most theta (o.bulk: Doerfler's marking, header).
         // A leaf already within its equal share of the discretisation target, eta_l^2 <= t_d^2 sum_l A_l |B_l|^2 / N
-        // (t_d = 0.7 E, the plan's; N the leaves now), is never split: the optimal mesh equidistributes eta_l^2, and
-        // when the plan's share is 1 (e_d far above the target) the rule alone would split every leaf, however
-        // concentrated the error (the spot-lit room: 90 % of sum eta_l^2 in 2 of 690 leaves).
+        // (t_d = kPlanTarget E, the plan's; N the leaves now), is never split: the optimal mesh equidistributes
+        // eta_l^2, and when the plan's share is 1 (e_d far above the target) the rule alone would split every leaf,
+        // however concentrated the error (the spot-lit room: 90 % of sum eta_l^2 in 2 of 690 leaves).
         double norm = 0;
         for (std::size_t k = 0; k < leaves.size(); ++k)
           if (!(leaves.E[k] > 0).any() && (leaves.rho[k] > 0).any())
             norm += leaves.area[k] * h.B.row(static_cast<Eigen::Index>(k)).square().sum();
-        const double share = 0.49 * E * E * norm / double(leaves_now);
+        const double t_d = kPlanTarget * E;
+        const double share = t_d * t_d * norm / double(leaves_now);
         // The receiver share: eta_l^2, or A_l |B_disc_l|^2 where the shooter shares are estimated (they hold the
         // part of the within-leaf variation that the leaves' averages see: docs/theory/discretisation_error.md,
         // "Refinement by both shares").

@@ -27,11 +27,11 @@
 //      part dominates, the leaves with the largest eta_l^2 are split in 4 until they hold the plan's share of
 //      sum eta_l^2, and so are those with the largest c_l until they hold that share of sum max(c_l, 0)
 //      (solve/refinement_marks.h) (a leaf at max_level or below 4 min_area is skipped; a leaf within its equal
-//      share of the target, eta_l^2 (or c_l) <= 0.49 E^2 sum_l A_l |B_l|^2 / N, is never split: the optimal mesh
-//      equidistributes the error, and far from the target the share is 1), and the share is capped at the bulk
-//      parameter theta (options.bulk, Doerfler's marking: the fewest leaves that hold theta of the sum, however far
-//      the error is above its target; below); where the statistical part is above its target, R grows by the plan's
-//      factor.
+//      share of the target, eta_l^2 (or c_l) <= (kPlanTarget E)^2 sum_l A_l |B_l|^2 / N, is never split: the
+//      optimal mesh equidistributes the error, and far from the target the share is 1), and the share is capped
+//      at the bulk parameter theta (options.bulk, Doerfler's marking: the fewest leaves that hold theta of the sum,
+//      however far the error is above its target; below); where the statistical part is above its target, R grows
+//      by the plan's factor.
 // Split kind (options.split "adaptive"): before splitting, the leaves marked in step 4 get their directional variation
 // estimated (its rays are the step's) and each is split as hierarchy/split_kind.h chooses; the start splits by edge
 // length (below).

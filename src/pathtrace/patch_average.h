@@ -25,7 +25,7 @@ struct PatchAverageOptions {
   long spp = 256;             // samples per patch
   std::uint64_t seed = 1;
   IntegratorOptions integrator;
-  bool progress = true;       // core/progress.h (only drawn when stderr is a terminal)
+  bool progress = true;       // core/progress.h
 };
 
 // Solution::method = "pathtrace-<integrator>", walks = samples, steps = scattering events,
