@@ -14,6 +14,9 @@ run, over the reflecting non-emitting patches the path tracer sees (B > 0) and t
   e_disc         - the measured discretisation error sqrt(max(e^2 - e_stat^2, 0)): the run's noise taken out too,
                    so that runs with different rays a patch compare at equal discretisation error;
   e_disc_sd      - its standard deviation from the path tracer's noise;
+  cover, sharp   - the coverage of the run's stated total error B_err (the fraction of values with |B - B_pt| <=
+                   1.96 sqrt(B_err^2 + B_se_pt^2): 0.95 if B_err is right) and its sharpness (its RMS over the
+                   measured error's: 1 if right), scripts/patch_comparison.py coverage;
   cpu            - user + system CPU seconds of the solve (all its steps).
 The same for fixed settings given with --hand (e.g. the README's recommended route at several --max-edge), for
 the comparison of CPU at equal measured error. The path tracer reads the .vtp as written (coordinates already
@@ -61,9 +64,9 @@ def main():
     scene_options = ["-q"] + shlex.split(a.scene_options)
     runs = [("--target-error %s %s" % (t, a.run)).strip() for t in a.targets.split(",") if t] + a.hand
     print("scene %s %s, path tracer --spp %d on each run's own patches" % (os.path.basename(a.scene), a.scene_options, a.spp))
-    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s %8s %9s %8s" % ("run", "seed", "patches", "rays", "steps", "e_est",
-                                                                  "e", "e_sd", "pt_noise", "e_stat", "e_disc",
-                                                                  "e_disc_sd", "cpu_s"))
+    print("%-44s %5s %8s %6s %6s %8s %8s %8s %8s %8s %8s %9s %6s %6s %8s" % (
+        "run", "seed", "patches", "rays", "steps", "e_est", "e", "e_sd", "pt_noise", "e_stat", "e_disc", "e_disc_sd",
+        "cover", "sharp", "cpu_s"))
     with tempfile.TemporaryDirectory() as tmp:
         for options in runs:
             for seed in range(a.first_seed, a.first_seed + a.seeds):
@@ -83,9 +86,10 @@ def main():
                 run_table, pt_table = pc.read_table(run_csv), pc.read_table(pt_csv)
                 e, e_sd, noise, unmatched = pc.measured_error(run_table, pt_table)
                 e_disc, e_disc_sd, e_stat = pc.measured_discretisation_error(run_table, pt_table)
-                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %9.4f %8.2f%s" %
+                cover, _, sharp = pc.coverage(run_table, pt_table)
+                print("%-44s %5d %8d %6d %6d %8.4f %8.4f %8.4f %8.4f %8.4f %8.4f %9.4f %6.3f %6.2f %8.2f%s" %
                       (options, seed, summary["patches"], rays, steps, e_est, e, e_sd, noise, e_stat, e_disc,
-                       e_disc_sd, cpu,
+                       e_disc_sd, cover, sharp, cpu,
                        ("" if code == 0 else "  (target not reached: " + target.get("stop_reason", "?") + ")") +
                        ("" if unmatched == 0 else "  (%d patches not in the path tracer's reading, left out)" % unmatched)))
                 sys.stdout.flush()

@@ -15,6 +15,8 @@ bench/per_material.py and the realmesh test tests/realmesh/run_furniture_target.
   measured_discretisation_error(run, reference) -> (e_disc, e_disc_sd, e_stat): e with the run's own stated
                              statistical error taken out as well (below).
   material_means(run, reference) -> {material: MaterialMean}, per material in order of first appearance (below).
+  coverage(run, reference) -> (coverage, values, sharpness): how well the run's stated total error B_err covers its
+                             difference from the reference (below).
 
 Matching: the reference read back may list the patches in another order (back patches, repaired faces) and drop a
 few (faces the reader repairs away, slivers), so rows are matched by their centroid (divided by the largest
@@ -37,6 +39,13 @@ Its discretisation part, over the same values, s the run's own B_se:
            what "at equal discretisation error" compares: a run with fewer rays a patch is not charged for its noise.
   e_disc_sd = e e_sd / e_disc (sqrt(2 e e_sd) at e_disc = 0): the standard deviation of e_disc from the reference's
            noise, carried from e^2's as e_sd is (d(e_disc^2) = d(e^2)); the run's stated B_se is taken as exact.
+
+Coverage, over the same matched values, B_err the run's stated total error (its B_err columns; B_se where it has
+none), se the reference's standard error:
+  coverage  = the fraction with |B - B_ref| <= 1.96 sqrt(B_err^2 + se^2)   (0.95 where both errors are right and
+              the differences normal),
+  sharpness = sqrt(sum A B_err^2 / max(sum A (B - B_ref)^2 - sum A se^2, 0))   (1 where B_err has the size of the
+              actual error; above 1 it over-states, below under-states).
 
 Per material m, over each table's own reflecting non-emitting patches of m (E = 0 and rho > 0 in some channel; no
 matching: a material's mean is the area average over its surfaces whatever their tiling, and the path tracer, reading
@@ -66,6 +75,7 @@ def read_table(path):
         rows = list(csv.DictReader(f))
     get = lambda k: np.array([[float(r[k + "_" + c]) for c in "rgb"] for r in rows]).reshape(len(rows), 3)
     table = {k: get(k) for k in ("B", "B_se", "E", "rho")}
+    table["B_err"] = get("B_err") if rows and "B_err_r" in rows[0] else table["B_se"]
     table["area"] = np.array([float(r["area"]) for r in rows])
     table["key"] = np.array([[float(r[k]) for k in ("cx", "cy", "cz", "nx", "ny", "nz")] for r in rows]).reshape(-1, 6)
     table["material"] = np.array([r.get("material", "") for r in rows], dtype=object)
@@ -86,13 +96,13 @@ def matched(run, reference):
             int((~found).sum()))
 
 
-def _counted_values(run, reference):
+def _counted_values(run, reference, column="B_se"):
     """(W, B, B_ref, s, se, unmatched) over the matched (patch, channel) values the errors count (reflecting,
-    non-emitting, B_ref > 0): W the patch area, s the run's B_se, se the reference's."""
+    non-emitting, B_ref > 0): W the patch area, s the run's `column` (B_se or B_err), se the reference's B_se."""
     r, ref, unmatched = matched(run, reference)
     keep = (ref["E"].max(1) == 0)[:, None] & (ref["rho"] > 0) & (ref["B"] > 0)
     W = np.repeat(ref["area"][:, None], 3, 1)[keep]
-    return W, r["B"][keep], ref["B"][keep], r["B_se"][keep], ref["B_se"][keep], unmatched
+    return W, r["B"][keep], ref["B"][keep], r[column][keep], ref["B_se"][keep], unmatched
 
 
 def _reference_noise_out(W, B, B_ref, se):
@@ -123,6 +133,16 @@ def measured_discretisation_error(run, reference):
     e_disc = np.sqrt(max(e * e - e_stat2, 0.0))
     e_disc_sd = e * e_sd / e_disc if e_disc > 0 else np.sqrt(2 * e * e_sd)
     return e_disc, e_disc_sd, np.sqrt(e_stat2)
+
+
+def coverage(run, reference):
+    """(coverage, values, sharpness) of the run's B_err against the reference (see the module's docstring)."""
+    W, B, B_ref, err, se, _ = _counted_values(run, reference, "B_err")
+    diff = B - B_ref
+    inside = int((np.abs(diff) <= 1.96 * np.sqrt(err ** 2 + se ** 2)).sum())
+    measured2 = float((W * diff ** 2).sum()) - float((W * se ** 2).sum())
+    sharpness = np.sqrt(float((W * err ** 2).sum()) / measured2) if measured2 > 0 else float("inf")
+    return inside / max(diff.size, 1), int(diff.size), sharpness
 
 
 def material_means(run, reference):

@@ -31,11 +31,8 @@ constexpr std::size_t kLanes = 32;
 // whatever the sample count.
 constexpr std::size_t kWaveItems = std::size_t(1) << 15;
 
-struct Partial {
-  Rgb sum = Rgb::Zero();    // sum of rho E_irr_hat
-  Rgb sum2 = Rgb::Zero();   // sum of its squares
-  CentralMoments4 shape;    // its central moments, for the variance of the variance
-};
+// An item's samples Y = rho E_irr_hat (scaled): their mean and central moments, merged per patch in item order.
+using Partial = CentralMoments4;
 
 // One item of a task: samples [s0, s1) of patch i, the task's samples first .. first + s1 - s0 - 1.
 struct Item {
@@ -110,13 +107,8 @@ void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const
   }
   for (std::size_t k = 0; k < items.size(); ++k) {
     const std::size_t b = items[k].first, e = b + static_cast<std::size_t>(items[k].s1 - items[k].s0);
-    Partial& p = out[k];
-    for (std::size_t w = b; w < e; ++w) {
-      Y[w] *= inverse_scale;  // exact: a power of two
-      p.sum += Y[w];
-      p.sum2 += Y[w] * Y[w];
-    }
-    p.shape = CentralMoments4::of(Y.data() + b, e - b);
+    for (std::size_t w = b; w < e; ++w) Y[w] *= inverse_scale;  // exact: a power of two
+    out[k] = CentralMoments4::of(Y.data() + b, e - b);
   }
 }
 }  // namespace
@@ -143,8 +135,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   // order, so every patch adds its items in the same order as one pass over all items would.
   const std::size_t wave_tasks = std::max<std::size_t>(1, kWaveItems / per_task);
   const double inverse_scale = 1 / moment_scale(patches.max_emission());
-  std::vector<Rgb> sum(n, Rgb::Zero()), sum2(n, Rgb::Zero());
-  std::vector<CentralMoments4> shape(n);
+  std::vector<CentralMoments4> moments(n);
   std::vector<Partial> parts;
   PathCounters total;
   // Over MPI each rank traces a block of each wave's tasks (their own streams), then all share the wave's items'
@@ -197,9 +188,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
     distributed::share_blocks(parts, item_ranges);
     distributed::share_blocks(task_counters, ranges);
     for (std::size_t k = i0; k < i1; ++k) {
-      sum[k / blocks] += parts[k - i0].sum;
-      sum2[k / blocks] += parts[k - i0].sum2;
-      shape[k / blocks].merge(parts[k - i0].shape);
+      moments[k / blocks].merge(parts[k - i0]);
     }
     for (const PathCounters& c : task_counters) total.add(c);
   }
@@ -216,12 +205,13 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const double scale = 1 / inverse_scale;
   const double m = static_cast<double>(options.spp);
   for (std::size_t i = 0; i < n; ++i) {
-    const auto [mean, var] = mean_and_variance(sum[i], sum2[i], m);
+    const CentralMoments4& x = moments[i];
+    const Rgb var = x.M2 / (m - 1);
     const auto r = static_cast<Eigen::Index>(i);
-    sol.B.row(r) = (patches.E[i] + mean * scale).transpose();
+    sol.B.row(r) = (patches.E[i] + x.mean * scale).transpose();
     sol.var.row(r) = (var * scale * scale).transpose();
     sol.B_se.row(r) = ((var / m).sqrt() * scale).transpose();
-    sol.vov.row(r) = shape[i].vov().transpose();  // scale-free
+    sol.vov.row(r) = x.vov().transpose();  // scale-free
   }
   sol.status = SolveStatus::converged;
   sol.walks = static_cast<long>(n) * options.spp;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <vector>
 
 #include "core/check.h"
 #include "core/moments.h"
@@ -31,6 +33,52 @@ PatchSet scaled_emission(const PatchSet& patches, double s) {
 }
 
 }  // namespace
+
+PriorClasses prior_classes(const std::vector<double>& area, const std::vector<bool>& counted) {
+  PriorClasses out;
+  out.of.assign(area.size(), 0);
+  std::vector<std::size_t> order;
+  for (std::size_t i = 0; i < area.size(); ++i)
+    if (counted[i] && area[i] > 0) order.push_back(i);
+  out.count = 1;
+  if (order.empty()) return out;
+  // Largest first, ties by index; level of i: floor(log4(A_max / A_i)).
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
+  const double largest = area[order.front()];
+  const auto level = [&](double a) { return static_cast<long>(std::floor(std::log(largest / a) / std::log(4.0))); };
+  // Walk the levels from the largest: a class closes at a level boundary once it holds kPriorClassPatches; a last
+  // class below that joins the one before.
+  std::vector<std::size_t> class_of_rank(order.size());
+  std::size_t cls = 0, in_class = 0;
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    if (r > 0 && in_class >= kPriorClassPatches && level(area[order[r]]) != level(area[order[r - 1]])) {
+      ++cls;
+      in_class = 0;
+    }
+    class_of_rank[r] = cls;
+    ++in_class;
+  }
+  if (cls > 0 && in_class < kPriorClassPatches)
+    for (std::size_t r = order.size() - in_class; r < order.size(); ++r) class_of_rank[r] = cls - 1;
+  out.count = class_of_rank.back() + 1;
+  // The counted patches' classes; every other patch takes the class of the counted patch nearest to it in area.
+  std::vector<double> ranked_area(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r) {
+    out.of[order[r]] = class_of_rank[r];
+    ranked_area[r] = area[order[r]];
+  }
+  for (std::size_t i = 0; i < area.size(); ++i) {
+    if (counted[i] && area[i] > 0) continue;
+    // ranked_area is descending: r the first rank whose area is <= area[i]; the nearer in log-area of r and r - 1.
+    const auto it = std::lower_bound(ranked_area.begin(), ranked_area.end(), area[i], std::greater<double>());
+    std::size_t r = std::min(static_cast<std::size_t>(it - ranked_area.begin()), order.size() - 1);
+    if (r > 0 && area[i] > 0 &&
+        std::abs(std::log(area[i] / ranked_area[r - 1])) < std::abs(std::log(area[i] / ranked_area[r])))
+      --r;
+    out.of[i] = class_of_rank[r];
+  }
+  return out;
+}
 
 DiscretisationError discretisation_error(const PatchSet& patches, const Visibility& visibility,
                                          const RadiosityProblem& p, const PatchRgb& B, int directions,
@@ -87,24 +135,37 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
     }
   }
   out.estimate = e.X;
-  // Empirical Bayes (docs/theory/discretisation_error.md): e_i ~ N(0, t_c^2 B_ic^2) a priori, t_c^2 from all the
-  // patches, e^ ~ N(e, V) given e; then E[e^2 | e^] = e^2 w^2 + tau^2 w V / tau^2 ... written with
-  // w = tau^2 / (tau^2 + V): B_disc^2 = (w e^)^2 + w V, whose mean over the patches is tau^2 (unbiased in aggregate,
-  // where e^2 + V would count the noise twice). Scaled before squaring (core/moments.h), as the statistical part.
+  // Empirical Bayes (docs/theory/discretisation_error.md): e_i ~ N(0, t_c^2 B_ic^2) a priori, t_c^2 fitted over
+  // the patches of i's size class (prior_classes), e^ ~ N(e, V) given e; then with w = tau^2 / (tau^2 + V):
+  // B_disc^2 = (w e^)^2 + w V, whose mean over a class is its tau^2 (unbiased in aggregate, where e^2 + V would count
+  // the noise twice). Scaled before squaring (core/moments.h), as the statistical part.
   const double s = moment_scale(N ? std::max(out.estimate.abs().maxCoeff(), B.abs().maxCoeff()) : 0.0);
   const PatchRgb e2 = (out.estimate / s).square(), Ve = variance.variance / (s * s), B2 = (B / s).square();
-  Rgb excess = Rgb::Zero(), size = Rgb::Zero();
+  std::vector<bool> counted(static_cast<std::size_t>(N));
+  for (Eigen::Index i = 0; i < N; ++i)  // the reflecting, non-emitting patches (an emitter's B is mostly its exact E)
+    counted[static_cast<std::size_t>(i)] = p.rho.row(i).maxCoeff() > 0 && !(p.E.row(i).maxCoeff() > 0);
+  const PriorClasses classes = prior_classes(patches.area, counted);
+  std::vector<Rgb> excess(classes.count, Rgb::Zero()), size(classes.count, Rgb::Zero());
   for (Eigen::Index i = 0; i < N; ++i) {
-    // Over the reflecting, non-emitting patches (an emitter's B is mostly its own exact E).
-    if (!(p.rho.row(i).maxCoeff() > 0) || p.E.row(i).maxCoeff() > 0) continue;
-    excess += p.area[i] * (e2.row(i) - Ve.row(i)).transpose();
-    size += p.area[i] * B2.row(i).transpose();
+    if (!counted[static_cast<std::size_t>(i)]) continue;
+    const std::size_t c = classes.of[static_cast<std::size_t>(i)];
+    excess[c] += p.area[i] * (e2.row(i) - Ve.row(i)).transpose();
+    size[c] += p.area[i] * B2.row(i).transpose();
   }
-  out.prior_relative = (size > 0).select((excess / size.max(1e-300)).max(0.0), 0.0).sqrt();
+  Rgb all_excess = Rgb::Zero(), all_size = Rgb::Zero();
+  for (std::size_t c = 0; c < classes.count; ++c) all_excess += excess[c], all_size += size[c];
+  const Rgb t2_all = (all_size > 0).select((all_excess / all_size.max(1e-300)).max(0.0), 0.0);
+  out.prior_relative = t2_all.sqrt();
+  // A class's scale, but never below the scene's: a class whose estimates are mostly noise fits t near 0 and would
+  // shrink them all to nothing.
+  std::vector<Rgb> t2(classes.count);
+  for (std::size_t c = 0; c < classes.count; ++c)
+    t2[c] = (size[c] > 0).select((excess[c] / size[c].max(1e-300)).max(0.0), 0.0).max(t2_all);
+  out.prior_classes = classes.count;
   out.standard_error.resize(N, 3);
   for (Eigen::Index i = 0; i < N; ++i)
     for (int c = 0; c < 3; ++c) {
-      const double tau2 = out.prior_relative[c] * out.prior_relative[c] * B2(i, c);
+      const double tau2 = t2[classes.of[static_cast<std::size_t>(i)]][c] * B2(i, c);
       const double w = tau2 + Ve(i, c) > 0 ? tau2 / (tau2 + Ve(i, c)) : 0.0;
       out.standard_error(i, c) = s * std::sqrt(std::max(w * w * e2(i, c) + w * Ve(i, c), e2(i, c) - Ve(i, c)));
     }

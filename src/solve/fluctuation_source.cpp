@@ -114,6 +114,7 @@ class Shooter {
 
  private:
   static constexpr double kBelowOne = 0x1.fffffffffffffp-1;
+  static constexpr double kEdgeInset = 1e-3;  // of the way from an edge point to the centroid
 
   // A uniform point of stratum (a, b) of patch j's side x side parametric grid. The second coordinate is drawn
   // first, each in its own statement, so that every compiler draws the same points (as arguments of one call the
@@ -144,7 +145,8 @@ class Shooter {
     const PatchRayOffset offset = patch_ray_offset(ps_, j, eps_);
     const Frame frame(ps_.normal[j]);
     Rng rng = stream(seed_, StreamDomain::discretisation_estimate, j, std::uint64_t(kPilotStream));
-    std::vector<Ray> rays(std::size_t(M) * L_);
+    const int corners = ps_.corner_count(j);
+    std::vector<Ray> rays(std::size_t(M + corners * side) * L_);
     std::vector<Hit> hits(rays.size());
     for (int a = 0; a < side; ++a)
       for (int b = 0; b < side; ++b) {
@@ -152,6 +154,18 @@ class Shooter {
         for (int l = 0; l < L_; ++l)
           rays[std::size_t(a * side + b) * L_ + l] = spawn_ray(offset, y, cosine_direction(frame, rng));
       }
+    // And from `side` stratified points along each edge (a hair inside it): a thin neighbour across an edge is
+    // found wherever along the edge it lies, not only where an interior point happens to be near.
+    for (int k = 0; k < corners; ++k) {
+      const Vec3& p0 = ps_.corner(j, k);
+      const Vec3& p1 = ps_.corner(j, (k + 1) % corners);
+      for (int q = 0; q < side; ++q) {
+        const Vec3 on_edge = p0 + std::min((q + rng.uniform()) / side, kBelowOne) * (p1 - p0);
+        const Vec3 y = on_edge + kEdgeInset * (ps_.centroid[j] - on_edge);
+        for (int l = 0; l < L_; ++l)
+          rays[std::size_t(M + k * side + q) * L_ + l] = spawn_ray(offset, y, cosine_direction(frame, rng));
+      }
+    }
     vis_.intersect(rays.data(), hits.data(), rays.size());
     out.rays += long(rays.size());
     NearField near;

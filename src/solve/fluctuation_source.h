@@ -38,8 +38,10 @@
 // by the shots of j's few points nearest to it, whose directions alone decide d_k (on the spot-lit room's 0.6 mm
 // wall leaves in the floor's corner under the light, d = -1.7 +- 1.7 with L for a true -2.5, which the
 // empirical-Bayes B_disc of discretisation_error.h shrinks to 0.2). So patch j first traces a pilot: L cosine rays
-// from each of s_j x s_j stratified points of a stream of its own. Its near targets T_j are the patches k (front,
-// rho_k > 0) a pilot ray reaches within h_j that are thinner than h_j (width: area over longest edge). When there
+// from each of s_j x s_j stratified points and from s_j stratified points along each edge (a hair inside it: a thin
+// neighbour across an edge is found wherever along the edge it lies), of a stream of its own. Its near targets T_j
+// are the patches k (front, rho_k > 0) a pilot ray reaches within h_j that are thinner than h_j (width: area over
+// longest edge). When there
 // are any, both replicates use points spaced no wider than the thinnest target (n_j = ceil(sqrt(A_j) / w_min) per
 // side, at most 16; streams of their own), shoot as above to every patch but the targets (a near-field patch is
 // where the fluctuation is steep, and its many points keep the shots to the rest of the scene quiet too: from its
@@ -63,7 +65,8 @@
 // from the near field's points, which cost about twice the rays.)
 //
 // Rays per patch: 2 replicates x M_j points x (L gather + L shot cosine rays + L shadow rays when the scene has
-// emitters), plus the pilot's s_j^2 L, plus with near targets |T_j| shadow rays per point (M_j = n_j^2 there).
+// emitters), plus the pilot's (s_j^2 + c_j s_j) L (c_j the corners), plus with near targets |T_j| shadow rays per
+// point (M_j = n_j^2 there).
 // Reproducible: patch j draws from stream (seed, discretisation_estimate, j, r); the contributions are summed in
 // patch order, independent of the thread count.
 #include <cstdint>

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <tuple>
+#include <vector>
 
 #include "core/moments.h"
 #include "core/parallel.h"
@@ -155,9 +156,9 @@ TEST_CASE("patch averages are bit-identical for 1 and 2 threads", "[pathtrace]")
 TEST_CASE("patch averages traced in batches equal their samples traced one ray at a time", "[pathtrace]") {
   // estimate_patch_averages runs the samples of many patches in lockstep and traces their rays (shadow rays with
   // the continuation rays) in batches; sample s of patch i must still be PathIntegrator::irradiance on its own
-  // stream (seed, patch_average, i, s), rays traced one at a time, and the sums must add the samples in order:
-  // bit for bit, for every integrator, on the brute-force visibility and on Embree (packets of 16 against single
-  // rays).
+  // stream (seed, patch_average, i, s), rays traced one at a time, and the moments must be those of the samples in
+  // order (one block of 5 here: CentralMoments4::of): bit for bit, for every integrator, on the brute-force
+  // visibility and on Embree (packets of 16 against single rays).
   const PatchSet p = test::lit_box(Rgb(0.6, 0.5, 0.4), Rgb::Constant(3.0));
   const FacetGeometry geometry(p);
   const BruteForceVisibility brute(p);
@@ -170,18 +171,18 @@ TEST_CASE("patch averages traced in batches equal their samples traced one ray a
       PathCounters counters;
       long mismatches = 0;
       for (std::size_t i = 0; i < p.size(); ++i) {
-        Rgb sum = Rgb::Zero(), sum2 = Rgb::Zero();
+        std::vector<Rgb> y;
         for (long k = 0; k < o.spp; ++k) {
           Rng rng = stream(o.seed, StreamDomain::patch_average, i, static_cast<std::uint64_t>(k));
           const double u1 = rng.uniform(), u2 = rng.uniform();
           const auto patch = static_cast<PatchIndex>(i);
-          const Rgb y = p.rho[i] * integrator.irradiance(patch, geometry.sample_point(patch, u1, u2), rng, counters);
-          sum += y;
-          sum2 += y * y;
+          y.push_back(p.rho[i] * integrator.irradiance(patch, geometry.sample_point(patch, u1, u2), rng, counters));
         }
-        const auto [mean, var] = mean_and_variance(sum, sum2, static_cast<double>(o.spp));
+        const CentralMoments4 m = CentralMoments4::of(y.data(), y.size());
         const auto r = static_cast<Eigen::Index>(i);
-        mismatches += !(s.B.row(r).transpose() == p.E[i] + mean).all() || !(s.var.row(r).transpose() == var).all();
+        mismatches += !(s.B.row(r).transpose() == p.E[i] + m.mean).all() ||
+                      !(s.var.row(r).transpose() == m.M2 / double(o.spp - 1)).all() ||
+                      !(s.vov.row(r).transpose() == m.vov()).all();
       }
       INFO((vis == &brute ? "brute force, " : "embree, ") << to_string(kind));
       CHECK(mismatches == 0);

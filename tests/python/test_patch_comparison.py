@@ -18,7 +18,7 @@ def table(B, B_se, n):
     key = np.zeros((n, 6))
     key[:, 0] = np.arange(n) + 1.0
     key[:, 5] = 1.0
-    return {"B": B, "B_se": B_se, "E": np.zeros((n, 3)), "rho": np.full((n, 3), 0.5), "area": np.ones(n),
+    return {"B": B, "B_se": B_se, "B_err": B_se, "E": np.zeros((n, 3)), "rho": np.full((n, 3), 0.5), "area": np.ones(n),
             "key": key, "material": np.array(["m"] * n, dtype=object), "row": np.arange(n)}
 
 
@@ -51,7 +51,7 @@ def test_a_materials_mean_needs_no_matching_patches():
     reference["key"][:, 0] += 0.25  # no reference centroid equals a run's
     for t in (run, reference):  # an emitter and a black patch of the same material: counted in neither
         t["B"] = np.vstack([t["B"], [[9.0] * 3, [5.0] * 3]])
-        t["B_se"] = np.vstack([t["B_se"], np.zeros((2, 3))])
+        t["B_se"] = t["B_err"] = np.vstack([t["B_se"], np.zeros((2, 3))])
         t["E"] = np.vstack([t["E"], [[1.0] * 3, [0.0] * 3]])
         t["rho"] = np.vstack([t["rho"], [[0.5] * 3, [0.0] * 3]])
         t["area"] = np.append(t["area"], [1.0, 1.0])
@@ -66,3 +66,24 @@ def test_a_materials_mean_needs_no_matching_patches():
     s_ref = np.sqrt(4 * 3 * (0.5 * 0.2) ** 2) / (3 * 2.0)
     assert abs(g.s_ref_rel - s_ref / 2.075) < 1e-12
     assert abs(g.sigma - np.hypot(0.1, s_ref) / 2.075) < 1e-12
+
+
+def test_coverage_and_sharpness_of_a_right_error_bar():
+    """Run = truth + noise s, reference = truth + noise se, the run's B_err = s: 95 % of the differences lie within
+    1.96 sqrt(B_err^2 + se^2) and the sharpness is 1, each within 3.29 standard deviations (two-sided 0.001): the
+    coverage's binomial sqrt(0.95 0.05 / values), the sharpness's from sum d^2's variance 2 N sigma^4 (sigma^2 =
+    s^2 + se^2), halved for the square root. A bar half as wide covers about 68 % (fails the first check) and has
+    sharpness 0.5."""
+    n, s, se = 4000, 0.015, 0.005
+    rng = np.random.default_rng(2)
+    truth = np.full((n, 3), 2.0)
+    run = table(truth + rng.normal(0, s, (n, 3)), np.full((n, 3), s), n)
+    reference = table(truth + rng.normal(0, se, (n, 3)), np.full((n, 3), se), n)
+    cover, values, sharp = pc.coverage(run, reference)
+    assert values == 3 * n
+    assert abs(cover - 0.95) <= 3.29 * np.sqrt(0.95 * 0.05 / values), cover
+    sigma2 = s * s + se * se
+    assert abs(sharp - 1) <= 3.29 * 0.5 * np.sqrt(2 * values) * sigma2 / (values * s * s), sharp
+    run["B_err"] = run["B_err"] / 2
+    cover_half, _, sharp_half = pc.coverage(run, reference)
+    assert abs(cover_half - 0.95) > 3.29 * np.sqrt(0.95 * 0.05 / values) and abs(sharp_half - sharp / 2) < 1e-12

@@ -172,10 +172,11 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
   const FluctuationSource source = fluctuation_source(patches, visibility, B, L, 7, 4, false, false);
   CHECK(source.points == 4);
   CHECK(source.rays == 6 * (2 * 64 * 3 * L) + 54 * (2 * 4 * 3 * L));
-  // With the near field (the default) every patch first traces a pilot of s_j^2 L rays, and those whose pilot
-  // reached thinner patches within their points' spacing (here: the room's faces, whose spacing 1/8 exceeds the box's
-  // patches' width 0.067) shoot from n_j^2 points a replicate instead (n_j up to 16 a side), each with its gather
-  // (2 L rays: the cosine gather and the shadow rays to the emitter), L shots and one shadow ray per near target.
+  // With the near field (the default) every patch first traces a pilot of (s_j^2 + 4 s_j) L rays (its s_j x s_j
+  // points and s_j along each of its 4 edges), and those whose pilot reached thinner patches within their points'
+  // spacing (here: the room's faces, whose spacing 1/8 exceeds the box's patches' width 0.067) shoot from n_j^2
+  // points a replicate instead (n_j up to 16 a side), each with its gather (2 L rays: the cosine gather and the
+  // shadow rays to the emitter), L shots and one shadow ray per near target.
   const FluctuationSource refined = fluctuation_source(patches, visibility, B, L, 7, 4, true);
   long rays = 0, near = 0;
   for (std::size_t j = 0; j < 60; ++j) {
@@ -185,7 +186,7 @@ TEST_CASE("discretisation error: the fluctuation's points have one density over 
     CHECK((targets == 0 ? refined.sides[j] == own : (refined.sides[j] > own && refined.sides[j] <= 16)));
     CHECK(std::is_sorted(refined.near_targets[j].begin(), refined.near_targets[j].end()));
     const long n2 = long(refined.sides[j]) * refined.sides[j];
-    rays += own * own * L + (targets > 0 ? 2 * n2 * (3 * L + targets) : 2L * own * own * 3 * L);
+    rays += (own * own + 4 * own) * L + (targets > 0 ? 2 * n2 * (3 * L + targets) : 2L * own * own * 3 * L);
     near += targets > 0;
   }
   CHECK(refined.rays == rays);
@@ -310,4 +311,39 @@ TEST_CASE("discretisation error: a small patch beside a large one sees its near 
   // errors are heavy-tailed (the unrefined estimate's occasional -5 to -6 for -2), so the test has little power at a
   // smaller alpha: measured 1.37 +- 0.55 (z = 2.5).
   CHECK(mean_gain > z_critical(0.1) * se_gain);
+}
+
+// 5. The empirical-Bayes prior's size classes (prior_classes): levels of area by factors of 4 from the largest,
+//    joined until a class holds kPriorClassPatches; uncounted patches take the class nearest in area.
+TEST_CASE("discretisation error: the prior is fitted per size class of at least 64 patches") {
+  const auto classes_of = [](const std::vector<double>& area, std::vector<bool> counted = {}) {
+    if (counted.empty()) counted.assign(area.size(), true);
+    return prior_classes(area, counted);
+  };
+  SECTION("a uniform patching, or one with pieces within a factor 4: one class") {
+    std::vector<double> area(500, 1.0);
+    for (std::size_t i = 0; i < 100; ++i) area[i] = 0.3;
+    const PriorClasses c = classes_of(area);
+    CHECK(c.count == 1);
+    CHECK(std::all_of(c.of.begin(), c.of.end(), [](std::size_t x) { return x == 0; }));
+  }
+  SECTION("fewer than 2 x 64 counted patches: one class, however their sizes differ") {
+    std::vector<double> area(127);
+    for (std::size_t i = 0; i < area.size(); ++i) area[i] = std::pow(0.5, double(i % 10));
+    CHECK(classes_of(area).count == 1);
+  }
+  SECTION("a hierarchy's levels: 100 leaves of area 1, 100 of 1/16, 10 of 1/256 (joining the class before)") {
+    std::vector<double> area;
+    for (int i = 0; i < 100; ++i) area.push_back(1.0), area.push_back(1.0 / 16);
+    for (int i = 0; i < 10; ++i) area.push_back(1.0 / 256);
+    std::vector<bool> counted(area.size(), true);
+    area.push_back(0.5), counted.push_back(false);   // an emitter as large as level 0
+    area.push_back(1e-6), counted.push_back(false);  // a black sliver smaller than any
+    const PriorClasses c = classes_of(area, counted);
+    REQUIRE(c.count == 2);
+    for (std::size_t i = 0; i < 200; ++i) CHECK(c.of[i] == (i % 2 == 0 ? 0u : 1u));
+    for (std::size_t i = 200; i < 210; ++i) CHECK(c.of[i] == 1u);
+    CHECK(c.of[210] == 0u);
+    CHECK(c.of[211] == 1u);
+  }
 }
