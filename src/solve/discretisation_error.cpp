@@ -136,7 +136,8 @@ DiscretisationError discretisation_error(const PatchSet& patches, const Visibili
   }
   out.estimate = e.X;
   // Empirical Bayes (docs/theory/discretisation_error.md): e_i ~ N(0, t_c^2 B_ic^2) a priori, t_c^2 fitted over
-  // the patches of i's size class (prior_classes), e^ ~ N(e, V) given e; then with w = tau^2 / (tau^2 + V):
+  // the patches of i's size class (prior_classes; at least the scene's), e^ ~ N(e, V) given e; then with
+  // w = tau^2 / (tau^2 + V):
   // B_disc^2 = (w e^)^2 + w V, whose mean over a class is its tau^2 (unbiased in aggregate, where e^2 + V would count
   // the noise twice). Scaled before squaring (core/moments.h), as the statistical part.
   const double s = moment_scale(N ? std::max(out.estimate.abs().maxCoeff(), B.abs().maxCoeff()) : 0.0);
