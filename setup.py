@@ -5,7 +5,8 @@ build-pip/ beside this file with Python_EXECUTABLE = the running interpreter (so
 suffix), builds only the target radwalk_python (the C++ libraries and the bindings; no tests, no benchmarks) and
 copies the module where setuptools packs it. The version is the one of `project(radwalk VERSION ...)` in
 CMakeLists.txt. RADWALK_CMAKE_ARGS adds CMake arguments (e.g. "-DRADWALK_MPI=OFF"); ccache is used when installed,
-with CCACHE_BASEDIR at the source root so that a copy of the source shares the cache of another checkout's build.
+with CCACHE_BASEDIR at the source root (whatever the environment says) so that a copy of the source shares the
+cache of another checkout's build (scripts/build.sh does the same).
 """
 import os
 import re
@@ -47,7 +48,7 @@ class BuildWithCMake(build_ext):
             configure += ["-DCMAKE_C_COMPILER_LAUNCHER=ccache", "-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"]
         configure += shlex.split(os.environ.get("RADWALK_CMAKE_ARGS", ""))
         env = dict(os.environ)
-        env.setdefault("CCACHE_BASEDIR", str(ROOT))
+        env["CCACHE_BASEDIR"] = str(ROOT)  # this root, whatever the caller's: paths relative to it hash alike
         subprocess.run(configure, check=True, env=env)
         subprocess.run(["cmake", "--build", str(build_dir), "--target", ext.target, "-j", str(os.cpu_count() or 1)],
                        check=True, env=env)
