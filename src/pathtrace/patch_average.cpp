@@ -31,8 +31,6 @@ constexpr std::size_t kLanes = 32;
 // whatever the sample count.
 constexpr std::size_t kWaveItems = std::size_t(1) << 15;
 
-// An item's samples Y = rho E_irr_hat (scaled): their mean and central moments, merged per patch in item order.
-using Partial = CentralMoments4;
 
 // One item of a task: samples [s0, s1) of patch i, the task's samples first .. first + s1 - s0 - 1.
 struct Item {
@@ -45,7 +43,7 @@ struct Item {
 // (PathIntegrator::trace_batch); out[k] = the sums of item k, its samples' Y = rho_i E_irr_hat(x) added in sample
 // order once all have finished.
 void trace_items(const PatchSet& patches, const SurfaceGeometry& geometry, const PathIntegrator& integrator,
-                 const std::vector<Item>& items, std::uint64_t seed, double inverse_scale, Partial* out,
+                 const std::vector<Item>& items, std::uint64_t seed, double inverse_scale, CentralMoments4* out,
                  PathCounters& counters) {
   using Path = PathIntegrator::Path;
   if (items.empty()) return;
@@ -136,7 +134,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
   const std::size_t wave_tasks = std::max<std::size_t>(1, kWaveItems / per_task);
   const double inverse_scale = 1 / moment_scale(patches.max_emission());
   std::vector<CentralMoments4> moments(n);
-  std::vector<Partial> parts;
+  std::vector<CentralMoments4> parts;  // per item of a wave: its samples' moments, merged per patch in item order
   PathCounters total;
   // Over MPI each rank traces a block of each wave's tasks (their own streams), then all share the wave's items'
   // sums (a rank's items are those of its tasks: consecutive) and the tasks' counters.
@@ -161,7 +159,7 @@ Solution estimate_patch_averages(const PatchSet& patches, const SurfaceGeometry&
     const std::vector<distributed::Range>& ranges = blocks_of_wave.first;
     const std::vector<distributed::Range>& item_ranges = blocks_of_wave.second;
     const distributed::Range mine = ranges[static_cast<std::size_t>(distributed::rank())];
-    parts.assign(i1 - i0, Partial{});
+    parts.assign(i1 - i0, CentralMoments4{});
     std::vector<PathCounters> task_counters(t1 - t0);
     parallel_for(
         mine.size(),

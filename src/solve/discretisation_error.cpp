@@ -45,13 +45,15 @@ PriorClasses prior_classes(const std::vector<double>& area, const std::vector<bo
   // Largest first, ties by index; level of i: floor(log4(A_max / A_i)).
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return area[a] > area[b]; });
   const double largest = area[order.front()];
-  const auto level = [&](double a) { return static_cast<long>(std::floor(std::log(largest / a) / std::log(4.0))); };
+  std::vector<long> level(order.size());
+  for (std::size_t r = 0; r < order.size(); ++r)
+    level[r] = static_cast<long>(std::floor(std::log(largest / area[order[r]]) / std::log(4.0)));
   // Walk the levels from the largest: a class closes at a level boundary once it holds kPriorClassPatches; a last
   // class below that joins the one before.
   std::vector<std::size_t> class_of_rank(order.size());
   std::size_t cls = 0, in_class = 0;
   for (std::size_t r = 0; r < order.size(); ++r) {
-    if (r > 0 && in_class >= kPriorClassPatches && level(area[order[r]]) != level(area[order[r - 1]])) {
+    if (r > 0 && in_class >= kPriorClassPatches && level[r] != level[r - 1]) {
       ++cls;
       in_class = 0;
     }
